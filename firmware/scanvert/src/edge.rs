@@ -1,0 +1,212 @@
+//! The edge stepper: where an edge crosses each pixel row, in integers.
+//!
+//! Row `j` is sampled on the line `y = j + ½`. An edge from `(x₀, y₀)` to
+//! `(x₁, y₁)`, `y₀ < y₁`, crosses it when `y₀ ≤ j + ½ < y₁`. By the pixel
+//! rule, a crossing at `x` separates pixel `i` with `i + ½ < x` from pixel
+//! `i` with `i + ½ ≥ x`, so all a row needs of a crossing is the integer
+//!
+//! ```text
+//! c = ⌈x − ½⌉      (the first pixel whose centre is at or right of x)
+//! ```
+//!
+//! and a span of the even-odd rule is `c_left..c_right`. The stepper keeps,
+//! in units of 1/16 px, `X = ⌈x − ½⌉₁₆` (the position rounded up to a
+//! unit) and an error counter `e = X·dy − (x − ½)·dy ∈ [0, dy)`, so that the
+//! exact position is `X − e/dy`. One row down, the exact position moves by
+//! `16·dx/dy = q + r/dy`; the step is `X += q; e −= r; if e < 0 { X += 1;
+//! e += dy }`, with no division. Since `⌈⌈v⌉/16⌉ = ⌈v/16⌉`, the pixel is
+//! `c = ⌈X/16⌉`, a shift. The first row inside the clip window is computed
+//! directly (one `i64` division), so rows above the window cost nothing.
+//!
+//! The widths of every quantity are in [`crate::fixed`].
+
+use crate::fixed::{ceil_div_i64, ceil_px, Vertex, HALF, ONE};
+
+/// One polygon edge being stepped down the rows, in the form of the
+/// classic Bresenham error counter.
+///
+/// Storage for edges is owned by the caller (see
+/// [`Rasterizer`](crate::scan::Rasterizer)); [`Edge::EMPTY`] fills it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Edge {
+    /// `⌈x − ½⌉` at the current row, in units of 1/16 px.
+    x: i32,
+    /// Error counter, `0 ≤ err < dy`.
+    err: i32,
+    /// Whole units per row, `⌊16·dx / dy⌋`.
+    step: i32,
+    /// Remainder per row, `16·dx mod dy`.
+    rem: i32,
+    /// Height in units, `> 0`.
+    dy: i32,
+    /// First row sampled (inside the clip rows).
+    pub(crate) top: i32,
+    /// One past the last row sampled.
+    pub(crate) end: i32,
+    /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
+    /// [`Edge::load_pixel`].
+    pub(crate) px: i32,
+}
+
+impl Edge {
+    /// An unused slot.
+    pub const EMPTY: Edge = Edge {
+        x: 0,
+        err: 0,
+        step: 0,
+        rem: 0,
+        dy: 1,
+        top: 0,
+        end: 0,
+        px: 0,
+    };
+
+    /// The edge from `a` to `b` restricted to rows `rows.0..rows.1`, or
+    /// `None` when it crosses no row centre there (horizontal edges, edges
+    /// between two row centres, edges outside the rows).
+    #[inline]
+    pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
+        let (mut p, mut q) = (a, b);
+        if p.y.units() > q.y.units() {
+            core::mem::swap(&mut p, &mut q);
+        }
+        let (x0, y0, x1, y1) = (p.x.units(), p.y.units(), q.x.units(), q.y.units());
+        // Rows whose centre j·16 + 8 lies in [y0, y1).
+        let top = ceil_px(y0 - HALF).max(rows.0);
+        let end = ceil_px(y1 - HALF).min(rows.1);
+        if top >= end {
+            return None;
+        }
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        // (x − ½)·dy at the first row's centre, exactly.
+        let yc = top * ONE + HALF;
+        let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
+        let x = ceil_div_i64(num, dy as i64);
+        let err = (x * dy as i64 - num) as i32;
+        let step = (ONE * dx).div_euclid(dy);
+        let rem = (ONE * dx).rem_euclid(dy);
+        Some(Edge {
+            x: x as i32,
+            err,
+            step,
+            rem,
+            dy,
+            top,
+            end,
+            px: 0,
+        })
+    }
+
+    /// Computes [`Edge::pixel`] for the current row.
+    #[inline(always)]
+    pub(crate) fn load_pixel(&mut self) {
+        self.px = ceil_px(self.x);
+    }
+
+    /// The first pixel whose centre is at or right of the crossing on the
+    /// current row, as of the last [`Edge::load_pixel`].
+    #[inline(always)]
+    pub fn pixel(&self) -> i32 {
+        self.px
+    }
+
+    /// The crossing on the current row: `⌈x − ½⌉` in units of 1/16 px.
+    #[inline(always)]
+    pub fn units(&self) -> i32 {
+        self.x
+    }
+
+    /// Moves to the next row.
+    #[inline(always)]
+    pub fn step(&mut self) {
+        self.x += self.step;
+        self.err -= self.rem;
+        if self.err < 0 {
+            self.x += 1;
+            self.err += self.dy;
+        }
+    }
+
+    /// First row sampled.
+    pub fn top(&self) -> i32 {
+        self.top
+    }
+
+    /// One past the last row sampled.
+    pub fn end(&self) -> i32 {
+        self.end
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `⌈x − ½⌉` in pixels at row `j`, straight from the definition with
+    /// rationals over a common denominator.
+    fn direct(a: Vertex, b: Vertex, j: i32) -> i32 {
+        let (mut p, mut q) = (a, b);
+        if p.y > q.y {
+            core::mem::swap(&mut p, &mut q);
+        }
+        let (x0, y0, x1, y1) = (
+            p.x.units() as i64,
+            p.y.units() as i64,
+            q.x.units() as i64,
+            q.y.units() as i64,
+        );
+        let yc = j as i64 * 16 + 8;
+        // x·dy in units: x0·dy + (yc − y0)·dx; pixel = ⌈(x − 8)/16⌉.
+        let n = x0 * (y1 - y0) + (yc - y0) * (x1 - x0) - 8 * (y1 - y0);
+        ceil_div_i64(n, 16 * (y1 - y0)) as i32
+    }
+
+    fn check(a: Vertex, b: Vertex) {
+        let Some(mut e) = Edge::new(a, b, (i32::MIN, i32::MAX)) else {
+            return;
+        };
+        for j in e.top()..e.end() {
+            e.load_pixel();
+            assert_eq!(e.pixel(), direct(a, b, j), "{a:?} {b:?} row {j}");
+            e.step();
+        }
+    }
+
+    #[test]
+    fn stepper_matches_direct_formula() {
+        let mut s = 0x1234_5678u32;
+        let mut rnd = |m: i32| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s % (2 * m as u32)) as i32 - m
+        };
+        for _ in 0..3000 {
+            let a = Vertex::from_bits(rnd(3000) as i16, rnd(3000) as i16);
+            let b = Vertex::from_bits(rnd(3000) as i16, rnd(3000) as i16);
+            check(a, b);
+        }
+    }
+
+    #[test]
+    fn range_corners_do_not_overflow() {
+        let m = [i16::MIN, i16::MIN + 1, -1, 0, 1, i16::MAX - 1, i16::MAX];
+        for &ax in &m {
+            for &ay in &m {
+                for &bx in &m {
+                    for &by in &m {
+                        check(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn first_row_is_clipped_directly() {
+        let a = Vertex::from_bits(0, -2048 * 16);
+        let b = Vertex::from_bits(100 * 16, 2047 * 16);
+        let e = Edge::new(a, b, (10, 13)).unwrap();
+        assert_eq!((e.top(), e.end()), (10, 13));
+    }
+}

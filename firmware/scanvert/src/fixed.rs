@@ -1,0 +1,147 @@
+//! Fixed-point formats of the geometry.
+//!
+//! # Vertex coordinates: Q12.4
+//!
+//! A [`Coord`] is a signed 16-bit integer counting sixteenths of a pixel:
+//! 12 integer bits (sign included) and 4 fraction bits. It holds every
+//! multiple of 1/16 from −2048 to +2047.9375, and nothing else, so a value
+//! that has been stored is always in range: there is no range check left to
+//! forget.
+//!
+//! # Widths of the intermediates
+//!
+//! All scan conversion works in *units* of 1/16 px held in `i32`:
+//!
+//! | quantity | bound | bits |
+//! |---|---|---|
+//! | a coordinate | \[−2¹⁵, 2¹⁵) | 16 |
+//! | `dx`, `dy` of an edge | \|·\| < 2¹⁶ | 17 |
+//! | `16·dx` (the step numerator) | \|·\| < 2²⁰ | 21 |
+//! | the stepped x (units) | within the edge's x range | 16 |
+//! | the error counter | \[0, dy) | 16 |
+//! | the set-up numerator `x·dy + t·dx` | \|·\| < 2³³ | `i64` |
+//!
+//! Only the set-up of an edge (once per edge) needs `i64`; the per-row
+//! step is three `i32` additions and a compare. The corners of the range are
+//! exercised by tests built with overflow checks on.
+
+/// Number of fraction bits of a [`Coord`].
+pub const FRAC_BITS: u32 = 4;
+/// Units per pixel (16).
+pub const ONE: i32 = 1 << FRAC_BITS;
+/// Half a pixel in units (8): the offset of a pixel centre.
+pub const HALF: i32 = ONE / 2;
+
+/// A subpixel coordinate in Q12.4 (sixteenths of a pixel).
+///
+/// # Guarantees
+/// The value lies in \[−2048, 2047.9375\] and is a multiple of 1/16.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Coord(i16);
+
+impl Coord {
+    /// The smallest coordinate, −2048.
+    pub const MIN: Coord = Coord(i16::MIN);
+    /// The largest coordinate, 2047.9375.
+    pub const MAX: Coord = Coord(i16::MAX);
+    /// Zero.
+    pub const ZERO: Coord = Coord(0);
+
+    /// A coordinate from its raw value in sixteenths of a pixel.
+    pub const fn from_bits(units: i16) -> Self {
+        Coord(units)
+    }
+
+    /// A coordinate at a whole pixel, or `None` outside \[−2048, 2047\].
+    pub const fn from_int(px: i32) -> Option<Self> {
+        if px < -2048 || px > 2047 {
+            None
+        } else {
+            Some(Coord((px * ONE) as i16))
+        }
+    }
+
+    /// The raw value in sixteenths of a pixel.
+    pub const fn to_bits(self) -> i16 {
+        self.0
+    }
+
+    /// The value in sixteenths of a pixel, widened.
+    pub const fn units(self) -> i32 {
+        self.0 as i32
+    }
+}
+
+/// A 2D vertex in subpixel coordinates: x to the right, y downward.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Vertex {
+    /// Horizontal position.
+    pub x: Coord,
+    /// Vertical position (downward).
+    pub y: Coord,
+}
+
+impl Vertex {
+    /// A vertex from raw sixteenths of a pixel.
+    pub const fn from_bits(x: i16, y: i16) -> Self {
+        Vertex {
+            x: Coord(x),
+            y: Coord(y),
+        }
+    }
+}
+
+/// A vertex in screen space with depth: x, y as [`Vertex`], larger `z` is
+/// farther. `z` is in the same Q12.4 format.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Vertex3 {
+    /// Horizontal position.
+    pub x: Coord,
+    /// Vertical position (downward).
+    pub y: Coord,
+    /// Depth; larger is farther.
+    pub z: Coord,
+}
+
+/// `ceil(n / d)` for `d > 0`, exact for every `n`.
+#[inline]
+pub(crate) const fn ceil_div_i64(n: i64, d: i64) -> i64 {
+    let q = n.div_euclid(d);
+    if q * d == n {
+        q
+    } else {
+        q + 1
+    }
+}
+
+/// `ceil(units / 16)`: the whole pixel index at or above a unit position.
+#[inline(always)]
+pub(crate) const fn ceil_px(units: i32) -> i32 {
+    (units + (ONE - 1)) >> FRAC_BITS
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ceil_px_matches_definition() {
+        for u in -40_000..40_000 {
+            let expect = ceil_div_i64(u as i64, ONE as i64) as i32;
+            assert_eq!(ceil_px(u), expect, "u = {u}");
+        }
+    }
+
+    #[test]
+    fn coord_range_corners() {
+        assert_eq!(Coord::MIN.units(), -2048 * 16);
+        assert_eq!(Coord::MAX.units(), 2048 * 16 - 1);
+        assert_eq!(Coord::from_int(2047).map(Coord::units), Some(2047 * 16));
+        assert_eq!(Coord::from_int(2048), None);
+        assert_eq!(Coord::from_int(-2048), Some(Coord::MIN));
+        assert_eq!(Coord::from_int(-2049), None);
+    }
+}

@@ -1,0 +1,67 @@
+//! Integer scan conversion of display lists, for microcontrollers and FPGA
+//! soft-cores.
+//!
+//! `scanvert` is the graphic controller of a scan-conversion unit in
+//! software: it reads a *display list* of polygons, steps each polygon's
+//! edges with integer error counters, clips every horizontal span against
+//! four *clip registers*, and writes the spans into a frame-buffer port.
+//! There is no floating point, no allocation and no `unsafe`; all memory is
+//! the caller's.
+//!
+//! # The pipeline, display list to pixel
+//!
+//! | stage | module | what happens |
+//! |---|---|---|
+//! | reader | [`display_list`] | validate the bytes once, then read commands infallibly |
+//! | geometry | [`fixed`] | Q12.4 vertices and the widths of every intermediate |
+//! | edges | [`edge`] | per-edge set-up, then an exact Bresenham step per row |
+//! | spans | [`scan`] | active-edge list, even-odd pairing of crossings |
+//! | clip registers | [`clip`] | the window every span is cut to |
+//! | port | [`port`], [`framebuffer`] | spans into memory (or hardware) |
+//! | controller | [`controller`] | runs a display list through all of the above |
+//! | colour | [`color`] | list colours to the frame buffer's pixel format |
+//!
+//! # Example
+//!
+//! ```
+//! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+//! use scanvert::{
+//!     controller::Controller, display_list::{DisplayList, Writer}, edge::Edge,
+//!     fixed::Vertex, framebuffer::FrameBuffer, scan::Rasterizer,
+//! };
+//!
+//! // Assemble a list: a red triangle on a black frame of 32 × 16.
+//! let mut bytes = [0u8; 64];
+//! let mut w = Writer::new(&mut bytes, 32, 16)?;
+//! w.clear(Rgb888::BLACK)?;
+//! w.color(Rgb888::RED)?;
+//! let px = |x: i16, y: i16| Vertex::from_bits(x * 16, y * 16);
+//! w.poly([px(2, 2), px(30, 8), px(4, 14)])?;
+//! let list = DisplayList::new_checked(w.finish()).unwrap();
+//!
+//! let mut pixels = [Rgb565::BLACK; 32 * 16];
+//! let mut fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
+//! let mut edges = [Edge::EMPTY; 16];
+//! let stats = Controller::new(Rasterizer::new(&mut edges)).render(&list, &mut fb).unwrap();
+//! assert_eq!(fb.pixel(10, 8), Some(Rgb565::RED));
+//! assert_eq!(stats.polygons, 1);
+//! # Ok::<(), scanvert::display_list::WriteError>(())
+//! ```
+#![no_std]
+#![deny(missing_docs)]
+#![deny(missing_debug_implementations)]
+#![deny(unsafe_code)]
+#![deny(rustdoc::broken_intra_doc_links)]
+#![deny(clippy::float_arithmetic)]
+
+pub mod clip;
+pub mod color;
+pub mod controller;
+pub mod display_list;
+pub mod edge;
+pub mod fixed;
+pub mod framebuffer;
+pub mod port;
+pub mod scan;
+
+pub use embedded_graphics_core::pixelcolor;

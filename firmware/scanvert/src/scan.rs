@@ -1,0 +1,219 @@
+//! Scan conversion of one polygon: the active-edge list, the even-odd
+//! pairing of crossings, and the clip registers applied to every span.
+//!
+//! The edges of a polygon are set up once ([`Edge::new`], clipped to the
+//! window's rows) and sorted by first row. Row by row, edges whose first
+//! row has come join the active list, every active edge yields the pixel
+//! `⌈x − ½⌉` of its crossing, an insertion sort (nearly free, since the
+//! order rarely changes from one row to the next) orders them, and
+//! crossings are paired 1st–2nd, 3rd–4th, …: each pair is the span
+//! `c₁..c₂`, cut to the clip window's columns. Rows where nothing is active
+//! are jumped over.
+//!
+//! Sorting the integer pixels instead of the exact crossings gives the same
+//! pixels: a pixel is covered when an odd number of crossings lie at or
+//! left of its centre, and that count only depends on the integers.
+
+use crate::clip::ClipRect;
+use crate::edge::Edge;
+use crate::fixed::{ceil_px, Vertex, HALF};
+use crate::port::{Span, SpanTarget};
+use core::fmt;
+
+/// Why a polygon could not be drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum FillError<E> {
+    /// The polygon has more edges inside the clip rows than the edge
+    /// storage holds. Nothing of it was drawn.
+    Capacity {
+        /// Slots the edge storage holds.
+        capacity: usize,
+    },
+    /// The target failed; part of the polygon may have been drawn.
+    Target(E),
+}
+
+impl<E: fmt::Debug> fmt::Display for FillError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FillError::Capacity { capacity } => {
+                write!(
+                    f,
+                    "polygon needs more than the {capacity} edge slots available"
+                )
+            }
+            FillError::Target(e) => write!(f, "frame-buffer port failed: {e:?}"),
+        }
+    }
+}
+
+/// What one fill wrote.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct FillCounts {
+    /// Spans handed to the target.
+    pub spans: u32,
+    /// Pixels in those spans.
+    pub pixels: u32,
+}
+
+/// The polygon scan converter over caller-owned edge storage.
+///
+/// # Capacity
+/// A polygon of `n` vertices needs at most `n` edge slots; only edges that
+/// cross a row centre inside the clip window take one. With too few slots,
+/// [`Rasterizer::fill`] returns [`FillError::Capacity`] and draws nothing.
+/// The storage is the active-edge list too, so no other memory is used.
+///
+/// ```
+/// use scanvert::{edge::Edge, scan::Rasterizer};
+/// let mut slots = [Edge::EMPTY; 64]; // const-generic capacity on the stack
+/// let raster = Rasterizer::new(&mut slots);
+/// assert_eq!(raster.capacity(), 64);
+/// ```
+#[derive(Debug)]
+pub struct Rasterizer<'e> {
+    edges: &'e mut [Edge],
+}
+
+impl<'e> Rasterizer<'e> {
+    /// A rasteriser using `edges` as its edge table.
+    pub fn new(edges: &'e mut [Edge]) -> Self {
+        Rasterizer { edges }
+    }
+
+    /// Edge slots available.
+    pub fn capacity(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Fills the polygon through `vertices` (closed implicitly) with the
+    /// even-odd rule, writing only pixels inside `clip`.
+    pub fn fill<I, T>(
+        &mut self,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<FillCounts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        let mut counts = FillCounts::default();
+        if clip.is_empty() {
+            return Ok(counts);
+        }
+        let n = match self.build(vertices, clip) {
+            Some(n) => n,
+            None => {
+                return Err(FillError::Capacity {
+                    capacity: self.edges.len(),
+                })
+            }
+        };
+        let edges = &mut self.edges[..n];
+        if n < 2 {
+            return Ok(counts);
+        }
+        edges.sort_unstable_by_key(|e| e.top);
+        let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
+
+        // edges[..active] are active, edges[active..next] are finished,
+        // edges[next..] wait for their first row (sorted).
+        let (mut active, mut next) = (0usize, 0usize);
+        let mut y = edges[0].top;
+        while next < n || active > 0 {
+            if active == 0 {
+                y = y.max(edges[next].top);
+            }
+            while next < n && edges[next].top <= y {
+                edges.swap(active, next);
+                active += 1;
+                next += 1;
+            }
+            let live = &mut edges[..active];
+            for e in live.iter_mut() {
+                e.load_pixel();
+            }
+            insertion_sort(live);
+            for pair in live.chunks_exact(2) {
+                let x0 = pair[0].px.max(cx0);
+                let x1 = pair[1].px.min(cx1);
+                if x0 < x1 {
+                    // In 0..=4096 by the clip guarantee.
+                    let span = Span {
+                        y: y as u16,
+                        x0: x0 as u16,
+                        x1: x1 as u16,
+                    };
+                    target.fill_span(span, color).map_err(FillError::Target)?;
+                    counts.spans += 1;
+                    counts.pixels += (x1 - x0) as u32;
+                }
+            }
+            let mut i = 0;
+            while i < active {
+                if y + 1 >= edges[i].end {
+                    active -= 1;
+                    edges.swap(i, active);
+                } else {
+                    edges[i].step();
+                    i += 1;
+                }
+            }
+            y += 1;
+        }
+        Ok(counts)
+    }
+
+    /// Sets up the edges that cross a row centre inside `clip`; returns
+    /// their number, or `None` when they do not fit. Returns 0 when the
+    /// polygon's box misses the window's columns.
+    fn build<I: IntoIterator<Item = Vertex>>(
+        &mut self,
+        vertices: I,
+        clip: &ClipRect,
+    ) -> Option<usize> {
+        let rows = (clip.y0() as i32, clip.y1() as i32);
+        let mut it = vertices.into_iter();
+        let Some(first) = it.next() else {
+            return Some(0);
+        };
+        let (mut lo, mut hi) = (first.x.units(), first.x.units());
+        let mut n = 0;
+        let mut prev = first;
+        let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
+            if let Some(e) = Edge::new(a, b, rows) {
+                *self.edges.get_mut(*n)? = e;
+                *n += 1;
+            }
+            Some(())
+        };
+        for v in it {
+            push(prev, v, &mut n)?;
+            lo = lo.min(v.x.units());
+            hi = hi.max(v.x.units());
+            prev = v;
+        }
+        push(prev, first, &mut n)?;
+        // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
+        if ceil_px(hi - HALF) <= clip.x0() as i32 || ceil_px(lo - HALF) >= clip.x1() as i32 {
+            return Some(0);
+        }
+        Some(n)
+    }
+}
+
+/// Sorts by crossing pixel; linear when the order is the last row's.
+#[inline]
+fn insertion_sort(e: &mut [Edge]) {
+    for i in 1..e.len() {
+        let mut j = i;
+        while j > 0 && e[j - 1].px > e[j].px {
+            e.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
