@@ -54,6 +54,7 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 #![deny(clippy::float_arithmetic)]
 
+pub mod checksum;
 pub mod clip;
 pub mod color;
 pub mod controller;
