@@ -1,0 +1,302 @@
+//! The refresh controller: generates hsync and vsync from a
+//! [`VideoTiming`], clock by clock, and reads the frame-buffer RAM's read
+//! port during active display, producing the [`Frame`] a monitor shows.
+//!
+//! The beam position `(x, y)` counts pixel clocks within the line and
+//! lines within the frame, starting at the first active pixel. On each
+//! clock the controller
+//! - asserts hsync while `x` is in the horizontal sync pulse, and vsync
+//!   while `y` is in the vertical sync pulse (a whole number of lines);
+//!   a pulse is counted when the signal is asserted (its leading edge);
+//! - during active display reads pixel `(x, y)` through the read port,
+//!   which it clocks at the pixel clock; during blanking the port idles.
+//!
+//! # RAM and mode of different sizes
+//! The monitor shows the active area of the timing. Where that area reaches
+//! beyond the RAM, the read misses (the address decoder selects no cell)
+//! and the monitor shows black there. Where the RAM is larger, only its
+//! top-left `width × height` corner is read.
+
+use crate::dual_port::{DualPortRam, ReadPort};
+use crate::timing::VideoTiming;
+use embedded_graphics_core::pixelcolor::Rgb565;
+
+const BLACK: Rgb565 = Rgb565::new(0, 0, 0);
+
+/// What the refresh controller did during one frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RefreshCounters {
+    /// Pixel clocks.
+    pub clocks: u64,
+    /// Lines completed.
+    pub lines: u64,
+    /// Leading edges of hsync.
+    pub hsync_pulses: u64,
+    /// Leading edges of vsync.
+    pub vsync_pulses: u64,
+    /// Pixels read from the RAM (active pixels inside the RAM).
+    pub pixels_read: u64,
+}
+
+/// One frame as the monitor sees it: the active area's pixels, row-major,
+/// and the refresh controller's counters for the frame.
+///
+/// # Guarantees
+/// `pixels().len() == width × height`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Frame {
+    width: u16,
+    height: u16,
+    pixels: Vec<Rgb565>,
+    counters: RefreshCounters,
+}
+
+impl Frame {
+    /// A frame of the given pixels with zero counters, or `None` when
+    /// `pixels.len() != width × height`.
+    pub fn from_pixels(width: u16, height: u16, pixels: Vec<Rgb565>) -> Option<Frame> {
+        (pixels.len() == width as usize * height as usize).then_some(Frame {
+            width,
+            height,
+            pixels,
+            counters: RefreshCounters::default(),
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u16 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// The pixels, row-major.
+    pub fn pixels(&self) -> &[Rgb565] {
+        &self.pixels
+    }
+
+    /// The pixel at `(x, y)`, or `None` outside the frame.
+    pub fn pixel(&self, x: u16, y: u16) -> Option<Rgb565> {
+        if x < self.width && y < self.height {
+            self.pixels
+                .get(y as usize * self.width as usize + x as usize)
+                .copied()
+        } else {
+            None
+        }
+    }
+
+    /// Row `y`, or `None` outside the frame.
+    pub fn row(&self, y: u16) -> Option<&[Rgb565]> {
+        let w = self.width as usize;
+        let start = y as usize * w;
+        (y < self.height)
+            .then(|| self.pixels.get(start..start + w))
+            .flatten()
+    }
+
+    /// The refresh controller's counters for this frame.
+    pub fn counters(&self) -> RefreshCounters {
+        self.counters
+    }
+
+    /// The frame checksum shared with the target
+    /// ([`scanvert::checksum::frame_checksum`]).
+    pub fn checksum(&self) -> u32 {
+        scanvert::checksum::frame_checksum(&self.pixels)
+    }
+}
+
+/// The refresh controller: a beam counter, the sync generator and the
+/// monitor's picture of the frame in progress.
+#[derive(Clone, Debug)]
+pub struct RefreshController {
+    timing: VideoTiming,
+    x: u32,
+    y: u32,
+    hsync: bool,
+    vsync: bool,
+    screen: Vec<Rgb565>,
+    counters: RefreshCounters,
+}
+
+impl RefreshController {
+    /// A controller for `timing`, with the beam at the first active pixel
+    /// of a frame.
+    pub fn new(timing: VideoTiming) -> Self {
+        RefreshController {
+            timing,
+            x: 0,
+            y: 0,
+            hsync: false,
+            vsync: false,
+            screen: vec![BLACK; Self::area(&timing)],
+            counters: RefreshCounters::default(),
+        }
+    }
+
+    fn area(t: &VideoTiming) -> usize {
+        t.width() as usize * t.height() as usize
+    }
+
+    /// The video mode.
+    pub fn timing(&self) -> &VideoTiming {
+        &self.timing
+    }
+
+    /// The beam position: `(pixel clock in the line, line in the frame)`.
+    pub fn beam(&self) -> (u32, u32) {
+        (self.x, self.y)
+    }
+
+    /// The hsync level driven on the last clock.
+    pub fn hsync(&self) -> bool {
+        self.hsync
+    }
+
+    /// The vsync level driven on the last clock.
+    pub fn vsync(&self) -> bool {
+        self.vsync
+    }
+
+    /// `true` while the beam is in the vertical retrace (below the active
+    /// lines).
+    pub fn in_vertical_retrace(&self) -> bool {
+        self.y >= self.timing.height() as u32
+    }
+
+    /// Counters of the frame in progress.
+    pub fn counters(&self) -> RefreshCounters {
+        self.counters
+    }
+
+    /// Runs one pixel clock: drives the syncs, reads or idles the port,
+    /// advances the beam. Returns the frame when this was its last clock.
+    pub fn tick(&mut self, port: &mut ReadPort<'_>) -> Option<Frame> {
+        let (h, v) = (self.timing.horizontal(), self.timing.vertical());
+        let (x, y) = (self.x, self.y);
+        let hsync = (h.sync_start()..h.sync_end()).contains(&x);
+        let vsync = (v.sync_start()..v.sync_end()).contains(&y);
+        self.counters.hsync_pulses += u64::from(hsync && !self.hsync);
+        self.counters.vsync_pulses += u64::from(vsync && !self.vsync);
+        self.hsync = hsync;
+        self.vsync = vsync;
+
+        if x < h.active as u32 && y < v.active as u32 {
+            // Both below 4096 here, so they fit u16 and the index is in
+            // the screen.
+            let pixel = match port.read(x as u16, y as u16) {
+                Some(p) => {
+                    self.counters.pixels_read += 1;
+                    p
+                }
+                None => BLACK,
+            };
+            if let Some(cell) = self
+                .screen
+                .get_mut(y as usize * h.active as usize + x as usize)
+            {
+                *cell = pixel;
+            }
+        } else {
+            port.idle(1);
+        }
+        self.counters.clocks += 1;
+
+        self.x += 1;
+        if self.x < h.total() {
+            return None;
+        }
+        self.x = 0;
+        self.y += 1;
+        self.counters.lines += 1;
+        if self.y < v.total() {
+            return None;
+        }
+        self.y = 0;
+        let pixels = std::mem::replace(&mut self.screen, vec![BLACK; Self::area(&self.timing)]);
+        Some(Frame {
+            width: h.active,
+            height: v.active,
+            pixels,
+            counters: std::mem::take(&mut self.counters),
+        })
+    }
+
+    /// Clocks the controller until the frame in progress is complete and
+    /// returns it: from a new controller, exactly one whole frame. The RAM's
+    /// read port is driven at the pixel clock.
+    pub fn read_frame(&mut self, ram: &mut DualPortRam) -> Frame {
+        ram.set_read_clock(self.timing.pixel_clock());
+        let mut port = ram.read_port();
+        loop {
+            if let Some(frame) = self.tick(&mut port) {
+                return frame;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::timing::{AxisTiming, Clock};
+    use scanvert::port::{Span, SpanTarget};
+
+    fn tiny() -> VideoTiming {
+        let axis = |active, sync| AxisTiming {
+            active,
+            front_porch: 1,
+            sync,
+            back_porch: 1,
+        };
+        VideoTiming::new("tiny", Clock::from_mhz(1).unwrap(), axis(4, 2), axis(3, 1)).unwrap()
+    }
+
+    #[test]
+    fn counts_one_tiny_frame() {
+        let mut ram = DualPortRam::new(4, 3);
+        let c = Rgb565::new(3, 4, 5);
+        ram.write_port()
+            .fill_span(Span { y: 2, x0: 1, x1: 3 }, c)
+            .unwrap();
+        let mut rc = RefreshController::new(tiny());
+        let f = rc.read_frame(&mut ram);
+        let n = f.counters();
+        // 8 clocks × 6 lines.
+        assert_eq!((n.clocks, n.lines), (48, 6));
+        assert_eq!((n.hsync_pulses, n.vsync_pulses, n.pixels_read), (6, 1, 12));
+        assert_eq!(f.pixel(1, 2), Some(c));
+        assert_eq!(f.pixel(0, 2), Some(BLACK));
+        assert_eq!(f.row(2).map(|r| r.len()), Some(4));
+        let r = ram.read_counters();
+        assert_eq!((r.cycles, r.pixels_read, r.clock.hz()), (48, 12, 1_000_000));
+        assert_eq!(rc.beam(), (0, 0));
+        // The next frame counts afresh.
+        assert_eq!(rc.read_frame(&mut ram).counters(), n);
+    }
+
+    #[test]
+    fn monitor_shows_black_beyond_a_smaller_ram() {
+        let mut ram = DualPortRam::new(2, 5);
+        let c = Rgb565::new(31, 63, 31);
+        ram.write_port().clear(c).unwrap();
+        let f = RefreshController::new(tiny()).read_frame(&mut ram);
+        assert_eq!(f.counters().pixels_read, 6);
+        for y in 0..3 {
+            assert_eq!(f.row(y).unwrap(), [c, c, BLACK, BLACK]);
+        }
+        assert_eq!(ram.read_counters().missed_reads, 6);
+    }
+
+    #[test]
+    fn from_pixels_checks_the_length() {
+        assert!(Frame::from_pixels(2, 2, vec![BLACK; 3]).is_none());
+        let f = Frame::from_pixels(2, 2, vec![BLACK; 4]).unwrap();
+        assert_eq!(f.pixel(2, 0), None);
+        assert_eq!(f.row(2), None);
+    }
+}
