@@ -18,6 +18,20 @@
 //! [`WRITE_PORT_CLOCK`]). The read port delivers one pixel per cycle of its
 //! clock, which the refresh controller drives at the pixel clock and also
 //! ticks, without an access, through the blanking intervals.
+//!
+//! # Double buffering
+//! A RAM made with [`DualPortRam::double_buffered`] has two banks. The
+//! read port shows the *front* bank; the write port fills the *back* bank.
+//! The graphic controller asks for the banks to be exchanged with
+//! [`DualPortRam::request_swap`]; the exchange waits for the refresh
+//! controller's vertical-blanking strobe ([`ReadPort::vertical_blank`]), so
+//! it only happens while no pixel is read out, and a frame on the monitor
+//! never mixes two renders. Until the swap has happened
+//! ([`DualPortRam::swap_pending`]) the back bank still holds the finished
+//! render; a controller waits before drawing the next one.
+//!
+//! A single-buffered RAM ([`DualPortRam::new`]) has one bank, read and
+//! written at once; a swap request does nothing there.
 
 use crate::timing::Clock;
 use core::convert::Infallible;
@@ -117,7 +131,12 @@ impl ReadCounters {
 pub struct DualPortRam {
     width: u16,
     height: u16,
+    /// `banks × width × height` pixels, bank after bank.
     cells: Vec<Rgb565>,
+    banks: u8,
+    front: u8,
+    swap_pending: bool,
+    swaps: u64,
     write: WriteCounters,
     read: ReadCounters,
 }
@@ -132,15 +151,72 @@ impl DualPortRam {
 
     /// A black RAM with the given port clocks; sides as for [`new`](Self::new).
     pub fn with_clocks(width: u16, height: u16, write: Clock, read: Clock) -> Self {
+        Self::with_banks(1, width, height, write, read)
+    }
+
+    /// A black RAM of two banks, for double buffering (see the module
+    /// docs), with the reference design's port clocks; sides as for
+    /// [`new`](Self::new).
+    pub fn double_buffered(width: u16, height: u16) -> Self {
+        Self::with_banks(2, width, height, WRITE_PORT_CLOCK, READ_PORT_CLOCK)
+    }
+
+    fn with_banks(banks: u8, width: u16, height: u16, write: Clock, read: Clock) -> Self {
         let width = width.clamp(1, MAX_SIDE);
         let height = height.clamp(1, MAX_SIDE);
+        let area = width as usize * height as usize;
         DualPortRam {
             width,
             height,
-            cells: vec![Rgb565::new(0, 0, 0); width as usize * height as usize],
+            cells: vec![Rgb565::new(0, 0, 0); banks as usize * area],
+            banks,
+            front: 0,
+            swap_pending: false,
+            swaps: 0,
             write: WriteCounters::new(write),
             read: ReadCounters::new(read),
         }
+    }
+
+    fn area(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// The pixels of `bank`; an empty slice for a bank the RAM lacks.
+    fn bank(&self, bank: u8) -> &[Rgb565] {
+        let area = self.area();
+        let start = bank as usize * area;
+        self.cells.get(start..start + area).unwrap_or(&[])
+    }
+
+    /// The bank the write port fills: the other one when double-buffered.
+    fn back(&self) -> u8 {
+        if self.banks == 2 {
+            1 - self.front
+        } else {
+            self.front
+        }
+    }
+
+    /// `true` for a RAM of two banks.
+    pub fn is_double_buffered(&self) -> bool {
+        self.banks == 2
+    }
+
+    /// Asks for the banks to be exchanged at the next vertical blanking
+    /// (double-buffered RAM only; otherwise nothing happens).
+    pub fn request_swap(&mut self) {
+        self.swap_pending = self.banks == 2;
+    }
+
+    /// `true` while a requested swap has not yet happened.
+    pub fn swap_pending(&self) -> bool {
+        self.swap_pending
+    }
+
+    /// Bank swaps done.
+    pub fn swaps(&self) -> u64 {
+        self.swaps
     }
 
     /// Width in pixels.
@@ -153,10 +229,16 @@ impl DualPortRam {
         self.height
     }
 
-    /// The memory as it is, row-major, without a port access (a debug
-    /// view, not counted).
+    /// The bank the read port shows, row-major, without a port access (a
+    /// debug view, not counted).
     pub fn contents(&self) -> &[Rgb565] {
-        &self.cells
+        self.bank(self.front)
+    }
+
+    /// The bank the write port fills (the same as [`contents`](Self::contents)
+    /// when single-buffered), without a port access.
+    pub fn back_contents(&self) -> &[Rgb565] {
+        self.bank(self.back())
     }
 
     /// The port the graphic controller writes through.
@@ -231,7 +313,7 @@ impl SpanTarget for WritePort<'_> {
         if x1 < span.x1 {
             ram.write.clipped_spans += 1;
         }
-        let base = span.y as usize * ram.width as usize;
+        let base = ram.back() as usize * ram.area() + span.y as usize * ram.width as usize;
         if let Some(run) = ram
             .cells
             .get_mut(base + span.x0 as usize..base + x1 as usize)
@@ -245,10 +327,14 @@ impl SpanTarget for WritePort<'_> {
 
     fn clear(&mut self, color: Rgb565) -> Result<(), Infallible> {
         let ram = &mut *self.ram;
-        ram.cells.fill(color);
+        let area = ram.area();
+        let start = ram.back() as usize * area;
+        if let Some(bank) = ram.cells.get_mut(start..start + area) {
+            bank.fill(color);
+        }
         ram.write.clears += 1;
-        ram.write.pixels_written += ram.cells.len() as u64;
-        ram.write.cycles += ram.cells.len() as u64;
+        ram.write.pixels_written += area as u64;
+        ram.write.cycles += area as u64;
         Ok(())
     }
 }
@@ -272,7 +358,7 @@ impl ReadPort<'_> {
         ram.read.cycles += 1;
         if x < ram.width && y < ram.height {
             ram.read.pixels_read += 1;
-            ram.cells
+            ram.bank(ram.front)
                 .get(y as usize * ram.width as usize + x as usize)
                 .copied()
         } else {
@@ -290,7 +376,8 @@ impl ReadPort<'_> {
         }
         let n = out.len().min(ram.width as usize);
         let base = y as usize * ram.width as usize;
-        if let (Some(dst), Some(src)) = (out.get_mut(..n), ram.cells.get(base..base + n)) {
+        let src = ram.bank(ram.front).get(base..base + n);
+        if let (Some(dst), Some(src)) = (out.get_mut(..n), src) {
             dst.copy_from_slice(src);
             ram.read.pixels_read += n as u64;
             ram.read.cycles += n as u64;
@@ -303,6 +390,19 @@ impl ReadPort<'_> {
     /// Lets `cycles` clock cycles pass without an access (blanking).
     pub fn idle(&mut self, cycles: u64) {
         self.ram.read.cycles += cycles;
+    }
+
+    /// The refresh controller's vertical-blanking strobe: a pending bank
+    /// swap takes effect. Returns `true` when the banks were exchanged.
+    pub fn vertical_blank(&mut self) -> bool {
+        let ram = &mut *self.ram;
+        if !ram.swap_pending {
+            return false;
+        }
+        ram.swap_pending = false;
+        ram.front = ram.back();
+        ram.swaps += 1;
+        true
     }
 
     /// The port's counters so far.
@@ -386,6 +486,32 @@ mod tests {
         assert_eq!(r.time_ps(), 600_000);
         ram.reset_counters();
         assert_eq!(ram.read_counters().cycles, 0);
+    }
+
+    #[test]
+    fn double_buffer_swaps_only_on_vertical_blank() {
+        let (a, b) = (Rgb565::new(31, 0, 0), Rgb565::new(0, 0, 31));
+        let mut ram = DualPortRam::double_buffered(2, 2);
+        assert!(ram.is_double_buffered());
+        ram.write_port().clear(a).unwrap();
+        assert_eq!(ram.read_port().read(0, 0), Some(Rgb565::new(0, 0, 0)));
+        assert_eq!(ram.back_contents(), [a; 4]);
+        ram.request_swap();
+        assert!(ram.swap_pending());
+        assert_eq!(ram.read_port().read(1, 1), Some(Rgb565::new(0, 0, 0)));
+        assert!(ram.read_port().vertical_blank());
+        assert!(!ram.read_port().vertical_blank());
+        assert_eq!((ram.swap_pending(), ram.swaps()), (false, 1));
+        assert_eq!(ram.read_port().read(1, 1), Some(a));
+        ram.write_port()
+            .fill_span(Span { y: 0, x0: 0, x1: 2 }, b)
+            .unwrap();
+        assert_eq!(ram.contents(), [a; 4]);
+        assert_eq!(ram.back_contents()[..2], [b, b]);
+        // Single-buffered: a request does nothing.
+        let mut one = DualPortRam::new(2, 2);
+        one.request_swap();
+        assert!(!one.swap_pending() && !one.read_port().vertical_blank());
     }
 
     #[test]

@@ -10,8 +10,8 @@
 //! | module | hardware |
 //! |---|---|
 //! | [`timing`] | pixel clock, porches and sync pulses; the presets of the reference design |
-//! | [`dual_port`] | the dual-port RAM: a span write port, a pixel read port, counters per port |
-//! | [`refresh`] | the refresh controller: sync generator and read-out of one frame |
+//! | [`dual_port`] | the dual-port RAM: a span write port, a pixel read port, counters per port; optionally two banks swapped in vertical retrace |
+//! | [`refresh`] | the refresh controller: sync generator and read-out of one frame; [`refresh::CoSimulation`] runs it alongside the graphic controller |
 //! | [`image`] | the frame as a PNG (RGB565 expanded by bit replication) |
 //!
 //! ```

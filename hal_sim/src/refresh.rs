@@ -9,7 +9,12 @@
 //!   while `y` is in the vertical sync pulse (a whole number of lines);
 //!   a pulse is counted when the signal is asserted (its leading edge);
 //! - during active display reads pixel `(x, y)` through the read port,
-//!   which it clocks at the pixel clock; during blanking the port idles.
+//!   which it clocks at the pixel clock; during blanking the port idles;
+//! - during the vertical retrace strobes the RAM's vertical blanking, where
+//!   a double-buffered RAM exchanges its banks if asked to.
+//!
+//! [`CoSimulation`] runs the graphic controller and the refresh controller
+//! together, each on its own clock.
 //!
 //! # RAM and mode of different sizes
 //! The monitor shows the active area of the timing. Where that area reaches
@@ -17,9 +22,11 @@
 //! and the monitor shows black there. Where the RAM is larger, only its
 //! top-left `width × height` corner is read.
 
-use crate::dual_port::{DualPortRam, ReadPort};
+use crate::dual_port::{DualPortRam, ReadPort, WritePort};
 use crate::timing::VideoTiming;
+use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::Rgb565;
+use scanvert::port::{Span, SpanTarget};
 
 const BLACK: Rgb565 = Rgb565::new(0, 0, 0);
 
@@ -36,6 +43,8 @@ pub struct RefreshCounters {
     pub vsync_pulses: u64,
     /// Pixels read from the RAM (active pixels inside the RAM).
     pub pixels_read: u64,
+    /// Bank swaps of a double-buffered RAM during this frame's retrace.
+    pub bank_swaps: u64,
 }
 
 /// One frame as the monitor sees it: the active area's pixels, row-major,
@@ -203,6 +212,9 @@ impl RefreshController {
             }
         } else {
             port.idle(1);
+            if y >= v.active as u32 {
+                self.counters.bank_swaps += u64::from(port.vertical_blank());
+            }
         }
         self.counters.clocks += 1;
 
@@ -240,11 +252,130 @@ impl RefreshController {
     }
 }
 
+/// The graphic controller and the refresh controller running at once, each
+/// on its own clock: a [`SpanTarget`] that stores each span through the
+/// RAM's write port, then runs the refresh controller for as long as the
+/// write took on the write port's clock. Every frame completed on the way
+/// is kept.
+///
+/// Time is kept exactly, in cycles of both clocks: after `w` write cycles
+/// at `f_w` the refresh controller has run the `r` pixel clocks (at `f_p`)
+/// with `r / f_p ≥ w / f_w` and `(r − 1) / f_p < w / f_w`.
+#[derive(Debug)]
+pub struct CoSimulation<'a> {
+    ram: &'a mut DualPortRam,
+    refresh: &'a mut RefreshController,
+    write_cycles: u64,
+    read_cycles: u64,
+    frames: Vec<Frame>,
+}
+
+impl<'a> CoSimulation<'a> {
+    /// Starts both clocks at zero; the read port is driven at the pixel
+    /// clock.
+    pub fn new(ram: &'a mut DualPortRam, refresh: &'a mut RefreshController) -> Self {
+        ram.set_read_clock(refresh.timing().pixel_clock());
+        CoSimulation {
+            ram,
+            refresh,
+            write_cycles: 0,
+            read_cycles: 0,
+            frames: Vec::new(),
+        }
+    }
+
+    /// Runs the refresh controller up to the writer's time.
+    fn catch_up(&mut self) {
+        let fw = u128::from(self.ram.write_counters().clock.hz());
+        let fp = u128::from(self.refresh.timing().pixel_clock().hz());
+        let mut port = self.ram.read_port();
+        while u128::from(self.read_cycles) * fw < u128::from(self.write_cycles) * fp {
+            self.read_cycles += 1;
+            if let Some(frame) = self.refresh.tick(&mut port) {
+                self.frames.push(frame);
+            }
+        }
+    }
+
+    /// The writer idles for `cycles` write-port cycles.
+    pub fn wait(&mut self, cycles: u64) {
+        self.write_cycles += cycles;
+        self.catch_up();
+    }
+
+    /// Asks the RAM for a bank swap (see
+    /// [`DualPortRam::request_swap`]).
+    pub fn request_swap(&mut self) {
+        self.ram.request_swap();
+    }
+
+    /// The writer idles until no swap is pending.
+    pub fn wait_for_swap(&mut self) {
+        while self.ram.swap_pending() {
+            self.wait(1);
+        }
+    }
+
+    /// The writer idles until the refresh controller has completed
+    /// another frame.
+    pub fn wait_for_frame(&mut self) {
+        let n = self.frames.len();
+        while self.frames.len() == n {
+            self.wait(1);
+        }
+    }
+
+    /// Cycles run so far: `(write port, pixel clock)`.
+    pub fn cycles(&self) -> (u64, u64) {
+        (self.write_cycles, self.read_cycles)
+    }
+
+    /// The RAM.
+    pub fn ram(&self) -> &DualPortRam {
+        self.ram
+    }
+
+    /// Frames completed so far.
+    pub fn frames(&self) -> &[Frame] {
+        &self.frames
+    }
+
+    /// Ends the co-simulation with the frames completed.
+    pub fn into_frames(self) -> Vec<Frame> {
+        self.frames
+    }
+
+    /// Runs one write-port access, then lets the refresh controller catch up.
+    fn write<R>(&mut self, access: impl FnOnce(&mut WritePort<'_>) -> R) -> R {
+        let before = self.ram.write_counters().cycles;
+        let r = access(&mut self.ram.write_port());
+        self.write_cycles += self.ram.write_counters().cycles - before;
+        self.catch_up();
+        r
+    }
+}
+
+impl SpanTarget for CoSimulation<'_> {
+    type Color = Rgb565;
+    type Error = Infallible;
+
+    fn size(&self) -> (u16, u16) {
+        (self.ram.width(), self.ram.height())
+    }
+
+    fn fill_span(&mut self, span: Span, color: Rgb565) -> Result<(), Infallible> {
+        self.write(|port| port.fill_span(span, color))
+    }
+
+    fn clear(&mut self, color: Rgb565) -> Result<(), Infallible> {
+        self.write(|port| port.clear(color))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::timing::{AxisTiming, Clock};
-    use scanvert::port::{Span, SpanTarget};
 
     fn tiny() -> VideoTiming {
         let axis = |active, sync| AxisTiming {
@@ -290,6 +421,27 @@ mod tests {
             assert_eq!(f.row(y).unwrap(), [c, c, BLACK, BLACK]);
         }
         assert_eq!(ram.read_counters().missed_reads, 6);
+    }
+
+    #[test]
+    fn co_simulation_keeps_both_clocks_in_step() {
+        let mut ram = DualPortRam::new(4, 3);
+        let mut rc = RefreshController::new(tiny());
+        let mut co = CoSimulation::new(&mut ram, &mut rc);
+        // 100 cycles at 50 MHz = 2 µs = 2 clocks at 1 MHz.
+        co.wait(100);
+        assert_eq!(co.cycles(), (100, 2));
+        co.wait(1);
+        assert_eq!(co.cycles(), (101, 3));
+        co.clear(Rgb565::new(1, 1, 1)).unwrap();
+        assert_eq!(co.cycles(), (113, 3));
+        co.wait_for_frame();
+        assert_eq!(co.cycles(), (2351, 48));
+        assert_eq!(co.frames().len(), 1);
+        // The clear landed at clock 3: the frame shows it from there on.
+        let f = &co.frames()[0];
+        assert_eq!(f.pixel(2, 0), Some(BLACK));
+        assert_eq!(f.pixel(3, 0), Some(Rgb565::new(1, 1, 1)));
     }
 
     #[test]
