@@ -22,6 +22,37 @@
 
 use crate::fixed::{ceil_div_i64, ceil_px, Vertex, HALF, ONE};
 
+/// How the scan converter steps one edge down the rows.
+///
+/// [`Rasterizer`](crate::scan::Rasterizer) is generic over it, with the
+/// exact [`Edge`] the default; the faster, approximate steppers of
+/// [`edge_dda`](crate::edge_dda) implement it too. Row `j` is sampled on
+/// `y = j + ½`; a stepper reports, for each row from [`top`](Stepper::top)
+/// to [`end`](Stepper::end), the first pixel whose centre is at or right of
+/// its crossing (exactly or approximately).
+///
+/// # Contract
+/// A stepper made by [`new`](Stepper::new) has `top < end`, both inside the
+/// rows it was given. [`pixel`](Stepper::pixel) is meaningful after
+/// [`load_pixel`](Stepper::load_pixel) on the current row; `step` moves to
+/// the next row and is called only while the next row is before `end`.
+pub trait Stepper: Copy {
+    /// The edge from `a` to `b` restricted to rows `rows.0..rows.1`, or
+    /// `None` when it crosses no row centre there.
+    fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self>;
+    /// First row sampled.
+    fn top(&self) -> i32;
+    /// One past the last row sampled.
+    fn end(&self) -> i32;
+    /// Computes [`pixel`](Stepper::pixel) for the current row.
+    fn load_pixel(&mut self);
+    /// The crossing's pixel on the current row, as of the last
+    /// [`load_pixel`](Stepper::load_pixel).
+    fn pixel(&self) -> i32;
+    /// Moves to the next row.
+    fn step(&mut self);
+}
+
 /// One polygon edge being stepped down the rows, in the form of the
 /// classic Bresenham error counter.
 ///
@@ -135,6 +166,33 @@ impl Edge {
     /// One past the last row sampled.
     pub fn end(&self) -> i32 {
         self.end
+    }
+}
+
+impl Stepper for Edge {
+    #[inline]
+    fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
+        Edge::new(a, b, rows)
+    }
+    #[inline(always)]
+    fn top(&self) -> i32 {
+        self.top
+    }
+    #[inline(always)]
+    fn end(&self) -> i32 {
+        self.end
+    }
+    #[inline(always)]
+    fn load_pixel(&mut self) {
+        Edge::load_pixel(self)
+    }
+    #[inline(always)]
+    fn pixel(&self) -> i32 {
+        self.px
+    }
+    #[inline(always)]
+    fn step(&mut self) {
+        Edge::step(self)
     }
 }
 

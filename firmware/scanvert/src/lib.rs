@@ -15,6 +15,7 @@
 //! | reader | [`display_list`] | validate the bytes once, then read commands infallibly |
 //! | geometry | [`fixed`] | Q12.4 vertices and the widths of every intermediate |
 //! | edges | [`edge`] | per-edge set-up, then an exact Bresenham step per row |
+//! | edges, approximate | [`edge_dda`] | faster DDA steppers and vertex snapping, with their error documented |
 //! | spans | [`scan`] | active-edge list, even-odd pairing of crossings |
 //! | clip registers | [`clip`] | the window every span is cut to |
 //! | port | [`port`], [`framebuffer`] | spans into memory (or hardware) |
@@ -60,6 +61,7 @@ pub mod color;
 pub mod controller;
 pub mod display_list;
 pub mod edge;
+pub mod edge_dda;
 pub mod fixed;
 pub mod framebuffer;
 pub mod port;

@@ -15,7 +15,7 @@
 //! left of its centre, and that count only depends on the integers.
 
 use crate::clip::ClipRect;
-use crate::edge::Edge;
+use crate::edge::{Edge, Stepper};
 use crate::fixed::{ceil_px, Vertex, HALF};
 use crate::port::{Span, SpanTarget};
 use core::fmt;
@@ -72,14 +72,26 @@ pub struct FillCounts {
 /// let raster = Rasterizer::new(&mut slots);
 /// assert_eq!(raster.capacity(), 64);
 /// ```
+///
+/// # Steppers
+/// The edge stepper is the type parameter `S`: the exact [`Edge`] by
+/// default, or one of the approximate, faster steppers of
+/// [`edge_dda`](crate::edge_dda), chosen by the type of the storage:
+///
+/// ```
+/// use scanvert::{edge_dda::Dda16, scan::Rasterizer};
+/// let mut slots = [Dda16::EMPTY; 16];
+/// let raster: Rasterizer<'_, Dda16> = Rasterizer::new(&mut slots);
+/// assert_eq!(raster.capacity(), 16);
+/// ```
 #[derive(Debug)]
-pub struct Rasterizer<'e> {
-    edges: &'e mut [Edge],
+pub struct Rasterizer<'e, S: Stepper = Edge> {
+    edges: &'e mut [S],
 }
 
-impl<'e> Rasterizer<'e> {
+impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// A rasteriser using `edges` as its edge table.
-    pub fn new(edges: &'e mut [Edge]) -> Self {
+    pub fn new(edges: &'e mut [S]) -> Self {
         Rasterizer { edges }
     }
 
@@ -117,18 +129,18 @@ impl<'e> Rasterizer<'e> {
         if n < 2 {
             return Ok(counts);
         }
-        edges.sort_unstable_by_key(|e| e.top);
+        edges.sort_unstable_by_key(|e| e.top());
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
         // edges[..active] are active, edges[active..next] are finished,
         // edges[next..] wait for their first row (sorted).
         let (mut active, mut next) = (0usize, 0usize);
-        let mut y = edges[0].top;
+        let mut y = edges[0].top();
         while next < n || active > 0 {
             if active == 0 {
-                y = y.max(edges[next].top);
+                y = y.max(edges[next].top());
             }
-            while next < n && edges[next].top <= y {
+            while next < n && edges[next].top() <= y {
                 edges.swap(active, next);
                 active += 1;
                 next += 1;
@@ -139,8 +151,8 @@ impl<'e> Rasterizer<'e> {
             }
             insertion_sort(live);
             for pair in live.chunks_exact(2) {
-                let x0 = pair[0].px.max(cx0);
-                let x1 = pair[1].px.min(cx1);
+                let x0 = pair[0].pixel().max(cx0);
+                let x1 = pair[1].pixel().min(cx1);
                 if x0 < x1 {
                     // In 0..=4096 by the clip guarantee.
                     let span = Span {
@@ -155,7 +167,7 @@ impl<'e> Rasterizer<'e> {
             }
             let mut i = 0;
             while i < active {
-                if y + 1 >= edges[i].end {
+                if y + 1 >= edges[i].end() {
                     active -= 1;
                     edges.swap(i, active);
                 } else {
@@ -185,7 +197,7 @@ impl<'e> Rasterizer<'e> {
         let mut n = 0;
         let mut prev = first;
         let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
-            if let Some(e) = Edge::new(a, b, rows) {
+            if let Some(e) = S::new(a, b, rows) {
                 *self.edges.get_mut(*n)? = e;
                 *n += 1;
             }
@@ -208,10 +220,10 @@ impl<'e> Rasterizer<'e> {
 
 /// Sorts by crossing pixel; linear when the order is the last row's.
 #[inline]
-fn insertion_sort(e: &mut [Edge]) {
+fn insertion_sort<S: Stepper>(e: &mut [S]) {
     for i in 1..e.len() {
         let mut j = i;
-        while j > 0 && e[j - 1].px > e[j].px {
+        while j > 0 && e[j - 1].pixel() > e[j].pixel() {
             e.swap(j - 1, j);
             j -= 1;
         }
