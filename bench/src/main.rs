@@ -1,0 +1,238 @@
+//! Speed against error: scanvert's rasterisers, their faster options and
+//! their peers on the 2D workloads of issue 5, timed in one process run.
+//!
+//! `cargo run --release -p scanvert-bench` writes `docs/performance.md`
+//! and `docs/speed-vs-error.png`. Speed is measured here only, never in a
+//! test.
+
+mod contenders;
+mod heap;
+mod plot;
+mod reference;
+mod report;
+mod workloads;
+
+use std::hint::black_box;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+use workloads::{Kind, Workload};
+
+#[global_allocator]
+static ALLOC: heap::Counting = heap::Counting;
+
+/// Each timed run repeats a pass at least this long.
+const MIN_RUN: Duration = Duration::from_millis(200);
+/// Timed runs per contender, round-robin over the contenders; best kept.
+const ROUNDS: usize = 5;
+
+/// A contender's error on a workload.
+#[derive(Clone, Copy, Debug)]
+pub struct ErrorStats {
+    /// Mismatched pixels per 1000 pixels the rule covers.
+    pub per_1000: f64,
+    /// Most mismatches in one polygon.
+    pub worst: u64,
+    /// All mismatches.
+    pub total: u64,
+}
+
+/// One line of the table.
+#[derive(Debug)]
+pub struct Row {
+    /// Workload id.
+    pub workload: &'static str,
+    /// Rate unit.
+    pub unit: &'static str,
+    /// Contender name.
+    pub contender: &'static str,
+    /// Operations per second.
+    pub rate: f64,
+    /// Covered (rule) pixels per second, in millions.
+    pub mpx: f64,
+    /// `mpx` over the bandwidth limit's.
+    pub ratio: f64,
+    /// `None` for the bandwidth limit and for clears.
+    pub err: Option<ErrorStats>,
+    /// Bytes of working state and how they were counted.
+    pub mem: (usize, String),
+}
+
+/// The independent check of the exact path on one workload.
+#[derive(Debug)]
+pub struct Check {
+    /// Workload id.
+    pub workload: &'static str,
+    /// Polygons checked.
+    pub polygons: usize,
+    /// Pixels tested (the polygons' boxes, widened).
+    pub tested: u64,
+    /// Pixels the rule covers.
+    pub covered: u64,
+    /// Pixels where the exact path and the `i128` reference differ.
+    pub mismatches: u64,
+}
+
+/// Per polygon: its box and the reference's coverage inside it.
+type Masks = Vec<((i32, i32, i32, i32), Vec<bool>)>;
+
+fn reference_masks(wl: &Workload) -> Masks {
+    wl.polys
+        .iter()
+        .map(|p| {
+            let b = reference::pixel_box(p, 3, wl.width, wl.height);
+            let mut m = Vec::with_capacity(((b.2 - b.0) * (b.3 - b.1)) as usize);
+            for y in b.1..b.3 {
+                for x in b.0..b.2 {
+                    m.push(reference::covers(p, x, y));
+                }
+            }
+            (b, m)
+        })
+        .collect()
+}
+
+/// Draws every polygon alone with `c` and compares with the reference.
+fn error_of(c: &mut dyn contenders::Contender, masks: &Masks, covered: u64) -> ErrorStats {
+    let (mut total, mut worst) = (0u64, 0u64);
+    for (i, (b, m)) in masks.iter().enumerate() {
+        c.draw_one(i);
+        let mut bad = 0u64;
+        let mut k = 0;
+        for y in b.1..b.3 {
+            for x in b.0..b.2 {
+                bad += (c.covered(x, y) != m[k]) as u64;
+                k += 1;
+            }
+        }
+        c.reset(*b);
+        total += bad;
+        worst = worst.max(bad);
+    }
+    ErrorStats {
+        per_1000: total as f64 * 1000.0 / covered.max(1) as f64,
+        worst,
+        total,
+    }
+}
+
+/// Best seconds per pass of each contender: each is calibrated to runs of
+/// at least [`MIN_RUN`], then all are timed round-robin [`ROUNDS`] times.
+fn time_all(cs: &mut [Box<dyn contenders::Contender>]) -> Vec<f64> {
+    let iters: Vec<u32> = cs
+        .iter_mut()
+        .map(|c| {
+            c.pass();
+            let t = Instant::now();
+            let mut n = 0u32;
+            while t.elapsed() < Duration::from_millis(25) {
+                c.pass();
+                n += 1;
+            }
+            let per = t.elapsed().as_secs_f64() / n as f64;
+            (MIN_RUN.as_secs_f64() / per).ceil().max(1.0) as u32
+        })
+        .collect();
+    let mut best = vec![f64::INFINITY; cs.len()];
+    for _ in 0..ROUNDS {
+        for (k, c) in cs.iter_mut().enumerate() {
+            let t = Instant::now();
+            for _ in 0..iters[k] {
+                black_box(&mut *c).pass();
+            }
+            best[k] = best[k].min(t.elapsed().as_secs_f64() / iters[k] as f64);
+        }
+    }
+    best
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "unknown".into())
+}
+
+fn main() -> std::io::Result<()> {
+    let start = Instant::now();
+    let load_before = load_average();
+    let mut rows = Vec::new();
+    let mut checks = Vec::new();
+    for wl in workloads::all() {
+        eprintln!("{}: {}", wl.id, wl.what);
+        let masks = reference_masks(&wl);
+        let counts: Vec<usize> = match wl.kind {
+            Kind::Polygons => masks
+                .iter()
+                .map(|(_, m)| m.iter().filter(|&&c| c).count())
+                .collect(),
+            Kind::Clear => vec![wl.width as usize * wl.height as usize],
+        };
+        let covered: u64 = counts.iter().map(|&n| n as u64).sum();
+        let mut cs = contenders::for_workload(&wl, counts);
+        let errs: Vec<Option<ErrorStats>> = cs
+            .iter_mut()
+            .map(|c| {
+                (wl.kind == Kind::Polygons && c.has_coverage())
+                    .then(|| error_of(c.as_mut(), &masks, covered))
+            })
+            .collect();
+        if let Some(Some(e)) = errs.first() {
+            checks.push(Check {
+                workload: wl.id,
+                polygons: masks.len(),
+                tested: masks.iter().map(|(_, m)| m.len() as u64).sum(),
+                covered,
+                mismatches: e.total,
+            });
+        }
+        let secs = time_all(&mut cs);
+        let limit = covered as f64 / secs[secs.len() - 1];
+        for ((c, s), e) in cs.iter().zip(&secs).zip(errs) {
+            let px = covered as f64 / s;
+            let row = Row {
+                workload: wl.id,
+                unit: wl.unit(),
+                contender: c.name(),
+                rate: wl.ops_per_pass() as f64 / s,
+                mpx: px / 1e6,
+                ratio: px / limit,
+                err: e,
+                mem: c.memory(),
+            };
+            eprintln!(
+                "  {:<55} {:>12.0} {} {:>8.1} Mpx/s {:>6.3}× {}",
+                row.contender,
+                row.rate,
+                row.unit,
+                row.mpx,
+                row.ratio,
+                row.err
+                    .map(|e| format!("err {:.3}/1000 worst {}", e.per_1000, e.worst))
+                    .unwrap_or_default()
+            );
+            rows.push(row);
+        }
+    }
+    let run = report::Run {
+        rows,
+        checks,
+        load_before,
+        load_after: load_average(),
+        seconds: start.elapsed().as_secs_f64(),
+    };
+    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
+    std::fs::create_dir_all(&docs)?;
+    let md_path = docs.join("performance.md");
+    let old = std::fs::read_to_string(&md_path).unwrap_or_default();
+    std::fs::write(&md_path, report::markdown(&run, &old))?;
+    let (w, h, rgb) = plot::render(&run.rows);
+    let file = std::io::BufWriter::new(std::fs::File::create(docs.join("speed-vs-error.png"))?);
+    let mut enc = png::Encoder::new(file, w, h);
+    enc.set_color(png::ColorType::Rgb);
+    enc.set_depth(png::BitDepth::Eight);
+    enc.write_header()?.write_image_data(&rgb)?;
+    eprintln!(
+        "wrote docs/performance.md and docs/speed-vs-error.png in {:.0} s",
+        run.seconds
+    );
+    Ok(())
+}
