@@ -151,7 +151,50 @@ fn load_average() -> String {
         .unwrap_or_else(|_| "unknown".into())
 }
 
+/// `--profile-w1 MODE PASSES`: only W1, for `valgrind --tool=callgrind`.
+/// MODE is `framebuffer` (the exact path), `wide` (the proposed
+/// `fill_span`), `null` (scan conversion without pixel writes) or
+/// `tiny-skia`.
+fn profile_w1(mode: &str, passes: u32) {
+    use scanvert::{clip::ClipRect, edge::Edge, scan::Rasterizer};
+    let wl = workloads::w1();
+    if mode == "null" {
+        let mut slots = [Edge::EMPTY; 4];
+        let mut r = Rasterizer::new(&mut slots);
+        let clip = ClipRect::full(wl.width, wl.height);
+        let mut t = contenders::NullTarget(wl.width, wl.height);
+        for _ in 0..passes {
+            for p in &wl.polys {
+                let _ = r.fill(
+                    black_box(p).iter().copied(),
+                    &clip,
+                    Default::default(),
+                    &mut t,
+                );
+            }
+        }
+        return;
+    }
+    let prefix = match mode {
+        "wide" => "scanvert exact, 16-byte",
+        "tiny-skia" => "tiny-skia",
+        _ => "scanvert exact (",
+    };
+    let counts = vec![900; wl.polys.len()];
+    let mut cs = contenders::for_workload(&wl, counts);
+    if let Some(c) = cs.iter_mut().find(|c| c.name().starts_with(prefix)) {
+        for _ in 0..passes {
+            black_box(&mut *c).pass();
+        }
+    }
+}
+
 fn main() -> std::io::Result<()> {
+    let args: Vec<String> = std::env::args().collect();
+    if args.len() == 4 && args[1] == "--profile-w1" {
+        profile_w1(&args[2], args[3].parse().unwrap_or(100));
+        return Ok(());
+    }
     let start = Instant::now();
     let load_before = load_average();
     let mut rows = Vec::new();

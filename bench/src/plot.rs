@@ -75,7 +75,7 @@ fn draw(f: &mut EgFrame<Rgb888>, rows: &[Row]) -> Result<(), core::convert::Infa
         .fold(-9.0f64, f64::max)
         .ceil()
         .max(x_lo + 1.0);
-    let x0 = L + 50;
+    let x0 = L + 70;
     let xpix = |e: f64| {
         if e <= 0.0 {
             L + 20
@@ -115,13 +115,13 @@ fn draw(f: &mut EgFrame<Rgb888>, rows: &[Row]) -> Result<(), core::convert::Infa
     .draw(f)?;
     Text::new(
         "speed as a fraction of slice::fill of the same pixel count (log scale)",
-        Point::new(L - 60, T - 22),
+        Point::new(L - 60, T - 8),
         text,
     )
     .draw(f)?;
     Text::new(
         "scanvert speed vs error: 2D workloads W1, W3, W4, W5",
-        Point::new(L - 60, T - 8),
+        Point::new(L - 60, T - 22),
         text,
     )
     .draw(f)?;

@@ -309,5 +309,52 @@ pub fn markdown(run: &Run, old: &str) -> String {
     s
 }
 
-/// Hand-written notes on what limits the figures, from profiles.
-pub const NOTES: &str = "";
+/// Hand-written notes on what limits the figures, from profiles (the
+/// figures in them are instruction counts, which do not move with load).
+pub const NOTES: &str = r#"## What limits the figures
+
+Instruction counts below are from callgrind on W1 (100 passes, 22,600
+polygons, the set-up of a run with 0 passes subtracted), with
+
+```sh
+cargo build --release -p scanvert-bench
+valgrind --tool=callgrind target/release/scanvert-bench --profile-w1 MODE 100
+```
+
+where MODE is `null` (scan conversion into a target that discards the
+spans), `framebuffer` (the exact path as measured above), `wide` (the same
+into the 16-byte-store target) or `tiny-skia`:
+
+| W1, one 30×30 square | instructions per polygon | per row |
+|---|--:|--:|
+| scanvert scan conversion only (`null`) | 2,411 | 80 |
+| scanvert exact into `FrameBuffer` (`framebuffer`) | 6,298 | 210 |
+| scanvert exact, 16-byte-store `fill_span` (`wide`) | 4,262 | 142 |
+| tiny-skia `fill_path`, no AA (`tiny-skia`) | 14,392 | 480 |
+
+- **W1 against tiny-skia.** Scan conversion itself is 38 % of the exact
+  path's instructions; the other 62 % (about 130 instructions a row) is
+  `FrameBuffer::fill_span`. Its `slice::fill` is vectorised (`perf
+  annotate`: a loop of two 16-byte stores for 16 pixels, then a loop of
+  8-byte stores for 4, then single pixels), but a 30-pixel run goes
+  through all three loops, and their set-up (lengths, masks, registers
+  spilled to the stack around them) costs more than the stores. The
+  `WideFb` target in `bench/src/contenders.rs` writes a run shorter than
+  64 pixels as 8-pixel copies with one overlapping last copy, and longer
+  runs with `slice::fill` as before: the "(proposed)" rows above. (With
+  8-pixel copies for long runs too it lost 20 % on W5.) It
+  lives in the bench because `framebuffer.rs` is outside this issue's
+  files; moving that `fill_span` into `FrameBuffer` is the proposed fix
+  for the W1 target. tiny-skia spends its 14,392 instructions in edge
+  set-up and its edge walker (`fill_path_impl`, 36 %), a `memcpy` of its
+  pipeline state (11 %) and its blitter (20 %).
+- **Faster options.** The DDA saves one compare and one conditional add
+  per edge and row: 10-20 % on W1, W3 and W4 in this table, at the error
+  shown. Snapping vertices to 1/4 px or whole pixels buys nothing in
+  software (the per-row work is the same; the division per edge is the
+  same): it only adds error. Fewer subpixel bits pay in hardware, where
+  they narrow the adders.
+- **W5 and W2.** A big polygon is bounded by the pixel writes: 256 spans
+  of about 400 pixels each. A clear is one `slice::fill` in every
+  contender except tiny-skia's, which writes 4 bytes a pixel.
+"#;
