@@ -358,3 +358,20 @@ into the 16-byte-store target) or `tiny-skia`:
   of about 400 pixels each. A clear is one `slice::fill` in every
   contender except tiny-skia's, which writes 4 bytes a pixel.
 "#;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn on_target_section_is_kept_verbatim() {
+        let old = format!("# x\n\nintro\n{ON_TARGET_BEGIN}\n| a | b |\n|--|--|\n| 1 | 2 |\n{ON_TARGET_END}\ntail\n");
+        let kept = on_target_section(&old);
+        assert_eq!(
+            kept,
+            format!("{ON_TARGET_BEGIN}\n| a | b |\n|--|--|\n| 1 | 2 |\n{ON_TARGET_END}")
+        );
+        assert!(on_target_section("").starts_with(ON_TARGET_BEGIN));
+        assert!(on_target_section("").ends_with(ON_TARGET_END));
+    }
+}
