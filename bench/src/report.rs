@@ -28,11 +28,24 @@ pub struct Run {
     pub seconds: f64,
 }
 
-/// The section between the markers in `old`, markers included, or an
-/// empty one.
+/// Byte offset of the first line of `text` that is `marker` alone
+/// (surrounding spaces allowed), at or after `from`.
+fn marker_line(text: &str, marker: &str, from: usize) -> Option<usize> {
+    let mut at = 0;
+    for line in text.split_inclusive('\n') {
+        if at >= from && line.trim() == marker {
+            return Some(at + line.find(marker).unwrap_or(0));
+        }
+        at += line.len();
+    }
+    None
+}
+
+/// The section between the markers in `old` (each on a line of its own),
+/// markers included, or an empty one.
 pub fn on_target_section(old: &str) -> String {
-    if let (Some(b), Some(e)) = (old.find(ON_TARGET_BEGIN), old.find(ON_TARGET_END)) {
-        if b < e {
+    if let Some(b) = marker_line(old, ON_TARGET_BEGIN, 0) {
+        if let Some(e) = marker_line(old, ON_TARGET_END, b) {
             return old[b..e + ON_TARGET_END.len()].to_string();
         }
     }
@@ -122,8 +135,9 @@ pub fn markdown(run: &Run, old: &str) -> String {
          on-target section, which its own script writes). Regenerate with:\n\n\
          ```sh\ncargo run --release -p scanvert-bench\n```\n\n\
          It rewrites this page and [`speed-vs-error.png`](speed-vs-error.png)\n\
-         in about {:.0} s, keeping the section between `{ON_TARGET_BEGIN}` and\n\
-         `{ON_TARGET_END}` as it finds it.\n",
+         in about {:.0} s, and keeps the \"On target\" section (between the\n\
+         `on-target:begin` and `on-target:end` HTML comments, each on a line\n\
+         of its own) exactly as it finds it.\n",
         run.seconds.max(1.0)
     );
     let _ = writeln!(s, "## Machine\n\n{}", machine());
@@ -241,9 +255,12 @@ pub fn markdown(run: &Run, old: &str) -> String {
     let exact = "scanvert exact (`Rasterizer::fill`)";
     if let (Some(e), Some(t)) = (find(rows, "W1", exact), find(rows, "W1", "tiny-skia")) {
         let k = e.rate / t.rate;
+        let proposed = find(rows, "W1", "scanvert exact, 16-byte")
+            .map(|p| format!("; with the proposed `fill_span`: {:.2}×", p.rate / t.rate))
+            .unwrap_or_default();
         let _ = writeln!(
             s,
-            "| W1 ≥ 4× tiny-skia (no AA) | {:.2}× ({} vs {} polygons/s) | {}{} |",
+            "| W1 ≥ 4× tiny-skia (no AA) | {:.2}× ({} vs {} polygons/s){proposed} | {}{} |",
             k,
             thousands(e.rate),
             thousands(t.rate),
@@ -329,7 +346,7 @@ into the 16-byte-store target) or `tiny-skia`:
 |---|--:|--:|
 | scanvert scan conversion only (`null`) | 2,411 | 80 |
 | scanvert exact into `FrameBuffer` (`framebuffer`) | 6,298 | 210 |
-| scanvert exact, 16-byte-store `fill_span` (`wide`) | 4,262 | 142 |
+| scanvert exact, 16-byte-store `fill_span` (`wide`) | 4,322 | 144 |
 | tiny-skia `fill_path`, no AA (`tiny-skia`) | 14,392 | 480 |
 
 - **W1 against tiny-skia.** Scan conversion itself is 38 % of the exact
@@ -349,7 +366,7 @@ into the 16-byte-store target) or `tiny-skia`:
   set-up and its edge walker (`fill_path_impl`, 36 %), a `memcpy` of its
   pipeline state (11 %) and its blitter (20 %).
 - **Faster options.** The DDA saves one compare and one conditional add
-  per edge and row: 10-20 % on W1, W3 and W4 in this table, at the error
+  per edge and row: about 5-20 % on W1, W3 and W4 (see the table), at the error
   shown. Snapping vertices to 1/4 px or whole pixels buys nothing in
   software (the per-row work is the same; the division per edge is the
   same): it only adds error. Fewer subpixel bits pay in hardware, where
@@ -365,7 +382,7 @@ mod tests {
 
     #[test]
     fn on_target_section_is_kept_verbatim() {
-        let old = format!("# x\n\nintro\n{ON_TARGET_BEGIN}\n| a | b |\n|--|--|\n| 1 | 2 |\n{ON_TARGET_END}\ntail\n");
+        let old = format!("# x\n\nintro `{ON_TARGET_BEGIN}` `{ON_TARGET_END}`\n{ON_TARGET_BEGIN}\n| a | b |\n|--|--|\n| 1 | 2 |\n{ON_TARGET_END}\ntail\n");
         let kept = on_target_section(&old);
         assert_eq!(
             kept,
