@@ -3,7 +3,8 @@
 //!
 //! `cargo run --release -p scanvert-bench` writes `docs/performance.md`
 //! and `docs/speed-vs-error.png`. Speed is measured here only, never in a
-//! test.
+//! test. `-- --only W3` times one workload and writes nothing;
+//! `-- --profile-w1 MODE PASSES` runs W1 alone for callgrind.
 
 mod contenders;
 mod heap;
@@ -23,7 +24,7 @@ static ALLOC: heap::Counting = heap::Counting;
 /// Each timed run repeats a pass at least this long.
 const MIN_RUN: Duration = Duration::from_millis(200);
 /// Timed runs per contender, round-robin over the contenders; best kept.
-const ROUNDS: usize = 5;
+const ROUNDS: usize = 7;
 
 /// A contender's error on a workload.
 #[derive(Clone, Copy, Debug)]
@@ -195,11 +196,16 @@ fn main() -> std::io::Result<()> {
         profile_w1(&args[2], args[3].parse().unwrap_or(100));
         return Ok(());
     }
+    // `--only W2`: time one workload, print it, write nothing.
+    let only = (args.len() == 3 && args[1] == "--only").then(|| args[2].clone());
     let start = Instant::now();
     let load_before = load_average();
     let mut rows = Vec::new();
     let mut checks = Vec::new();
     for wl in workloads::all() {
+        if only.as_ref().is_some_and(|id| id != wl.id) {
+            continue;
+        }
         eprintln!("{}: {}", wl.id, wl.what);
         let masks = reference_masks(&wl);
         let counts: Vec<usize> = match wl.kind {
@@ -254,6 +260,9 @@ fn main() -> std::io::Result<()> {
             );
             rows.push(row);
         }
+    }
+    if only.is_some() {
+        return Ok(());
     }
     let run = report::Run {
         rows,

@@ -151,9 +151,10 @@ pub fn markdown(run: &Run, old: &str) -> String {
         "## How it is measured\n\n\
          - Every contender of a workload runs in the same process run. Each is\n\
            first calibrated so that one timed run repeats its pass for at least\n\
-           200 ms; then all are timed round-robin, 5 runs each, and the best run\n\
+           200 ms; then all are timed round-robin, {} runs each, and the best run\n\
            counts. Ratios within one workload are the robust figures on a shared,\n\
-           noisy machine; absolute rates move with the load.\n\
+           noisy machine; absolute rates move with the load (one outlier run can\n\
+           still slip through: rerun before reading much into a single row).\n\
          - **Rate**: polygons (W3: triangles; W2: clears) per second.\n\
            **Mpixel/s**: the pixels the exact rule covers, per second, so all\n\
            contenders of a workload are counted alike. **× slice::fill**: Mpixel/s\n\
@@ -178,7 +179,8 @@ pub fn markdown(run: &Run, old: &str) -> String {
            the `Path` (its struct, 8 B a point, 1 B a verb). embedded-graphics:\n\
            `size_of` its styled triangles and of the pixel iterator as a stand-in\n\
            for the scan-line state `draw` keeps on the stack. Stack frames are\n\
-           not counted for anyone.\n"
+           not counted for anyone.\n",
+        crate::ROUNDS
     );
 
     let _ = writeln!(s, "## Figures\n");
