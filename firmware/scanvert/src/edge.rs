@@ -130,7 +130,7 @@ impl Edge {
 
     /// Computes [`Edge::pixel`] for the current row.
     #[inline(always)]
-    pub(crate) fn load_pixel(&mut self) {
+    pub fn load_pixel(&mut self) {
         self.px = ceil_px(self.x);
     }
 
