@@ -159,7 +159,7 @@ fn fan(centre: (i32, i32), spokes: &[(f64, i32)]) -> Option<Poly> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 1000, failure_persistence: None, ..ProptestConfig::default() })]
 
     /// Jittered grids of up to 8 × 8 cells of 0.5 to 25 px, split into
     /// triangles along random diagonals with random windings, over and
