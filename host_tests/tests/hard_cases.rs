@@ -403,3 +403,34 @@ fn more_vertices_than_edge_slots_is_a_capacity_error_and_draws_nothing() {
     assert_eq!(r, Err(FillError::Capacity { capacity: 5 }));
     assert!(target.spans.is_empty());
 }
+
+#[test]
+fn a_target_smaller_than_the_lists_frame_gets_only_its_own_pixels() {
+    use scanvert::controller::Controller;
+    use scanvert::display_list::DisplayList;
+    // A list for 64 × 48 into a 20 × 10 target: the frame is cut to the
+    // target, every span stays inside it (the counting target checks), and
+    // the pixels are the reference's on a 20 × 10 frame.
+    let poly = vec![px(-5, -5), px(60, 3), px(30, 45), px(2, 30)];
+    let win = Window {
+        x0: 3,
+        y0: 2,
+        x1: 40,
+        y1: 40,
+    };
+    let bytes = host_tests::harness::build_list(
+        &[Draw {
+            clip: Some(win),
+            poly: poly.clone(),
+        }],
+        W,
+        H,
+    );
+    let list = DisplayList::new_checked(&bytes).unwrap();
+    let mut edges = [Edge::EMPTY; 8];
+    let mut target = CountingTarget::new(20, 10);
+    Controller::new(Rasterizer::new(&mut edges))
+        .render(&list, &mut target)
+        .unwrap();
+    assert_same(&target.coverage(), &rasterize(&poly, win, 20, 10), &poly);
+}
