@@ -66,5 +66,6 @@ pub mod fixed;
 pub mod framebuffer;
 pub mod port;
 pub mod scan;
+pub mod trapezoid;
 
 pub use embedded_graphics_core::pixelcolor;

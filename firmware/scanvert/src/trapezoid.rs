@@ -1,0 +1,989 @@
+//! Trapezoids: a screen-space polygon cut into pieces whose parallel sides
+//! are horizontal, each with the depth of the polygon's plane.
+//!
+//! # Coverage
+//!
+//! A trapezoid is a pair of polygon edges, a left one and a right one,
+//! over a run of rows `top..end`. On row `j` it covers the pixels
+//! `c_left..c_right`, where `c = ⌈x − ½⌉` is the crossing's pixel as the
+//! exact [`Edge`] stepper computes it (the rule of [`scan`](crate::scan)).
+//! The union of a polygon's trapezoids is exactly the set of pixels that
+//! `poly` covers, each pixel once, for every polygon: convex, concave or
+//! self-intersecting. The cut works like this:
+//!
+//! 1. Every edge that crosses a row centre inside the clip rows is set up
+//!    ([`Polygon::load`]) and sorted by first row.
+//! 2. The rows are cut into *bands* between the rows where an edge starts or
+//!    ends. In a band the active edges are sorted by their exact crossing
+//!    on the band's first row (ties broken by the band's last row), with
+//!    integer cross-multiplication, no division.
+//! 3. The order is checked on the band's last row. Each difference of two
+//!    crossings is affine in the row, so an order that holds on the first
+//!    and the last row holds on every row between. If two edges swap
+//!    inside the band (a self-intersection), a binary search finds the last
+//!    row where the order holds, and the band ends after it.
+//! 4. The sorted edges are paired 1st–2nd, 3rd–4th, … (even-odd). A pair
+//!    that is the same as in the band before continues its trapezoid;
+//!    other pairs close it and open new ones.
+//!
+//! The even-odd pairs of the exact crossings on a row are the pixel rule's
+//! spans, and sorting by the exact crossings keeps `c_left ≤ c_right` on
+//! every row of a trapezoid, so the trapezoids cover the rule's pixels and
+//! never overlap. Two faces that share an edge therefore leave no gap and
+//! no double hit, as polygons do. A triangle is one or two trapezoids, a
+//! convex `n`-gon at most `n − 2`.
+//!
+//! # The plane
+//!
+//! Depth comes from the polygon's plane, never from interpolation along
+//! edges, so every trapezoid of a face has the same depth function.
+//! [`Plane::of`] takes the normal `(a, b, c)` by Newell's method over the
+//! Q12.4 vertices (units of 1/16), through the first vertex
+//! `(x₀, y₀, z₀)`:
+//!
+//! ```text
+//! a = Σ (yₖ − yₖ₊₁)(zₖ + zₖ₊₁)    b = Σ (zₖ − zₖ₊₁)(xₖ + xₖ₊₁)
+//! c = Σ (xₖ − xₖ₊₁)(yₖ + yₖ₊₁)    d = a·x₀ + b·y₀ + c·z₀
+//! a·x + b·y + c·z = d,  signs flipped so that c > 0
+//! ```
+//!
+//! `c` is the shoelace sum, twice the signed area. For planar vertices
+//! (the contract of `poly3`) this is the polygon's plane exactly. For
+//! vertices that are not quite planar (rounded), Newell's normal is the
+//! usual best fit of the orientation, and the plane is the one with that
+//! normal through the first vertex. (Through the vertex mean would be a
+//! better fit, but the mean is not on the plane of a planar polygon once
+//! rounded, and unrounded it would need `n` times wider numbers.) A
+//! polygon with `c = 0` is
+//! edge-on: it has no plane in screen space and gets no trapezoid (a planar
+//! one covers no pixel anyway).
+//!
+//! | quantity | bound | type |
+//! |---|---|---|
+//! | a vertex coordinate | \[−2¹⁵, 2¹⁵) | `i16` |
+//! | one Newell term | < 2³² | `i64` |
+//! | `a`, `b`, `c` (≤ 65535 vertices) | < 2⁴⁸ | `i64` |
+//! | `d` | < 2⁶⁵ | `i128` |
+//! | `e = d − a·px − b·py` at a pixel centre | < 2⁶⁷ | `i128` |
+//! | `e₁·c₂` (exact comparison) | < 2¹¹⁵ | `i128` |
+//!
+//! # Depth in fixed point
+//!
+//! The per-row work uses [`Depth`]: the plane's depth at the centre of
+//! pixel `(i, j)`,
+//!
+//! ```text
+//! Z(i, j) = 2¹⁴ · (d − a·(16i + 8) − b·(16j + 8)) / c
+//! ```
+//!
+//! in units of 2⁻¹⁴ of a Q12.4 unit (2⁻¹⁸ px), as
+//! `Z̃(i, j) = z + i·zx + j·zy` with `z`, `zx`, `zy` each rounded to the
+//! nearest integer and all arithmetic wrapping in `i32`. The error is at
+//! most `½·(1 + i + j) < 2¹²` for `0 ≤ i, j < 4096`, so two depths that
+//! differ by [`DEPTH_TOLERANCE`] (2¹³) or more compare the same way exactly;
+//! closer ones are compared exactly with [`Plane::cmp_at`]. The value is
+//! exact modulo 2³², so huge slopes (faces nearly edge-on) wrap but still
+//! give the right depth wherever the true depth is in range: inside a
+//! planar polygon it lies between its vertices' depths, in
+//! \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it. Tiny slopes
+//! round to zero within the same error bound.
+//!
+//! Each set-up costs three divisions per polygon (in `i64` when the numbers
+//! fit, which is the case for ordinary polygons, else in `i128`) and two
+//! per trapezoid (its edges); nothing is divided per row.
+
+use crate::clip::ClipRect;
+use crate::edge::Edge;
+use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
+use core::cmp::Ordering;
+use core::fmt;
+
+/// Fraction bits of [`Depth`] below a Q12.4 unit of depth.
+pub const Z_FRAC_BITS: u32 = 14;
+
+/// Two fixed-point depths that differ by at least this much compare the
+/// same way as the exact depths (the error of each is below 2¹²).
+pub const DEPTH_TOLERANCE: i64 = 1 << 13;
+
+/// Most vertices a polygon may have (the display list's limit).
+pub const MAX_VERTICES: usize = u16::MAX as usize;
+
+/// The plane of a polygon in screen space, exactly: `a·x + b·y + c·z = d`
+/// with `x, y, z` in units of 1/16, `c > 0`. See the [module](self) docs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Plane {
+    a: i64,
+    b: i64,
+    c: i64,
+    d: i128,
+}
+
+/// The running sums of [`Plane::of`], fed one edge at a time.
+#[derive(Clone, Copy, Debug, Default)]
+struct PlaneSums {
+    a: i64,
+    b: i64,
+    c: i64,
+    first: Vertex3,
+    n: i64,
+}
+
+impl PlaneSums {
+    /// Adds the edge `p → q` (the first call names the first vertex). Each term is below
+    /// 2³², and there are at most 65535 of them.
+    #[inline]
+    fn edge(&mut self, p: Vertex3, q: Vertex3) {
+        let (px, py, pz) = (p.x.units() as i64, p.y.units() as i64, p.z.units() as i64);
+        let (qx, qy, qz) = (q.x.units() as i64, q.y.units() as i64, q.z.units() as i64);
+        self.a += (py - qy) * (pz + qz);
+        self.b += (pz - qz) * (px + qx);
+        self.c += (px - qx) * (py + qy);
+        if self.n == 0 {
+            self.first = p;
+        }
+        self.n += 1;
+    }
+
+    fn finish(&self) -> Option<Plane> {
+        if self.c == 0 || self.n == 0 {
+            return None;
+        }
+        let f = self.first;
+        let (x, y, z) = (f.x.units(), f.y.units(), f.z.units());
+        let sign = if self.c < 0 { -1 } else { 1 };
+        let (a, b, c) = (sign * self.a, sign * self.b, sign * self.c);
+        let d = a as i128 * x as i128 + b as i128 * y as i128 + c as i128 * z as i128;
+        Some(Plane { a, b, c, d })
+    }
+}
+
+impl Plane {
+    /// The plane of the polygon through `vertices` (closed implicitly), or
+    /// `None` when it is edge-on (zero signed area in screen space), has
+    /// no vertex, or has more than [`MAX_VERTICES`].
+    pub fn of<I: IntoIterator<Item = Vertex3>>(vertices: I) -> Option<Plane> {
+        let mut sums = PlaneSums::default();
+        let mut it = vertices.into_iter();
+        let first = it.next()?;
+        let mut prev = first;
+        for v in it {
+            if sums.n as usize >= MAX_VERTICES - 1 {
+                return None;
+            }
+            sums.edge(prev, v);
+            prev = v;
+        }
+        sums.edge(prev, first);
+        sums.finish()
+    }
+
+    /// The normal `(a, b, c)`, `c > 0`.
+    pub fn normal(&self) -> (i64, i64, i64) {
+        (self.a, self.b, self.c)
+    }
+
+    /// The right-hand side `d`.
+    pub fn offset(&self) -> i128 {
+        self.d
+    }
+
+    /// The depth at the centre of pixel `(i, j)` as the fraction
+    /// `num / den` of Q12.4 units, `den = c > 0`.
+    pub fn depth_at(&self, i: i32, j: i32) -> (i128, i64) {
+        let (px, py) = (16 * i as i128 + 8, 16 * j as i128 + 8);
+        (self.d - self.a as i128 * px - self.b as i128 * py, self.c)
+    }
+
+    /// Compares the exact depths of two planes at the centre of pixel
+    /// `(i, j)`, for `|i|, |j| ≤ 4096`: `Less` when `self` is nearer.
+    pub fn cmp_at(&self, other: &Plane, i: i32, j: i32) -> Ordering {
+        let (e1, c1) = self.depth_at(i, j);
+        let (e2, c2) = other.depth_at(i, j);
+        // |e| < 2⁶⁷ and c < 2⁴⁸: the products are below 2¹¹⁵.
+        (e1 * c2 as i128).cmp(&(e2 * c1 as i128))
+    }
+
+    /// The fixed-point depth coefficients (see the [module](self) docs).
+    pub fn depth(&self) -> Depth {
+        let (a, b, c) = (self.a as i128, self.b as i128, self.c);
+        let s = 1i128 << Z_FRAC_BITS;
+        // Numerators below 2⁸², so the doubling in `round_div` cannot
+        // overflow; wrapping to `i32` keeps the value modulo 2³².
+        let zx = round_div(-16 * s * a, c);
+        let zy = round_div(-16 * s * b, c);
+        let z = round_div(s * (self.d - 8 * a - 8 * b), c);
+        Depth {
+            z: z as i32,
+            zx: zx as i32,
+            zy: zy as i32,
+        }
+    }
+}
+
+/// `n / c` rounded to the nearest integer (halves up), `c > 0`, in `i64`
+/// when the numbers fit.
+#[inline]
+fn round_div(n: i128, c: i64) -> i128 {
+    let (n2, c2) = (2 * n + c as i128, 2 * c as i128);
+    match (i64::try_from(n2), i64::try_from(c2)) {
+        (Ok(n2), Ok(c2)) => n2.div_euclid(c2) as i128,
+        _ => n2.div_euclid(c2),
+    }
+}
+
+/// The fixed-point depth of a plane: `Z̃(i, j) = z + i·zx + j·zy`
+/// (wrapping) in units of 2⁻¹⁴ of a Q12.4 unit at the centre of pixel
+/// `(i, j)`. See the [module](self) docs for the error bound.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Depth {
+    /// `Z̃` at pixel `(0, 0)` (of the plane, wherever the polygon is).
+    pub z: i32,
+    /// `∂Z/∂i`: change per pixel to the right.
+    pub zx: i32,
+    /// `∂Z/∂j`: change per row down.
+    pub zy: i32,
+}
+
+impl Depth {
+    /// `Z̃(i, j)`.
+    #[inline(always)]
+    pub fn at(&self, i: i32, j: i32) -> i32 {
+        self.z
+            .wrapping_add(self.zx.wrapping_mul(i))
+            .wrapping_add(self.zy.wrapping_mul(j))
+    }
+}
+
+/// One trapezoid: a left and a right edge over the rows `top..end`, the
+/// columns it may write (its clip window), its face and the face's depth.
+///
+/// On row `j` it covers `max(c_left, x0)..min(c_right, x1)` where `c` is
+/// each edge's pixel (see the [module](self) docs), possibly nothing.
+///
+/// # Depth
+/// Stored as the plane's `Z̃` at column 0 of the top row, `∂Z/∂i` and
+/// `∂Z/∂j` (see [`Depth`]): a row down adds `zy`, and the depth of pixel
+/// `i` on the current row is one multiply-add, `z + i·zx`. The classic
+/// "z at the left edge" is [`Trapezoid::z_left`], and the classic step
+/// along the left edge is `zy + Δc·zx` for the edge's pixel step `Δc`;
+/// keeping the value at a fixed column instead saves that multiply per
+/// row and makes the depth of a pixel independent of the edge it is
+/// reached from, so the depth is the same function on every trapezoid of
+/// a face.
+///
+/// # Size
+/// 88 bytes: two [`Edge`]s of 32, three `i32`, six `u16` (face, columns,
+/// and the store's links).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Trapezoid {
+    pub(crate) left: Edge,
+    pub(crate) right: Edge,
+    pub(crate) z: i32,
+    pub(crate) zx: i32,
+    pub(crate) zy: i32,
+    pub(crate) face: u16,
+    pub(crate) x0: u16,
+    pub(crate) x1: u16,
+    pub(crate) next_row: u16,
+    pub(crate) prev_row: u16,
+    pub(crate) next_seg: u16,
+}
+
+/// "No link" in the store's `u16` links.
+pub(crate) const NONE: u16 = u16::MAX;
+
+impl Trapezoid {
+    /// An unused slot.
+    pub const EMPTY: Trapezoid = Trapezoid {
+        left: Edge::EMPTY,
+        right: Edge::EMPTY,
+        z: 0,
+        zx: 0,
+        zy: 0,
+        face: NONE,
+        x0: 0,
+        x1: 0,
+        next_row: NONE,
+        prev_row: NONE,
+        next_seg: NONE,
+    };
+
+    /// The trapezoid between `left` and `right` (from [`Polygon::cut`],
+    /// same rows) of face `face` with depth `depth`, writing only the
+    /// columns of `clip`.
+    pub fn new(left: Edge, right: Edge, depth: &Depth, face: u16, clip: &ClipRect) -> Self {
+        Trapezoid {
+            left,
+            right,
+            z: depth.at(0, left.top()),
+            zx: depth.zx,
+            zy: depth.zy,
+            face,
+            x0: clip.x0(),
+            x1: clip.x1(),
+            next_row: NONE,
+            prev_row: NONE,
+            next_seg: NONE,
+        }
+    }
+
+    /// First row.
+    pub fn top(&self) -> i32 {
+        self.left.top()
+    }
+
+    /// One past the last row.
+    pub fn end(&self) -> i32 {
+        self.left.end()
+    }
+
+    /// The left edge, as of the top row.
+    pub fn left(&self) -> &Edge {
+        &self.left
+    }
+
+    /// The right edge, as of the top row.
+    pub fn right(&self) -> &Edge {
+        &self.right
+    }
+
+    /// The face (polygon) it belongs to.
+    pub fn face(&self) -> u16 {
+        self.face
+    }
+
+    /// The columns `x0..x1` it may write.
+    pub fn columns(&self) -> (u16, u16) {
+        (self.x0, self.x1)
+    }
+
+    /// The depth: `z` at column 0 of the **top row**, and the slopes.
+    pub fn depth(&self) -> Depth {
+        Depth {
+            z: self.z,
+            zx: self.zx,
+            zy: self.zy,
+        }
+    }
+
+    /// `Z̃` at the centre of pixel `(i, j)`.
+    pub fn z_at(&self, i: i32, j: i32) -> i32 {
+        self.z
+            .wrapping_add(self.zx.wrapping_mul(i))
+            .wrapping_add(self.zy.wrapping_mul(j.wrapping_sub(self.top())))
+    }
+
+    /// `Z̃` at the left edge's pixel on the top row.
+    pub fn z_left(&self) -> i32 {
+        let mut l = self.left;
+        l.load_pixel();
+        self.z_at(l.pixel(), self.top())
+    }
+
+    /// The pixels `l..r` it covers on row `j` (clipped to its columns;
+    /// `l ≥ r` when none), computed directly; `None` outside its rows.
+    /// For tests and tools: the renderer steps instead.
+    pub fn span_at(&self, j: i32) -> Option<(i32, i32)> {
+        if j < self.top() || j >= self.end() {
+            return None;
+        }
+        let (mut l, mut r) = (self.left, self.right);
+        for _ in self.top()..j {
+            l.step();
+            r.step();
+        }
+        l.load_pixel();
+        r.load_pixel();
+        Some((l.pixel().max(self.x0 as i32), r.pixel().min(self.x1 as i32)))
+    }
+}
+
+/// The ends of an edge in units, upper end first (`y0 < y1`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Ends {
+    x0: i16,
+    y0: i16,
+    x1: i16,
+    y1: i16,
+}
+
+impl Ends {
+    fn a(&self) -> Vertex {
+        Vertex::from_bits(self.x0, self.y0)
+    }
+    fn b(&self) -> Vertex {
+        Vertex::from_bits(self.x1, self.y1)
+    }
+    /// The crossing with the centre line of row `j` as `num / den`,
+    /// `den = dy > 0`: `num = x0·dy + (yc − y0)·dx`, below 2³³ for a row
+    /// the edge crosses.
+    #[inline]
+    fn crossing(&self, j: i32) -> (i64, i64) {
+        let (x0, y0, x1, y1) = (
+            self.x0 as i64,
+            self.y0 as i64,
+            self.x1 as i64,
+            self.y1 as i64,
+        );
+        let yc = j as i64 * ONE as i64 + HALF as i64;
+        let dy = y1 - y0;
+        (x0 * dy + (yc - y0) * (x1 - x0), dy)
+    }
+}
+
+/// A trapezoid being built: its left edge holds it, with its right edge.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Open {
+    right: Ends,
+    right_id: u16,
+    start: i32,
+}
+
+/// Scratch storage for one edge while a polygon is cut (44 bytes). The
+/// caller owns it, as the edge storage of a
+/// [`Rasterizer`](crate::scan::Rasterizer): a polygon of `n` vertices needs
+/// at most `n` slots.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EdgeSlot {
+    ends: Ends,
+    top: i32,
+    end: i32,
+    id: u16,
+    open: Option<Open>,
+}
+
+impl EdgeSlot {
+    /// An unused slot.
+    pub const EMPTY: EdgeSlot = EdgeSlot {
+        ends: Ends {
+            x0: 0,
+            y0: 0,
+            x1: 0,
+            y1: 0,
+        },
+        top: 0,
+        end: 0,
+        id: 0,
+        open: None,
+    };
+}
+
+/// Why a polygon could not be loaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum LoadError {
+    /// More edges cross the clip rows than there are [`EdgeSlot`]s.
+    Edges {
+        /// Slots available.
+        capacity: usize,
+    },
+    /// More than [`MAX_VERTICES`] vertices.
+    Vertices,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            LoadError::Edges { capacity } => {
+                write!(
+                    f,
+                    "polygon needs more than the {capacity} edge slots available"
+                )
+            }
+            LoadError::Vertices => write!(f, "polygon has more than {MAX_VERTICES} vertices"),
+        }
+    }
+}
+
+impl core::error::Error for LoadError {}
+
+/// A polygon loaded into edge slots, ready to be cut into trapezoids.
+#[derive(Debug)]
+pub struct Polygon<'s> {
+    slots: &'s mut [EdgeSlot],
+    edges: usize,
+    plane: Option<Plane>,
+    cols: (i32, i32),
+}
+
+impl<'s> Polygon<'s> {
+    /// Sets up the edges of the polygon through `vertices` (closed
+    /// implicitly) that cross a row centre inside `clip`, and its plane,
+    /// in one pass over the vertices.
+    ///
+    /// Only edges inside the clip rows take a slot. A polygon whose box
+    /// misses the clip columns loads no edge.
+    pub fn load<I>(
+        slots: &'s mut [EdgeSlot],
+        vertices: I,
+        clip: &ClipRect,
+    ) -> Result<Self, LoadError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
+        let rows = (clip.y0() as i32, clip.y1() as i32);
+        let cols = (clip.x0() as i32, clip.x1() as i32);
+        let mut sums = PlaneSums::default();
+        let mut it = vertices.into_iter();
+        let mut poly = Polygon {
+            slots,
+            edges: 0,
+            plane: None,
+            cols,
+        };
+        let Some(first) = it.next() else {
+            return Ok(poly);
+        };
+        let (mut lo, mut hi) = (first.x.units(), first.x.units());
+        let mut prev = first;
+        let mut count = 1usize;
+        for v in it {
+            count += 1;
+            if count > MAX_VERTICES {
+                return Err(LoadError::Vertices);
+            }
+            sums.edge(prev, v);
+            poly.push(prev, v, rows)?;
+            lo = lo.min(v.x.units());
+            hi = hi.max(v.x.units());
+            prev = v;
+        }
+        sums.edge(prev, first);
+        poly.push(prev, first, rows)?;
+        poly.plane = sums.finish();
+        // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
+        if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
+            poly.edges = 0;
+        }
+        Ok(poly)
+    }
+
+    fn push(&mut self, p: Vertex3, q: Vertex3, rows: (i32, i32)) -> Result<(), LoadError> {
+        let (mut a, mut b) = (p, q);
+        if a.y > b.y {
+            core::mem::swap(&mut a, &mut b);
+        }
+        let (y0, y1) = (a.y.units(), b.y.units());
+        // The rows of `Edge::new`: centres j·16 + 8 in [y0, y1).
+        let top = ceil_px(y0 - HALF).max(rows.0);
+        let end = ceil_px(y1 - HALF).min(rows.1);
+        if top >= end {
+            return Ok(());
+        }
+        let capacity = self.slots.len();
+        let slot = self
+            .slots
+            .get_mut(self.edges)
+            .ok_or(LoadError::Edges { capacity })?;
+        *slot = EdgeSlot {
+            ends: Ends {
+                x0: a.x.to_bits(),
+                y0: a.y.to_bits(),
+                x1: b.x.to_bits(),
+                y1: b.y.to_bits(),
+            },
+            top,
+            end,
+            id: self.edges as u16,
+            open: None,
+        };
+        self.edges += 1;
+        Ok(())
+    }
+
+    /// The polygon's plane, `None` when it is edge-on.
+    pub fn plane(&self) -> Option<&Plane> {
+        self.plane.as_ref()
+    }
+
+    /// Edges set up (those crossing a row centre inside the clip).
+    pub fn edges(&self) -> usize {
+        self.edges
+    }
+
+    /// Cuts the polygon into trapezoids, handing each one's left and right
+    /// edges (set up for its rows) to `emit`, top to bottom in the order
+    /// they close. Returns how many were emitted. Pairs that can never
+    /// write a pixel in the clip columns (both edges the same, or wholly
+    /// left or right of the columns) are not emitted.
+    pub fn cut<E>(self, mut emit: impl FnMut(Edge, Edge) -> Result<(), E>) -> Result<u32, E> {
+        let n = self.edges;
+        let cols = self.cols;
+        let slots = &mut self.slots[..n];
+        let mut count = 0u32;
+        if n < 2 {
+            return Ok(0);
+        }
+        let mut close = |l: &Ends, op: &Open, end: i32| -> Result<(), E> {
+            let r = &op.right;
+            if *l == *r || op.start >= end {
+                return Ok(());
+            }
+            let rmax = r.x0.max(r.x1) as i32;
+            let lmin = l.x0.min(l.x1) as i32;
+            if ceil_px(rmax - HALF) <= cols.0 || ceil_px(lmin - HALF) >= cols.1 {
+                return Ok(());
+            }
+            let rows = (op.start, end);
+            if let (Some(le), Some(re)) =
+                (Edge::new(l.a(), l.b(), rows), Edge::new(r.a(), r.b(), rows))
+            {
+                emit(le, re)?;
+                count += 1;
+            }
+            Ok(())
+        };
+        slots.sort_unstable_by_key(|e| e.top);
+        // As in `scan`: slots[..active] are active, slots[active..next]
+        // finished, slots[next..] wait for their first row.
+        let (mut active, mut next) = (0usize, 0usize);
+        let mut y = slots[0].top;
+        loop {
+            if active == 0 {
+                match slots.get(next) {
+                    Some(e) => y = y.max(e.top),
+                    None => break,
+                }
+            }
+            while next < n && slots[next].top <= y {
+                slots.swap(active, next);
+                slots[active].open = None;
+                active += 1;
+                next += 1;
+            }
+            let mut stop = slots.get(next).map_or(i32::MAX, |e| e.top);
+            for e in &slots[..active] {
+                stop = stop.min(e.end);
+            }
+            let live = &mut slots[..active];
+            let last = stop - 1;
+            sort_at(live, y, last);
+            let band_end = if sorted_at(live, last) {
+                stop
+            } else {
+                // Sorted on row y, not on `last`: each adjacent pair keeps
+                // its order on an interval of rows from y, so the rows where
+                // all do are an interval too.
+                let (mut lo, mut hi) = (y, last);
+                while hi - lo > 1 {
+                    let mid = lo + (hi - lo) / 2;
+                    if sorted_at(live, mid) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                lo + 1
+            };
+            // Close the trapezoids whose pair does not continue from row y.
+            for i in 0..live.len() {
+                if let Some(op) = live[i].open {
+                    let keep = i % 2 == 0 && live.get(i + 1).is_some_and(|r| r.id == op.right_id);
+                    if !keep {
+                        close(&live[i].ends, &op, y)?;
+                        live[i].open = None;
+                    }
+                }
+            }
+            for pair in live.chunks_exact_mut(2) {
+                if pair[0].open.is_none() {
+                    pair[0].open = Some(Open {
+                        right: pair[1].ends,
+                        right_id: pair[1].id,
+                        start: y,
+                    });
+                }
+            }
+            y = band_end;
+            let mut i = 0;
+            while i < active {
+                if slots[i].end <= y {
+                    if let Some(op) = slots[i].open.take() {
+                        close(&slots[i].ends, &op, y)?;
+                    }
+                    active -= 1;
+                    slots.swap(i, active);
+                } else {
+                    i += 1;
+                }
+            }
+        }
+        Ok(count)
+    }
+}
+
+/// Compares the exact crossings of two edges on row `j` (both cross it).
+#[inline]
+fn cmp_x(a: &EdgeSlot, b: &EdgeSlot, j: i32) -> Ordering {
+    let (na, da) = a.ends.crossing(j);
+    let (nb, db) = b.ends.crossing(j);
+    // |num| < 2³³, den < 2¹⁶: products below 2⁴⁹.
+    (na * db).cmp(&(nb * da))
+}
+
+/// Insertion sort by the crossing on row `y`, ties by row `last`.
+fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
+    for i in 1..e.len() {
+        let mut j = i;
+        while j > 0
+            && cmp_x(&e[j - 1], &e[j], y)
+                .then_with(|| cmp_x(&e[j - 1], &e[j], last))
+                .is_gt()
+        {
+            e.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+/// `true` when the crossings on row `j` are in order.
+fn sorted_at(e: &[EdgeSlot], j: i32) -> bool {
+    e.windows(2).all(|w| !cmp_x(&w[0], &w[1], j).is_gt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::clip::ClipWindow;
+    use crate::fixed::Coord;
+
+    pub(crate) fn v3(x: i32, y: i32, z: i32) -> Vertex3 {
+        Vertex3 {
+            x: Coord::from_bits(x as i16),
+            y: Coord::from_bits(y as i16),
+            z: Coord::from_bits(z as i16),
+        }
+    }
+
+    /// The pixel rule for one pixel, from its definition.
+    fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {
+        let (xc, yc) = (16 * i as i64 + 8, 16 * j as i64 + 8);
+        let mut odd = false;
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (mut x0, mut y0) = (a.x.units() as i64, a.y.units() as i64);
+            let (mut x1, mut y1) = (b.x.units() as i64, b.y.units() as i64);
+            if y0 > y1 {
+                (x0, y0, x1, y1) = (x1, y1, x0, y0);
+            }
+            if y0 <= yc && yc < y1 && x0 * (y1 - y0) + (yc - y0) * (x1 - x0) <= xc * (y1 - y0) {
+                odd = !odd;
+            }
+        }
+        odd
+    }
+
+    struct Rng(u32);
+    impl Rng {
+        fn below(&mut self, m: u32) -> u32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 17;
+            self.0 ^= self.0 << 5;
+            self.0 % m
+        }
+    }
+
+    const W: i32 = 40;
+    const H: i32 = 32;
+
+    /// Every pixel of the frame, counted over the trapezoids' spans.
+    fn hits(
+        poly: &[Vertex3],
+        clip: &ClipRect,
+        slots: &mut [EdgeSlot],
+    ) -> ([u8; (W * H) as usize], u32) {
+        let mut hit = [0u8; (W * H) as usize];
+        let p = Polygon::load(slots, poly.iter().copied(), clip).unwrap();
+        let depth = p.plane().map(|p| p.depth()).unwrap_or_default();
+        let n = p
+            .cut(|l, r| {
+                let t = Trapezoid::new(l, r, &depth, 0, clip);
+                for j in t.top()..t.end() {
+                    let (a, b) = t.span_at(j).unwrap();
+                    for i in a..b {
+                        hit[(j * W + i) as usize] += 1;
+                    }
+                }
+                Ok::<(), ()>(())
+            })
+            .unwrap();
+        (hit, n)
+    }
+
+    #[test]
+    fn trapezoids_cover_the_pixel_rule_once() {
+        let mut rng = Rng(0x9e37_79b9);
+        let mut slots = [EdgeSlot::EMPTY; 12];
+        for case in 0..3000 {
+            let n = 3 + rng.below(10) as usize;
+            let mut poly = [Vertex3::default(); 12];
+            // Coarse grids make coincident vertices, shared rows and
+            // crossings on row centres likely.
+            let grid = [1, 4, 8, 16][case % 4];
+            for v in poly.iter_mut().take(n) {
+                let x = (rng.below(((W + 8) * 16 / grid) as u32) as i32) * grid - 64;
+                let y = (rng.below(((H + 8) * 16 / grid) as u32) as i32) * grid - 64;
+                *v = v3(x, y, 0);
+            }
+            let poly = &poly[..n];
+            let clip = if case % 3 == 0 {
+                let (x0, y0) = (rng.below(W as u32) as i16, rng.below(H as u32) as i16);
+                ClipRect::from_window(
+                    ClipWindow {
+                        x0,
+                        y0,
+                        x1: x0 + rng.below(W as u32) as i16,
+                        y1: y0 + rng.below(H as u32) as i16,
+                    },
+                    W as u16,
+                    H as u16,
+                )
+            } else {
+                ClipRect::full(W as u16, H as u16)
+            };
+            let (hit, _) = hits(poly, &clip, &mut slots);
+            for j in 0..H {
+                for i in 0..W {
+                    let want = clip.contains(i, j) && covers(poly, i, j);
+                    let got = hit[(j * W + i) as usize];
+                    assert_eq!(got, want as u8, "{poly:?} {clip:?} pixel ({i}, {j})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn convex_polygons_make_few_trapezoids() {
+        let px = |x: i32, y: i32| v3(x * 16 + 3, y * 16 + 5, 0);
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 8];
+        // A triangle: two trapezoids (the middle vertex splits one side).
+        let tri = [px(2, 2), px(30, 9), px(6, 28)];
+        assert_eq!(hits(&tri, &clip, &mut slots).1, 2);
+        // A convex hexagon: at most n − 2 = 4.
+        let hex = [
+            px(10, 2),
+            px(20, 2),
+            px(28, 12),
+            px(20, 24),
+            px(10, 24),
+            px(3, 12),
+        ];
+        assert!(hits(&hex, &clip, &mut slots).1 <= 4);
+        // An axis-aligned rectangle: one.
+        let rect = [px(3, 3), px(20, 3), px(20, 10), px(3, 10)];
+        assert_eq!(hits(&rect, &clip, &mut slots).1, 1);
+    }
+
+    #[test]
+    fn self_intersection_inside_a_band_splits_it() {
+        // A bow tie: the two long edges cross at row 16.
+        let bow = [v3(0, 0, 0), v3(640, 0, 0), v3(0, 512, 0), v3(640, 512, 0)];
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 4];
+        let (hit, n) = hits(&bow, &clip, &mut slots);
+        assert_eq!(n, 2);
+        for j in 0..H {
+            for i in 0..W {
+                assert_eq!(hit[(j * W + i) as usize], covers(&bow, i, j) as u8);
+            }
+        }
+    }
+
+    #[test]
+    fn too_few_slots_is_an_error() {
+        let quad = [v3(0, 0, 0), v3(160, 0, 0), v3(160, 160, 0), v3(0, 160, 0)];
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 1];
+        assert_eq!(
+            Polygon::load(&mut slots, quad, &clip).err(),
+            Some(LoadError::Edges { capacity: 1 })
+        );
+        // Horizontal edges take no slot.
+        let mut slots = [EdgeSlot::EMPTY; 2];
+        assert!(Polygon::load(&mut slots, quad, &clip).is_ok());
+    }
+
+    #[test]
+    fn plane_of_a_triangle_passes_through_its_vertices() {
+        let tri = [v3(16, 16, 100), v3(500, 40, -300), v3(200, 480, 2000)];
+        let p = Plane::of(tri).unwrap();
+        let (a, b, c) = p.normal();
+        assert!(c > 0);
+        for v in tri {
+            let lhs = a as i128 * v.x.units() as i128
+                + b as i128 * v.y.units() as i128
+                + c as i128 * v.z.units() as i128;
+            assert_eq!(lhs, p.offset());
+        }
+        // Winding does not matter.
+        let rev = [tri[2], tri[1], tri[0]];
+        assert_eq!(Plane::of(rev), Some(p));
+    }
+
+    #[test]
+    fn edge_on_polygons_have_no_plane() {
+        let line = [v3(0, 0, 0), v3(160, 160, 50), v3(320, 320, 9)];
+        assert_eq!(Plane::of(line), None);
+    }
+
+    /// The fixed-point depth is within its bound of the exact one, at the
+    /// corners of the pixel range, for planes from flat to nearly edge-on.
+    #[test]
+    fn fixed_point_depth_error_is_bounded() {
+        let mut rng = Rng(0x1234_5677);
+        for _ in 0..2000 {
+            let mut r = |m: u32| rng.below(2 * m) as i32 - m as i32;
+            let tri = [
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+            ];
+            let Some(p) = Plane::of(tri) else { continue };
+            let d = p.depth();
+            for (i, j) in [(0, 0), (4095, 0), (0, 4095), (4095, 4095), (17, 3000)] {
+                let (num, den) = p.depth_at(i, j);
+                let exact = num * (1 << Z_FRAC_BITS);
+                // Only where the true depth is in range is it meaningful.
+                let z = exact.div_euclid(den as i128);
+                if z.abs() >= 1 << 29 {
+                    continue;
+                }
+                let got = d.at(i, j) as i128;
+                // |got − exact/den| ≤ ½(1 + i + j).
+                let err2 = (2 * (got * den as i128 - exact)).abs();
+                assert!(
+                    err2 <= (1 + i + j) as i128 * den as i128,
+                    "{tri:?} at ({i}, {j})"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn extreme_coordinates_do_not_overflow() {
+        let m = [i16::MIN as i32, -1, 0, 1, i16::MAX as i32];
+        let clip = ClipRect::full(4096, 4096);
+        let mut slots = [EdgeSlot::EMPTY; 3];
+        for &x in &m {
+            for &y in &m {
+                for &z in &m {
+                    let neg = |v: i32| (-v).min(i16::MAX as i32);
+                    let tri = [
+                        v3(x, y, z),
+                        v3(neg(x), y, neg(z)),
+                        v3(y, neg(x), i16::MIN as i32),
+                    ];
+                    if let Some(p) = Plane::of(tri) {
+                        let d = p.depth();
+                        let _ = d.at(4095, 4095);
+                        let _ = p.cmp_at(&p, 4096, 4096);
+                    }
+                    let poly = Polygon::load(&mut slots, tri, &clip).unwrap();
+                    let _ = poly.cut(|_, _| Ok::<(), ()>(()));
+                }
+            }
+        }
+    }
+}
