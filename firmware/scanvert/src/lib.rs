@@ -65,7 +65,9 @@ pub mod edge_dda;
 pub mod fixed;
 pub mod framebuffer;
 pub mod port;
+pub mod rle;
 pub mod scan;
+pub mod segment;
 pub mod trapezoid;
 
 pub use embedded_graphics_core::pixelcolor;

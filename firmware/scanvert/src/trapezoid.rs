@@ -158,6 +158,14 @@ impl PlaneSums {
 }
 
 impl Plane {
+    /// The plane `z = 0` (placeholder of unused slots).
+    pub const FLAT: Plane = Plane {
+        a: 0,
+        b: 0,
+        c: 1,
+        d: 0,
+    };
+
     /// The plane of the polygon through `vertices` (closed implicitly), or
     /// `None` when it is edge-on (zero signed area in screen space), has
     /// no vertex, or has more than [`MAX_VERTICES`].

@@ -1,0 +1,823 @@
+//! The trapezoid store: segments, faces, and the scan-line index.
+//!
+//! A 3D scene is a set of *segments*, each owning the trapezoids and faces
+//! of the polygons added to it. [`TrapezoidStore::clear_segment`] empties
+//! one segment alone and [`TrapezoidStore::add_polygon`] refills it; the
+//! trapezoids of every other segment stay where they are, untouched, so a
+//! frame where one segment changed cuts only that segment's polygons again.
+//! Per-segment [`Counters`] show it.
+//!
+//! # Memory
+//!
+//! All of it is the caller's ([`StoreMemory`]), in pools with free lists,
+//! so emptying and refilling a segment never moves anything else:
+//!
+//! | pool | slot | holds | limit |
+//! |---|---|---|---|
+//! | trapezoids | [`Trapezoid`], 88 bytes | edges, depth, links | 65535 |
+//! | faces | [`Face`], 48–64 bytes | exact plane, colour, tie key | 65535 |
+//! | segments | [`Segment`], 28 bytes | chains and counters | 65535 |
+//! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
+//! | edge slots | [`EdgeSlot`], 44 bytes | scratch while a polygon is cut | its vertex count |
+//!
+//! The scan-line index is one `u16` per row: the head of a doubly linked
+//! list, threaded through the trapezoids, of the trapezoids whose top row
+//! it is. Everything else grows with the scene. Adding a trapezoid and
+//! removing one are O(1).
+//!
+//! # Errors
+//!
+//! When a pool runs out while a polygon is added, the segment being filled
+//! is emptied and the error says which pool: a segment is always either
+//! complete or empty, and the other segments are untouched.
+//!
+//! # Ties
+//!
+//! Each face has a key, `segment << 16 | n` where `n` counts the polygons
+//! added to the segment since it was last emptied. Where two faces have
+//! the same depth at a pixel, the lower key is in front: the lower
+//! segment, then the earlier polygon.
+
+use crate::clip::{ClipRect, ClipWindow};
+use crate::fixed::Vertex3;
+use crate::trapezoid::{EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE};
+use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// A polygon of the store: its exact plane, colour and tie key.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Face {
+    plane: Plane,
+    color: Rgb888,
+    key: u32,
+    segment: u16,
+    next: u16,
+}
+
+impl Face {
+    /// An unused slot.
+    pub const EMPTY: Face = Face {
+        plane: Plane::FLAT,
+        color: Rgb888::new(0, 0, 0),
+        key: 0,
+        segment: NONE,
+        next: NONE,
+    };
+
+    /// The exact plane.
+    pub fn plane(&self) -> &Plane {
+        &self.plane
+    }
+
+    /// The colour.
+    pub fn color(&self) -> Rgb888 {
+        self.color
+    }
+
+    /// The tie key: lower is in front at equal depth.
+    pub fn key(&self) -> u32 {
+        self.key
+    }
+
+    /// The segment that owns it.
+    pub fn segment(&self) -> u16 {
+        self.segment
+    }
+}
+
+/// Work done for one segment (or the whole store), counted since the store
+/// was made. All counters wrap.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Counters {
+    /// Polygons added.
+    pub polygons: u32,
+    /// Trapezoids built (cut and stored).
+    pub trapezoids: u32,
+    /// Times the segment was emptied.
+    pub clears: u32,
+}
+
+impl Counters {
+    fn add(&mut self, o: Counters) {
+        self.polygons = self.polygons.wrapping_add(o.polygons);
+        self.trapezoids = self.trapezoids.wrapping_add(o.trapezoids);
+        self.clears = self.clears.wrapping_add(o.clears);
+    }
+}
+
+/// One segment: the chains of its trapezoids and faces, and its counters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Segment {
+    traps: u16,
+    faces: u16,
+    trapezoids: u32,
+    face_count: u32,
+    ordinal: u16,
+    work: Counters,
+}
+
+impl Segment {
+    /// An unused slot.
+    pub const EMPTY: Segment = Segment {
+        traps: NONE,
+        faces: NONE,
+        trapezoids: 0,
+        face_count: 0,
+        ordinal: 0,
+        work: Counters {
+            polygons: 0,
+            trapezoids: 0,
+            clears: 0,
+        },
+    };
+
+    /// Trapezoids it owns now.
+    pub fn trapezoids(&self) -> u32 {
+        self.trapezoids
+    }
+
+    /// Faces it owns now.
+    pub fn faces(&self) -> u32 {
+        self.face_count
+    }
+
+    /// Work done for it.
+    pub fn counters(&self) -> Counters {
+        self.work
+    }
+}
+
+/// What ran out, or what was asked that does not exist.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum StoreError {
+    /// The trapezoid pool is full.
+    Trapezoids {
+        /// Slots it holds.
+        capacity: usize,
+    },
+    /// The face pool is full.
+    Faces {
+        /// Slots it holds.
+        capacity: usize,
+    },
+    /// A polygon has more edges inside the clip rows than there are edge
+    /// slots.
+    Edges {
+        /// Slots available.
+        capacity: usize,
+    },
+    /// A polygon has more than 65535 vertices.
+    Vertices,
+    /// No such segment.
+    Segment {
+        /// The index asked for.
+        segment: usize,
+        /// Segments the store holds.
+        capacity: usize,
+    },
+    /// The scan-line index has fewer rows than the frame.
+    Rows {
+        /// Rows of the frame.
+        height: u16,
+        /// Rows the index holds.
+        capacity: usize,
+    },
+}
+
+impl fmt::Display for StoreError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            StoreError::Trapezoids { capacity } => {
+                write!(f, "more than the {capacity} trapezoids the store holds")
+            }
+            StoreError::Faces { capacity } => {
+                write!(f, "more than the {capacity} faces the store holds")
+            }
+            StoreError::Edges { capacity } => {
+                write!(
+                    f,
+                    "polygon needs more than the {capacity} edge slots available"
+                )
+            }
+            StoreError::Vertices => f.write_str("polygon has more than 65535 vertices"),
+            StoreError::Segment { segment, capacity } => {
+                write!(
+                    f,
+                    "segment {segment} does not exist (the store holds {capacity})"
+                )
+            }
+            StoreError::Rows { height, capacity } => write!(
+                f,
+                "scan-line index holds {capacity} rows; the frame has {height}"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for StoreError {}
+
+impl From<LoadError> for StoreError {
+    fn from(e: LoadError) -> Self {
+        match e {
+            LoadError::Edges { capacity } => StoreError::Edges { capacity },
+            LoadError::Vertices => StoreError::Vertices,
+        }
+    }
+}
+
+/// The caller's memory for a [`TrapezoidStore`]. Every slice may have any
+/// length; pools use at most 65535 slots, the index at least the frame's
+/// height.
+#[derive(Debug)]
+pub struct StoreMemory<'a> {
+    /// The trapezoid pool.
+    pub trapezoids: &'a mut [Trapezoid],
+    /// The face pool: one face per polygon that has trapezoids.
+    pub faces: &'a mut [Face],
+    /// The segments.
+    pub segments: &'a mut [Segment],
+    /// The scan-line index: one entry per row.
+    pub rows: &'a mut [u16],
+    /// Scratch for cutting one polygon: as many as its vertices.
+    pub edges: &'a mut [EdgeSlot],
+}
+
+/// Trapezoids of a frame, by segment, indexed by top row. See the
+/// [module](self) docs.
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::Rgb888;
+/// use scanvert::{clip::ClipRect, fixed::{Coord, Vertex3}, segment::*, trapezoid::*};
+///
+/// let (mut traps, mut faces) = ([Trapezoid::EMPTY; 64], [Face::EMPTY; 16]);
+/// let (mut segs, mut rows, mut edges) = ([Segment::EMPTY; 2], [0u16; 48], [EdgeSlot::EMPTY; 8]);
+/// let mut store = TrapezoidStore::new(
+///     StoreMemory { trapezoids: &mut traps, faces: &mut faces, segments: &mut segs, rows: &mut rows, edges: &mut edges },
+///     64, 48,
+/// ).unwrap();
+/// let v = |x: i16, y: i16, z: i16| Vertex3 { x: Coord::from_bits(x * 16), y: Coord::from_bits(y * 16), z: Coord::from_bits(z * 16) };
+/// let clip = ClipRect::full(64, 48);
+/// store.add_polygon(0, [v(2, 2, 5), v(60, 10, 5), v(8, 40, 5)], Rgb888::RED, &clip)?;
+/// store.add_polygon(1, [v(10, 5, 9), v(50, 5, 9), v(50, 30, 9), v(10, 30, 9)], Rgb888::BLUE, &clip)?;
+/// assert_eq!(store.segment(0).unwrap().trapezoids(), 2);
+/// store.clear_segment(0)?; // segment 1 is untouched
+/// assert_eq!(store.len(), 1);
+/// # Ok::<(), StoreError>(())
+/// ```
+#[derive(Debug)]
+pub struct TrapezoidStore<'a> {
+    traps: &'a mut [Trapezoid],
+    faces: &'a mut [Face],
+    segments: &'a mut [Segment],
+    rows: &'a mut [u16],
+    edges: &'a mut [EdgeSlot],
+    width: u16,
+    height: u16,
+    free_trap: u16,
+    unused_trap: u16,
+    free_face: u16,
+    unused_face: u16,
+    live: u32,
+    live_faces: u32,
+}
+
+/// Usable slots of a pool: `NONE` is reserved.
+fn pool_len(len: usize) -> u16 {
+    len.min(NONE as usize) as u16
+}
+
+impl<'a> TrapezoidStore<'a> {
+    /// An empty store for a `width × height` frame (each side at most
+    /// 4096). Fails when the index has fewer rows than the frame.
+    pub fn new(mem: StoreMemory<'a>, width: u16, height: u16) -> Result<Self, StoreError> {
+        let height = height.min(4096);
+        let capacity = mem.rows.len();
+        let rows = mem
+            .rows
+            .get_mut(..height as usize)
+            .ok_or(StoreError::Rows { height, capacity })?;
+        rows.fill(NONE);
+        for s in mem.segments.iter_mut() {
+            *s = Segment::EMPTY;
+        }
+        Ok(TrapezoidStore {
+            traps: mem.trapezoids,
+            faces: mem.faces,
+            segments: mem.segments,
+            rows,
+            edges: mem.edges,
+            width: width.min(4096),
+            height,
+            free_trap: NONE,
+            unused_trap: 0,
+            free_face: NONE,
+            unused_face: 0,
+            live: 0,
+            live_faces: 0,
+        })
+    }
+
+    /// Frame width.
+    pub fn width(&self) -> u16 {
+        self.width
+    }
+
+    /// Frame height: the rows of the index.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// Trapezoids stored.
+    pub fn len(&self) -> usize {
+        self.live as usize
+    }
+
+    /// `true` when no trapezoid is stored.
+    pub fn is_empty(&self) -> bool {
+        self.live == 0
+    }
+
+    /// Faces stored.
+    pub fn face_count(&self) -> usize {
+        self.live_faces as usize
+    }
+
+    /// Trapezoid slots.
+    pub fn capacity(&self) -> usize {
+        pool_len(self.traps.len()) as usize
+    }
+
+    /// Segment `s`.
+    pub fn segment(&self, s: usize) -> Option<&Segment> {
+        self.segments.get(s)
+    }
+
+    /// The segments.
+    pub fn segments(&self) -> &[Segment] {
+        self.segments
+    }
+
+    /// The work of all segments together.
+    pub fn counters(&self) -> Counters {
+        let mut c = Counters::default();
+        for s in self.segments.iter() {
+            c.add(s.work);
+        }
+        c
+    }
+
+    /// Face `f`.
+    pub fn face(&self, f: u16) -> Option<&Face> {
+        self.faces.get(f as usize)
+    }
+
+    /// Trapezoid slot `t`.
+    pub fn trapezoid(&self, t: u16) -> Option<&Trapezoid> {
+        self.traps.get(t as usize)
+    }
+
+    /// The scan-line index: the trapezoids whose top row is `y`.
+    pub fn starting_at(&self, y: u16) -> impl Iterator<Item = (u16, &Trapezoid)> + '_ {
+        let head = self.rows.get(y as usize).copied().unwrap_or(NONE);
+        Chain {
+            traps: self.traps,
+            at: head,
+            next: |t: &Trapezoid| t.next_row,
+        }
+    }
+
+    /// The trapezoids of segment `s`, newest first.
+    pub fn segment_trapezoids(&self, s: usize) -> impl Iterator<Item = (u16, &Trapezoid)> + '_ {
+        let head = self.segments.get(s).map_or(NONE, |s| s.traps);
+        Chain {
+            traps: self.traps,
+            at: head,
+            next: |t: &Trapezoid| t.next_seg,
+        }
+    }
+
+    /// The head of row `y`'s list (`NONE` past the end).
+    #[inline]
+    pub(crate) fn row_head(&self, y: usize) -> u16 {
+        self.rows.get(y).copied().unwrap_or(NONE)
+    }
+
+    /// Empties segment `s`: its trapezoids and faces go back to the pools.
+    /// No other segment is touched.
+    pub fn clear_segment(&mut self, s: usize) -> Result<(), StoreError> {
+        let capacity = self.segments.len();
+        let seg = self.segments.get_mut(s).ok_or(StoreError::Segment {
+            segment: s,
+            capacity,
+        })?;
+        let mut t = seg.traps;
+        while let Some(tr) = self.traps.get(t as usize).copied() {
+            // Unlink from the row list.
+            match self.traps.get_mut(tr.prev_row as usize) {
+                Some(p) => p.next_row = tr.next_row,
+                None => {
+                    if let Some(h) = self.rows.get_mut(tr.top() as usize) {
+                        *h = tr.next_row;
+                    }
+                }
+            }
+            if let Some(n) = self.traps.get_mut(tr.next_row as usize) {
+                n.prev_row = tr.prev_row;
+            }
+            self.traps[t as usize] = Trapezoid {
+                next_seg: self.free_trap,
+                ..Trapezoid::EMPTY
+            };
+            self.free_trap = t;
+            self.live -= 1;
+            t = tr.next_seg;
+        }
+        let mut f = seg.faces;
+        while let Some(face) = self.faces.get(f as usize).copied() {
+            self.faces[f as usize] = Face {
+                next: self.free_face,
+                ..Face::EMPTY
+            };
+            self.free_face = f;
+            self.live_faces -= 1;
+            f = face.next;
+        }
+        seg.traps = NONE;
+        seg.faces = NONE;
+        seg.trapezoids = 0;
+        seg.face_count = 0;
+        seg.ordinal = 0;
+        seg.work.clears = seg.work.clears.wrapping_add(1);
+        Ok(())
+    }
+
+    /// Empties every segment.
+    pub fn clear(&mut self) {
+        for s in 0..self.segments.len() {
+            let _ = self.clear_segment(s);
+        }
+    }
+
+    /// Cuts the polygon through `vertices` (closed implicitly, any winding:
+    /// trapezoids do not cull) into trapezoids of segment `s`, in colour
+    /// `color`, writing only the pixels of `clip` (cut to the store's
+    /// frame). Returns the trapezoids added: none for an edge-on polygon
+    /// or one outside the clip.
+    ///
+    /// On an error the segment is emptied (see the [module](self) docs).
+    pub fn add_polygon<I>(
+        &mut self,
+        s: usize,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<u32, StoreError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
+        match self.add_inner(s, vertices, color, clip) {
+            Ok(n) => Ok(n),
+            Err(e) => {
+                if !matches!(e, StoreError::Segment { .. }) {
+                    let _ = self.clear_segment(s);
+                }
+                Err(e)
+            }
+        }
+    }
+
+    fn add_inner<I>(
+        &mut self,
+        s: usize,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<u32, StoreError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
+        let capacity = self.segments.len();
+        let seg = self.segments.get_mut(s).ok_or(StoreError::Segment {
+            segment: s,
+            capacity,
+        })?;
+        // The clip cut to the store's frame (a clip is within 0..=4096).
+        let clip = ClipRect::from_window(
+            ClipWindow {
+                x0: clip.x0() as i16,
+                y0: clip.y0() as i16,
+                x1: clip.x1() as i16 - 1,
+                y1: clip.y1() as i16 - 1,
+            },
+            self.width,
+            self.height,
+        );
+        seg.work.polygons = seg.work.polygons.wrapping_add(1);
+        let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
+        seg.ordinal = seg.ordinal.saturating_add(1);
+        let poly = Polygon::load(self.edges, vertices, &clip)?;
+        let Some(plane) = poly.plane().copied() else {
+            return Ok(0);
+        };
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        // The face first: its slot is the trapezoids' face index.
+        let f = alloc(
+            &mut self.free_face,
+            &mut self.unused_face,
+            self.faces.len(),
+            |i| self.faces[i as usize].next,
+        )
+        .ok_or(StoreError::Faces {
+            capacity: pool_len(self.faces.len()) as usize,
+        })?;
+        self.faces[f as usize] = Face {
+            plane,
+            color,
+            key,
+            segment: s as u16,
+            next: seg.faces,
+        };
+        seg.faces = f;
+        seg.face_count += 1;
+        self.live_faces += 1;
+        let depth = plane.depth();
+        let (traps, rows) = (&mut *self.traps, &mut *self.rows);
+        let (free, unused) = (&mut self.free_trap, &mut self.unused_trap);
+        let live = &mut self.live;
+        let n = poly.cut(|l, r| {
+            let cap = traps.len();
+            let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg).ok_or(
+                StoreError::Trapezoids {
+                    capacity: pool_len(cap) as usize,
+                },
+            )?;
+            let mut tr = Trapezoid::new(l, r, &depth, f, &clip);
+            // Rows are inside the frame: the edges were cut to the clip.
+            let top = tr.top() as usize;
+            let head = rows.get(top).copied().unwrap_or(NONE);
+            tr.next_row = head;
+            tr.prev_row = NONE;
+            tr.next_seg = seg.traps;
+            if let Some(h) = traps.get_mut(head as usize) {
+                h.prev_row = t;
+            }
+            if let Some(h) = rows.get_mut(top) {
+                *h = t;
+            }
+            traps[t as usize] = tr;
+            seg.traps = t;
+            seg.trapezoids += 1;
+            seg.work.trapezoids = seg.work.trapezoids.wrapping_add(1);
+            *live += 1;
+            Ok::<(), StoreError>(())
+        })?;
+        if n == 0 {
+            // Nothing to draw: give the face back (it is the chain's head).
+            seg.faces = self.faces[f as usize].next;
+            seg.face_count -= 1;
+            self.faces[f as usize] = Face {
+                next: self.free_face,
+                ..Face::EMPTY
+            };
+            self.free_face = f;
+            self.live_faces -= 1;
+        }
+        Ok(n)
+    }
+}
+
+/// Takes a slot from a pool: the free list first, then never-used slots.
+fn alloc(free: &mut u16, unused: &mut u16, len: usize, next: impl Fn(u16) -> u16) -> Option<u16> {
+    if *free != NONE {
+        let t = *free;
+        *free = next(t);
+        Some(t)
+    } else if *unused < pool_len(len) {
+        let t = *unused;
+        *unused += 1;
+        Some(t)
+    } else {
+        None
+    }
+}
+
+/// Walks a `u16` chain through the trapezoid pool.
+struct Chain<'t, F> {
+    traps: &'t [Trapezoid],
+    at: u16,
+    next: F,
+}
+
+impl<'t, F: Fn(&Trapezoid) -> u16> Iterator for Chain<'t, F> {
+    type Item = (u16, &'t Trapezoid);
+    fn next(&mut self) -> Option<Self::Item> {
+        let i = self.at;
+        let t = self.traps.get(i as usize)?;
+        self.at = (self.next)(t);
+        Some((i, t))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fixed::Coord;
+    use embedded_graphics_core::pixelcolor::RgbColor;
+
+    fn v(x: i32, y: i32, z: i32) -> Vertex3 {
+        Vertex3 {
+            x: Coord::from_bits((x * 16) as i16),
+            y: Coord::from_bits((y * 16) as i16),
+            z: Coord::from_bits((z * 16) as i16),
+        }
+    }
+
+    struct Mem<const N: usize, const F: usize> {
+        traps: [Trapezoid; N],
+        faces: [Face; F],
+        segs: [Segment; 4],
+        rows: [u16; 64],
+        edges: [EdgeSlot; 8],
+    }
+
+    impl<const N: usize, const F: usize> Mem<N, F> {
+        fn new() -> Self {
+            Mem {
+                traps: [Trapezoid::EMPTY; N],
+                faces: [Face::EMPTY; F],
+                segs: [Segment::EMPTY; 4],
+                rows: [0; 64],
+                edges: [EdgeSlot::EMPTY; 8],
+            }
+        }
+        fn store(&mut self) -> TrapezoidStore<'_> {
+            TrapezoidStore::new(
+                StoreMemory {
+                    trapezoids: &mut self.traps,
+                    faces: &mut self.faces,
+                    segments: &mut self.segs,
+                    rows: &mut self.rows,
+                    edges: &mut self.edges,
+                },
+                64,
+                64,
+            )
+            .unwrap()
+        }
+    }
+
+    fn tri(k: i32) -> [Vertex3; 3] {
+        [v(2 + k, 1, k), v(40 + k, 9 + k, k), v(5, 30 + k, k)]
+    }
+
+    /// Every trapezoid is in its segment's chain and in its row's list,
+    /// once, and the counts agree.
+    fn check(store: &TrapezoidStore<'_>) {
+        let mut by_rows = 0;
+        for y in 0..store.height() {
+            for (_, t) in store.starting_at(y) {
+                assert_eq!(t.top(), y as i32);
+                by_rows += 1;
+            }
+        }
+        let mut by_segs = 0;
+        for s in 0..store.segments().len() {
+            let n = store.segment_trapezoids(s).count();
+            assert_eq!(n as u32, store.segment(s).unwrap().trapezoids());
+            for (_, t) in store.segment_trapezoids(s) {
+                assert_eq!(store.face(t.face()).unwrap().segment(), s as u16);
+            }
+            by_segs += n;
+        }
+        assert_eq!(by_rows, store.len());
+        assert_eq!(by_segs, store.len());
+    }
+
+    #[test]
+    fn clearing_one_segment_leaves_the_others_untouched() {
+        let mut mem = Mem::<64, 16>::new();
+        let mut store = mem.store();
+        let clip = ClipRect::full(64, 64);
+        for s in 0..3 {
+            for k in 0..3 {
+                store
+                    .add_polygon(s, tri(k + 3 * s as i32), Rgb888::RED, &clip)
+                    .unwrap();
+            }
+        }
+        check(&store);
+        let keep: [([u16; 16], usize); 3] = core::array::from_fn(|s| {
+            let mut ids = [0; 16];
+            let mut n = 0;
+            for (i, _) in store.segment_trapezoids(s) {
+                ids[n] = i;
+                n += 1;
+            }
+            (ids, n)
+        });
+        let before: [Counters; 3] = core::array::from_fn(|s| store.segment(s).unwrap().counters());
+        let snapshot: [Trapezoid; 64] =
+            core::array::from_fn(|i| *store.trapezoid(i as u16).unwrap());
+
+        store.clear_segment(1).unwrap();
+        check(&store);
+        store.add_polygon(1, tri(20), Rgb888::BLUE, &clip).unwrap();
+        check(&store);
+
+        for s in [0, 2] {
+            assert_eq!(store.segment(s).unwrap().counters(), before[s]);
+            let (ids, n) = keep[s];
+            for &i in &ids[..n] {
+                // Not moved, not recomputed.
+                let t = store.trapezoid(i).unwrap();
+                assert_eq!(t.left(), snapshot[i as usize].left());
+                assert_eq!(t.depth(), snapshot[i as usize].depth());
+                assert_eq!(t.face(), snapshot[i as usize].face());
+            }
+        }
+        let c1 = store.segment(1).unwrap().counters();
+        assert_eq!(c1.polygons, before[1].polygons + 1);
+        assert_eq!(c1.clears, before[1].clears + 1);
+        assert!(c1.trapezoids > before[1].trapezoids);
+    }
+
+    #[test]
+    fn running_out_empties_the_segment_being_filled() {
+        let mut mem = Mem::<5, 16>::new();
+        let mut store = mem.store();
+        let clip = ClipRect::full(64, 64);
+        store.add_polygon(0, tri(0), Rgb888::RED, &clip).unwrap();
+        store.add_polygon(1, tri(1), Rgb888::RED, &clip).unwrap();
+        assert_eq!(store.len(), 4);
+        let e = store.add_polygon(1, tri(2), Rgb888::RED, &clip);
+        assert_eq!(e, Err(StoreError::Trapezoids { capacity: 5 }));
+        check(&store);
+        assert_eq!(store.segment(1).unwrap().trapezoids(), 0);
+        assert_eq!(store.segment(1).unwrap().faces(), 0);
+        assert_eq!(store.segment(0).unwrap().trapezoids(), 2);
+        // The pool is whole again: segment 1 refills.
+        store.add_polygon(1, tri(3), Rgb888::RED, &clip).unwrap();
+        check(&store);
+        assert_eq!(store.len(), 4);
+
+        let mut mem = Mem::<64, 2>::new();
+        let mut store = mem.store();
+        store.add_polygon(2, tri(0), Rgb888::RED, &clip).unwrap();
+        store.add_polygon(2, tri(1), Rgb888::RED, &clip).unwrap();
+        assert_eq!(
+            store.add_polygon(2, tri(2), Rgb888::RED, &clip),
+            Err(StoreError::Faces { capacity: 2 })
+        );
+        assert_eq!(store.len(), 0);
+        assert_eq!(store.face_count(), 0);
+        assert_eq!(
+            store.add_polygon(9, tri(2), Rgb888::RED, &clip),
+            Err(StoreError::Segment {
+                segment: 9,
+                capacity: 4
+            })
+        );
+    }
+
+    #[test]
+    fn edge_on_and_clipped_away_polygons_take_nothing() {
+        let mut mem = Mem::<8, 4>::new();
+        let mut store = mem.store();
+        let clip = ClipRect::full(64, 64);
+        let edge_on = [v(1, 1, 0), v(20, 20, 9), v(40, 40, 3)];
+        assert_eq!(store.add_polygon(0, edge_on, Rgb888::RED, &clip), Ok(0));
+        let outside = [v(-30, 1, 0), v(-2, 1, 0), v(-10, 20, 0)];
+        assert_eq!(store.add_polygon(0, outside, Rgb888::RED, &clip), Ok(0));
+        assert_eq!((store.len(), store.face_count()), (0, 0));
+        assert_eq!(store.segment(0).unwrap().counters().polygons, 2);
+    }
+
+    #[test]
+    fn index_shorter_than_the_frame_is_an_error() {
+        let (mut t, mut f, mut s, mut r, mut e) = (
+            [Trapezoid::EMPTY; 1],
+            [Face::EMPTY; 1],
+            [Segment::EMPTY; 1],
+            [0u16; 10],
+            [EdgeSlot::EMPTY; 1],
+        );
+        let mem = StoreMemory {
+            trapezoids: &mut t,
+            faces: &mut f,
+            segments: &mut s,
+            rows: &mut r,
+            edges: &mut e,
+        };
+        assert_eq!(
+            TrapezoidStore::new(mem, 4, 11).err(),
+            Some(StoreError::Rows {
+                height: 11,
+                capacity: 10
+            })
+        );
+    }
+}
