@@ -69,5 +69,6 @@ pub mod rle;
 pub mod scan;
 pub mod segment;
 pub mod trapezoid;
+pub mod visible;
 
 pub use embedded_graphics_core::pixelcolor;

@@ -1,0 +1,854 @@
+//! Scan-line visible surfaces: the trapezoids of a [`TrapezoidStore`]
+//! resolved row by row into run-length scan lines, with no z-buffer.
+//!
+//! # Per row
+//!
+//! 1. The trapezoids whose top is this row (the scan-line index) enter the
+//!    active list, a caller-owned array of [`Active`] entries.
+//! 2. Every active trapezoid knows its pixels `l..r` on the row: its edges'
+//!    pixels, stepped down a row with no division, cut to its columns.
+//! 3. The active list is sorted by `l` with an insertion sort over an
+//!    index array, which costs one compare per entry when the order is the
+//!    last row's (the usual case).
+//! 4. A sweep cuts the row at every `l` and `r` into spans, and each span
+//!    is classified by the trapezoids covering it:
+//!    * **empty**: the background;
+//!    * **single**: one trapezoid;
+//!    * **multiple**: several, and the same one is nearest at both ends:
+//!      it is nearest on the whole span;
+//!    * **intersecting**: another is nearest at one end; the span is
+//!      subdivided ([`Resolve`]) until every part is of the kinds above.
+//! 5. The row's runs go to the caller ([`rle`](crate::rle) format).
+//! 6. Trapezoids that end drop out; the rest step down a row.
+//!
+//! Per row the work is proportional to the edges crossed (plus the
+//! trapezoids overlapping in depth); nothing is done per pixel, and
+//! nothing is divided except to find a crossing point in
+//! [`Resolve::Crossing`].
+//!
+//! # Nearest, and why the classification is exact
+//!
+//! The nearest trapezoid at pixel `(i, j)` is the one whose face's plane
+//! has the smallest depth `z` at the pixel centre; at equal depth, the
+//! face with the lower key ([`Face::key`]: lower segment, then earlier
+//! polygon). Depths are first compared in fixed point ([`Depth`](crate::trapezoid::Depth));
+//! when two are closer than [`DEPTH_TOLERANCE`], where rounding could
+//! decide, they are compared exactly ([`Plane::cmp_at`]). So every
+//! comparison is exact.
+//!
+//! Each trapezoid covering a span covers all of it, and along a row the
+//! depth difference of two planes is affine. If one trapezoid is nearer
+//! than another at both end pixels of a span, it is nearer at every pixel
+//! between (an affine function non-negative at both ends is non-negative
+//! between, and zero inside only if zero everywhere, where the key
+//! decides). So a span whose nearest trapezoid is the same at both ends is
+//! that trapezoid's, and subdividing an intersecting span down to such
+//! parts gives exactly the nearest plane at every pixel centre. Both
+//! [`Resolve`] modes are therefore exact for planar faces; they differ in
+//! speed.
+//!
+//! # Memory
+//!
+//! An [`Active`] entry is 100 bytes (two edges, depth, pixels, and two
+//! index-array slots); the list needs as many as trapezoids overlap one
+//! row ([`Workspace::check`] finds the number before anything is drawn). A
+//! row of runs needs at most the frame's width of [`Run`]s.
+//!
+//! [`Face::key`]: crate::segment::Face::key
+
+use crate::color::ListColor;
+use crate::edge::Edge;
+use crate::port::SpanTarget;
+use crate::rle::{decode_row, Run, RunWriter, RunsFull};
+use crate::segment::TrapezoidStore;
+use crate::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
+use core::fmt;
+
+/// How an intersecting span is subdivided.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Resolve {
+    /// Half-interval bisection: split in the middle, classify both
+    /// halves, until every part has the same nearest trapezoid at both
+    /// ends (at worst, single pixels). `log₂(length)` levels.
+    Bisect,
+    /// The exact crossing point: split where the planes of the two
+    /// trapezoids nearest at the ends meet along the row (one division),
+    /// then classify both parts. A part that is still intersecting (a
+    /// third plane in between) is split the same way if it is at most half
+    /// the span, else bisected once first, so the depth of the subdivision
+    /// stays below `2·log₂(length)`.
+    #[default]
+    Crossing,
+}
+
+/// One entry of the active list (100 bytes). The caller provides the
+/// array, filled with [`Active::EMPTY`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Active {
+    entry: Entry,
+    /// The index array: `order[..k]` lists the live entries sorted by `l`,
+    /// `order[k..]` the free ones.
+    order: u16,
+    /// The trapezoids covering the current span.
+    cover: u16,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Entry {
+    left: Edge,
+    right: Edge,
+    /// `Z̃` at column 0 of the current row.
+    z: i32,
+    zx: i32,
+    zy: i32,
+    /// Pixels `l..r` on the current row, cut to the columns.
+    l: i32,
+    r: i32,
+    face: u16,
+    x0: u16,
+    x1: u16,
+}
+
+impl Entry {
+    const EMPTY: Entry = Entry {
+        left: Edge::EMPTY,
+        right: Edge::EMPTY,
+        z: 0,
+        zx: 0,
+        zy: 0,
+        l: 0,
+        r: 0,
+        face: NONE,
+        x0: 0,
+        x1: 0,
+    };
+
+    fn from(t: &Trapezoid) -> Entry {
+        Entry {
+            left: t.left,
+            right: t.right,
+            z: t.z,
+            zx: t.zx,
+            zy: t.zy,
+            l: 0,
+            r: 0,
+            face: t.face,
+            x0: t.x0,
+            x1: t.x1,
+        }
+    }
+
+    #[inline(always)]
+    fn z_at(&self, i: i32) -> i32 {
+        self.z.wrapping_add(self.zx.wrapping_mul(i))
+    }
+}
+
+impl Active {
+    /// An unused entry.
+    pub const EMPTY: Active = Active {
+        entry: Entry::EMPTY,
+        order: 0,
+        cover: 0,
+    };
+}
+
+/// Why a frame could not be resolved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum VisibleError<E> {
+    /// More trapezoids overlap a row than the active list holds.
+    Active {
+        /// Entries it holds.
+        capacity: usize,
+    },
+    /// A row needs more runs than the buffer holds (never when it holds
+    /// the frame's width).
+    Runs {
+        /// Runs it holds.
+        capacity: usize,
+    },
+    /// The caller's row sink failed.
+    Sink(E),
+}
+
+impl<E: fmt::Debug> fmt::Display for VisibleError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VisibleError::Active { capacity } => write!(
+                f,
+                "more trapezoids overlap a row than the {capacity} active entries"
+            ),
+            VisibleError::Runs { capacity } => {
+                write!(f, "a row needs more than the {capacity} runs available")
+            }
+            VisibleError::Sink(e) => write!(f, "row sink failed: {e:?}"),
+        }
+    }
+}
+
+impl<E: fmt::Debug> core::error::Error for VisibleError<E> {}
+
+impl<E> From<RunsFull> for VisibleError<E> {
+    fn from(e: RunsFull) -> Self {
+        VisibleError::Runs {
+            capacity: e.capacity,
+        }
+    }
+}
+
+/// What resolving a frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct VisibleStats {
+    /// Rows produced.
+    pub rows: u32,
+    /// Trapezoids that entered the active list.
+    pub trapezoids: u32,
+    /// Most entries active on one row.
+    pub max_active: u32,
+    /// Spans with no trapezoid.
+    pub empty: u32,
+    /// Spans with one trapezoid.
+    pub single: u32,
+    /// Spans with several, the same nearest at both ends.
+    pub multiple: u32,
+    /// Spans with several, different nearest at the ends.
+    pub intersecting: u32,
+    /// Subdivisions of intersecting spans (and of their parts).
+    pub splits: u32,
+    /// Depth comparisons made.
+    pub compares: u32,
+    /// Of those, the ones too close for fixed point, made exactly.
+    pub exact: u32,
+    /// Runs written (after merging).
+    pub runs: u32,
+}
+
+/// The caller's memory for the visible-surface stage: the active list and
+/// one row of runs.
+#[derive(Debug)]
+pub struct Workspace<'a> {
+    active: &'a mut [Active],
+    runs: &'a mut [Run],
+}
+
+impl<'a> Workspace<'a> {
+    /// A workspace over `active` (at most 65535 are used) and `runs`.
+    pub fn new(active: &'a mut [Active], runs: &'a mut [Run]) -> Self {
+        Workspace { active, runs }
+    }
+
+    /// Active entries available.
+    pub fn capacity(&self) -> usize {
+        self.active.len().min(NONE as usize)
+    }
+
+    /// Runs available for one row.
+    pub fn run_capacity(&self) -> usize {
+        self.runs.len()
+    }
+
+    /// Finds the most trapezoids of `store` that overlap one row, without
+    /// resolving anything, and checks it against the active list; checks
+    /// that a row of the store's width fits the run buffer. O(rows +
+    /// trapezoids × overlap).
+    pub fn check(
+        &mut self,
+        store: &TrapezoidStore<'_>,
+    ) -> Result<u32, VisibleError<core::convert::Infallible>> {
+        if self.runs.len() < store.width() as usize {
+            return Err(VisibleError::Runs {
+                capacity: self.runs.len(),
+            });
+        }
+        let cap = self.capacity();
+        let mut k = 0usize;
+        let mut most = 0usize;
+        for y in 0..store.height() {
+            let mut q = 0;
+            while q < k {
+                if self.active[q].cover as i32 <= y as i32 {
+                    k -= 1;
+                    self.active[q].cover = self.active[k].cover;
+                } else {
+                    q += 1;
+                }
+            }
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                if k >= cap {
+                    return Err(VisibleError::Active { capacity: cap });
+                }
+                // Ends are at most 4096.
+                self.active[k].cover = tr.end() as u16;
+                k += 1;
+                t = tr.next_row;
+            }
+            most = most.max(k);
+        }
+        Ok(most as u32)
+    }
+
+    /// Resolves every row of `store`, top to bottom, handing each row's
+    /// runs to `sink(y, runs)`. The runs cover the store's width.
+    pub fn resolve<E>(
+        &mut self,
+        store: &TrapezoidStore<'_>,
+        mode: Resolve,
+        mut sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
+    ) -> Result<VisibleStats, VisibleError<E>> {
+        let cap = self.capacity();
+        let active = &mut self.active[..cap];
+        for (i, a) in active.iter_mut().enumerate() {
+            a.order = i as u16;
+        }
+        let mut row = Row {
+            store,
+            active,
+            out: RunWriter::new(self.runs),
+            mode,
+            y: 0,
+            width: store.width() as i32,
+            stats: VisibleStats::default(),
+        };
+        let mut k = 0usize;
+        for y in 0..store.height() {
+            row.y = y as i32;
+            // Enter the trapezoids whose top is this row.
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                let slot = row
+                    .active
+                    .get(k)
+                    .ok_or(VisibleError::Active { capacity: cap })?
+                    .order as usize;
+                row.active[slot].entry = Entry::from(tr);
+                k += 1;
+                row.stats.trapezoids += 1;
+                t = tr.next_row;
+            }
+            row.stats.max_active = row.stats.max_active.max(k as u32);
+            row.out.clear();
+            if k == 0 {
+                row.out.push(row.width as u16, Run::BACKGROUND)?;
+                row.stats.empty += 1;
+            } else {
+                row.load_and_sort(k);
+                row.sweep(k)?;
+            }
+            row.stats.rows += 1;
+            row.stats.runs += row.out.runs().len() as u32;
+            sink(y, row.out.runs()).map_err(VisibleError::Sink)?;
+            // Drop the trapezoids that end here, step the others.
+            let next = y as i32 + 1;
+            let mut p = 0;
+            while p < k {
+                let s = row.active[p].order as usize;
+                let e = &mut row.active[s].entry;
+                if e.left.end() <= next {
+                    // Keep the order of the others; `s` becomes free.
+                    for q in p..k - 1 {
+                        row.active[q].order = row.active[q + 1].order;
+                    }
+                    row.active[k - 1].order = s as u16;
+                    k -= 1;
+                } else {
+                    e.left.step();
+                    e.right.step();
+                    e.z = e.z.wrapping_add(e.zy);
+                    p += 1;
+                }
+            }
+        }
+        Ok(row.stats)
+    }
+}
+
+/// The state of one row's resolution.
+struct Row<'s, 'a, 'r> {
+    store: &'s TrapezoidStore<'s>,
+    active: &'a mut [Active],
+    out: RunWriter<'r>,
+    mode: Resolve,
+    y: i32,
+    width: i32,
+    stats: VisibleStats,
+}
+
+impl Row<'_, '_, '_> {
+    /// Loads each live entry's pixels and sorts the index array by `l`.
+    fn load_and_sort(&mut self, k: usize) {
+        let a = &mut *self.active;
+        for p in 0..k {
+            let e = &mut a[a[p].order as usize].entry;
+            e.left.load_pixel();
+            e.right.load_pixel();
+            e.l = e.left.pixel().max(e.x0 as i32);
+            e.r = e.right.pixel().min(e.x1 as i32);
+        }
+        for p in 1..k {
+            let mut q = p;
+            let s = a[q].order;
+            let l = a[s as usize].entry.l;
+            while q > 0 && a[a[q - 1].order as usize].entry.l > l {
+                a[q].order = a[q - 1].order;
+                q -= 1;
+            }
+            a[q].order = s;
+        }
+    }
+
+    /// Cuts the row into spans at every `l` and `r` and resolves each.
+    fn sweep<E>(&mut self, k: usize) -> Result<(), VisibleError<E>> {
+        let width = self.width;
+        let (mut x, mut p, mut nc) = (0i32, 0usize, 0usize);
+        while x < width {
+            // Enter the entries starting here.
+            while p < k {
+                let s = self.active[p].order;
+                let e = &self.active[s as usize].entry;
+                if e.l > x {
+                    break;
+                }
+                if e.l < e.r && e.r > x {
+                    self.active[nc].cover = s;
+                    nc += 1;
+                }
+                p += 1;
+            }
+            // Leave the entries ending here.
+            let mut q = 0;
+            while q < nc {
+                if self.active[self.active[q].cover as usize].entry.r <= x {
+                    nc -= 1;
+                    self.active[q].cover = self.active[nc].cover;
+                } else {
+                    q += 1;
+                }
+            }
+            let next = match self.active.get(p) {
+                Some(a) if p < k => self.active[a.order as usize].entry.l.min(width),
+                _ => width,
+            };
+            if nc == 0 {
+                self.stats.empty += 1;
+                self.out.push((next - x) as u16, Run::BACKGROUND)?;
+                x = next;
+                continue;
+            }
+            let mut t = next;
+            for q in 0..nc {
+                t = t.min(self.active[self.active[q].cover as usize].entry.r);
+            }
+            self.span(x, t, nc)?;
+            x = t;
+        }
+        Ok(())
+    }
+
+    /// Resolves the span `s..t` covered by `cover[..nc]`.
+    fn span<E>(&mut self, s: i32, t: i32, nc: usize) -> Result<(), VisibleError<E>> {
+        if nc == 1 {
+            self.stats.single += 1;
+            let f = self.active[self.active[0].cover as usize].entry.face;
+            return self.emit(t - s, f);
+        }
+        let a = self.front(s, nc);
+        let b = self.front(t - 1, nc);
+        if a == b {
+            self.stats.multiple += 1;
+            return self.emit(t - s, self.active[a as usize].entry.face);
+        }
+        self.stats.intersecting += 1;
+        self.split(s, t, a, b, nc, true)
+    }
+
+    /// Subdivides `s..t` (at least 2 pixels), whose nearest entries at the
+    /// ends are `a` and `b ≠ a`.
+    fn split<E>(
+        &mut self,
+        s: i32,
+        t: i32,
+        a: u16,
+        b: u16,
+        nc: usize,
+        cross: bool,
+    ) -> Result<(), VisibleError<E>> {
+        self.stats.splits += 1;
+        let crossing = self.mode == Resolve::Crossing && cross;
+        let m = if crossing {
+            self.crossing(s, t, a, b)
+        } else {
+            s + (t - s) / 2
+        };
+        // Parts longer than half the span are bisected next, so the depth
+        // of the recursion stays within 2·log₂(t − s).
+        let half = (t - s) / 2;
+        let ma = self.front(m - 1, nc);
+        if ma == a {
+            self.emit(m - s, self.active[a as usize].entry.face)?;
+        } else {
+            self.split(s, m, a, ma, nc, !crossing || m - s <= half)?;
+        }
+        let mb = self.front(m, nc);
+        if mb == b {
+            self.emit(t - m, self.active[b as usize].entry.face)
+        } else {
+            self.split(m, t, mb, b, nc, !crossing || t - m <= half)
+        }
+    }
+
+    /// The first pixel of `s + 1..t` where the plane of `b` is estimated
+    /// to be in front of that of `a`, from their fixed-point depths at the
+    /// ends (one division).
+    fn crossing(&self, s: i32, t: i32, a: u16, b: u16) -> i32 {
+        let (ea, eb) = (
+            &self.active[a as usize].entry,
+            &self.active[b as usize].entry,
+        );
+        // D(i) = Za(i) − Zb(i): ≤ 0 at s, ≥ 0 at t − 1, affine between.
+        let d0 = ea.z_at(s) as i64 - eb.z_at(s) as i64;
+        let d1 = ea.z_at(t - 1) as i64 - eb.z_at(t - 1) as i64;
+        let (run, rise) = ((t - 1 - s) as i64, d1 - d0);
+        let k = if rise > 0 && d0 <= 0 {
+            // |d0| < 2³³, run < 2¹²: the product is below 2⁴⁵.
+            s as i64 + (-d0 * run).div_euclid(rise) + 1
+        } else {
+            (s + (t - s) / 2) as i64
+        };
+        k.clamp(s as i64 + 1, t as i64 - 1) as i32
+    }
+
+    /// The entry nearest at pixel `i` among `cover[..nc]`.
+    fn front(&mut self, i: i32, nc: usize) -> u16 {
+        let mut best = self.active[0].cover;
+        let mut bz = self.active[best as usize].entry.z_at(i);
+        for q in 1..nc {
+            let c = self.active[q].cover;
+            let cz = self.active[c as usize].entry.z_at(i);
+            if self.nearer(c, cz, best, bz, i) {
+                best = c;
+                bz = cz;
+            }
+        }
+        best
+    }
+
+    /// `true` when entry `c` (depth `cz` at pixel `i`) is in front of entry
+    /// `b` (depth `bz`).
+    #[inline]
+    fn nearer(&mut self, c: u16, cz: i32, b: u16, bz: i32, i: i32) -> bool {
+        self.stats.compares += 1;
+        let d = cz as i64 - bz as i64;
+        if d <= -DEPTH_TOLERANCE {
+            return true;
+        }
+        if d >= DEPTH_TOLERANCE {
+            return false;
+        }
+        self.stats.exact += 1;
+        let fc = self.store.face(self.active[c as usize].entry.face);
+        let fb = self.store.face(self.active[b as usize].entry.face);
+        match (fc, fb) {
+            (Some(fc), Some(fb)) => fc
+                .plane()
+                .cmp_at(fb.plane(), i, self.y)
+                .then(fc.key().cmp(&fb.key()))
+                .is_lt(),
+            _ => d < 0,
+        }
+    }
+
+    /// Appends `len` pixels of `face`, merged with the last run when the
+    /// colours are the same.
+    #[inline]
+    fn emit<E>(&mut self, len: i32, face: u16) -> Result<(), VisibleError<E>> {
+        let mut ink = face;
+        if let Some(last) = self.out.last_ink() {
+            if last != face {
+                let color = |f: u16| self.store.face(f).map(|f| f.color());
+                if last != Run::BACKGROUND && color(last) == color(face) {
+                    ink = last;
+                }
+            }
+        }
+        self.out.push(len as u16, ink)?;
+        Ok(())
+    }
+}
+
+/// Resolves `store` and writes it into `target`: each face in its colour,
+/// the background filled with `background` or left as it is (`None`), so
+/// that the 3D layer can lie over 2D content.
+pub fn draw<T>(
+    store: &TrapezoidStore<'_>,
+    workspace: &mut Workspace<'_>,
+    mode: Resolve,
+    target: &mut T,
+    background: Option<T::Color>,
+) -> Result<(VisibleStats, crate::rle::DecodeCounts), VisibleError<T::Error>>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    let mut counts = crate::rle::DecodeCounts::default();
+    let black = T::Color::from_rgb888(embedded_graphics_core::pixelcolor::Rgb888::new(0, 0, 0));
+    let stats = workspace.resolve(store, mode, |y, runs| {
+        let ink = |f: u16| {
+            store
+                .face(f)
+                .map_or(black, |f| T::Color::from_rgb888(f.color()))
+        };
+        let c = decode_row(target, y, runs, ink, background)?;
+        counts.spans += c.spans;
+        counts.pixels += c.pixels;
+        Ok(())
+    })?;
+    Ok((stats, counts))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::clip::ClipRect;
+    use crate::fixed::{Coord, Vertex3};
+    use crate::segment::{Face, Segment, StoreMemory};
+    use crate::trapezoid::EdgeSlot;
+    use embedded_graphics_core::pixelcolor::Rgb888;
+
+    const W: u16 = 48;
+    const H: u16 = 40;
+
+    fn v(x: i32, y: i32, z: i32) -> Vertex3 {
+        Vertex3 {
+            x: Coord::from_bits(x as i16),
+            y: Coord::from_bits(y as i16),
+            z: Coord::from_bits(z as i16),
+        }
+    }
+
+    struct Rng(u32);
+    impl Rng {
+        fn below(&mut self, m: u32) -> i32 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 17;
+            self.0 ^= self.0 << 5;
+            (self.0 % m) as i32
+        }
+    }
+
+    /// The pixel rule, from its definition.
+    fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {
+        let (xc, yc) = (16 * i as i64 + 8, 16 * j as i64 + 8);
+        let mut odd = false;
+        for k in 0..poly.len() {
+            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (mut x0, mut y0) = (a.x.units() as i64, a.y.units() as i64);
+            let (mut x1, mut y1) = (b.x.units() as i64, b.y.units() as i64);
+            if y0 > y1 {
+                (x0, y0, x1, y1) = (x1, y1, x0, y0);
+            }
+            if y0 <= yc && yc < y1 && x0 * (y1 - y0) + (yc - y0) * (x1 - x0) <= xc * (y1 - y0) {
+                odd = !odd;
+            }
+        }
+        odd
+    }
+
+    /// The winner at each pixel by brute force over the store's faces:
+    /// the polygon with the smallest exact depth, ties to the lower key.
+    fn brute(polys: &[[Vertex3; 3]], store: &TrapezoidStore<'_>) -> [u16; (W * H) as usize] {
+        let mut out = [Run::BACKGROUND; (W * H) as usize];
+        for j in 0..H as i32 {
+            for i in 0..W as i32 {
+                let mut best: Option<(usize, &Face)> = None;
+                for (k, p) in polys.iter().enumerate() {
+                    if !covers(p, i, j) {
+                        continue;
+                    }
+                    // Face k is the k-th added to segment 0.
+                    let f = (0..64)
+                        .map(|f| store.face(f).unwrap())
+                        .find(|f| f.segment() == 0 && f.key() == k as u32)
+                        .unwrap();
+                    let better = match best {
+                        None => true,
+                        Some((_, b)) => f
+                            .plane()
+                            .cmp_at(b.plane(), i, j)
+                            .then(f.key().cmp(&b.key()))
+                            .is_lt(),
+                    };
+                    if better {
+                        best = Some((k, f));
+                    }
+                }
+                out[(j * W as i32 + i) as usize] = best.map_or(Run::BACKGROUND, |(k, _)| k as u16);
+            }
+        }
+        out
+    }
+
+    fn run_scene(polys: &[[Vertex3; 3]], mode: Resolve) -> VisibleStats {
+        let mut traps = [Trapezoid::EMPTY; 256];
+        let mut faces = [Face::EMPTY; 64];
+        let mut segs = [Segment::EMPTY; 1];
+        let mut rows = [0u16; H as usize];
+        let mut edges = [EdgeSlot::EMPTY; 4];
+        let mut store = TrapezoidStore::new(
+            StoreMemory {
+                trapezoids: &mut traps,
+                faces: &mut faces,
+                segments: &mut segs,
+                rows: &mut rows,
+                edges: &mut edges,
+            },
+            W,
+            H,
+        )
+        .unwrap();
+        let clip = ClipRect::full(W, H);
+        for (k, p) in polys.iter().enumerate() {
+            // Distinct colours, so that no two faces merge.
+            store
+                .add_polygon(0, *p, Rgb888::new(k as u8, 0, 1), &clip)
+                .unwrap();
+        }
+        let want = brute(polys, &store);
+        // Face slot → polygon number.
+        let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
+        let mut active = [Active::EMPTY; 64];
+        let mut runs = [Run::EMPTY; W as usize];
+        let mut ws = Workspace::new(&mut active, &mut runs);
+        let most = ws.check(&store).unwrap();
+        let stats = ws
+            .resolve(&store, mode, |y, runs| {
+                let mut x = 0;
+                for r in runs {
+                    let got = if r.is_background() {
+                        Run::BACKGROUND
+                    } else {
+                        poly_of(r.ink())
+                    };
+                    for i in x..x + r.len() as i32 {
+                        assert_eq!(
+                            got,
+                            want[(y as i32 * W as i32 + i) as usize],
+                            "{mode:?} pixel ({i}, {y}) of {polys:?}"
+                        );
+                    }
+                    x += r.len() as i32;
+                }
+                assert_eq!(x, W as i32);
+                Ok::<(), ()>(())
+            })
+            .unwrap();
+        assert_eq!(stats.max_active, most);
+        stats
+    }
+
+    fn random_tri(rng: &mut Rng, zs: (i32, i32)) -> [Vertex3; 3] {
+        let mut t = [Vertex3::default(); 3];
+        for p in t.iter_mut() {
+            *p = v(
+                rng.below((W as u32 + 8) * 16) - 64,
+                rng.below((H as u32 + 8) * 16) - 64,
+                zs.0 + rng.below((zs.1 - zs.0) as u32),
+            );
+        }
+        t
+    }
+
+    #[test]
+    fn interpenetrating_triangles_are_exact_in_both_modes() {
+        let mut rng = Rng(0xdead_beef);
+        let mut intersecting = 0;
+        for _ in 0..150 {
+            let n = 2 + rng.below(6) as usize;
+            let polys: [[Vertex3; 3]; 8] =
+                core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
+            for mode in [Resolve::Bisect, Resolve::Crossing] {
+                intersecting += run_scene(&polys[..n], mode).intersecting;
+            }
+        }
+        assert!(intersecting > 100, "the scenes must exercise subdivision");
+    }
+
+    #[test]
+    fn equal_depths_go_to_the_earlier_polygon() {
+        // Two coplanar triangles overlapping, and a third at the same
+        // constant depth: the earliest wins everywhere they overlap.
+        let a = [v(0, 0, 800), v(640, 0, 800), v(0, 600, 800)];
+        let b = [v(100, 40, 800), v(700, 300, 800), v(60, 620, 800)];
+        let c = [v(-50, -50, 800), v(760, 10, 800), v(300, 640, 800)];
+        for mode in [Resolve::Bisect, Resolve::Crossing] {
+            run_scene(&[a, b, c], mode);
+            run_scene(&[c, b, a], mode);
+        }
+    }
+
+    #[test]
+    fn steep_and_extreme_depths() {
+        let mut rng = Rng(0x0bad_f00d);
+        for _ in 0..60 {
+            // Depths at the ends of the format, and nearly edge-on faces.
+            let mut polys: [[Vertex3; 3]; 4] =
+                core::array::from_fn(|_| random_tri(&mut rng, (-32768, 32767)));
+            polys[0][1] = v(
+                polys[0][0].x.units() + 3,
+                polys[0][0].y.units() + 700,
+                32767,
+            );
+            polys[1] = [v(16, 16, -32768), v(700, 40, -32768), v(30, 600, -32767)];
+            for mode in [Resolve::Bisect, Resolve::Crossing] {
+                run_scene(&polys, mode);
+            }
+        }
+    }
+
+    #[test]
+    fn too_small_an_active_list_is_found_before_resolving() {
+        let polys = [
+            [v(0, 0, 1), v(700, 0, 1), v(0, 600, 1)],
+            [v(10, 10, 2), v(700, 10, 2), v(10, 600, 2)],
+        ];
+        let (mut traps, mut faces, mut segs, mut rows, mut edges) = (
+            [Trapezoid::EMPTY; 8],
+            [Face::EMPTY; 4],
+            [Segment::EMPTY; 1],
+            [0u16; H as usize],
+            [EdgeSlot::EMPTY; 3],
+        );
+        let mut store = TrapezoidStore::new(
+            StoreMemory {
+                trapezoids: &mut traps,
+                faces: &mut faces,
+                segments: &mut segs,
+                rows: &mut rows,
+                edges: &mut edges,
+            },
+            W,
+            H,
+        )
+        .unwrap();
+        for p in polys {
+            store
+                .add_polygon(0, p, Rgb888::new(1, 2, 3), &ClipRect::full(W, H))
+                .unwrap();
+        }
+        let mut active = [Active::EMPTY; 1];
+        let mut runs = [Run::EMPTY; W as usize];
+        let mut ws = Workspace::new(&mut active, &mut runs);
+        assert_eq!(ws.check(&store), Err(VisibleError::Active { capacity: 1 }));
+        let r = ws.resolve(&store, Resolve::Bisect, |_, _| Ok::<(), ()>(()));
+        assert_eq!(r, Err(VisibleError::Active { capacity: 1 }));
+        let mut runs = [Run::EMPTY; 4];
+        let mut active = [Active::EMPTY; 2];
+        assert_eq!(
+            Workspace::new(&mut active, &mut runs).check(&store),
+            Err(VisibleError::Runs { capacity: 4 })
+        );
+    }
+}
