@@ -1,11 +1,34 @@
 //! The graphic controller: executes a display list into a frame-buffer
 //! port, holding the clip registers and the current colour.
+//!
+//! # `poly` and `poly3` in one list
+//!
+//! `clear` and `poly` are executed in list order (painter's order). The
+//! `poly3`s are the *3D layer*: all of them are resolved together by the
+//! visible-surface stages ([`trapezoid`](crate::trapezoid) →
+//! [`segment`](crate::segment) → [`visible`](crate::visible) →
+//! [`rle`](crate::rle)), and the layer is drawn **after** every 2D command
+//! of the list, writing only the pixels its faces cover: where no `poly3`
+//! is, the 2D content shows through. Each `poly3` takes the colour and the
+//! clip registers in force at its place in the list, and is culled by the
+//! spec's rule: it is drawn only when the shoelace sum of its vertices is
+//! negative (counter-clockwise as displayed). At equal depth the earlier
+//! `poly3` is in front.
+//!
+//! The 3D layer needs memory of its own ([`Storage3d`], given with
+//! [`Controller::with_3d`]). Without it a list with a `poly3` is rejected
+//! as [`RenderError::Unsupported`]; with too little, as
+//! [`RenderError::Capacity3d`]. Both are found before anything is drawn.
 
 use crate::clip::ClipRect;
 use crate::color::ListColor;
-use crate::display_list::{Command, DisplayList};
+use crate::display_list::{Command, DisplayList, Vertices3};
 use crate::port::SpanTarget;
+use crate::rle::Run;
 use crate::scan::{FillError, Rasterizer};
+use crate::segment::{StoreError, StoreMemory, TrapezoidStore};
+use crate::trapezoid::{EdgeSlot, Polygon};
+use crate::visible::{self, Active, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
@@ -34,6 +57,17 @@ pub enum RenderError<E> {
         /// The command's name in the text form.
         command: &'static str,
     },
+    /// The 3D storage is too small for the list's `poly3`s. Found before
+    /// anything is drawn.
+    Capacity3d {
+        /// Byte offset of the `poly3` at fault (the first `poly3` when the
+        /// layer as a whole does not fit).
+        offset: usize,
+        /// What ran out.
+        resource: Resource,
+        /// How many the storage holds.
+        capacity: usize,
+    },
     /// The frame-buffer port failed at the command at `offset`.
     Target {
         /// Byte offset of the command in the list.
@@ -48,6 +82,7 @@ impl<E> RenderError<E> {
     pub fn offset(&self) -> usize {
         match *self {
             RenderError::Capacity { offset, .. }
+            | RenderError::Capacity3d { offset, .. }
             | RenderError::Unsupported { offset, .. }
             | RenderError::Target { offset, .. } => offset,
         }
@@ -63,10 +98,63 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
                 f,
                 "polygon has {vertices} vertices; this renderer holds {capacity} edges"
             ),
+            RenderError::Capacity3d {
+                resource, capacity, ..
+            } => write!(
+                f,
+                "the 3D layer needs more than the {capacity} {resource} this renderer holds"
+            ),
             RenderError::Unsupported { command, .. } => {
                 write!(f, "`{command}` is not supported by this renderer yet")
             }
             RenderError::Target { error, .. } => write!(f, "frame-buffer port failed: {error:?}"),
+        }
+    }
+}
+
+/// A pool of the 3D storage, in a [`RenderError::Capacity3d`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Resource {
+    /// Trapezoid slots.
+    Trapezoids,
+    /// Face slots (one per drawn `poly3`).
+    Faces,
+    /// Edge slots (a `poly3` of `n` vertices needs `n`).
+    EdgeSlots,
+    /// Segments (the controller uses one).
+    Segments,
+    /// Rows of the scan-line index (the frame's height).
+    Rows,
+    /// Active-list entries (trapezoids overlapping one row).
+    Active,
+    /// Runs of one row (the frame's width).
+    Runs,
+}
+
+impl fmt::Display for Resource {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Resource::Trapezoids => "trapezoids",
+            Resource::Faces => "faces",
+            Resource::EdgeSlots => "edge slots",
+            Resource::Segments => "segments",
+            Resource::Rows => "index rows",
+            Resource::Active => "active entries",
+            Resource::Runs => "runs",
+        })
+    }
+}
+
+impl Resource {
+    fn of_store(e: StoreError) -> (Resource, usize) {
+        match e {
+            StoreError::Trapezoids { capacity } => (Resource::Trapezoids, capacity),
+            StoreError::Faces { capacity } => (Resource::Faces, capacity),
+            StoreError::Edges { capacity } => (Resource::EdgeSlots, capacity),
+            StoreError::Vertices => (Resource::EdgeSlots, crate::trapezoid::MAX_VERTICES),
+            StoreError::Segment { capacity, .. } => (Resource::Segments, capacity),
+            StoreError::Rows { capacity, .. } => (Resource::Rows, capacity),
         }
     }
 }
@@ -81,26 +169,196 @@ pub struct Stats {
     pub polygons: u32,
     /// Clears executed.
     pub clears: u32,
-    /// Spans written by polygons.
+    /// Spans written by polygons (and by the 3D layer).
     pub spans: u32,
-    /// Pixels written by polygons.
+    /// Pixels written by polygons (and by the 3D layer).
     pub pixels: u64,
+    /// `poly3`s drawn (front-facing).
+    pub poly3: u32,
+    /// `poly3`s culled (back-facing or edge-on).
+    pub culled: u32,
+    /// Trapezoids the drawn `poly3`s were cut into.
+    pub trapezoids: u32,
+    /// What the visible-surface stage did.
+    pub visible: VisibleStats,
+}
+
+/// The memory of the 3D layer: the trapezoid store (one segment is
+/// enough), the active list and one row of runs, and the way intersecting
+/// spans are resolved. [`needs_3d`] sizes it for a list.
+#[derive(Debug)]
+pub struct Storage3d<'a> {
+    /// Trapezoids, faces, segments, the scan-line index and edge slots.
+    pub store: StoreMemory<'a>,
+    /// The active list.
+    pub active: &'a mut [Active],
+    /// One row of runs: the frame's width is always enough.
+    pub runs: &'a mut [Run],
+    /// How intersecting spans are resolved.
+    pub resolve: Resolve,
+}
+
+/// What the `poly3`s of a list need, from [`needs_3d`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Needs3d {
+    /// `poly3` commands in the list.
+    pub poly3: usize,
+    /// Trapezoid slots.
+    pub trapezoids: usize,
+    /// Face slots.
+    pub faces: usize,
+    /// Edge slots: the most vertices of one `poly3`.
+    pub edges: usize,
+    /// Rows of the scan-line index: the frame's height.
+    pub rows: usize,
+    /// Runs of one row: the frame's width.
+    pub runs: usize,
+}
+
+/// `true` when the `poly3` is drawn: the shoelace sum of its vertices is
+/// negative (counter-clockwise as displayed, y down). Each term is below
+/// 2³¹ and there are at most 65535: the sum fits in `i64`.
+pub fn front_facing(v: &Vertices3<'_>) -> bool {
+    let mut it = v.iter();
+    let Some(first) = it.next() else {
+        return false;
+    };
+    let mut s = 0i64;
+    let mut prev = first;
+    for p in it.chain(core::iter::once(first)) {
+        s +=
+            prev.x.units() as i64 * p.y.units() as i64 - p.x.units() as i64 * prev.y.units() as i64;
+        prev = p;
+    }
+    s < 0
+}
+
+/// Calls `f(offset, vertices, colour, clip)` for every front-facing
+/// `poly3` of `list`, with the state in force at its place, on a frame of
+/// `w × h`.
+fn each_poly3<E>(
+    list: &DisplayList<'_>,
+    (w, h): (u16, u16),
+    mut f: impl FnMut(usize, Vertices3<'_>, Rgb888, &ClipRect) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut clip = ClipRect::full(w, h);
+    let mut color = DEFAULT_COLOR;
+    for (offset, cmd) in list.commands() {
+        match cmd {
+            Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
+            Command::Color(c) => color = c,
+            Command::Poly3(v) if front_facing(&v) => f(offset, v, color, &clip)?,
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// Sizes [`Storage3d`] for `list` by cutting its front-facing `poly3`s
+/// (nothing is drawn), with `edges` as scratch. Returns `None` when
+/// `edges` has fewer slots than the largest `poly3` has vertices. Active
+/// entries are not counted: at most [`Needs3d::trapezoids`] are needed,
+/// and [`Workspace::check`] gives the exact number once the store is
+/// built.
+pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3d> {
+    let (w, h) = (list.width(), list.height());
+    let mut n = Needs3d {
+        rows: h as usize,
+        runs: w as usize,
+        ..Needs3d::default()
+    };
+    for (_, cmd) in list.commands() {
+        if let Command::Poly3(v) = cmd {
+            n.poly3 += 1;
+            n.edges = n.edges.max(v.len());
+        }
+    }
+    if edges.len() < n.edges {
+        return None;
+    }
+    each_poly3(list, (w, h), |_, v, _, clip| {
+        let poly = Polygon::load(&mut *edges, v.iter(), clip).map_err(|_| ())?;
+        if poly.plane().is_none() {
+            return Ok::<(), ()>(());
+        }
+        let t = poly.cut(|_, _| Ok::<(), ()>(()))? as usize;
+        n.trapezoids += t;
+        n.faces += (t > 0) as usize;
+        Ok(())
+    })
+    .ok()?;
+    Some(n)
 }
 
 /// The graphic controller.
+///
+/// For 2D lists it needs only a [`Rasterizer`]; `poly3` also needs the
+/// memory of the 3D layer:
+///
+/// ```
+/// use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+/// use scanvert::{
+///     controller::{Controller, Storage3d}, display_list::{DisplayList, Writer}, edge::Edge,
+///     fixed::{Coord, Vertex3}, framebuffer::FrameBuffer, rle::Run, scan::Rasterizer,
+///     segment::{Face, Segment, StoreMemory}, trapezoid::{EdgeSlot, Trapezoid},
+///     visible::{Active, Resolve},
+/// };
+///
+/// let v = |x: i16, y: i16, z: i16| Vertex3 { x: Coord::from_bits(x * 16), y: Coord::from_bits(y * 16), z: Coord::from_bits(z * 16) };
+/// let mut bytes = [0u8; 128];
+/// let mut w = Writer::new(&mut bytes, 32, 16)?;
+/// w.color(Rgb888::RED)?;
+/// w.poly3([v(2, 2, 10), v(4, 14, 10), v(30, 8, 10)])?; // counter-clockwise as displayed
+/// w.color(Rgb888::BLUE)?;
+/// w.poly3([v(12, 0, 5), v(12, 16, 5), v(20, 16, 20)])?; // nearer on its left
+/// let list = DisplayList::new_checked(w.finish()).unwrap();
+///
+/// let mut edges = [Edge::EMPTY; 8];
+/// let (mut traps, mut faces, mut segs) = ([Trapezoid::EMPTY; 32], [Face::EMPTY; 8], [Segment::EMPTY; 1]);
+/// let (mut rows, mut slots) = ([0u16; 16], [EdgeSlot::EMPTY; 8]);
+/// let (mut active, mut runs) = ([Active::EMPTY; 16], [Run::EMPTY; 32]);
+/// let storage = Storage3d {
+///     store: StoreMemory { trapezoids: &mut traps, faces: &mut faces, segments: &mut segs, rows: &mut rows, edges: &mut slots },
+///     active: &mut active,
+///     runs: &mut runs,
+///     resolve: Resolve::Crossing,
+/// };
+/// let mut pixels = [Rgb565::BLACK; 32 * 16];
+/// let mut fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
+/// let stats = Controller::new(Rasterizer::new(&mut edges)).with_3d(storage).render(&list, &mut fb).unwrap();
+/// assert_eq!(stats.poly3, 2);
+/// assert_eq!(fb.pixel(13, 8), Some(Rgb565::BLUE));
+/// assert_eq!(fb.pixel(19, 8), Some(Rgb565::RED));
+/// # Ok::<(), scanvert::display_list::WriteError>(())
+/// ```
 #[derive(Debug)]
 pub struct Controller<'e> {
     raster: Rasterizer<'e>,
+    three: Option<Storage3d<'e>>,
 }
 
 impl<'e> Controller<'e> {
-    /// A controller scan-converting with `raster`.
+    /// A controller scan-converting with `raster`, for 2D lists.
     pub fn new(raster: Rasterizer<'e>) -> Self {
-        Controller { raster }
+        Controller {
+            raster,
+            three: None,
+        }
     }
 
-    /// Checks that every command of `list` can be executed, without
-    /// drawing: polygon sizes against the edge storage, and known commands.
+    /// The same controller, rendering `poly3` with `storage`.
+    pub fn with_3d(mut self, storage: Storage3d<'e>) -> Self {
+        self.three = Some(storage);
+        self
+    }
+
+    /// Checks, without drawing, what can be checked before the 3D layer
+    /// is built: polygon sizes against the edge storage, `poly3` sizes
+    /// against the edge slots, known commands, and `poly3` only with 3D
+    /// storage. [`render`](Self::render) checks the rest (trapezoids,
+    /// faces, active entries) after cutting the layer, still before
+    /// drawing.
     pub fn check(
         &self,
         list: &DisplayList<'_>,
@@ -115,12 +373,22 @@ impl<'e> Controller<'e> {
                         capacity,
                     })
                 }
-                Command::Poly3(_) => {
-                    return Err(RenderError::Unsupported {
-                        offset,
-                        command: "poly3",
-                    })
-                }
+                Command::Poly3(v) => match &self.three {
+                    None => {
+                        return Err(RenderError::Unsupported {
+                            offset,
+                            command: "poly3",
+                        })
+                    }
+                    Some(t) if v.len() > t.store.edges.len() => {
+                        return Err(RenderError::Capacity3d {
+                            offset,
+                            resource: Resource::EdgeSlots,
+                            capacity: t.store.edges.len(),
+                        })
+                    }
+                    Some(_) => {}
+                },
                 _ => {}
             }
         }
@@ -152,6 +420,15 @@ impl<'e> Controller<'e> {
                 vertices,
                 capacity,
             },
+            RenderError::Capacity3d {
+                offset,
+                resource,
+                capacity,
+            } => RenderError::Capacity3d {
+                offset,
+                resource,
+                capacity,
+            },
             RenderError::Unsupported { offset, command } => {
                 RenderError::Unsupported { offset, command }
             }
@@ -159,9 +436,20 @@ impl<'e> Controller<'e> {
         })?;
         let (tw, th) = target.size();
         let (w, h) = (list.width().min(tw), list.height().min(th));
+        let mut stats = Stats::default();
+        let Controller { raster, three } = self;
+        // The 3D layer is cut first: running out of memory is found before
+        // anything is drawn.
+        let first3 = list
+            .commands()
+            .find(|(_, c)| matches!(c, Command::Poly3(_)))
+            .map(|(offset, _)| offset);
+        let layer = match (first3, three.as_mut()) {
+            (Some(first), Some(t)) => Some(build_layer(t, list, (w, h), first, &mut stats)?),
+            _ => None,
+        };
         let mut clip = ClipRect::full(w, h);
         let mut color = T::Color::from_rgb888(DEFAULT_COLOR);
-        let mut stats = Stats::default();
         for (offset, cmd) in list.commands() {
             stats.commands += 1;
             match cmd {
@@ -174,25 +462,272 @@ impl<'e> Controller<'e> {
                 Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
                 Command::Color(c) => color = T::Color::from_rgb888(c),
                 Command::Poly(v) => {
-                    let counts = self
-                        .raster
-                        .fill(v.iter(), &clip, color, target)
-                        .map_err(|e| match e {
-                            FillError::Target(error) => RenderError::Target { offset, error },
-                            FillError::Capacity { capacity } => RenderError::Capacity {
-                                offset,
-                                vertices: v.len(),
-                                capacity,
-                            },
-                        })?;
+                    let counts =
+                        raster
+                            .fill(v.iter(), &clip, color, target)
+                            .map_err(|e| match e {
+                                FillError::Target(error) => RenderError::Target { offset, error },
+                                FillError::Capacity { capacity } => RenderError::Capacity {
+                                    offset,
+                                    vertices: v.len(),
+                                    capacity,
+                                },
+                            })?;
                     stats.polygons += 1;
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;
                 }
-                // Rejected by `check`.
+                // The 3D layer, drawn below.
                 Command::Poly3(_) => {}
             }
         }
+        if let Some((store, mut ws, resolve, first)) = layer {
+            let (v, counts) =
+                visible::draw(&store, &mut ws, resolve, target, None).map_err(|e| match e {
+                    VisibleError::Sink(error) => RenderError::Target {
+                        offset: first,
+                        error,
+                    },
+                    // Checked by `build_layer`.
+                    VisibleError::Active { capacity } => RenderError::Capacity3d {
+                        offset: first,
+                        resource: Resource::Active,
+                        capacity,
+                    },
+                    VisibleError::Runs { capacity } => RenderError::Capacity3d {
+                        offset: first,
+                        resource: Resource::Runs,
+                        capacity,
+                    },
+                })?;
+            stats.visible = v;
+            stats.spans += counts.spans;
+            stats.pixels += counts.pixels as u64;
+        }
         Ok(stats)
+    }
+}
+
+/// The store and workspace of a cut 3D layer, ready to draw.
+type Layer<'t> = (TrapezoidStore<'t>, Workspace<'t>, Resolve, usize);
+
+/// Cuts every front-facing `poly3` of `list` into trapezoids in `t` and
+/// checks the active list and the run buffer against them.
+fn build_layer<'t, E>(
+    t: &'t mut Storage3d<'_>,
+    list: &DisplayList<'_>,
+    (w, h): (u16, u16),
+    first: usize,
+    stats: &mut Stats,
+) -> Result<Layer<'t>, RenderError<E>> {
+    let full = |offset: usize, (resource, capacity): (Resource, usize)| RenderError::Capacity3d {
+        offset,
+        resource,
+        capacity,
+    };
+    let mem = StoreMemory {
+        trapezoids: &mut *t.store.trapezoids,
+        faces: &mut *t.store.faces,
+        segments: &mut *t.store.segments,
+        rows: &mut *t.store.rows,
+        edges: &mut *t.store.edges,
+    };
+    let mut store =
+        TrapezoidStore::new(mem, w, h).map_err(|e| full(first, Resource::of_store(e)))?;
+    let mut culled = 0u32;
+    for (_, cmd) in list.commands() {
+        if let Command::Poly3(v) = cmd {
+            culled += !front_facing(&v) as u32;
+        }
+    }
+    stats.culled = culled;
+    each_poly3(list, (w, h), |offset, v, color, clip| {
+        let n = store
+            .add_polygon(0, v.iter(), color, clip)
+            .map_err(|e| full(offset, Resource::of_store(e)))?;
+        stats.poly3 += 1;
+        stats.trapezoids += n;
+        Ok(())
+    })?;
+    let mut ws = Workspace::new(&mut *t.active, &mut *t.runs);
+    ws.check(&store).map_err(|e| match e {
+        VisibleError::Active { capacity } => full(first, (Resource::Active, capacity)),
+        VisibleError::Runs { capacity } => full(first, (Resource::Runs, capacity)),
+        VisibleError::Sink(e) => match e {},
+    })?;
+    Ok((store, ws, t.resolve, first))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::display_list::Writer;
+    use crate::edge::Edge;
+    use crate::fixed::{Coord, Vertex, Vertex3};
+    use crate::framebuffer::FrameBuffer;
+    use crate::segment::{Face, Segment};
+    use crate::trapezoid::Trapezoid;
+    use embedded_graphics_core::pixelcolor::Rgb888;
+
+    const W: u16 = 24;
+    const H: u16 = 16;
+
+    fn v(x: i16, y: i16, z: i16) -> Vertex3 {
+        Vertex3 {
+            x: Coord::from_bits(x * 16),
+            y: Coord::from_bits(y * 16),
+            z: Coord::from_bits(z * 16),
+        }
+    }
+
+    struct Mem {
+        edges: [Edge; 8],
+        traps: [Trapezoid; 16],
+        faces: [Face; 4],
+        segs: [Segment; 1],
+        rows: [u16; H as usize],
+        slots: [EdgeSlot; 8],
+        active: [Active; 8],
+        runs: [Run; W as usize],
+    }
+
+    impl Mem {
+        fn new() -> Self {
+            Mem {
+                edges: [Edge::EMPTY; 8],
+                traps: [Trapezoid::EMPTY; 16],
+                faces: [Face::EMPTY; 4],
+                segs: [Segment::EMPTY; 1],
+                rows: [0; H as usize],
+                slots: [EdgeSlot::EMPTY; 8],
+                active: [Active::EMPTY; 8],
+                runs: [Run::EMPTY; W as usize],
+            }
+        }
+
+        /// Renders `list` with 3D storage (`three`) or without; returns the
+        /// frame as the colours' red channels, row by row.
+        fn render(
+            &mut self,
+            list: &DisplayList<'_>,
+            three: bool,
+        ) -> (
+            Result<Stats, RenderError<core::convert::Infallible>>,
+            [u8; (W * H) as usize],
+        ) {
+            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let mut c = Controller::new(Rasterizer::new(&mut self.edges));
+            if three {
+                c = c.with_3d(Storage3d {
+                    store: StoreMemory {
+                        trapezoids: &mut self.traps,
+                        faces: &mut self.faces,
+                        segments: &mut self.segs,
+                        rows: &mut self.rows,
+                        edges: &mut self.slots,
+                    },
+                    active: &mut self.active,
+                    runs: &mut self.runs,
+                    resolve: Resolve::Bisect,
+                });
+            }
+            let r = c.render(list, &mut fb);
+            (r, core::array::from_fn(|i| px[i].r()))
+        }
+    }
+
+    fn list(bytes: &mut [u8], f: impl FnOnce(&mut Writer<'_>)) -> usize {
+        let mut w = Writer::new(bytes, W, H).unwrap();
+        f(&mut w);
+        w.finish().len()
+    }
+
+    #[test]
+    fn poly3_needs_3d_storage() {
+        let mut bytes = [0u8; 256];
+        let n = list(&mut bytes, |w| {
+            w.poly3([v(1, 1, 1), v(1, 9, 1), v(9, 5, 1)]).unwrap();
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let mut m = Mem::new();
+        let (r, px) = m.render(&l, false);
+        assert_eq!(
+            r,
+            Err(RenderError::Unsupported {
+                offset: 16,
+                command: "poly3"
+            })
+        );
+        assert!(px.iter().all(|&p| p == 7), "nothing drawn");
+        let (r, px) = m.render(&l, true);
+        assert_eq!(r.unwrap().poly3, 1);
+        assert_eq!(px[5 * W as usize + 3], 255);
+    }
+
+    #[test]
+    fn the_3d_layer_is_drawn_over_the_2d_commands_where_it_covers() {
+        let mut bytes = [0u8; 512];
+        let n = list(&mut bytes, |w| {
+            w.clear(Rgb888::new(10, 0, 0)).unwrap();
+            w.color(Rgb888::new(50, 0, 0)).unwrap();
+            // A far face, then a 2D square after it, then a near face.
+            w.poly3([v(0, 0, 100), v(0, 16, 100), v(12, 16, 100), v(12, 0, 100)])
+                .unwrap();
+            w.color(Rgb888::new(20, 0, 0)).unwrap();
+            w.poly(
+                [(0, 0), (24, 0), (24, 4), (0, 4)].map(|(x, y)| Vertex::from_bits(x * 16, y * 16)),
+            )
+            .unwrap();
+            w.color(Rgb888::new(60, 0, 0)).unwrap();
+            w.clip(crate::clip::ClipWindow {
+                x0: 0,
+                y0: 0,
+                x1: 5,
+                y1: 15,
+            })
+            .unwrap();
+            w.poly3([v(2, 2, 1), v(2, 14, 1), v(20, 14, 1), v(20, 2, 1)])
+                .unwrap();
+            // Clockwise as displayed: culled.
+            w.poly3([v(0, 0, 0), v(24, 0, 0), v(24, 16, 0)]).unwrap();
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let (r, px) = Mem::new().render(&l, true);
+        let s = r.unwrap();
+        assert_eq!((s.poly3, s.culled, s.polygons), (2, 1, 1));
+        let at = |x: usize, y: usize| px[y * W as usize + x];
+        assert_eq!(at(3, 8), 60, "near face, inside its clip");
+        assert_eq!(at(8, 8), 50, "far face, outside the near face's clip");
+        assert_eq!(at(8, 1), 50, "the 3D layer covers the 2D square");
+        assert_eq!(at(16, 1), 20, "2D square where no face is");
+        assert_eq!(at(16, 8), 10, "the clear where nothing is");
+    }
+
+    #[test]
+    fn running_out_of_3d_memory_is_found_before_drawing() {
+        let mut bytes = [0u8; 1024];
+        let n = list(&mut bytes, |w| {
+            w.clear(Rgb888::new(1, 0, 0)).unwrap();
+            for k in 0..5 {
+                w.poly3([v(k, 0, k), v(k, 16, k), v(k + 12, 8, k)]).unwrap();
+            }
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let mut m = Mem::new();
+        let (r, px) = m.render(&l, true);
+        assert!(matches!(
+            r,
+            Err(RenderError::Capacity3d {
+                resource: Resource::Faces,
+                capacity: 4,
+                ..
+            })
+        ));
+        assert!(px.iter().all(|&p| p == 7), "nothing drawn");
+        let mut slots = [EdgeSlot::EMPTY; 3];
+        let need = needs_3d(&l, &mut slots).unwrap();
+        assert_eq!((need.poly3, need.faces, need.edges), (5, 5, 3));
+        assert_eq!(need.trapezoids, 10);
     }
 }

@@ -248,7 +248,7 @@ pub struct StoreMemory<'a> {
 /// [module](self) docs.
 ///
 /// ```
-/// use embedded_graphics_core::pixelcolor::Rgb888;
+/// use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 /// use scanvert::{clip::ClipRect, fixed::{Coord, Vertex3}, segment::*, trapezoid::*};
 ///
 /// let (mut traps, mut faces) = ([Trapezoid::EMPTY; 64], [Face::EMPTY; 16]);
