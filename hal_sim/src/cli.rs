@@ -16,10 +16,14 @@ use crate::dual_port::DualPortRam;
 use crate::refresh::RefreshController;
 use crate::text::{self, Assembled};
 use crate::timing::VideoTiming;
-use scanvert::controller::{Controller, RenderError, Stats};
+use scanvert::controller::{needs_3d, Controller, RenderError, Stats, Storage3d};
 use scanvert::display_list::{Command, DisplayList, MAGIC};
 use scanvert::edge::Edge;
+use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
+use scanvert::segment::{Face, Segment, StoreMemory};
+use scanvert::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::visible::{Active, Resolve};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -153,10 +157,38 @@ pub struct Rendered {
 }
 
 /// Runs the graphic controller on `scene` into a fresh (black) dual-port RAM.
+///
+/// A scene with `poly3` gets the memory of the 3D layer too, sized from
+/// the scene by [`needs_3d`]: as many trapezoid slots as its front-facing
+/// `poly3`s are cut into, a face each, an active entry per trapezoid (the
+/// most that can overlap a row), a run per column.
 pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     let list = scene.list();
     let mut edges = vec![Edge::EMPTY; edges_needed(&list)];
+    let mut slots = vec![EdgeSlot::EMPTY; edges_needed(&list)];
+    let need = needs_3d(&list, &mut slots)
+        .ok_or_else(|| input(&scene.path, "edge slots sized below the largest poly3"))?;
+    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
+    let mut faces = vec![Face::EMPTY; need.faces];
+    let mut segments = [Segment::EMPTY; 1];
+    let mut rows = vec![0u16; need.rows];
+    let mut active = vec![Active::EMPTY; need.trapezoids];
+    let mut runs = vec![Run::EMPTY; need.runs];
     let mut controller = Controller::new(Rasterizer::new(&mut edges));
+    if need.poly3 > 0 {
+        controller = controller.with_3d(Storage3d {
+            store: StoreMemory {
+                trapezoids: &mut traps,
+                faces: &mut faces,
+                segments: &mut segments,
+                rows: &mut rows,
+                edges: &mut slots,
+            },
+            active: &mut active,
+            runs: &mut runs,
+            resolve: Resolve::default(),
+        });
+    }
     let mut ram = DualPortRam::new(list.width(), list.height());
     let stats = controller
         .render(&list, &mut ram.write_port())
@@ -265,7 +297,19 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                     s.spans,
                     s.pixels,
                     s.clears
-                )
+                ) + &if s.poly3 + s.culled > 0 {
+                    format!(
+                        "{}: {} poly3 ({} culled), {} trapezoids, {} runs, {} intersecting spans\n",
+                        path.display(),
+                        s.poly3,
+                        s.culled,
+                        s.trapezoids,
+                        s.visible.runs,
+                        s.visible.intersecting
+                    )
+                } else {
+                    String::new()
+                }
             } else {
                 String::new()
             })
