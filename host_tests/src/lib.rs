@@ -1,6 +1,9 @@
 //! Shared helpers of the `host-tests` suites: the exact reference
-//! rasteriser ([`reference`]) and the harness that runs polygons through
-//! the library's real path ([`harness`]).
+//! rasterisers ([`reference`] for `poly`, [`reference3d`] for `poly3`) and
+//! the harnesses that run scenes through the library's real path
+//! ([`harness`], [`harness3d`]).
 
 pub mod harness;
+pub mod harness3d;
 pub mod reference;
+pub mod reference3d;

@@ -524,31 +524,38 @@ impl<'a> TrapezoidStore<'a> {
         if poly.edges() < 2 {
             return Ok(0);
         }
-        // The face first: its slot is the trapezoids' face index.
-        let f = alloc(
-            &mut self.free_face,
-            &mut self.unused_face,
-            self.faces.len(),
-            |i| self.faces[i as usize].next,
-        )
-        .ok_or(StoreError::Faces {
-            capacity: pool_len(self.faces.len()) as usize,
-        })?;
-        self.faces[f as usize] = Face {
-            plane,
-            color,
-            key,
-            segment: s as u16,
-            next: seg.faces,
-        };
-        seg.faces = f;
-        seg.face_count += 1;
-        self.live_faces += 1;
+        // The face is taken with the first trapezoid, so that a polygon
+        // with none needs no face slot.
         let depth = plane.depth();
-        let (traps, rows) = (&mut *self.traps, &mut *self.rows);
+        let (traps, rows, faces) = (&mut *self.traps, &mut *self.rows, &mut *self.faces);
         let (free, unused) = (&mut self.free_trap, &mut self.unused_trap);
-        let live = &mut self.live;
+        let (free_face, unused_face) = (&mut self.free_face, &mut self.unused_face);
+        let (live, live_faces) = (&mut self.live, &mut self.live_faces);
+        let mut face = None;
         let n = poly.cut(|l, r| {
+            let f = match face {
+                Some(f) => f,
+                None => {
+                    let cap = faces.len();
+                    let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next).ok_or(
+                        StoreError::Faces {
+                            capacity: pool_len(cap) as usize,
+                        },
+                    )?;
+                    faces[f as usize] = Face {
+                        plane,
+                        color,
+                        key,
+                        segment: s as u16,
+                        next: seg.faces,
+                    };
+                    seg.faces = f;
+                    seg.face_count += 1;
+                    *live_faces += 1;
+                    face = Some(f);
+                    f
+                }
+            };
             let cap = traps.len();
             let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg).ok_or(
                 StoreError::Trapezoids {
@@ -575,17 +582,6 @@ impl<'a> TrapezoidStore<'a> {
             *live += 1;
             Ok::<(), StoreError>(())
         })?;
-        if n == 0 {
-            // Nothing to draw: give the face back (it is the chain's head).
-            seg.faces = self.faces[f as usize].next;
-            seg.face_count -= 1;
-            self.faces[f as usize] = Face {
-                next: self.free_face,
-                ..Face::EMPTY
-            };
-            self.free_face = f;
-            self.live_faces -= 1;
-        }
         Ok(n)
     }
 }
