@@ -49,8 +49,8 @@
 //!
 //! # Memory
 //!
-//! An [`Active`] entry is 100 bytes (two edges, depth, pixels, and two
-//! index-array slots); the list needs as many as trapezoids overlap one
+//! An [`Active`] entry is 136 bytes (two edges, depth, and one element
+//! each of the sorted, cover and free arrays); the list needs as many as trapezoids overlap one
 //! row ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
 //!
@@ -63,6 +63,7 @@ use crate::rle::{decode_row, Run, RunWriter, RunsFull};
 use crate::segment::TrapezoidStore;
 use crate::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How an intersecting span is subdivided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -82,18 +83,23 @@ pub enum Resolve {
     Crossing,
 }
 
-/// One entry of the active list (100 bytes). The caller provides the
+/// One entry of the active list (136 bytes). The caller provides the
 /// array, filled with [`Active::EMPTY`].
+///
+/// Each entry holds one active trapezoid's stepping state (at a slot that
+/// does not move while it is active) and one element of each of three
+/// arrays the resolution works on: the live trapezoids sorted by `l` with
+/// what the sweep reads, the trapezoids covering the current span, and
+/// the stack of free slots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Active {
     entry: Entry,
-    /// The index array: `order[..k]` lists the live entries sorted by `l`,
-    /// `order[k..]` the free ones.
-    order: u16,
-    /// The trapezoids covering the current span.
-    cover: u16,
+    hot: Hot,
+    cov: Cover,
+    free: u16,
 }
 
+/// An active trapezoid's stepping state.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Entry {
     left: Edge,
@@ -102,12 +108,45 @@ struct Entry {
     z: i32,
     zx: i32,
     zy: i32,
-    /// Pixels `l..r` on the current row, cut to the columns.
-    l: i32,
-    r: i32,
     face: u16,
     x0: u16,
     x1: u16,
+}
+
+/// A live trapezoid on the current row, in the array sorted by `l`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Hot {
+    /// Pixels `l..r` on the row, cut to the columns.
+    l: i32,
+    r: i32,
+    z: i32,
+    zx: i32,
+    face: u16,
+    slot: u16,
+}
+
+/// A trapezoid covering the current span, in the array sorted by
+/// decreasing `r`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Cover {
+    r: i32,
+    z: i32,
+    zx: i32,
+    face: u16,
+}
+
+impl Cover {
+    const EMPTY: Cover = Cover {
+        r: 0,
+        z: 0,
+        zx: 0,
+        face: NONE,
+    };
+
+    #[inline(always)]
+    fn z_at(&self, i: i32) -> i32 {
+        self.z.wrapping_add(self.zx.wrapping_mul(i))
+    }
 }
 
 impl Entry {
@@ -117,8 +156,6 @@ impl Entry {
         z: 0,
         zx: 0,
         zy: 0,
-        l: 0,
-        r: 0,
         face: NONE,
         x0: 0,
         x1: 0,
@@ -131,17 +168,25 @@ impl Entry {
             z: t.z,
             zx: t.zx,
             zy: t.zy,
-            l: 0,
-            r: 0,
             face: t.face,
             x0: t.x0,
             x1: t.x1,
         }
     }
 
+    /// The row's pixels and depth, for the sorted array.
     #[inline(always)]
-    fn z_at(&self, i: i32) -> i32 {
-        self.z.wrapping_add(self.zx.wrapping_mul(i))
+    fn hot(&mut self, slot: u16) -> Hot {
+        self.left.load_pixel();
+        self.right.load_pixel();
+        Hot {
+            l: self.left.pixel().max(self.x0 as i32),
+            r: self.right.pixel().min(self.x1 as i32),
+            z: self.z,
+            zx: self.zx,
+            face: self.face,
+            slot,
+        }
     }
 }
 
@@ -149,8 +194,16 @@ impl Active {
     /// An unused entry.
     pub const EMPTY: Active = Active {
         entry: Entry::EMPTY,
-        order: 0,
-        cover: 0,
+        hot: Hot {
+            l: 0,
+            r: 0,
+            z: 0,
+            zx: 0,
+            face: NONE,
+            slot: 0,
+        },
+        cov: Cover::EMPTY,
+        free: 0,
     };
 }
 
@@ -218,9 +271,7 @@ pub struct VisibleStats {
     pub intersecting: u32,
     /// Subdivisions of intersecting spans (and of their parts).
     pub splits: u32,
-    /// Depth comparisons made.
-    pub compares: u32,
-    /// Of those, the ones too close for fixed point, made exactly.
+    /// Depth comparisons too close for fixed point, made exactly.
     pub exact: u32,
     /// Runs written (after merging).
     pub runs: u32,
@@ -269,9 +320,9 @@ impl<'a> Workspace<'a> {
         for y in 0..store.height() {
             let mut q = 0;
             while q < k {
-                if self.active[q].cover as i32 <= y as i32 {
+                if self.active[q].cov.r <= y as i32 {
                     k -= 1;
-                    self.active[q].cover = self.active[k].cover;
+                    self.active[q].cov.r = self.active[k].cov.r;
                 } else {
                     q += 1;
                 }
@@ -281,8 +332,7 @@ impl<'a> Workspace<'a> {
                 if k >= cap {
                     return Err(VisibleError::Active { capacity: cap });
                 }
-                // Ends are at most 4096.
-                self.active[k].cover = tr.end() as u16;
+                self.active[k].cov.r = tr.end();
                 k += 1;
                 t = tr.next_row;
             }
@@ -300,258 +350,287 @@ impl<'a> Workspace<'a> {
         mut sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
     ) -> Result<VisibleStats, VisibleError<E>> {
         let cap = self.capacity();
-        let active = &mut self.active[..cap];
-        for (i, a) in active.iter_mut().enumerate() {
-            a.order = i as u16;
+        let act = &mut self.active[..cap];
+        for (i, a) in act.iter_mut().enumerate() {
+            a.free = i as u16;
         }
-        let mut row = Row {
+        let mut cx = Ctx {
             store,
-            active,
             out: RunWriter::new(self.runs),
+            ink: Run::BACKGROUND,
+            len: 0,
+            color: None,
             mode,
             y: 0,
-            width: store.width() as i32,
             stats: VisibleStats::default(),
         };
-        let mut k = 0usize;
+        let width = store.width() as i32;
+        // act[..k].hot: the live trapezoids, sorted by l as of the last
+        // row; act[..nf].free: the free slots.
+        let (mut k, mut nf) = (0usize, cap);
         for y in 0..store.height() {
-            row.y = y as i32;
+            let yi = y as i32;
+            cx.y = yi;
+            // Step the live trapezoids to this row, dropping those that
+            // ended, and reload their pixels (in place, keeping the order).
+            let mut w = 0;
+            for p in 0..k {
+                let slot = act[p].hot.slot;
+                let e = &mut act[slot as usize].entry;
+                if e.left.end() <= yi {
+                    act[nf].free = slot;
+                    nf += 1;
+                    continue;
+                }
+                e.left.step();
+                e.right.step();
+                e.z = e.z.wrapping_add(e.zy);
+                let h = e.hot(slot);
+                act[w].hot = h;
+                w += 1;
+            }
+            k = w;
             // Enter the trapezoids whose top is this row.
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
-                let slot = row
-                    .active
-                    .get(k)
-                    .ok_or(VisibleError::Active { capacity: cap })?
-                    .order as usize;
-                row.active[slot].entry = Entry::from(tr);
+                if nf == 0 {
+                    return Err(VisibleError::Active { capacity: cap });
+                }
+                nf -= 1;
+                let slot = act[nf].free;
+                let e = &mut act[slot as usize].entry;
+                *e = Entry::from(tr);
+                let h = e.hot(slot);
+                act[k].hot = h;
                 k += 1;
-                row.stats.trapezoids += 1;
+                cx.stats.trapezoids += 1;
                 t = tr.next_row;
             }
-            row.stats.max_active = row.stats.max_active.max(k as u32);
-            row.out.clear();
+            cx.stats.max_active = cx.stats.max_active.max(k as u32);
+            cx.out.clear();
+            (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, None);
             if k == 0 {
-                row.out.push(row.width as u16, Run::BACKGROUND)?;
-                row.stats.empty += 1;
+                cx.len = width;
+                cx.stats.empty += 1;
             } else {
-                row.load_and_sort(k);
-                row.sweep(k)?;
+                sort(&mut act[..k]);
+                sweep(act, k, width, &mut cx)?;
             }
-            row.stats.rows += 1;
-            row.stats.runs += row.out.runs().len() as u32;
-            sink(y, row.out.runs()).map_err(VisibleError::Sink)?;
-            // Drop the trapezoids that end here, step the others.
-            let next = y as i32 + 1;
-            let mut p = 0;
-            while p < k {
-                let s = row.active[p].order as usize;
-                let e = &mut row.active[s].entry;
-                if e.left.end() <= next {
-                    // Keep the order of the others; `s` becomes free.
-                    for q in p..k - 1 {
-                        row.active[q].order = row.active[q + 1].order;
-                    }
-                    row.active[k - 1].order = s as u16;
-                    k -= 1;
-                } else {
-                    e.left.step();
-                    e.right.step();
-                    e.z = e.z.wrapping_add(e.zy);
-                    p += 1;
-                }
-            }
+            cx.flush()?;
+            cx.stats.rows += 1;
+            cx.stats.runs += cx.out.runs().len() as u32;
+            sink(y, cx.out.runs()).map_err(VisibleError::Sink)?;
         }
-        Ok(row.stats)
+        Ok(cx.stats)
     }
 }
 
-/// The state of one row's resolution.
-struct Row<'s, 'a, 'r> {
+/// Insertion sort of the live trapezoids by `l`: one compare each when
+/// the order is the last row's.
+#[inline]
+fn sort(live: &mut [Active]) {
+    for p in 1..live.len() {
+        let h = live[p].hot;
+        if live[p - 1].hot.l <= h.l {
+            continue;
+        }
+        let mut q = p;
+        while q > 0 && live[q - 1].hot.l > h.l {
+            live[q].hot = live[q - 1].hot;
+            q -= 1;
+        }
+        live[q].hot = h;
+    }
+}
+
+/// What the resolution of a row needs besides the active list.
+struct Ctx<'s, 'r> {
     store: &'s TrapezoidStore<'s>,
-    active: &'a mut [Active],
     out: RunWriter<'r>,
+    /// The pending run: its ink, length and colour (`None` for the
+    /// background).
+    ink: u16,
+    len: i32,
+    color: Option<Rgb888>,
     mode: Resolve,
     y: i32,
-    width: i32,
     stats: VisibleStats,
 }
 
-impl Row<'_, '_, '_> {
-    /// Loads each live entry's pixels and sorts the index array by `l`.
-    fn load_and_sort(&mut self, k: usize) {
-        let a = &mut *self.active;
-        for p in 0..k {
-            let e = &mut a[a[p].order as usize].entry;
-            e.left.load_pixel();
-            e.right.load_pixel();
-            e.l = e.left.pixel().max(e.x0 as i32);
-            e.r = e.right.pixel().min(e.x1 as i32);
-        }
-        for p in 1..k {
-            let mut q = p;
-            let s = a[q].order;
-            let l = a[s as usize].entry.l;
-            while q > 0 && a[a[q - 1].order as usize].entry.l > l {
-                a[q].order = a[q - 1].order;
-                q -= 1;
-            }
-            a[q].order = s;
-        }
-    }
-
-    /// Cuts the row into spans at every `l` and `r` and resolves each.
-    fn sweep<E>(&mut self, k: usize) -> Result<(), VisibleError<E>> {
-        let width = self.width;
-        let (mut x, mut p, mut nc) = (0i32, 0usize, 0usize);
-        while x < width {
-            // Enter the entries starting here.
-            while p < k {
-                let s = self.active[p].order;
-                let e = &self.active[s as usize].entry;
-                if e.l > x {
-                    break;
-                }
-                if e.l < e.r && e.r > x {
-                    self.active[nc].cover = s;
-                    nc += 1;
-                }
-                p += 1;
-            }
-            // Leave the entries ending here.
-            let mut q = 0;
-            while q < nc {
-                if self.active[self.active[q].cover as usize].entry.r <= x {
-                    nc -= 1;
-                    self.active[q].cover = self.active[nc].cover;
-                } else {
-                    q += 1;
-                }
-            }
-            let next = match self.active.get(p) {
-                Some(a) if p < k => self.active[a.order as usize].entry.l.min(width),
+/// Cuts the row into spans at every `l` and `r` of `act[..k].hot` and
+/// resolves each.
+fn sweep<E>(
+    act: &mut [Active],
+    k: usize,
+    width: i32,
+    cx: &mut Ctx<'_, '_>,
+) -> Result<(), VisibleError<E>> {
+    let (mut x, mut p, mut nc) = (0i32, 0usize, 0usize);
+    let mut next = act.first().map_or(width, |a| a.hot.l.min(width));
+    while x < width {
+        // Enter the trapezoids starting here (pending ones have l ≥ x, so
+        // these have l = x), into the cover array by decreasing r.
+        while next <= x && p < k {
+            let h = act[p].hot;
+            p += 1;
+            next = match act.get(p) {
+                Some(a) if p < k => a.hot.l.min(width),
                 _ => width,
             };
-            if nc == 0 {
-                self.stats.empty += 1;
-                self.out.push((next - x) as u16, Run::BACKGROUND)?;
-                x = next;
+            if h.l >= h.r {
                 continue;
             }
-            let mut t = next;
-            for q in 0..nc {
-                t = t.min(self.active[self.active[q].cover as usize].entry.r);
+            let c = Cover {
+                r: h.r,
+                z: h.z,
+                zx: h.zx,
+                face: h.face,
+            };
+            let mut q = nc;
+            while q > 0 && act[q - 1].cov.r < c.r {
+                act[q].cov = act[q - 1].cov;
+                q -= 1;
             }
-            self.span(x, t, nc)?;
-            x = t;
+            act[q].cov = c;
+            nc += 1;
         }
-        Ok(())
+        // Leave the trapezoids ending here: the last ones.
+        while nc > 0 && act[nc - 1].cov.r <= x {
+            nc -= 1;
+        }
+        if nc == 0 {
+            cx.stats.empty += 1;
+            cx.emit(next - x, Run::BACKGROUND)?;
+            x = next;
+            continue;
+        }
+        let t = next.min(act[nc - 1].cov.r);
+        span(&act[..nc], x, t, cx)?;
+        x = t;
     }
+    Ok(())
+}
 
-    /// Resolves the span `s..t` covered by `cover[..nc]`.
-    fn span<E>(&mut self, s: i32, t: i32, nc: usize) -> Result<(), VisibleError<E>> {
-        if nc == 1 {
-            self.stats.single += 1;
-            let f = self.active[self.active[0].cover as usize].entry.face;
-            return self.emit(t - s, f);
-        }
-        let a = self.front(s, nc);
-        let b = self.front(t - 1, nc);
-        if a == b {
-            self.stats.multiple += 1;
-            return self.emit(t - s, self.active[a as usize].entry.face);
-        }
-        self.stats.intersecting += 1;
-        self.split(s, t, a, b, nc, true)
+/// Resolves the span `s..t` covered by `cov`.
+#[inline]
+fn span<E>(cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Result<(), VisibleError<E>> {
+    let Some((first, rest)) = cov.split_first() else {
+        return Ok(());
+    };
+    if rest.is_empty() {
+        cx.stats.single += 1;
+        return cx.emit(t - s, first.cov.face);
     }
-
-    /// Subdivides `s..t` (at least 2 pixels), whose nearest entries at the
-    /// ends are `a` and `b ≠ a`.
-    fn split<E>(
-        &mut self,
-        s: i32,
-        t: i32,
-        a: u16,
-        b: u16,
-        nc: usize,
-        cross: bool,
-    ) -> Result<(), VisibleError<E>> {
-        self.stats.splits += 1;
-        let crossing = self.mode == Resolve::Crossing && cross;
-        let m = if crossing {
-            self.crossing(s, t, a, b)
-        } else {
-            s + (t - s) / 2
-        };
-        // Parts longer than half the span are bisected next, so the depth
-        // of the recursion stays within 2·log₂(t − s).
-        let half = (t - s) / 2;
-        let ma = self.front(m - 1, nc);
-        if ma == a {
-            self.emit(m - s, self.active[a as usize].entry.face)?;
-        } else {
-            self.split(s, m, a, ma, nc, !crossing || m - s <= half)?;
+    // The nearest at both ends in one pass.
+    let e = t - 1;
+    let (mut a, mut za) = (0usize, first.cov.z_at(s));
+    let (mut b, mut zb) = (0usize, first.cov.z_at(e));
+    for (q, c) in rest.iter().enumerate() {
+        let q = q + 1;
+        let (zs, ze) = (c.cov.z_at(s), c.cov.z_at(e));
+        if cx.nearer(cov, q, zs, a, za, s) {
+            (a, za) = (q, zs);
         }
-        let mb = self.front(m, nc);
-        if mb == b {
-            self.emit(t - m, self.active[b as usize].entry.face)
-        } else {
-            self.split(m, t, mb, b, nc, !crossing || t - m <= half)
+        if cx.nearer(cov, q, ze, b, zb, e) {
+            (b, zb) = (q, ze);
         }
     }
-
-    /// The first pixel of `s + 1..t` where the plane of `b` is estimated
-    /// to be in front of that of `a`, from their fixed-point depths at the
-    /// ends (one division).
-    fn crossing(&self, s: i32, t: i32, a: u16, b: u16) -> i32 {
-        let (ea, eb) = (
-            &self.active[a as usize].entry,
-            &self.active[b as usize].entry,
-        );
-        // D(i) = Za(i) − Zb(i): ≤ 0 at s, ≥ 0 at t − 1, affine between.
-        let d0 = ea.z_at(s) as i64 - eb.z_at(s) as i64;
-        let d1 = ea.z_at(t - 1) as i64 - eb.z_at(t - 1) as i64;
-        let (run, rise) = ((t - 1 - s) as i64, d1 - d0);
-        let k = if rise > 0 && d0 <= 0 {
-            // |d0| < 2³³, run < 2¹²: the product is below 2⁴⁵.
-            s as i64 + (-d0 * run).div_euclid(rise) + 1
-        } else {
-            (s + (t - s) / 2) as i64
-        };
-        k.clamp(s as i64 + 1, t as i64 - 1) as i32
+    if a == b {
+        cx.stats.multiple += 1;
+        return cx.emit(t - s, cov[a].cov.face);
     }
+    cx.stats.intersecting += 1;
+    split(cov, s, t, a, b, true, cx)
+}
 
-    /// The entry nearest at pixel `i` among `cover[..nc]`.
-    fn front(&mut self, i: i32, nc: usize) -> u16 {
-        let mut best = self.active[0].cover;
-        let mut bz = self.active[best as usize].entry.z_at(i);
-        for q in 1..nc {
-            let c = self.active[q].cover;
-            let cz = self.active[c as usize].entry.z_at(i);
-            if self.nearer(c, cz, best, bz, i) {
-                best = c;
+/// Subdivides `s..t` (at least 2 pixels), whose nearest covering
+/// trapezoids at the ends are `a` and `b ≠ a`.
+fn split<E>(
+    cov: &[Active],
+    s: i32,
+    t: i32,
+    a: usize,
+    b: usize,
+    cross: bool,
+    cx: &mut Ctx<'_, '_>,
+) -> Result<(), VisibleError<E>> {
+    cx.stats.splits += 1;
+    let crossing = cx.mode == Resolve::Crossing && cross;
+    let m = if crossing {
+        crossing_point(&cov[a].cov, &cov[b].cov, s, t)
+    } else {
+        s + (t - s) / 2
+    };
+    // Parts longer than half the span are bisected next, so the depth of
+    // the recursion stays within 2·log₂(t − s).
+    let half = (t - s) / 2;
+    let ma = cx.front(cov, m - 1);
+    if ma == a {
+        cx.emit(m - s, cov[a].cov.face)?;
+    } else {
+        split(cov, s, m, a, ma, !crossing || m - s <= half, cx)?;
+    }
+    let mb = cx.front(cov, m);
+    if mb == b {
+        cx.emit(t - m, cov[b].cov.face)
+    } else {
+        split(cov, m, t, mb, b, !crossing || t - m <= half, cx)
+    }
+}
+
+/// The first pixel of `s + 1..t` where the plane of `b` is estimated to
+/// be in front of that of `a`, from their fixed-point depths at the ends
+/// of `s..t` (one division).
+fn crossing_point(a: &Cover, b: &Cover, s: i32, t: i32) -> i32 {
+    // D(i) = Za(i) − Zb(i): ≤ 0 at s, ≥ 0 at t − 1, affine between.
+    let d0 = a.z_at(s) as i64 - b.z_at(s) as i64;
+    let d1 = a.z_at(t - 1) as i64 - b.z_at(t - 1) as i64;
+    let (run, rise) = ((t - 1 - s) as i64, d1 - d0);
+    let k = if rise > 0 && d0 <= 0 {
+        // |d0| < 2³³, run < 2¹²: the product is below 2⁴⁵.
+        s as i64 + (-d0 * run).div_euclid(rise) + 1
+    } else {
+        (s + (t - s) / 2) as i64
+    };
+    k.clamp(s as i64 + 1, t as i64 - 1) as i32
+}
+
+impl Ctx<'_, '_> {
+    /// The covering trapezoid nearest at pixel `i`.
+    fn front(&mut self, cov: &[Active], i: i32) -> usize {
+        let mut best = 0;
+        let mut bz = cov.first().map_or(0, |c| c.cov.z_at(i));
+        for (q, c) in cov.iter().enumerate().skip(1) {
+            let cz = c.cov.z_at(i);
+            if self.nearer(cov, q, cz, best, bz, i) {
+                best = q;
                 bz = cz;
             }
         }
         best
     }
 
-    /// `true` when entry `c` (depth `cz` at pixel `i`) is in front of entry
-    /// `b` (depth `bz`).
-    #[inline]
-    fn nearer(&mut self, c: u16, cz: i32, b: u16, bz: i32, i: i32) -> bool {
-        self.stats.compares += 1;
-        let d = cz as i64 - bz as i64;
-        if d <= -DEPTH_TOLERANCE {
+    /// `true` when covering trapezoid `c` (depth `cz` at pixel `i`) is in
+    /// front of `b` (depth `bz`).
+    #[inline(always)]
+    fn nearer(&mut self, cov: &[Active], c: usize, cz: i32, b: usize, bz: i32, i: i32) -> bool {
+        // Both depths are below 2³⁰ in magnitude where they are meaningful
+        // (see `trapezoid`), so the difference does not wrap.
+        let d = cz.wrapping_sub(bz);
+        if d < -(DEPTH_TOLERANCE as i32) {
             return true;
         }
-        if d >= DEPTH_TOLERANCE {
+        if d > DEPTH_TOLERANCE as i32 {
             return false;
         }
+        self.exact(cov[c].cov.face, cov[b].cov.face, i, d)
+    }
+
+    /// The exact comparison, for depths too close for fixed point.
+    #[inline(never)]
+    fn exact(&mut self, c: u16, b: u16, i: i32, d: i32) -> bool {
         self.stats.exact += 1;
-        let fc = self.store.face(self.active[c as usize].entry.face);
-        let fb = self.store.face(self.active[b as usize].entry.face);
-        match (fc, fb) {
+        match (self.store.face(c), self.store.face(b)) {
             (Some(fc), Some(fb)) => fc
                 .plane()
                 .cmp_at(fb.plane(), i, self.y)
@@ -561,20 +640,34 @@ impl Row<'_, '_, '_> {
         }
     }
 
-    /// Appends `len` pixels of `face`, merged with the last run when the
-    /// colours are the same.
+    /// Appends `len` pixels of `ink` (a face, or the background) to the
+    /// pending run when it is the same ink or colour, else writes the
+    /// pending run out and starts another.
     #[inline]
-    fn emit<E>(&mut self, len: i32, face: u16) -> Result<(), VisibleError<E>> {
-        let mut ink = face;
-        if let Some(last) = self.out.last_ink() {
-            if last != face {
-                let color = |f: u16| self.store.face(f).map(|f| f.color());
-                if last != Run::BACKGROUND && color(last) == color(face) {
-                    ink = last;
-                }
-            }
+    fn emit<E>(&mut self, len: i32, ink: u16) -> Result<(), VisibleError<E>> {
+        if ink == self.ink {
+            self.len += len;
+            return Ok(());
         }
-        self.out.push(len as u16, ink)?;
+        let color = self.store.face(ink).map(|f| f.color());
+        if color.is_some() && color == self.color {
+            self.len += len;
+            return Ok(());
+        }
+        self.flush()?;
+        self.ink = ink;
+        self.len = len;
+        self.color = color;
+        Ok(())
+    }
+
+    /// Writes the pending run out.
+    #[inline]
+    fn flush<E>(&mut self) -> Result<(), VisibleError<E>> {
+        if self.len > 0 {
+            self.out.push(self.len as u16, self.ink)?;
+        }
+        self.len = 0;
         Ok(())
     }
 }
