@@ -70,7 +70,11 @@ pub fn mismatch(name: &str, expected: u32) {
     #[cfg(not(feature = "defmt"))]
     println!("MISMATCH {name}: the host's checksum is {expected:08x}");
     #[cfg(feature = "defmt")]
-    defmt::error!("MISMATCH {=str}: the host's checksum is {=u32:08x}", name, expected);
+    defmt::error!(
+        "MISMATCH {=str}: the host's checksum is {=u32:08x}",
+        name,
+        expected
+    );
 }
 
 /// An embedded list that does not read.

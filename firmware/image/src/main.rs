@@ -142,7 +142,11 @@ fn frame(
 
 /// Everything the image does; `true` when every frame matched.
 pub fn run() -> bool {
-    log::start(platform::MACHINE, platform::COUNTER, platform::INSTRUCTIONS_PER_TICK);
+    log::start(
+        platform::MACHINE,
+        platform::COUNTER,
+        platform::INSTRUCTIONS_PER_TICK,
+    );
     let Some(counter) = platform::Counter::start() else {
         log::fault("the instruction counter is taken");
         return false;
