@@ -13,6 +13,8 @@
 //! | [`dual_port`] | the dual-port RAM: a span write port, a pixel read port, counters per port; optionally two banks swapped in vertical retrace |
 //! | [`refresh`] | the refresh controller: sync generator and read-out of one frame; [`refresh::CoSimulation`] runs it alongside the graphic controller |
 //! | [`image`] | the frame as a PNG (RGB565 expanded by bit replication) |
+//! | [`text`] | the text form of the display list: assembler and disassembler |
+//! | [`cli`] | the `scanvert` program: `render`, `asm`, `disasm`, `checksum` |
 //!
 //! ```
 //! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
@@ -46,7 +48,9 @@
 #![deny(unsafe_code)]
 #![deny(rustdoc::broken_intra_doc_links)]
 
+pub mod cli;
 pub mod dual_port;
 pub mod image;
 pub mod refresh;
+pub mod text;
 pub mod timing;

@@ -214,7 +214,7 @@ fn malformed_text_scenes_are_rejected_with_their_line() {
         text_case("frame with an extra number", "frame 64 48 2\n", 1),
         text_case("clip beyond i16", &p("clip 0 0 40000 10"), 4),
         text_case("fractional clip", &p("clip 0 0 10.5 10"), 4),
-        text_case("clear with an extra word", &p("clear #000000 #ffffff"), 4),
+        text_case("clear with an extra word", &p("clear #000000 7"), 4),
         text_case("odd coordinate count", &p("poly 0 0 10 0 10 10 5"), 4),
         text_case("odd count of one", &p("poly 7"), 4),
         text_case("poly without vertices", &p("poly"), 4),

@@ -1,0 +1,108 @@
+//! The text form of the display list (host only).
+//!
+//! The text form is the interface contract of `shared/specs/text-form.md`;
+//! `docs/display-list.md` repeats it with the decisions the contract leaves
+//! open. [`assemble`] turns text into the binary form the firmware reads,
+//! keeping a line table so that a fault found later in the binary (by the
+//! controller, at a byte offset) can still be reported by its line;
+//! [`disassemble`] turns a checked binary list back into text.
+//!
+//! Text → binary → text → binary is stable: the disassembler writes every
+//! value exactly (coordinates are multiples of 1/16, which have at most four
+//! decimals), so the second assembly gives the same bytes.
+//!
+//! ```
+//! use scanvert_sim::text;
+//! let asm = text::assemble("frame 8 4\ncolor #ff0000\npoly 0 0 8 0 4 3.5\n").unwrap();
+//! let list = scanvert::display_list::DisplayList::new_checked(&asm.bytes).unwrap();
+//! assert_eq!(text::disassemble(&list), "frame 8 4\ncolor #ff0000\npoly 0 0 8 0 4 3.5\n");
+//! assert_eq!(asm.line_of(list.commands().nth(1).unwrap().0), Some(3));
+//! ```
+
+mod asm;
+mod disasm;
+mod number;
+
+pub use asm::{assemble, assemble_bytes, Assembled};
+pub use disasm::{disassemble, format_coord};
+pub use number::{parse_coord, parse_int, NumberError};
+
+use std::fmt;
+
+/// What is wrong with a line of the text form.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum TextErrorKind {
+    /// The file holds no command at all.
+    Empty,
+    /// The first command is not `frame`.
+    FrameFirst(String),
+    /// A second `frame` command.
+    FrameAgain,
+    /// A command word that is not a command.
+    UnknownCommand(String),
+    /// The line is not valid UTF-8.
+    NotUtf8,
+    /// A command has the wrong number of operands.
+    Operands {
+        /// The command.
+        command: &'static str,
+        /// What it takes.
+        expected: &'static str,
+        /// How many it got.
+        got: usize,
+    },
+    /// An operand that is not a number, or out of range.
+    Number {
+        /// The operand as written (cut to a readable length).
+        word: String,
+        /// Why it was refused.
+        error: NumberError,
+    },
+    /// An operand that is not a `#rrggbb` colour.
+    Colour(String),
+    /// A polygon with too many vertices for the binary form.
+    TooManyVertices(usize),
+}
+
+/// A fault in the text form, with its 1-based line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TextError {
+    /// 1-based line number.
+    pub line: usize,
+    /// What is wrong.
+    pub kind: TextErrorKind,
+}
+
+impl fmt::Display for TextErrorKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TextErrorKind::Empty => f.write_str("no command: a scene starts with `frame W H`"),
+            TextErrorKind::FrameFirst(c) => {
+                write!(f, "`{c}` before `frame`: a scene starts with `frame W H`")
+            }
+            TextErrorKind::FrameAgain => f.write_str("a second `frame` command"),
+            TextErrorKind::UnknownCommand(c) => write!(f, "unknown command `{c}`"),
+            TextErrorKind::NotUtf8 => f.write_str("the line is not valid UTF-8"),
+            TextErrorKind::Operands {
+                command,
+                expected,
+                got,
+            } => write!(f, "`{command}` takes {expected}, not {got} operands"),
+            TextErrorKind::Number { word, error } => write!(f, "`{word}`: {error}"),
+            TextErrorKind::Colour(w) => write!(f, "`{w}` is not a colour `#rrggbb`"),
+            TextErrorKind::TooManyVertices(n) => write!(
+                f,
+                "polygon has {n} vertices; a display list holds at most {}",
+                scanvert::display_list::MAX_VERTICES
+            ),
+        }
+    }
+}
+
+impl fmt::Display for TextError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.kind)
+    }
+}
+
+impl std::error::Error for TextError {}
