@@ -30,13 +30,13 @@ bin=scanvert-image
 out=$image_dir/target/measure
 mkdir -p "$out"
 
-# The run command, exactly as CI and the docs give it.
+# The run commands, exactly as CI and the docs give them (with a timeout).
 qemu_arm() {
-  qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
+  timeout 60 qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
     -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1"
 }
 qemu_rv() {
-  qemu-system-riscv32 -machine virt -nographic -bios none \
+  timeout 60 qemu-system-riscv32 -machine virt -nographic -bios none \
     -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1"
 }
 
@@ -56,8 +56,11 @@ build arm "$arm_target"
 
 run() { # NAME QEMU-FUNCTION: runs $out/NAME.elf, output in $out/NAME.log
   local name=$1 q=$2 status=0
-  timeout 60 "$q" "$out/$name.elf" </dev/null >"$out/$name.log" || status=$?
-  cat "$out/$name.log" >&2
+  "$q" "$out/$name.elf" </dev/null >"$out/$name.log" || status=$?
+  case "$name" in
+    *defmt*) echo "$name: $(wc -c <"$out/$name.log") bytes of defmt frames (decode with defmt-print -e $out/$name.elf)" >&2 ;;
+    *) cat "$out/$name.log" >&2 ;;
+  esac
   if [ "$status" != 0 ]; then
     echo "$name: the image exited with status $status" >&2
     exit 1

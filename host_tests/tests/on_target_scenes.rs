@@ -58,9 +58,17 @@ fn workload_list(wl: &Workload) -> Vec<u8> {
     w.finish().to_vec()
 }
 
+/// The demo scene, assembled from its text form.
+fn demo_list() -> Vec<u8> {
+    let text = std::fs::read(root().join("scenes/demo.dl")).expect("read scenes/demo.dl");
+    scanvert_sim::text::assemble_bytes(&text)
+        .expect("scenes/demo.dl assembles")
+        .bytes
+}
+
 /// Every list the image embeds, by name, in the order it renders them.
 fn lists() -> Vec<(String, Vec<u8>)> {
-    let mut out = Vec::new();
+    let mut out = vec![("demo".to_string(), demo_list())];
     for wl in workloads::all() {
         out.push((wl.id.to_lowercase(), workload_list(&wl)));
     }

@@ -8,10 +8,15 @@
 use crate::Scene;
 
 /// Edge slots for the largest polygon of any scene.
-pub const EDGE_SLOTS: usize = 12;
+pub const EDGE_SLOTS: usize = 48;
 
 /// The scenes, in the order the image renders them.
 pub const SCENES: &[Scene] = &[
+    Scene {
+        name: "demo",
+        list: include_bytes!("../scenes/demo.scvl"),
+        checksum: 0xb224a28d,
+    },
     Scene {
         name: "w1",
         list: include_bytes!("../scenes/w1.scvl"),
