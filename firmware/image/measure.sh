@@ -49,6 +49,7 @@ build() { # NAME TARGET [cargo args...]: builds and copies the ELF to $out/NAME.
 
 echo "== building the image variants" >&2
 build arm-defmt "$arm_target" --features defmt
+build arm-discard "$arm_target" --features discard
 if [ "$(uname -m)" != riscv32 ]; then
   build riscv "$rv_target"
 fi
@@ -72,6 +73,8 @@ run arm qemu_arm
 # The defmt variant logs binary frames (decode with defmt-print); only
 # its exit status is checked here.
 run arm-defmt qemu_arm
+# Spans discarded: the count of everything but the pixel writes.
+run arm-discard qemu_arm
 have_rv=no
 if command -v qemu-system-riscv32 >/dev/null; then
   run riscv qemu_rv
@@ -133,14 +136,18 @@ Each count is SysTick ticks × 40, read around `Controller::render`
 cleared to black before, untimed), so it is a multiple of 40 and within
 40 of the true count. *Pixels* are those written: polygon pixels from
 the controller's `Stats`, plus the whole frame for each `clear`.
+*Without pixel writes* is the same render into a port that writes nothing
+(the image built with `--features discard`): list check, edge set-up,
+stepping and clipping. *Pixel writes* is the rest, as a share of the
+frame.
 
 The rates at 168 MHz are **estimates**: they assume one instruction per
 cycle. A real Cortex-M4 takes two or more cycles for many loads, stores
 and taken branches, and flash wait states at 168 MHz add more, so
 expect real rates to be lower.
 
-| scene | frame | polygons | spans | pixels | instructions per frame | per polygon | per pixel | frames/s at 168 MHz (est.) | polygons/s at 168 MHz (est.) |
-|---|---|--:|--:|--:|--:|--:|--:|--:|--:|
+| scene | frame | polygons | spans | pixels | instructions per frame | per polygon | per pixel | without pixel writes | pixel writes | frames/s at 168 MHz (est.) | polygons/s at 168 MHz (est.) |
+|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
 EOF
   table "$out/arm.log"
   if [ "$have_rv" = yes ]; then
@@ -167,7 +174,7 @@ Bytes per section, from \`readelf -S\`. *Flash* is everything loaded
 display lists ($(thousands "$lists_bytes") B); \`.bss\` holds the
 512 × 256 RGB565 frame buffer ($(thousands "$frame_bytes") B). The
 columns *without* subtract those two, leaving the code and data of
-scanvert, the runtime and the image itself.
+scanvert, the runtime, the log formatting and the image itself.
 
 | variant | \`.text\` | \`.rodata\` | \`.data\` | \`.bss\` | flash | static RAM | flash without lists | RAM without frame buffer |
 |---|--:|--:|--:|--:|--:|--:|--:|--:|
@@ -189,8 +196,15 @@ size_row() { # LABEL ELF
 # "frame NAME WxH commands=.. polygons=.. clears=.. spans=.. pixels=.. ticks=.. instructions=.."
 # as "NAME W H polygons clears spans pixels instructions".
 frames() {
-  sed -n 's/^frame \([^ ]*\) \([0-9]*\)x\([0-9]*\) .*polygons=\([0-9]*\) clears=\([0-9]*\) spans=\([0-9]*\) pixels=\([0-9]*\) .*instructions=\([0-9]*\).*/\1 \2 \3 \4 \5 \6 \7 \8/p' "$1"
+  awk '$1 == "frame" {
+    split($3, wh, "x")
+    for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+    print $2, wh[1], wh[2], f["polygons"], f["clears"], f["spans"], f["pixels"], f["instructions"]
+  }' "$1"
 }
+
+# Instructions of NAME in LOG.
+instructions_of() { frames "$2" | awk -v n="$1" '$1 == n { print $8 }'; }
 
 fmt() { # NUMBER DECIMALS
   thousands "$(awk -v v="$1" -v d="$2" 'BEGIN { printf("%." d "f", v) }')"
@@ -206,12 +220,13 @@ table() {
     fi
     per_px=$(fmt "$(awk -v i="$instr" -v p="$written" 'BEGIN { print i / p }')" 2)
     fps=$(fmt "$(awk -v i="$instr" 'BEGIN { print 168e6 / i }')" 1)
-    echo "| $name | ${w}×${h} | $(thousands "$polys") | $(thousands "$spans") | $(thousands "$written") | $(thousands "$instr") | $per_poly | $per_px | $fps | $poly_rate |"
+    scan=$(instructions_of "$name" "$out/arm-discard.log")
+    writes=$(fmt "$(awk -v i="$instr" -v s="$scan" 'BEGIN { print 100 * (i - s) / i }')" 0)
+    echo "| $name | ${w}×${h} | $(thousands "$polys") | $(thousands "$spans") | $(thousands "$written") | $(thousands "$instr") | $per_poly | $per_px | $(thousands "$scan") | ${writes} % | $fps | $poly_rate |"
   done
 }
 
 rv_table() { # RISCV-LOG ARM-LOG
-  frames "$2" | awk '{ print $1, $8 }' >"$out/arm.instr"
   frames "$1" | while read -r name w h polys clears spans pixels instr; do
     written=$((pixels + clears * w * h))
     per_poly="n/a"
@@ -219,7 +234,7 @@ rv_table() { # RISCV-LOG ARM-LOG
       per_poly=$(fmt "$(awk -v i="$instr" -v p="$polys" 'BEGIN { print i / p }')" 0)
     fi
     per_px=$(fmt "$(awk -v i="$instr" -v p="$written" 'BEGIN { print i / p }')" 2)
-    arm=$(awk -v n="$name" '$1 == n { print $2 }' "$out/arm.instr")
+    arm=$(instructions_of "$name" "$out/arm.log")
     ratio=$(fmt "$(awk -v r="$instr" -v a="$arm" 'BEGIN { print r / a }')" 2)
     echo "| $name | $(thousands "$instr") | $per_poly | $per_px | ${ratio}× |"
   done
