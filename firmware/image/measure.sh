@@ -30,14 +30,19 @@ bin=scanvert-image
 out=$image_dir/target/measure
 mkdir -p "$out"
 
-# The run commands, exactly as CI and the docs give them (with a timeout).
+# The run commands, exactly as CI and the docs give them (with a timeout);
+# each is echoed to the log.
 qemu_arm() {
-  timeout 60 qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic \
-    -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1"
+  local cmd=(qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic
+    -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1")
+  echo "+ ${cmd[*]}" >&2
+  timeout 60 "${cmd[@]}"
 }
 qemu_rv() {
-  timeout 60 qemu-system-riscv32 -machine virt -nographic -bios none \
-    -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1"
+  local cmd=(qemu-system-riscv32 -machine virt -nographic -bios none
+    -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1")
+  echo "+ ${cmd[*]}" >&2
+  timeout 60 "${cmd[@]}"
 }
 
 build() { # NAME TARGET [cargo args...]: builds and copies the ELF to $out/NAME.elf
