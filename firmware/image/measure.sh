@@ -45,10 +45,16 @@ qemu_rv() {
   timeout 60 "${cmd[@]}"
 }
 
+# Panic locations put source paths into .rodata; remapped to fixed names
+# so that the sizes do not depend on where the repository or Cargo's home
+# are. (Cargo adds these to the rustflags of .cargo/config.toml.)
+cargo_home=${CARGO_HOME:-$HOME/.cargo}
 build() { # NAME TARGET [cargo args...]: builds and copies the ELF to $out/NAME.elf
   local name=$1 target=$2
   shift 2
-  cargo build --locked --release --target "$target" "$@" >&2
+  cargo build --locked --release --target "$target" \
+    --config "target.$target.rustflags=[\"--remap-path-prefix=$root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" \
+    "$@" >&2
   cp "target/$target/release/$bin" "$out/$name.elf"
 }
 
