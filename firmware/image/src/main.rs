@@ -14,9 +14,11 @@
 //! | `thumbv7em-none-eabihf` | QEMU `mps2-an386`, Cortex-M4F | SysTick, 40 instructions a tick under `-icount shift=0` |
 //! | `riscv32imc-unknown-none-elf` | QEMU `virt`, RV32IMC | `minstret`, exact under `-icount shift=0` |
 //!
-//! With the `defmt` feature (Cortex-M only) everything is logged through
-//! defmt over semihosting instead of plain text; decode it with
-//! `defmt-print -e IMAGE`.
+//! Features: `defmt` (Cortex-M only) logs everything through defmt over
+//! semihosting instead of plain text (decode it with `defmt-print -e
+//! IMAGE`); `discard` renders into a port that writes nothing, to count
+//! everything but the pixel writes; `packed` renders into a frame of two
+//! pixels per word (`src/packed.rs`), a measured proposal.
 #![no_std]
 #![no_main]
 #![deny(missing_docs)]
@@ -33,12 +35,12 @@ mod log;
 mod scenes;
 
 use core::convert::Infallible;
-#[cfg(not(feature = "discard"))]
+#[cfg(not(any(feature = "discard", feature = "packed")))]
 use scanvert::checksum::frame_checksum;
 use scanvert::controller::Controller;
 use scanvert::display_list::DisplayList;
 use scanvert::edge::Edge;
-#[cfg(not(feature = "discard"))]
+#[cfg(not(any(feature = "discard", feature = "packed")))]
 use scanvert::framebuffer::FrameBuffer;
 use scanvert::pixelcolor::{Rgb565, RgbColor};
 use scanvert::port::SpanTarget;
@@ -46,6 +48,8 @@ use scanvert::scan::Rasterizer;
 
 #[cfg(feature = "discard")]
 mod discard;
+#[cfg(feature = "packed")]
+mod packed;
 
 #[cfg(feature = "defmt")]
 use defmt_semihosting as _;
@@ -56,6 +60,23 @@ pub type Pixel = Rgb565;
 pub const BLACK: Pixel = Rgb565::BLACK;
 /// Largest frame: 512 × 256 pixels (256 KiB of RGB565).
 pub const FRAME_PIXELS: usize = 512 * 256;
+
+/// What the frame memory is made of: pixels, or (feature `packed`) words
+/// of two pixels.
+#[cfg(not(feature = "packed"))]
+pub type Cell = Pixel;
+/// What the frame memory is made of.
+#[cfg(feature = "packed")]
+pub type Cell = u32;
+/// Cells in the frame memory.
+pub const CELLS: usize =
+    FRAME_PIXELS * core::mem::size_of::<Pixel>() / core::mem::size_of::<Cell>();
+/// A black cell.
+#[cfg(not(feature = "packed"))]
+pub const BLACK_CELL: Cell = BLACK;
+/// A black cell.
+#[cfg(feature = "packed")]
+pub const BLACK_CELL: Cell = 0;
 
 /// One embedded display list and the checksum of the host's render of it.
 #[derive(Debug)]
@@ -142,7 +163,7 @@ where
 /// is no frame to check.
 fn frame(
     scene: &Scene,
-    pixels: &mut [Pixel],
+    pixels: &mut [Cell],
     edges: &mut [Edge],
     counter: &platform::Counter,
 ) -> bool {
@@ -162,7 +183,32 @@ fn frame(
         render(scene.name, &list, edges, &mut target, counter).is_some()
     }
 
-    #[cfg(not(feature = "discard"))]
+    #[cfg(all(feature = "packed", not(feature = "discard")))]
+    {
+        let words = pixels;
+        let n = w as usize / 2 * h as usize;
+        let Some(px) = words.get_mut(..n) else {
+            log::too_big(scene.name, w, h);
+            return false;
+        };
+        px.fill(0);
+        let Some(mut frame) = packed::PackedFrame::new(px, w, h) else {
+            log::too_big(scene.name, w, h);
+            return false;
+        };
+        if render(scene.name, &list, edges, &mut frame, counter).is_none() {
+            return false;
+        }
+        let checksum = frame.checksum();
+        log::checksum(scene.name, checksum);
+        if checksum != scene.checksum {
+            log::mismatch(scene.name, scene.checksum);
+            return false;
+        }
+        true
+    }
+
+    #[cfg(not(any(feature = "discard", feature = "packed")))]
     {
         let Some(px) = pixels.get_mut(..FrameBuffer::<Pixel>::buffer_len(w, h)) else {
             log::too_big(scene.name, w, h);

@@ -43,7 +43,7 @@ pub fn known_loop(n: u32) -> u64 {
     2 * (1 + n as u64 / 2)
 }
 
-/// The frame buffer: 512 × 256 RGB565 in `.bss`, handed out once.
-pub fn frame_memory() -> Option<&'static mut [crate::Pixel; crate::FRAME_PIXELS]> {
-    riscv::singleton!(: [crate::Pixel; crate::FRAME_PIXELS] = [crate::BLACK; crate::FRAME_PIXELS])
+/// The frame memory: 512 × 256 RGB565 in `.bss`, handed out once.
+pub fn frame_memory() -> Option<&'static mut [crate::Cell; crate::CELLS]> {
+    riscv::singleton!(: [crate::Cell; crate::CELLS] = [crate::BLACK_CELL; crate::CELLS])
 }
