@@ -21,6 +21,7 @@
 //! | port | [`port`], [`framebuffer`] | spans into memory (or hardware) |
 //! | controller | [`controller`] | runs a display list through all of the above |
 //! | colour | [`color`] | list colours to the frame buffer's pixel format |
+//! | embedded-graphics | `draw_target` (feature `embedded-graphics`) | spans into any `DrawTarget`; the frame buffer as a `DrawTarget` |
 //!
 //! # Example
 //!
@@ -60,6 +61,8 @@ pub mod clip;
 pub mod color;
 pub mod controller;
 pub mod display_list;
+#[cfg(feature = "embedded-graphics")]
+pub mod draw_target;
 pub mod edge;
 pub mod edge_dda;
 pub mod fixed;

@@ -1,0 +1,306 @@
+#!/usr/bin/env bash
+# Builds the firmware image, runs it in QEMU, and reports what it costs on
+# target: instructions per frame, per polygon and per pixel, and the size of
+# every variant of the image.
+#
+#   firmware/image/measure.sh           build, run, check, and rewrite the
+#                                       on-target section of docs/performance.md
+#   firmware/image/measure.sh --check   the same, but only print the section,
+#                                       and say whether the page is current (CI)
+#
+# Every frame's checksum must equal the host's (`scanvert checksum` of the
+# same lists) and the image must exit with status 0, or this fails.
+# Needs qemu-system-arm, and qemu-system-riscv32 for the RISC-V variant
+# (skipped with a note when it is missing).
+set -euo pipefail
+cd "$(dirname "$0")"
+image_dir=$PWD
+root=$(cd ../.. && pwd)
+
+mode=write
+case "${1:-}" in
+  "") ;;
+  --check) mode=check ;;
+  *) echo "usage: $0 [--check]" >&2; exit 2 ;;
+esac
+
+arm_target=thumbv7em-none-eabihf
+rv_target=riscv32imc-unknown-none-elf
+bin=scanvert-image
+out=$image_dir/target/measure
+mkdir -p "$out"
+
+# The run commands, exactly as CI and the docs give them (with a timeout);
+# each is echoed to the log.
+qemu_arm() {
+  local cmd=(qemu-system-arm -machine mps2-an386 -cpu cortex-m4 -nographic
+    -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1")
+  echo "+ ${cmd[*]}" >&2
+  timeout 60 "${cmd[@]}"
+}
+qemu_rv() {
+  local cmd=(qemu-system-riscv32 -machine virt -nographic -bios none
+    -semihosting-config enable=on,target=native -icount shift=0 -kernel "$1")
+  echo "+ ${cmd[*]}" >&2
+  timeout 60 "${cmd[@]}"
+}
+
+# Panic locations put source paths into .rodata; remapped to fixed names
+# so that the sizes do not depend on where the repository or Cargo's home
+# are. (Cargo adds these to the rustflags of .cargo/config.toml.)
+cargo_home=${CARGO_HOME:-$HOME/.cargo}
+build() { # NAME TARGET [cargo args...]: builds and copies the ELF to $out/NAME.elf
+  local name=$1 target=$2
+  shift 2
+  cargo build --locked --release --target "$target" \
+    --config "target.$target.rustflags=[\"--remap-path-prefix=$root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" \
+    "$@" >&2
+  cp "target/$target/release/$bin" "$out/$name.elf"
+}
+
+echo "== building the image variants" >&2
+build arm-defmt "$arm_target" --features defmt
+build arm-discard "$arm_target" --features discard
+build arm-packed "$arm_target" --features packed
+if [ "$(uname -m)" != riscv32 ]; then
+  build riscv "$rv_target"
+fi
+build arm "$arm_target"
+
+run() { # NAME QEMU-FUNCTION: runs $out/NAME.elf, output in $out/NAME.log
+  local name=$1 q=$2 status=0
+  "$q" "$out/$name.elf" </dev/null >"$out/$name.log" || status=$?
+  case "$name" in
+    *defmt*) echo "$name: $(wc -c <"$out/$name.log") bytes of defmt frames (decode with defmt-print -e $out/$name.elf)" >&2 ;;
+    *) cat "$out/$name.log" >&2 ;;
+  esac
+  if [ "$status" != 0 ]; then
+    echo "$name: the image exited with status $status" >&2
+    exit 1
+  fi
+}
+
+echo "== running in QEMU: $(qemu-system-arm --version | head -n 1)" >&2
+run arm qemu_arm
+# The defmt variant logs binary frames (decode with defmt-print); only
+# its exit status is checked here.
+run arm-defmt qemu_arm
+# Spans discarded: the count of everything but the pixel writes.
+run arm-discard qemu_arm
+# The frame packed two pixels to a word: a measured proposal.
+run arm-packed qemu_arm
+have_rv=no
+if command -v qemu-system-riscv32 >/dev/null; then
+  run riscv qemu_rv
+  have_rv=yes
+else
+  echo "qemu-system-riscv32 not found: the RISC-V variant is built, not run" >&2
+fi
+
+echo "== checksums: target against host" >&2
+(cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/*.scvl) \
+  | sort >"$out/host.sums"
+for name in arm arm-packed $( [ "$have_rv" = yes ] && echo riscv ); do
+  grep '^checksum ' "$out/$name.log" | sort >"$out/$name.sums"
+  if ! diff -u "$out/host.sums" "$out/$name.sums" >&2; then
+    echo "$name: checksums differ from the host's" >&2
+    exit 1
+  fi
+  echo "$name: $(wc -l <"$out/$name.sums") checksums equal the host's" >&2
+done
+
+# Section sizes of an ELF: "text rodata data bss image ram" in bytes.
+# Image: every allocated section with contents (what is loaded); RAM:
+# .data, .bss and .uninit.
+sizes() {
+  readelf -S -W "$1" | sed -n 's/^ *\[ *[0-9]*\] *//p' |
+    while read -r name type _addr _off size _es flags _rest; do
+      case "$flags" in *A*) echo "$name $type $((16#$size))" ;; esac
+    done | awk '
+      $1 == ".text" { text += $3 }
+      $1 == ".rodata" { ro += $3 }
+      $1 == ".data" { data += $3 }
+      $1 == ".bss" || $1 == ".uninit" { bss += $3 }
+      $2 == "PROGBITS" { image += $3 }
+      END { printf "%d %d %d %d %d %d\n", text, ro, data, bss, image, data + bss }'
+}
+
+lists_bytes=$(cat scenes/*.scvl | wc -c)
+frame_bytes=$((512 * 256 * 2))
+qemu_version=$(qemu-system-arm --version | head -n 1 | sed 's/^QEMU emulator version //')
+rustc_version=$(rustc --version)
+
+# The section, in Markdown.
+section() {
+  cat <<EOF
+Written by \`firmware/image/measure.sh\` from one run of the firmware
+image in QEMU $qemu_version with \`-icount shift=0\`; do not edit by
+hand. The counts repeat exactly from run to run. Compiler: $rustc_version,
+\`--release\` with \`opt-level = 3\`, fat LTO, one codegen unit. See
+[on-target.md](on-target.md) for the image and how to run it.
+
+### Cortex-M4F (\`thumbv7em-none-eabihf\`, QEMU \`mps2-an386\`)
+
+EOF
+  awk '/^calibration:/ { sub(/^calibration: /, ""); print "Counter check: " $0 "." }' "$out/arm.log"
+  cat <<'EOF'
+
+Each count is SysTick ticks × 40, read around `Controller::render`
+(list check, scan conversion and frame-buffer writes; the frame is
+cleared to black before, untimed), so it is a multiple of 40 and within
+40 of the true count. *Pixels* are those written: polygon pixels from
+the controller's `Stats`, plus the whole frame for each `clear`.
+*Without pixel writes* is the same render into a port that writes nothing
+(the image built with `--features discard`): list check, edge set-up,
+stepping and clipping. *Pixel writes* is the rest, as a share of the
+frame.
+
+The rates at 168 MHz are **estimates**: they assume one instruction per
+cycle. A real Cortex-M4 takes two or more cycles for many loads, stores
+and taken branches, and flash wait states at 168 MHz add more, so
+expect real rates to be lower.
+
+| scene | frame | polygons | spans | pixels | instructions per frame | per polygon | per pixel | without pixel writes | pixel writes | frames/s at 168 MHz (est.) | polygons/s at 168 MHz (est.) |
+|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
+EOF
+  table "$out/arm.log"
+  cat <<'EOF'
+
+#### Proposal: two pixels to a word
+
+`FrameBuffer` writes one `strh` a pixel. The image built with
+`--features packed` renders into a frame of RGB565 pixels packed two to
+a `u32` (`firmware/image/src/packed.rs`): a span is a half-word at an
+odd start or end and words in between, stored four at a time. Its
+checksums equal the host's too.
+
+| scene | `FrameBuffer` | packed | packed per pixel | `FrameBuffer` ÷ packed |
+|---|--:|--:|--:|--:|
+EOF
+  packed_table "$out/arm.log" "$out/arm-packed.log"
+  if [ "$have_rv" = yes ]; then
+    cat <<'EOF'
+
+### RV32IMC soft-core (`riscv32imc-unknown-none-elf`, QEMU `virt`)
+
+The same image and lists, counted exactly with `minstret`. No FPU and no
+atomics are needed. *vs M4F* is the instruction count over the
+Cortex-M4F's.
+
+| scene | instructions per frame | per polygon | per pixel | vs M4F |
+|---|--:|--:|--:|--:|
+EOF
+    rv_table "$out/riscv.log" "$out/arm.log"
+  fi
+  cat <<EOF
+
+### Image size
+
+Bytes per section, from \`readelf -S\`. *Flash* is everything loaded
+(vector table, \`.text\`, \`.rodata\`, \`.data\`); *static RAM* is
+\`.data\` + \`.bss\`, stack not included. \`.rodata\` holds the embedded
+display lists ($(thousands "$lists_bytes") B); \`.bss\` holds the
+512 × 256 RGB565 frame buffer ($(thousands "$frame_bytes") B). The
+columns *without* subtract those two, leaving the code and data of
+scanvert, the runtime, the log formatting and the image itself.
+
+| variant | \`.text\` | \`.rodata\` | \`.data\` | \`.bss\` | flash | static RAM | flash without lists | RAM without frame buffer |
+|---|--:|--:|--:|--:|--:|--:|--:|--:|
+EOF
+  size_row "Cortex-M4F, plain text log" "$out/arm.elf"
+  size_row "Cortex-M4F, \`defmt\` feature" "$out/arm-defmt.elf"
+  if [ -f "$out/riscv.elf" ]; then
+    size_row "RV32IMC (all in RAM), plain text log" "$out/riscv.elf"
+  fi
+}
+
+thousands() { printf "%s" "$1" | sed -e ':a' -e 's/\([0-9]\)\([0-9]\{3\}\)\($\|[,.]\)/\1,\2\3/;ta'; }
+
+size_row() { # LABEL ELF
+  read -r text ro data bss image ram < <(sizes "$2")
+  echo "| $1 | $(thousands "$text") | $(thousands "$ro") | $(thousands "$data") | $(thousands "$bss") | $(thousands "$image") | $(thousands "$ram") | $(thousands $((image - lists_bytes))) | $(thousands $((ram - frame_bytes))) |"
+}
+
+# "frame NAME WxH commands=.. polygons=.. clears=.. spans=.. pixels=.. ticks=.. instructions=.."
+# as "NAME W H polygons clears spans pixels instructions".
+frames() {
+  awk '$1 == "frame" {
+    split($3, wh, "x")
+    for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+    print $2, wh[1], wh[2], f["polygons"], f["clears"], f["spans"], f["pixels"], f["instructions"]
+  }' "$1"
+}
+
+# Instructions of NAME in LOG.
+instructions_of() { frames "$2" | awk -v n="$1" '$1 == n { print $8 }'; }
+
+fmt() { # NUMBER DECIMALS
+  thousands "$(awk -v v="$1" -v d="$2" 'BEGIN { printf("%." d "f", v) }')"
+}
+
+table() {
+  frames "$1" | while read -r name w h polys clears spans pixels instr; do
+    written=$((pixels + clears * w * h))
+    per_poly="n/a"; poly_rate="n/a"
+    if [ "$polys" -gt 0 ]; then
+      per_poly=$(fmt "$(awk -v i="$instr" -v p="$polys" 'BEGIN { print i / p }')" 0)
+      poly_rate=$(fmt "$(awk -v i="$instr" -v p="$polys" 'BEGIN { print 168e6 * p / i }')" 0)
+    fi
+    per_px=$(fmt "$(awk -v i="$instr" -v p="$written" 'BEGIN { print i / p }')" 2)
+    fps=$(fmt "$(awk -v i="$instr" 'BEGIN { print 168e6 / i }')" 1)
+    scan=$(instructions_of "$name" "$out/arm-discard.log")
+    writes=$(fmt "$(awk -v i="$instr" -v s="$scan" 'BEGIN { print 100 * (i - s) / i }')" 0)
+    echo "| $name | ${w}×${h} | $(thousands "$polys") | $(thousands "$spans") | $(thousands "$written") | $(thousands "$instr") | $per_poly | $per_px | $(thousands "$scan") | ${writes} % | $fps | $poly_rate |"
+  done
+}
+
+packed_table() { # ARM-LOG PACKED-LOG
+  frames "$2" | while read -r name w h polys clears spans pixels instr; do
+    written=$((pixels + clears * w * h))
+    base=$(instructions_of "$name" "$1")
+    per_px=$(fmt "$(awk -v i="$instr" -v p="$written" 'BEGIN { print i / p }')" 2)
+    ratio=$(fmt "$(awk -v b="$base" -v p="$instr" 'BEGIN { print b / p }')" 2)
+    echo "| $name | $(thousands "$base") | $(thousands "$instr") | $per_px | ${ratio}× |"
+  done
+}
+
+rv_table() { # RISCV-LOG ARM-LOG
+  frames "$1" | while read -r name w h polys clears spans pixels instr; do
+    written=$((pixels + clears * w * h))
+    per_poly="n/a"
+    if [ "$polys" -gt 0 ]; then
+      per_poly=$(fmt "$(awk -v i="$instr" -v p="$polys" 'BEGIN { print i / p }')" 0)
+    fi
+    per_px=$(fmt "$(awk -v i="$instr" -v p="$written" 'BEGIN { print i / p }')" 2)
+    arm=$(instructions_of "$name" "$out/arm.log")
+    ratio=$(fmt "$(awk -v r="$instr" -v a="$arm" 'BEGIN { print r / a }')" 2)
+    echo "| $name | $(thousands "$instr") | $per_poly | $per_px | ${ratio}× |"
+  done
+}
+
+section >"$out/section.md"
+echo "== on-target figures" >&2
+cat "$out/section.md"
+
+perf=$root/docs/performance.md
+begin='<!-- on-target:begin -->'
+end='<!-- on-target:end -->'
+# The page with the section between the markers (each on a line of its own)
+# replaced by $out/section.md.
+awk -v b="$begin" -v e="$end" -v f="$out/section.md" '
+  { line = $0; gsub(/^[ \t]+|[ \t]+$/, "", line) }
+  line == b && !done { print; while ((getline l < f) > 0) print l; skip = 1; next }
+  line == e && skip { print; skip = 0; done = 1; next }
+  !skip { print }' "$perf" >"$out/performance.md"
+if ! grep -qxF "$begin" "$perf" || ! grep -qxF "$end" "$perf"; then
+  echo "docs/performance.md has no on-target markers" >&2
+  exit 1
+fi
+if [ "$mode" = write ]; then
+  cp "$out/performance.md" "$perf"
+  echo "wrote the on-target section of docs/performance.md" >&2
+elif cmp -s "$out/performance.md" "$perf"; then
+  echo "docs/performance.md: the on-target section is current" >&2
+else
+  echo "docs/performance.md: the on-target section differs from this run; rerun firmware/image/measure.sh" >&2
+fi

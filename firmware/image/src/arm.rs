@@ -1,0 +1,91 @@
+//! Cortex-M4F on QEMU's `mps2-an386`: start-up, the instruction counter
+//! and the frame memory.
+//!
+//! QEMU models no cycles. With `-icount shift=0` every executed
+//! instruction advances virtual time by 1 ns, and SysTick, clocked from
+//! the core at 25 MHz on this board, advances one tick per 40
+//! instructions. The counts repeat exactly from run to run.
+
+use core::sync::atomic::{AtomicU32, Ordering};
+use cortex_m::peripheral::{syst::SystClkSource, SCB, SYST};
+use cortex_m_rt::{entry, exception};
+
+/// Instructions per tick of [`Counter`] (under `-icount shift=0`).
+pub const INSTRUCTIONS_PER_TICK: u64 = 40;
+/// What the counter counts, for the log.
+pub const COUNTER: &str = "SysTick from the core clock";
+/// The machine, for the log.
+pub const MACHINE: &str = "Cortex-M4F, QEMU mps2-an386";
+
+/// SysTick counts down from this value; a wrap is `RELOAD + 1` ticks.
+const RELOAD: u32 = 0x00ff_ffff;
+
+/// Wraps of SysTick since [`Counter::start`], counted by its exception.
+static WRAPS: AtomicU32 = AtomicU32::new(0);
+
+#[exception]
+fn SysTick() {
+    WRAPS.fetch_add(1, Ordering::Relaxed);
+}
+
+#[entry]
+fn main() -> ! {
+    crate::exit(crate::run())
+}
+
+/// SysTick, free-running from the core clock, extended to 64 bits by
+/// counting its wraps.
+pub struct Counter {
+    _syst: SYST,
+}
+
+impl Counter {
+    /// Starts SysTick, or `None` if it was already taken.
+    pub fn start() -> Option<Counter> {
+        let mut syst = cortex_m::Peripherals::take()?.SYST;
+        syst.set_clock_source(SystClkSource::Core);
+        syst.set_reload(RELOAD);
+        syst.clear_current();
+        syst.enable_interrupt();
+        syst.enable_counter();
+        // The write to the current value clears it; it takes the reload
+        // value on the next tick. Until then it reads 0, which would look
+        // like a whole wrap.
+        while SYST::get_current() == 0 {}
+        Some(Counter { _syst: syst })
+    }
+
+    /// Ticks since [`start`](Self::start).
+    ///
+    /// A wrap can happen between reading the wrap count and the counter,
+    /// and its exception can still be pending: a pending SysTick means the
+    /// counter has wrapped once more than counted, and it is read again
+    /// after the wrap. If the exception ran in between, the read repeats.
+    pub fn ticks(&self) -> u64 {
+        loop {
+            let wraps = WRAPS.load(Ordering::Relaxed);
+            let mut current = SYST::get_current();
+            let mut counted = wraps as u64;
+            if SCB::is_pendst_pending() {
+                current = SYST::get_current();
+                counted += 1;
+            }
+            if WRAPS.load(Ordering::Relaxed) == wraps {
+                return counted * (RELOAD as u64 + 1) + (RELOAD - current) as u64;
+            }
+        }
+    }
+}
+
+/// A loop of a known number of instructions: `cortex_m::asm::delay(n)`
+/// runs `subs; bne` `n + 1` times. Returns the instructions it executes
+/// in the loop for `n`.
+pub fn known_loop(n: u32) -> u64 {
+    cortex_m::asm::delay(n);
+    2 * (n as u64 + 1)
+}
+
+/// The frame memory: 512 × 256 RGB565 in `.bss`, handed out once.
+pub fn frame_memory() -> Option<&'static mut [crate::Cell; crate::CELLS]> {
+    cortex_m::singleton!(: [crate::Cell; crate::CELLS] = [crate::BLACK_CELL; crate::CELLS])
+}

@@ -1,0 +1,134 @@
+//! What the image reports: plain text through semihosting, or defmt
+//! frames with the `defmt` feature. The lines starting `frame` and
+//! `checksum` are read by `measure.sh` and by CI.
+
+use crate::Cost;
+use core::convert::Infallible;
+use scanvert::controller::{RenderError, Stats};
+use scanvert::display_list::Error;
+
+#[cfg(not(feature = "defmt"))]
+use semihosting::println;
+
+/// The banner.
+pub fn start(machine: &str, counter: &str, per_tick: u64) {
+    #[cfg(not(feature = "defmt"))]
+    println!("scanvert image on {machine}: {counter}, {per_tick} instructions per tick");
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "scanvert image on {=str}: {=str}, {=u64} instructions per tick",
+        machine,
+        counter,
+        per_tick
+    );
+}
+
+/// The check of the counter against the known loop.
+pub fn calibration(expected: u64, ticks: u64, measured: u64, ok: bool) {
+    let verdict = if ok { "ok" } else { "WRONG" };
+    #[cfg(not(feature = "defmt"))]
+    println!("calibration: loop of {expected} instructions, {ticks} ticks = {measured} instructions: {verdict}");
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "calibration: loop of {=u64} instructions, {=u64} ticks = {=u64} instructions: {=str}",
+        expected,
+        ticks,
+        measured,
+        verdict
+    );
+}
+
+/// One frame's statistics and cost.
+pub fn frame(name: &str, w: u16, h: u16, s: &Stats, cost: Cost) {
+    #[cfg(not(feature = "defmt"))]
+    println!(
+        "frame {name} {w}x{h} commands={} polygons={} clears={} spans={} pixels={} ticks={} instructions={}",
+        s.commands, s.polygons, s.clears, s.spans, s.pixels, cost.ticks, cost.instructions
+    );
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "frame {=str} {=u16}x{=u16} {} ticks={=u64} instructions={=u64}",
+        name,
+        w,
+        h,
+        s,
+        cost.ticks,
+        cost.instructions
+    );
+}
+
+/// One frame's checksum, in the form `scanvert checksum` prints.
+#[cfg(not(feature = "discard"))]
+pub fn checksum(name: &str, sum: u32) {
+    #[cfg(not(feature = "defmt"))]
+    println!("checksum {name} {sum:08x}");
+    #[cfg(feature = "defmt")]
+    defmt::info!("checksum {=str} {=u32:08x}", name, sum);
+}
+
+/// A frame whose checksum is not the host's.
+#[cfg(not(feature = "discard"))]
+pub fn mismatch(name: &str, expected: u32) {
+    #[cfg(not(feature = "defmt"))]
+    println!("MISMATCH {name}: the host's checksum is {expected:08x}");
+    #[cfg(feature = "defmt")]
+    defmt::error!(
+        "MISMATCH {=str}: the host's checksum is {=u32:08x}",
+        name,
+        expected
+    );
+}
+
+/// An embedded list that does not read.
+pub fn bad_list(name: &str, e: Error) {
+    #[cfg(not(feature = "defmt"))]
+    println!("ERROR {name}: {e}");
+    #[cfg(feature = "defmt")]
+    defmt::error!("ERROR {=str}: {}", name, e);
+}
+
+/// A list whose frame does not fit the frame buffer.
+#[cfg(not(feature = "discard"))]
+pub fn too_big(name: &str, w: u16, h: u16) {
+    #[cfg(not(feature = "defmt"))]
+    println!("ERROR {name}: frame {w}x{h} is larger than the frame buffer");
+    #[cfg(feature = "defmt")]
+    defmt::error!(
+        "ERROR {=str}: frame {=u16}x{=u16} is larger than the frame buffer",
+        name,
+        w,
+        h
+    );
+}
+
+/// A render that failed.
+pub fn render_error(name: &str, e: RenderError<Infallible>) {
+    #[cfg(not(feature = "defmt"))]
+    println!("ERROR {name}: {e}");
+    #[cfg(feature = "defmt")]
+    defmt::error!("ERROR {=str}: {}", name, e);
+}
+
+/// A fault outside any frame.
+pub fn fault(what: &str) {
+    #[cfg(not(feature = "defmt"))]
+    println!("ERROR {what}");
+    #[cfg(feature = "defmt")]
+    defmt::error!("ERROR {=str}", what);
+}
+
+/// The verdict.
+pub fn summary(matched: usize, frames: usize, ok: bool) {
+    let verdict = if ok { "PASS" } else { "FAIL" };
+    #[cfg(all(not(feature = "defmt"), feature = "discard"))]
+    println!("{verdict}: {matched} of {frames} frames rendered (spans discarded, no checksums)");
+    #[cfg(all(not(feature = "defmt"), not(feature = "discard")))]
+    println!("{verdict}: {matched} of {frames} frames equal the host's");
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "{=str}: {=usize} of {=usize} frames equal the host's",
+        verdict,
+        matched,
+        frames
+    );
+}

@@ -1,0 +1,49 @@
+//! RV32IMC on QEMU's `virt` board (a stand-in for an FPGA soft-core):
+//! start-up, the instruction counter and the frame memory.
+//!
+//! The counter is `minstret`, the machine's retired-instruction counter.
+//! Under `-icount shift=0` QEMU derives it from its instruction count, so
+//! it is exact and repeats from run to run.
+
+use riscv_rt::entry;
+
+/// Instructions per tick of [`Counter`].
+pub const INSTRUCTIONS_PER_TICK: u64 = 1;
+/// What the counter counts, for the log.
+pub const COUNTER: &str = "minstret";
+/// The machine, for the log.
+pub const MACHINE: &str = "RV32IMC, QEMU virt";
+
+#[entry]
+fn main() -> ! {
+    crate::exit(crate::run())
+}
+
+/// `minstret`, 64 bits.
+#[derive(Debug)]
+pub struct Counter(());
+
+impl Counter {
+    /// The counter runs from reset; nothing to start.
+    pub fn start() -> Option<Counter> {
+        Some(Counter(()))
+    }
+
+    /// Instructions retired since reset.
+    pub fn ticks(&self) -> u64 {
+        riscv::register::minstret::read64()
+    }
+}
+
+/// A loop of a known number of instructions: `riscv::asm::delay(n)` runs
+/// `addi; bne` `1 + n / 2` times. Returns the instructions it executes in
+/// the loop for `n`.
+pub fn known_loop(n: u32) -> u64 {
+    riscv::asm::delay(n);
+    2 * (1 + n as u64 / 2)
+}
+
+/// The frame memory: 512 × 256 RGB565 in `.bss`, handed out once.
+pub fn frame_memory() -> Option<&'static mut [crate::Cell; crate::CELLS]> {
+    riscv::singleton!(: [crate::Cell; crate::CELLS] = [crate::BLACK_CELL; crate::CELLS])
+}
