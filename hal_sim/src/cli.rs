@@ -23,7 +23,7 @@ use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
 use scanvert::segment::{Face, Segment, StoreMemory};
 use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Resolve};
+use scanvert::visible::{Active, Cover, Resolve};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -173,6 +173,7 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     let mut segments = [Segment::EMPTY; 1];
     let mut rows = vec![0u16; need.rows];
     let mut active = vec![Active::EMPTY; need.trapezoids];
+    let mut cover = vec![Cover::EMPTY; need.trapezoids];
     let mut runs = vec![Run::EMPTY; need.runs];
     let mut controller = Controller::new(Rasterizer::new(&mut edges));
     if need.poly3 > 0 {
@@ -185,6 +186,7 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
                 edges: &mut slots,
             },
             active: &mut active,
+            cover: &mut cover,
             runs: &mut runs,
             resolve: Resolve::default(),
         });

@@ -11,10 +11,11 @@
 //! contenders with each other, not a target's figures.
 //! `-- --profile SCENE MODE FRAMES` only resolves and decodes one scene
 //! (`flat`, `tilted` or `bars`; `Bisect`, `Crossing` or `zbuffer`), for
-//! counting instructions under callgrind.
+//! counting instructions under callgrind; `-- --write-lists DIR` writes
+//! the scenes as binary display lists.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use host_tests::harness3d::{color_of, index_of, vertex3};
+use host_tests::harness3d::{build_list3, color_of, index_of, vertex3};
 use host_tests::reference3d::{drawn, resolve, Poly3};
 use scanvert::clip::ClipRect;
 use scanvert::edge::Edge;
@@ -25,7 +26,7 @@ use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
 use scanvert::segment::{Face, Segment, StoreMemory, TrapezoidStore};
 use scanvert::trapezoid::{Depth, EdgeSlot, Plane, Trapezoid};
-use scanvert::visible::{self, Active, Resolve, Workspace};
+use scanvert::visible::{self, Active, Cover, Resolve, Workspace};
 use std::convert::Infallible;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -253,6 +254,13 @@ fn main() {
         ("bars", bars(&mut rng)),
     ];
     let args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) == Some("--write-lists") {
+        for (name, scene) in &scenes {
+            let path = std::path::Path::new(&args[1]).join(format!("{name}.scvl"));
+            std::fs::write(&path, build_list3(scene, W, H)).expect("write the list");
+        }
+        return;
+    }
     if args.first().map(String::as_str) == Some("--profile") {
         let scene = &scenes.iter().find(|s| s.0 == args[1]).expect("scene").1;
         let frames: u32 = args[3].parse().expect("frames");
@@ -304,8 +312,9 @@ fn main() {
         fill(&mut store);
 
         let mut active = vec![Active::EMPTY; store.len()];
+        let mut cover = vec![Cover::EMPTY; store.len()];
         let mut runs = vec![Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut runs);
+        let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
         let most = ws.check(&store).unwrap();
         for mode in [Resolve::Bisect, Resolve::Crossing] {
             // Error: decode into 24-bit colour and compare pixel by pixel.
@@ -455,8 +464,9 @@ fn profile(scene: &[Poly3], mode: &str, frames: u32) {
             .unwrap();
     }
     let mut active = vec![Active::EMPTY; store.len()];
+    let mut cover = vec![Cover::EMPTY; store.len()];
     let mut runs = vec![Run::EMPTY; W as usize];
-    let mut ws = Workspace::new(&mut active, &mut runs);
+    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
     for f in 0..frames {
         let (stats, counts) =
             visible::draw(&store, &mut ws, mode, &mut fb, Some(Rgb565::BLACK)).unwrap();

@@ -17,7 +17,7 @@ use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
 use scanvert::segment::{Face, Segment, StoreMemory};
 use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Resolve};
+use scanvert::visible::{Active, Cover, Resolve};
 
 /// The colour of the `k`-th `poly3` (never the black background).
 pub fn color_of(k: usize) -> Rgb888 {
@@ -82,6 +82,7 @@ pub fn render3(
     let mut segs = [Segment::EMPTY; 1];
     let mut rows = vec![0u16; need.rows];
     let mut active = vec![Active::EMPTY; need.trapezoids];
+    let mut cover = vec![Cover::EMPTY; need.trapezoids];
     let mut runs = vec![Run::EMPTY; need.runs];
     let mut pixels = vec![Rgb888::WHITE; width as usize * height as usize];
     let mut fb = FrameBuffer::new(&mut pixels, width, height).expect("frame size");
@@ -95,6 +96,7 @@ pub fn render3(
                 edges: &mut slots,
             },
             active: &mut active,
+            cover: &mut cover,
             runs: &mut runs,
             resolve: mode,
         })

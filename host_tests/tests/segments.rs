@@ -8,7 +8,7 @@ use scanvert::clip::ClipRect;
 use scanvert::rle::Run;
 use scanvert::segment::{Counters, Face, Segment, StoreMemory, TrapezoidStore};
 use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Resolve, Workspace};
+use scanvert::visible::{Active, Cover, Resolve, Workspace};
 
 const W: u16 = 96;
 const H: u16 = 64;
@@ -86,9 +86,10 @@ fn fill(store: &mut TrapezoidStore<'_>, s: usize, version: i32) {
 /// The frame as colours, row-major.
 fn picture(store: &TrapezoidStore<'_>) -> Vec<Option<Rgb888>> {
     let mut active = vec![Active::EMPTY; 256];
+    let mut cover = vec![Cover::EMPTY; 256];
     let mut runs = vec![Run::EMPTY; W as usize];
     let mut out = Vec::new();
-    Workspace::new(&mut active, &mut runs)
+    Workspace::new(&mut active, &mut cover, &mut runs)
         .resolve(store, Resolve::default(), |_, runs| {
             for r in runs {
                 let c = (!r.is_background()).then(|| store.face(r.ink()).unwrap().color());

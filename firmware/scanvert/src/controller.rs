@@ -28,7 +28,7 @@ use crate::rle::Run;
 use crate::scan::{FillError, Rasterizer};
 use crate::segment::{StoreError, StoreMemory, TrapezoidStore};
 use crate::trapezoid::{EdgeSlot, Polygon};
-use crate::visible::{self, Active, Resolve, VisibleError, VisibleStats, Workspace};
+use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
@@ -192,6 +192,8 @@ pub struct Storage3d<'a> {
     pub store: StoreMemory<'a>,
     /// The active list.
     pub active: &'a mut [Active],
+    /// The cover array: as many as the active list.
+    pub cover: &'a mut [Cover],
     /// One row of runs: the frame's width is always enough.
     pub runs: &'a mut [Run],
     /// How intersecting spans are resolved.
@@ -302,7 +304,7 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 ///     controller::{Controller, Storage3d}, display_list::{DisplayList, Writer}, edge::Edge,
 ///     fixed::{Coord, Vertex3}, framebuffer::FrameBuffer, rle::Run, scan::Rasterizer,
 ///     segment::{Face, Segment, StoreMemory}, trapezoid::{EdgeSlot, Trapezoid},
-///     visible::{Active, Resolve},
+///     visible::{Active, Cover, Resolve},
 /// };
 ///
 /// let v = |x: i16, y: i16, z: i16| Vertex3 { x: Coord::from_bits(x * 16), y: Coord::from_bits(y * 16), z: Coord::from_bits(z * 16) };
@@ -317,10 +319,11 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 /// let mut edges = [Edge::EMPTY; 8];
 /// let (mut traps, mut faces, mut segs) = ([Trapezoid::EMPTY; 32], [Face::EMPTY; 8], [Segment::EMPTY; 1]);
 /// let (mut rows, mut slots) = ([0u16; 16], [EdgeSlot::EMPTY; 8]);
-/// let (mut active, mut runs) = ([Active::EMPTY; 16], [Run::EMPTY; 32]);
+/// let (mut active, mut cover, mut runs) = ([Active::EMPTY; 16], [Cover::EMPTY; 16], [Run::EMPTY; 32]);
 /// let storage = Storage3d {
 ///     store: StoreMemory { trapezoids: &mut traps, faces: &mut faces, segments: &mut segs, rows: &mut rows, edges: &mut slots },
 ///     active: &mut active,
+///     cover: &mut cover,
 ///     runs: &mut runs,
 ///     resolve: Resolve::Crossing,
 /// };
@@ -549,7 +552,7 @@ fn build_layer<'t, E>(
         stats.trapezoids += n;
         Ok(())
     })?;
-    let mut ws = Workspace::new(&mut *t.active, &mut *t.runs);
+    let mut ws = Workspace::new(&mut *t.active, &mut *t.cover, &mut *t.runs);
     ws.check(&store).map_err(|e| match e {
         VisibleError::Active { capacity } => full(first, (Resource::Active, capacity)),
         VisibleError::Runs { capacity } => full(first, (Resource::Runs, capacity)),
@@ -588,6 +591,7 @@ mod tests {
         rows: [u16; H as usize],
         slots: [EdgeSlot; 8],
         active: [Active; 8],
+        cover: [Cover; 8],
         runs: [Run; W as usize],
     }
 
@@ -601,6 +605,7 @@ mod tests {
                 rows: [0; H as usize],
                 slots: [EdgeSlot::EMPTY; 8],
                 active: [Active::EMPTY; 8],
+                cover: [Cover::EMPTY; 8],
                 runs: [Run::EMPTY; W as usize],
             }
         }
@@ -628,6 +633,7 @@ mod tests {
                         edges: &mut self.slots,
                     },
                     active: &mut self.active,
+                    cover: &mut self.cover,
                     runs: &mut self.runs,
                     resolve: Resolve::Bisect,
                 });

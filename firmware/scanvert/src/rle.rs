@@ -146,6 +146,16 @@ impl<'r> RunWriter<'r> {
         Ok(())
     }
 
+    /// Appends a run as it is, without merging; does nothing when the
+    /// buffer is full (callers that size it check first).
+    #[inline]
+    pub fn append(&mut self, len: u16, ink: u16) {
+        if let Some(slot) = self.runs.get_mut(self.n) {
+            *slot = Run { len, ink };
+            self.n += 1;
+        }
+    }
+
     /// The ink of the last run, if any.
     #[inline]
     pub fn last_ink(&self) -> Option<u16> {

@@ -14,7 +14,7 @@
 //!
 //! | pool | slot | holds | limit |
 //! |---|---|---|---|
-//! | trapezoids | [`Trapezoid`], 88 bytes | edges, depth, links | 65535 |
+//! | trapezoids | [`Trapezoid`], 92 bytes | edges, depth, colour, links | 65535 |
 //! | faces | [`Face`], 48–64 bytes | exact plane, colour, tie key | 65535 |
 //! | segments | [`Segment`], 28 bytes | chains and counters | 65535 |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
@@ -562,7 +562,7 @@ impl<'a> TrapezoidStore<'a> {
                     capacity: pool_len(cap) as usize,
                 },
             )?;
-            let mut tr = Trapezoid::new(l, r, &depth, f, &clip);
+            let mut tr = Trapezoid::new(l, r, &depth, f, color, &clip);
             // Rows are inside the frame: the edges were cut to the clip.
             let top = tr.top() as usize;
             let head = rows.get(top).copied().unwrap_or(NONE);

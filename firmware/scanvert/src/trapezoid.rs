@@ -77,9 +77,12 @@
 //! ```
 //!
 //! in units of 2⁻¹⁴ of a Q12.4 unit (2⁻¹⁸ px), as
-//! `Z̃(i, j) = z + i·zx + j·zy` with `z`, `zx`, `zy` each rounded to the
-//! nearest integer and all arithmetic wrapping in `i32`. The error is at
-//! most `½·(1 + i + j) < 2¹²` for `0 ≤ i, j < 4096`, so two depths that
+//! `Z̃(i, j) = z + i·zx + j·zy`, all arithmetic wrapping in `i32`: `zx`
+//! and `zy` are the slopes rounded to the nearest integer, and `z` makes
+//! `Z̃` the rounded depth at an anchor pixel `(i₀, j₀)`, the first
+//! vertex's pixel clamped to `0..4096` (there the numerator is small, so
+//! the division is in `i64`). The error is at most
+//! `½·(1 + |i − i₀| + |j − j₀|) < 2¹²` for `0 ≤ i, j < 4096`, so two depths that
 //! differ by [`DEPTH_TOLERANCE`] (2¹³) or more compare the same way exactly;
 //! closer ones are compared exactly with [`Plane::cmp_at`]. The value is
 //! exact modulo 2³², so huge slopes (faces nearly edge-on) wrap but still
@@ -97,6 +100,7 @@ use crate::edge::Edge;
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
 use core::cmp::Ordering;
 use core::fmt;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 /// Fraction bits of [`Depth`] below a Q12.4 unit of depth.
 pub const Z_FRAC_BITS: u32 = 14;
@@ -116,6 +120,8 @@ pub struct Plane {
     b: i64,
     c: i64,
     d: i128,
+    /// The point it was made through (the first vertex), in units.
+    origin: (i16, i16, i16),
 }
 
 /// The running sums of [`Plane::of`], fed one edge at a time.
@@ -153,7 +159,13 @@ impl PlaneSums {
         let sign = if self.c < 0 { -1 } else { 1 };
         let (a, b, c) = (sign * self.a, sign * self.b, sign * self.c);
         let d = a as i128 * x as i128 + b as i128 * y as i128 + c as i128 * z as i128;
-        Some(Plane { a, b, c, d })
+        Some(Plane {
+            a,
+            b,
+            c,
+            d,
+            origin: (f.x.to_bits(), f.y.to_bits(), f.z.to_bits()),
+        })
     }
 }
 
@@ -164,6 +176,7 @@ impl Plane {
         b: 0,
         c: 1,
         d: 0,
+        origin: (0, 0, 0),
     };
 
     /// The plane of the polygon through `vertices` (closed implicitly), or
@@ -217,22 +230,37 @@ impl Plane {
         let s = 1i128 << Z_FRAC_BITS;
         // Numerators below 2⁸², so the doubling in `round_div` cannot
         // overflow; wrapping to `i32` keeps the value modulo 2³².
-        let zx = round_div(-16 * s * a, c);
-        let zy = round_div(-16 * s * b, c);
-        let z = round_div(s * (self.d - 8 * a - 8 * b), c);
-        Depth {
-            z: z as i32,
-            zx: zx as i32,
-            zy: zy as i32,
-        }
+        let zx = round_div(-16 * s * a, c) as i32;
+        let zy = round_div(-16 * s * b, c) as i32;
+        // The depth is rounded at the anchor, the pixel of the first vertex
+        // (clamped to the pixel range), where the numerator is small:
+        // Z(i₀, j₀) = 2¹⁴·z₀ + 2¹⁴·(a·(x₀ − px) + b·(y₀ − py)) / c, below
+        // 2⁵² for an ordinary polygon inside the frame, so `i64` does.
+        let (x0, y0, z0) = (
+            self.origin.0 as i32,
+            self.origin.1 as i32,
+            self.origin.2 as i32,
+        );
+        let (i0, j0) = ((x0 >> 4).clamp(0, 4095), (y0 >> 4).clamp(0, 4095));
+        let (dx, dy) = ((x0 - 16 * i0 - 8) as i128, (y0 - 16 * j0 - 8) as i128);
+        let at = (z0 as i128) * s + round_div(s * (a * dx + b * dy), c);
+        let z = (at as i32)
+            .wrapping_sub(zx.wrapping_mul(i0))
+            .wrapping_sub(zy.wrapping_mul(j0));
+        Depth { z, zx, zy }
     }
 }
 
-/// `n / c` rounded to the nearest integer (halves up), `c > 0`, in `i64`
-/// when the numbers fit.
+/// `n / c` rounded to the nearest integer (halves up), `c > 0`, in `i32`
+/// or `i64` when the numbers fit.
 #[inline]
 fn round_div(n: i128, c: i64) -> i128 {
     let (n2, c2) = (2 * n + c as i128, 2 * c as i128);
+    // The narrowest division that holds the numbers: on 32-bit targets a
+    // 32-bit division is one instruction, a 64-bit one a loop.
+    if let (Ok(n2), Ok(c2)) = (i32::try_from(n2), i32::try_from(c2)) {
+        return n2.div_euclid(c2) as i128;
+    }
     match (i64::try_from(n2), i64::try_from(c2)) {
         (Ok(n2), Ok(c2)) => n2.div_euclid(c2) as i128,
         _ => n2.div_euclid(c2),
@@ -245,7 +273,8 @@ fn round_div(n: i128, c: i64) -> i128 {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Depth {
-    /// `Z̃` at pixel `(0, 0)` (of the plane, wherever the polygon is).
+    /// `Z̃` at pixel `(0, 0)` (of the plane, wherever the polygon is;
+    /// wrapped).
     pub z: i32,
     /// `∂Z/∂i`: change per pixel to the right.
     pub zx: i32,
@@ -281,8 +310,8 @@ impl Depth {
 /// a face.
 ///
 /// # Size
-/// 88 bytes: two [`Edge`]s of 32, three `i32`, six `u16` (face, columns,
-/// and the store's links).
+/// 92 bytes: two [`Edge`]s of 32, four `i32` (depth, colour), six `u16`
+/// (face, columns, and the store's links).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Trapezoid {
     pub(crate) left: Edge,
@@ -290,6 +319,7 @@ pub struct Trapezoid {
     pub(crate) z: i32,
     pub(crate) zx: i32,
     pub(crate) zy: i32,
+    pub(crate) color: u32,
     pub(crate) face: u16,
     pub(crate) x0: u16,
     pub(crate) x1: u16,
@@ -301,6 +331,12 @@ pub struct Trapezoid {
 /// "No link" in the store's `u16` links.
 pub(crate) const NONE: u16 = u16::MAX;
 
+/// A colour as `0x00rrggbb`.
+#[inline]
+pub(crate) fn rgb_bits(c: Rgb888) -> u32 {
+    (c.r() as u32) << 16 | (c.g() as u32) << 8 | c.b() as u32
+}
+
 impl Trapezoid {
     /// An unused slot.
     pub const EMPTY: Trapezoid = Trapezoid {
@@ -309,6 +345,7 @@ impl Trapezoid {
         z: 0,
         zx: 0,
         zy: 0,
+        color: 0,
         face: NONE,
         x0: 0,
         x1: 0,
@@ -318,15 +355,23 @@ impl Trapezoid {
     };
 
     /// The trapezoid between `left` and `right` (from [`Polygon::cut`],
-    /// same rows) of face `face` with depth `depth`, writing only the
-    /// columns of `clip`.
-    pub fn new(left: Edge, right: Edge, depth: &Depth, face: u16, clip: &ClipRect) -> Self {
+    /// same rows) of face `face` in colour `color` with depth `depth`,
+    /// writing only the columns of `clip`.
+    pub fn new(
+        left: Edge,
+        right: Edge,
+        depth: &Depth,
+        face: u16,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Self {
         Trapezoid {
             left,
             right,
             z: depth.at(0, left.top()),
             zx: depth.zx,
             zy: depth.zy,
+            color: rgb_bits(color),
             face,
             x0: clip.x0(),
             x1: clip.x1(),
@@ -359,6 +404,12 @@ impl Trapezoid {
     /// The face (polygon) it belongs to.
     pub fn face(&self) -> u16 {
         self.face
+    }
+
+    /// Its colour (the face's, kept here for the renderer).
+    pub fn color(&self) -> Rgb888 {
+        let c = self.color;
+        Rgb888::new((c >> 16) as u8, (c >> 8) as u8, c as u8)
     }
 
     /// The columns `x0..x1` it may write.
@@ -806,7 +857,7 @@ mod tests {
         let depth = p.plane().map(|p| p.depth()).unwrap_or_default();
         let n = p
             .cut(|l, r| {
-                let t = Trapezoid::new(l, r, &depth, 0, clip);
+                let t = Trapezoid::new(l, r, &depth, 0, Rgb888::new(0, 0, 0), clip);
                 for j in t.top()..t.end() {
                     let (a, b) = t.span_at(j).unwrap();
                     for i in a..b {
@@ -926,8 +977,8 @@ mod tests {
             assert_eq!(lhs, p.offset());
         }
         // Winding does not matter.
-        let rev = [tri[2], tri[1], tri[0]];
-        assert_eq!(Plane::of(rev), Some(p));
+        let rev = Plane::of([tri[2], tri[1], tri[0]]).unwrap();
+        assert_eq!((rev.normal(), rev.offset()), (p.normal(), p.offset()));
     }
 
     #[test]
@@ -959,12 +1010,9 @@ mod tests {
                     continue;
                 }
                 let got = d.at(i, j) as i128;
-                // |got − exact/den| ≤ ½(1 + i + j).
+                // |got − exact/den| ≤ ½(1 + |i − i₀| + |j − j₀|) < 4096.
                 let err2 = (2 * (got * den as i128 - exact)).abs();
-                assert!(
-                    err2 <= (1 + i + j) as i128 * den as i128,
-                    "{tri:?} at ({i}, {j})"
-                );
+                assert!(err2 < 8192 * den as i128, "{tri:?} at ({i}, {j})");
             }
         }
     }

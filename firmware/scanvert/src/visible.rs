@@ -49,8 +49,9 @@
 //!
 //! # Memory
 //!
-//! An [`Active`] entry is 136 bytes (two edges, depth, and one element
-//! each of the sorted, cover and free arrays); the list needs as many as trapezoids overlap one
+//! An [`Active`] entry is 112 bytes (two edges, depth, and one element
+//! each of the sorted and free arrays) and a [`Cover`] 16; the list needs
+//! as many of each as trapezoids overlap one
 //! row ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
 //!
@@ -63,7 +64,6 @@ use crate::rle::{decode_row, Run, RunWriter, RunsFull};
 use crate::segment::TrapezoidStore;
 use crate::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
-use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How an intersecting span is subdivided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -83,19 +83,17 @@ pub enum Resolve {
     Crossing,
 }
 
-/// One entry of the active list (136 bytes). The caller provides the
-/// array, filled with [`Active::EMPTY`].
+/// One entry of the active list (112 bytes on 32-bit targets). The
+/// caller provides the array, filled with [`Active::EMPTY`].
 ///
 /// Each entry holds one active trapezoid's stepping state (at a slot that
-/// does not move while it is active) and one element of each of three
+/// does not move while it is active) and one element of each of two
 /// arrays the resolution works on: the live trapezoids sorted by `l` with
-/// what the sweep reads, the trapezoids covering the current span, and
-/// the stack of free slots.
+/// what the sweep reads, and the stack of free slots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Active {
     entry: Entry,
     hot: Hot,
-    cov: Cover,
     free: u16,
 }
 
@@ -108,6 +106,7 @@ struct Entry {
     z: i32,
     zx: i32,
     zy: i32,
+    color: u32,
     face: u16,
     x0: u16,
     x1: u16,
@@ -116,30 +115,36 @@ struct Entry {
 /// A live trapezoid on the current row, in the array sorted by `l`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Hot {
-    /// Pixels `l..r` on the row, cut to the columns.
+    /// Pixels `l..r` on the row, cut to the columns; `l` is the frame's
+    /// width when there is none, so that it sorts last and never enters.
     l: i32,
     r: i32,
     z: i32,
     zx: i32,
+    color: u32,
     face: u16,
     slot: u16,
 }
 
-/// A trapezoid covering the current span, in the array sorted by
-/// decreasing `r`.
+/// One entry of the cover array (20 bytes): a trapezoid covering the
+/// current span. The caller provides the array, as many as the active
+/// list, filled with [`Cover::EMPTY`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Cover {
+pub struct Cover {
     r: i32,
     z: i32,
     zx: i32,
+    color: u32,
     face: u16,
 }
 
 impl Cover {
-    const EMPTY: Cover = Cover {
+    /// An unused entry.
+    pub const EMPTY: Cover = Cover {
         r: 0,
         z: 0,
         zx: 0,
+        color: 0,
         face: NONE,
     };
 
@@ -156,6 +161,7 @@ impl Entry {
         z: 0,
         zx: 0,
         zy: 0,
+        color: 0,
         face: NONE,
         x0: 0,
         x1: 0,
@@ -168,6 +174,7 @@ impl Entry {
             z: t.z,
             zx: t.zx,
             zy: t.zy,
+            color: t.color,
             face: t.face,
             x0: t.x0,
             x1: t.x1,
@@ -179,11 +186,16 @@ impl Entry {
     fn hot(&mut self, slot: u16) -> Hot {
         self.left.load_pixel();
         self.right.load_pixel();
+        let l = self.left.pixel().max(self.x0 as i32);
+        let r = self.right.pixel().min(self.x1 as i32);
         Hot {
-            l: self.left.pixel().max(self.x0 as i32),
-            r: self.right.pixel().min(self.x1 as i32),
+            // No pixel: sorted last, never entered (x1 is the width at
+            // most).
+            l: if l < r { l } else { i32::MAX },
+            r,
             z: self.z,
             zx: self.zx,
+            color: self.color,
             face: self.face,
             slot,
         }
@@ -199,10 +211,10 @@ impl Active {
             r: 0,
             z: 0,
             zx: 0,
+            color: 0,
             face: NONE,
             slot: 0,
         },
-        cov: Cover::EMPTY,
         free: 0,
     };
 }
@@ -261,6 +273,9 @@ pub struct VisibleStats {
     pub trapezoids: u32,
     /// Most entries active on one row.
     pub max_active: u32,
+    /// Trapezoids left out of a row where they start, because the
+    /// trapezoid in front where they start is in front of all of them.
+    pub hidden: u32,
     /// Spans with no trapezoid.
     pub empty: u32,
     /// Spans with one trapezoid.
@@ -277,23 +292,29 @@ pub struct VisibleStats {
     pub runs: u32,
 }
 
-/// The caller's memory for the visible-surface stage: the active list and
-/// one row of runs.
+/// The caller's memory for the visible-surface stage: the active list,
+/// the cover array and one row of runs.
 #[derive(Debug)]
 pub struct Workspace<'a> {
     active: &'a mut [Active],
+    cover: &'a mut [Cover],
     runs: &'a mut [Run],
 }
 
 impl<'a> Workspace<'a> {
-    /// A workspace over `active` (at most 65535 are used) and `runs`.
-    pub fn new(active: &'a mut [Active], runs: &'a mut [Run]) -> Self {
-        Workspace { active, runs }
+    /// A workspace over `active` and `cover` (the capacity is the shorter,
+    /// at most 65535) and `runs` (at least the frame's width).
+    pub fn new(active: &'a mut [Active], cover: &'a mut [Cover], runs: &'a mut [Run]) -> Self {
+        Workspace {
+            active,
+            cover,
+            runs,
+        }
     }
 
-    /// Active entries available.
+    /// Trapezoids that may overlap one row.
     pub fn capacity(&self) -> usize {
-        self.active.len().min(NONE as usize)
+        self.active.len().min(self.cover.len()).min(NONE as usize)
     }
 
     /// Runs available for one row.
@@ -320,9 +341,9 @@ impl<'a> Workspace<'a> {
         for y in 0..store.height() {
             let mut q = 0;
             while q < k {
-                if self.active[q].cov.r <= y as i32 {
+                if self.cover[q].r <= y as i32 {
                     k -= 1;
-                    self.active[q].cov.r = self.active[k].cov.r;
+                    self.cover[q].r = self.cover[k].r;
                 } else {
                     q += 1;
                 }
@@ -332,7 +353,7 @@ impl<'a> Workspace<'a> {
                 if k >= cap {
                     return Err(VisibleError::Active { capacity: cap });
                 }
-                self.active[k].cov.r = tr.end();
+                self.cover[k].r = tr.end();
                 k += 1;
                 t = tr.next_row;
             }
@@ -349,8 +370,15 @@ impl<'a> Workspace<'a> {
         mode: Resolve,
         mut sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
     ) -> Result<VisibleStats, VisibleError<E>> {
+        let width = store.width() as i32;
+        if self.runs.len() < width as usize {
+            return Err(VisibleError::Runs {
+                capacity: self.runs.len(),
+            });
+        }
         let cap = self.capacity();
         let act = &mut self.active[..cap];
+        let cover = &mut self.cover[..cap];
         for (i, a) in act.iter_mut().enumerate() {
             a.free = i as u16;
         }
@@ -359,12 +387,11 @@ impl<'a> Workspace<'a> {
             out: RunWriter::new(self.runs),
             ink: Run::BACKGROUND,
             len: 0,
-            color: None,
+            color: BACKGROUND,
             mode,
             y: 0,
             stats: VisibleStats::default(),
         };
-        let width = store.width() as i32;
         // act[..k].hot: the live trapezoids, sorted by l as of the last
         // row; act[..nf].free: the free slots.
         let (mut k, mut nf) = (0usize, cap);
@@ -408,15 +435,16 @@ impl<'a> Workspace<'a> {
             }
             cx.stats.max_active = cx.stats.max_active.max(k as u32);
             cx.out.clear();
-            (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, None);
+            (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
             if k == 0 {
                 cx.len = width;
                 cx.stats.empty += 1;
             } else {
-                sort(&mut act[..k]);
-                sweep(act, k, width, &mut cx)?;
+                let live = &mut act[..k];
+                sort(live);
+                sweep(live, cover, width, &mut cx);
             }
-            cx.flush()?;
+            cx.flush();
             cx.stats.rows += 1;
             cx.stats.runs += cx.out.runs().len() as u32;
             sink(y, cx.out.runs()).map_err(VisibleError::Sink)?;
@@ -447,117 +475,123 @@ fn sort(live: &mut [Active]) {
 struct Ctx<'s, 'r> {
     store: &'s TrapezoidStore<'s>,
     out: RunWriter<'r>,
-    /// The pending run: its ink, length and colour (`None` for the
+    /// The pending run: its ink, length and colour (`BACKGROUND` for the
     /// background).
     ink: u16,
     len: i32,
-    color: Option<Rgb888>,
+    color: u32,
     mode: Resolve,
     y: i32,
     stats: VisibleStats,
 }
 
-/// Cuts the row into spans at every `l` and `r` of `act[..k].hot` and
-/// resolves each.
-fn sweep<E>(
-    act: &mut [Active],
-    k: usize,
-    width: i32,
-    cx: &mut Ctx<'_, '_>,
-) -> Result<(), VisibleError<E>> {
-    let (mut x, mut p, mut nc) = (0i32, 0usize, 0usize);
-    let mut next = act.first().map_or(width, |a| a.hot.l.min(width));
+/// Cuts the row into spans at every `l` and `r` of the live trapezoids
+/// and resolves each. The cover array holds the trapezoids covering the
+/// current span by decreasing `r`, so that those ending leave from its
+/// end.
+fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>) {
+    let (mut x, mut nc, mut p) = (0i32, 0usize, 0usize);
+    let mut next = live.first().map_or(width, |a| a.hot.l.min(width));
+    // The nearest trapezoid at the last pixel resolved, if any.
+    let mut front: Option<Cover> = None;
     while x < width {
-        // Enter the trapezoids starting here (pending ones have l ≥ x, so
-        // these have l = x), into the cover array by decreasing r.
-        while next <= x && p < k {
-            let h = act[p].hot;
+        // Enter the trapezoids starting here: pending ones have l ≥ x, so
+        // these have l = x (and some pixels, see `Hot::l`).
+        while next <= x {
+            let Some(a) = live.get(p) else { break };
+            let h = a.hot;
             p += 1;
-            next = match act.get(p) {
-                Some(a) if p < k => a.hot.l.min(width),
-                _ => width,
-            };
-            if h.l >= h.r {
-                continue;
-            }
+            next = live.get(p).map_or(width, |a| a.hot.l.min(width));
             let c = Cover {
                 r: h.r,
                 z: h.z,
                 zx: h.zx,
+                color: h.color,
                 face: h.face,
             };
+            // Hidden: the last front covers all of it and is in front at
+            // both its ends, so everywhere on it. It never shows, and
+            // makes no span.
+            if let Some(f) = front {
+                if f.r >= c.r && f.r > x && cx.dominates(&f, &c, x, c.r - 1) {
+                    cx.stats.hidden += 1;
+                    continue;
+                }
+            }
+            if nc >= cover.len() {
+                continue;
+            }
             let mut q = nc;
-            while q > 0 && act[q - 1].cov.r < c.r {
-                act[q].cov = act[q - 1].cov;
+            while q > 0 && cover[q - 1].r < c.r {
+                cover[q] = cover[q - 1];
                 q -= 1;
             }
-            act[q].cov = c;
+            cover[q] = c;
             nc += 1;
         }
         // Leave the trapezoids ending here: the last ones.
-        while nc > 0 && act[nc - 1].cov.r <= x {
+        while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
+            if c.r > x {
+                break;
+            }
             nc -= 1;
         }
-        if nc == 0 {
+        let cov = &cover[..nc];
+        let Some(last) = cov.last() else {
             cx.stats.empty += 1;
-            cx.emit(next - x, Run::BACKGROUND)?;
+            cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+            front = None;
             x = next;
             continue;
-        }
-        let t = next.min(act[nc - 1].cov.r);
-        span(&act[..nc], x, t, cx)?;
+        };
+        let t = next.min(last.r);
+        front = Some(span(cov, x, t, cx));
         x = t;
     }
-    Ok(())
 }
 
-/// Resolves the span `s..t` covered by `cov`.
+/// Resolves the span `s..t` covered by `cov`; returns the nearest at its
+/// last pixel.
 #[inline]
-fn span<E>(cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Result<(), VisibleError<E>> {
+fn span(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Cover {
     let Some((first, rest)) = cov.split_first() else {
-        return Ok(());
+        return Cover::EMPTY;
     };
     if rest.is_empty() {
         cx.stats.single += 1;
-        return cx.emit(t - s, first.cov.face);
+        cx.emit(t - s, first.face, first.color);
+        return *first;
     }
     // The nearest at both ends in one pass.
     let e = t - 1;
-    let (mut a, mut za) = (0usize, first.cov.z_at(s));
-    let (mut b, mut zb) = (0usize, first.cov.z_at(e));
-    for (q, c) in rest.iter().enumerate() {
-        let q = q + 1;
-        let (zs, ze) = (c.cov.z_at(s), c.cov.z_at(e));
-        if cx.nearer(cov, q, zs, a, za, s) {
-            (a, za) = (q, zs);
+    let (mut a, mut za) = (first, first.z_at(s));
+    let (mut b, mut zb) = (first, first.z_at(e));
+    for c in rest {
+        let (zs, ze) = (c.z_at(s), c.z_at(e));
+        if cx.nearer(c, zs, a, za, s) {
+            (a, za) = (c, zs);
         }
-        if cx.nearer(cov, q, ze, b, zb, e) {
-            (b, zb) = (q, ze);
+        if cx.nearer(c, ze, b, zb, e) {
+            (b, zb) = (c, ze);
         }
     }
-    if a == b {
+    if core::ptr::eq(a, b) {
         cx.stats.multiple += 1;
-        return cx.emit(t - s, cov[a].cov.face);
+        cx.emit(t - s, a.face, a.color);
+        return *a;
     }
     cx.stats.intersecting += 1;
-    split(cov, s, t, a, b, true, cx)
+    split(cov, s, t, a, b, true, cx);
+    *b
 }
 
 /// Subdivides `s..t` (at least 2 pixels), whose nearest covering
 /// trapezoids at the ends are `a` and `b ≠ a`.
-fn split<E>(
-    cov: &[Active],
-    s: i32,
-    t: i32,
-    a: usize,
-    b: usize,
-    cross: bool,
-    cx: &mut Ctx<'_, '_>,
-) -> Result<(), VisibleError<E>> {
+fn split(cov: &[Cover], s: i32, t: i32, a: &Cover, b: &Cover, cross: bool, cx: &mut Ctx<'_, '_>) {
     cx.stats.splits += 1;
     let crossing = cx.mode == Resolve::Crossing && cross;
     let m = if crossing {
-        crossing_point(&cov[a].cov, &cov[b].cov, s, t)
+        crossing_point(a, b, s, t)
     } else {
         s + (t - s) / 2
     };
@@ -565,16 +599,16 @@ fn split<E>(
     // the recursion stays within 2·log₂(t − s).
     let half = (t - s) / 2;
     let ma = cx.front(cov, m - 1);
-    if ma == a {
-        cx.emit(m - s, cov[a].cov.face)?;
+    if core::ptr::eq(ma, a) {
+        cx.emit(m - s, a.face, a.color);
     } else {
-        split(cov, s, m, a, ma, !crossing || m - s <= half, cx)?;
+        split(cov, s, m, a, ma, !crossing || m - s <= half, cx);
     }
     let mb = cx.front(cov, m);
-    if mb == b {
-        cx.emit(t - m, cov[b].cov.face)
+    if core::ptr::eq(mb, b) {
+        cx.emit(t - m, b.face, b.color);
     } else {
-        split(cov, m, t, mb, b, !crossing || t - m <= half, cx)
+        split(cov, m, t, mb, b, !crossing || t - m <= half, cx);
     }
 }
 
@@ -597,23 +631,32 @@ fn crossing_point(a: &Cover, b: &Cover, s: i32, t: i32) -> i32 {
 
 impl Ctx<'_, '_> {
     /// The covering trapezoid nearest at pixel `i`.
-    fn front(&mut self, cov: &[Active], i: i32) -> usize {
-        let mut best = 0;
-        let mut bz = cov.first().map_or(0, |c| c.cov.z_at(i));
-        for (q, c) in cov.iter().enumerate().skip(1) {
-            let cz = c.cov.z_at(i);
-            if self.nearer(cov, q, cz, best, bz, i) {
-                best = q;
-                bz = cz;
+    fn front<'v>(&mut self, cov: &'v [Cover], i: i32) -> &'v Cover {
+        let (first, rest) = match cov.split_first() {
+            Some(x) => x,
+            None => return &NO_COVER,
+        };
+        let (mut best, mut bz) = (first, first.z_at(i));
+        for c in rest {
+            let cz = c.z_at(i);
+            if self.nearer(c, cz, best, bz, i) {
+                (best, bz) = (c, cz);
             }
         }
         best
     }
 
-    /// `true` when covering trapezoid `c` (depth `cz` at pixel `i`) is in
-    /// front of `b` (depth `bz`).
+    /// `true` when `f` is in front of `g` at pixels `s` and `e`, so on
+    /// every pixel between (both cover them all).
+    #[inline]
+    fn dominates(&mut self, f: &Cover, g: &Cover, s: i32, e: i32) -> bool {
+        self.nearer(f, f.z_at(s), g, g.z_at(s), s) && self.nearer(f, f.z_at(e), g, g.z_at(e), e)
+    }
+
+    /// `true` when `c` (depth `cz` at pixel `i`) is in front of `b` (depth
+    /// `bz`).
     #[inline(always)]
-    fn nearer(&mut self, cov: &[Active], c: usize, cz: i32, b: usize, bz: i32, i: i32) -> bool {
+    fn nearer(&mut self, c: &Cover, cz: i32, b: &Cover, bz: i32, i: i32) -> bool {
         // Both depths are below 2³⁰ in magnitude where they are meaningful
         // (see `trapezoid`), so the difference does not wrap.
         let d = cz.wrapping_sub(bz);
@@ -623,7 +666,7 @@ impl Ctx<'_, '_> {
         if d > DEPTH_TOLERANCE as i32 {
             return false;
         }
-        self.exact(cov[c].cov.face, cov[b].cov.face, i, d)
+        self.exact(c.face, b.face, i, d)
     }
 
     /// The exact comparison, for depths too close for fixed point.
@@ -640,37 +683,37 @@ impl Ctx<'_, '_> {
         }
     }
 
-    /// Appends `len` pixels of `ink` (a face, or the background) to the
-    /// pending run when it is the same ink or colour, else writes the
-    /// pending run out and starts another.
-    #[inline]
-    fn emit<E>(&mut self, len: i32, ink: u16) -> Result<(), VisibleError<E>> {
-        if ink == self.ink {
+    /// Appends `len` pixels of `ink` (a face, or the background) in
+    /// `color` to the pending run when the colour is the same, else writes
+    /// the pending run out and starts another.
+    #[inline(always)]
+    fn emit(&mut self, len: i32, ink: u16, color: u32) {
+        if color == self.color {
             self.len += len;
-            return Ok(());
+            return;
         }
-        let color = self.store.face(ink).map(|f| f.color());
-        if color.is_some() && color == self.color {
-            self.len += len;
-            return Ok(());
-        }
-        self.flush()?;
+        self.flush();
         self.ink = ink;
         self.len = len;
         self.color = color;
-        Ok(())
     }
 
-    /// Writes the pending run out.
+    /// Writes the pending run out. The buffer holds at least the width's
+    /// runs (checked before the first row), so it never overflows.
     #[inline]
-    fn flush<E>(&mut self) -> Result<(), VisibleError<E>> {
+    fn flush(&mut self) {
         if self.len > 0 {
-            self.out.push(self.len as u16, self.ink)?;
+            self.out.append(self.len as u16, self.ink);
         }
         self.len = 0;
-        Ok(())
     }
 }
+
+/// The colour of the background in [`Ctx`]: not a 24-bit colour.
+const BACKGROUND: u32 = u32::MAX;
+
+/// What [`Ctx::front`] returns for an empty cover (never asked).
+static NO_COVER: Cover = Cover::EMPTY;
 
 /// Resolves `store` and writes it into `target`: each face in its colour,
 /// the background filled with `background` or left as it is (`None`), so
@@ -813,8 +856,9 @@ mod tests {
         // Face slot → polygon number.
         let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
         let mut active = [Active::EMPTY; 64];
+        let mut cover = [Cover::EMPTY; 64];
         let mut runs = [Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut runs);
+        let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
         let most = ws.check(&store).unwrap();
         let stats = ws
             .resolve(&store, mode, |y, runs| {
@@ -932,15 +976,17 @@ mod tests {
                 .unwrap();
         }
         let mut active = [Active::EMPTY; 1];
+        let mut cover = [Cover::EMPTY; 1];
         let mut runs = [Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut runs);
+        let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
         assert_eq!(ws.check(&store), Err(VisibleError::Active { capacity: 1 }));
         let r = ws.resolve(&store, Resolve::Bisect, |_, _| Ok::<(), ()>(()));
         assert_eq!(r, Err(VisibleError::Active { capacity: 1 }));
         let mut runs = [Run::EMPTY; 4];
         let mut active = [Active::EMPTY; 2];
+        let mut cover = [Cover::EMPTY; 2];
         assert_eq!(
-            Workspace::new(&mut active, &mut runs).check(&store),
+            Workspace::new(&mut active, &mut cover, &mut runs).check(&store),
             Err(VisibleError::Runs { capacity: 4 })
         );
     }
