@@ -123,6 +123,22 @@ fn tilted(rng: &mut Rng) -> Vec<Poly3> {
         .collect()
 }
 
+/// 170 large triangles through each other: many intersecting spans.
+fn dense(rng: &mut Rng) -> Vec<Poly3> {
+    (0..170)
+        .map(|_| {
+            let p = |rng: &mut Rng| {
+                (
+                    rng.range(-1600, W as i32 * 16 + 1600),
+                    rng.range(-800, H as i32 * 16 + 800),
+                    rng.range(-30000, 30000),
+                )
+            };
+            front(vec![p(rng), p(rng), p(rng)])
+        })
+        .collect()
+}
+
 /// Bars over a map, in an oblique parallel projection: a 10 × 7 grid of
 /// tiles and 20 bars (boxes, three faces culled each), about 190 `poly3`s.
 fn bars(rng: &mut Rng) -> Vec<Poly3> {
@@ -252,6 +268,7 @@ fn main() {
         ("flat", flat(&mut rng)),
         ("tilted", tilted(&mut rng)),
         ("bars", bars(&mut rng)),
+        ("dense", dense(&mut rng)),
     ];
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("--write-lists") {
@@ -267,8 +284,8 @@ fn main() {
         profile(scene, &args[2], frames);
         return;
     }
-    println!("scene | poly3 drawn | trapezoids | max active | intersecting spans | mode | mismatched / covered | per 1000 | exact compares | resolve | resolve + decode | cut");
-    println!("---|---|---|---|---|---|---|---|---|---|---|---");
+    println!("scene | poly3 drawn | trapezoids | max active | intersecting spans | mode | splits | mismatched / covered | per 1000 | exact compares | resolve | resolve + decode | cut");
+    println!("---|---|---|---|---|---|---|---|---|---|---|---|---");
     for (name, scene) in &scenes {
         let want = resolve(scene, W.into(), H.into());
         let covered = want.iter().filter(|w| w.is_some()).count();
@@ -340,10 +357,11 @@ fn main() {
                 visible::draw(&store, &mut ws, mode, &mut fb565, Some(Rgb565::BLACK)).unwrap();
             });
             println!(
-                "{name} | {} | {} | {most} | {} | {mode:?} | {bad} / {covered} | {:.3} | {} | {:.1} µs | {:.1} µs | {:.1} µs",
+                "{name} | {} | {} | {most} | {} | {mode:?} | {} | {bad} / {covered} | {:.3} | {} | {:.1} µs | {:.1} µs | {:.1} µs",
                 shown.len(),
                 store.len(),
                 stats.intersecting,
+                stats.splits,
                 1000.0 * bad as f64 / covered.max(1) as f64,
                 stats.exact,
                 resolve_only.as_secs_f64() * 1e6,
@@ -386,7 +404,7 @@ fn main() {
             .filter(|(g, w)| (**g != usize::MAX).then_some(**g) != **w)
             .count();
         println!(
-            "{name} | {} | – | – | – | z-buffer (32-bit, same planes; {} KiB of depth) | {zbad} / {covered} | {:.3} | – | – | {:.1} µs | –",
+            "{name} | {} | – | – | – | z-buffer (32-bit, same planes; {} KiB of depth) | – | {zbad} / {covered} | {:.3} | – | – | {:.1} µs | –",
             shown.len(),
             W as usize * H as usize * 4 / 1024,
             1000.0 * zbad as f64 / covered.max(1) as f64,

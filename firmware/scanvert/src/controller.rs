@@ -6,7 +6,7 @@
 //! `clear` and `poly` are executed in list order (painter's order). The
 //! `poly3`s are the *3D layer*: all of them are resolved together by the
 //! visible-surface stages ([`trapezoid`](crate::trapezoid) →
-//! [`segment`](crate::segment) → [`visible`](crate::visible) →
+//! [`segment`](crate::segment) → [`visible`](mod@crate::visible) →
 //! [`rle`](crate::rle)), and the layer is drawn **after** every 2D command
 //! of the list, writing only the pixels its faces cover: where no `poly3`
 //! is, the 2D content shows through. Each `poly3` takes the colour and the
@@ -443,13 +443,16 @@ impl<'e> Controller<'e> {
         let Controller { raster, three } = self;
         // The 3D layer is cut first: running out of memory is found before
         // anything is drawn.
-        let first3 = list
-            .commands()
-            .find(|(_, c)| matches!(c, Command::Poly3(_)))
-            .map(|(offset, _)| offset);
-        let layer = match (first3, three.as_mut()) {
-            (Some(first), Some(t)) => Some(build_layer(t, list, (w, h), first, &mut stats)?),
-            _ => None,
+        let layer = match three.as_mut() {
+            // Without 3D storage, `check` has refused any `poly3`.
+            None => None,
+            Some(t) => match list
+                .commands()
+                .find(|(_, c)| matches!(c, Command::Poly3(_)))
+            {
+                Some((first, _)) => Some(build_layer(t, list, (w, h), first, &mut stats)?),
+                None => None,
+            },
         };
         let mut clip = ClipRect::full(w, h);
         let mut color = T::Color::from_rgb888(DEFAULT_COLOR);
@@ -484,31 +487,48 @@ impl<'e> Controller<'e> {
                 Command::Poly3(_) => {}
             }
         }
-        if let Some((store, mut ws, resolve, first)) = layer {
-            let (v, counts) =
-                visible::draw(&store, &mut ws, resolve, target, None).map_err(|e| match e {
-                    VisibleError::Sink(error) => RenderError::Target {
-                        offset: first,
-                        error,
-                    },
-                    // Checked by `build_layer`.
-                    VisibleError::Active { capacity } => RenderError::Capacity3d {
-                        offset: first,
-                        resource: Resource::Active,
-                        capacity,
-                    },
-                    VisibleError::Runs { capacity } => RenderError::Capacity3d {
-                        offset: first,
-                        resource: Resource::Runs,
-                        capacity,
-                    },
-                })?;
-            stats.visible = v;
-            stats.spans += counts.spans;
-            stats.pixels += counts.pixels as u64;
+        if let Some(layer) = layer {
+            draw_layer(layer, target, &mut stats)?;
         }
         Ok(stats)
     }
+}
+
+/// Draws a cut 3D layer into `target` over what is there. Kept out of
+/// line, so that the 2D path of [`Controller::render`] compiles as it
+/// does without it.
+#[inline(never)]
+fn draw_layer<T>(
+    (store, mut ws, resolve, first): Layer<'_>,
+    target: &mut T,
+    stats: &mut Stats,
+) -> Result<(), RenderError<T::Error>>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    let (v, counts) =
+        visible::draw(&store, &mut ws, resolve, target, None).map_err(|e| match e {
+            VisibleError::Sink(error) => RenderError::Target {
+                offset: first,
+                error,
+            },
+            // Checked by `build_layer`.
+            VisibleError::Active { capacity } => RenderError::Capacity3d {
+                offset: first,
+                resource: Resource::Active,
+                capacity,
+            },
+            VisibleError::Runs { capacity } => RenderError::Capacity3d {
+                offset: first,
+                resource: Resource::Runs,
+                capacity,
+            },
+        })?;
+    stats.visible = v;
+    stats.spans += counts.spans;
+    stats.pixels += counts.pixels as u64;
+    Ok(())
 }
 
 /// The store and workspace of a cut 3D layer, ready to draw.
@@ -516,6 +536,7 @@ type Layer<'t> = (TrapezoidStore<'t>, Workspace<'t>, Resolve, usize);
 
 /// Cuts every front-facing `poly3` of `list` into trapezoids in `t` and
 /// checks the active list and the run buffer against them.
+#[inline(never)]
 fn build_layer<'t, E>(
     t: &'t mut Storage3d<'_>,
     list: &DisplayList<'_>,

@@ -19,7 +19,11 @@
 //! | spans | [`scan`] | active-edge list, even-odd pairing of crossings |
 //! | clip registers | [`clip`] | the window every span is cut to |
 //! | port | [`port`], [`framebuffer`] | spans into memory (or hardware) |
-//! | controller | [`controller`] | runs a display list through all of the above |
+//! | trapezoids (3D) | [`trapezoid`] | a screen-space polygon cut into trapezoids with horizontal parallel sides; its plane, exact and in fixed point |
+//! | store (3D) | [`segment`] | trapezoids and faces by segment, in caller-owned pools; the scan-line index by top row |
+//! | visible surfaces (3D) | [`visible`] | active trapezoids per row, spans classified and resolved by depth, no z-buffer |
+//! | run-length rows (3D) | [`rle`] | one run-length scan line per row, and its decoder into the port |
+//! | controller | [`controller`] | runs a display list through all of the above (`poly3` as a 3D layer over the 2D commands) |
 //! | colour | [`color`] | list colours to the frame buffer's pixel format |
 //! | embedded-graphics | `draw_target` (feature `embedded-graphics`) | spans into any `DrawTarget`; the frame buffer as a `DrawTarget` |
 //!

@@ -15,10 +15,10 @@
 //! | pool | slot | holds | limit |
 //! |---|---|---|---|
 //! | trapezoids | [`Trapezoid`], 92 bytes | edges, depth, colour, links | 65535 |
-//! | faces | [`Face`], 48–64 bytes | exact plane, colour, tie key | 65535 |
+//! | faces | [`Face`], 64 bytes | exact plane, colour, tie key | 65535 |
 //! | segments | [`Segment`], 28 bytes | chains and counters | 65535 |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
-//! | edge slots | [`EdgeSlot`], 44 bytes | scratch while a polygon is cut | its vertex count |
+//! | edge slots | [`EdgeSlot`], 40 bytes | scratch while a polygon is cut | its vertex count |
 //!
 //! The scan-line index is one `u16` per row: the head of a doubly linked
 //! list, threaded through the trapezoids, of the trapezoids whose top row

@@ -499,7 +499,7 @@ struct Open {
     start: i32,
 }
 
-/// Scratch storage for one edge while a polygon is cut (44 bytes). The
+/// Scratch storage for one edge while a polygon is cut (40 bytes). The
 /// caller owns it, as the edge storage of a
 /// [`Rasterizer`](crate::scan::Rasterizer): a polygon of `n` vertices needs
 /// at most `n` slots.

@@ -33,7 +33,7 @@
 //! face with the lower key ([`Face::key`]: lower segment, then earlier
 //! polygon). Depths are first compared in fixed point ([`Depth`](crate::trapezoid::Depth));
 //! when two are closer than [`DEPTH_TOLERANCE`], where rounding could
-//! decide, they are compared exactly ([`Plane::cmp_at`]). So every
+//! decide, they are compared exactly ([`Plane::cmp_at`](crate::trapezoid::Plane::cmp_at)). So every
 //! comparison is exact.
 //!
 //! Each trapezoid covering a span covers all of it, and along a row the
@@ -49,11 +49,51 @@
 //!
 //! # Memory
 //!
-//! An [`Active`] entry is 112 bytes (two edges, depth, and one element
+//! An [`Active`] entry is 116 bytes (two edges, depth, and one element
 //! each of the sorted and free arrays) and a [`Cover`] 16; the list needs
 //! as many of each as trapezoids overlap one
 //! row ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
+//!
+//! # Measured
+//!
+//! Error, against the exact reference of `host_tests` (coverage by the
+//! pixel rule, nearest plane at each pixel centre, ties to the earlier
+//! polygon): **0 mismatched pixels** in both modes, on the property tests'
+//! layered and interpenetrating scenes (about 120 000 covered pixels a run
+//! of 200 scenes, with a few hundred intersecting spans) and on the four
+//! 512 × 256 scenes below. A z-buffer at the same depth precision misses
+//! ties and near-ties (1 pixel in 131 072 on `dense`).
+//!
+//! Cost on the Cortex-M4 (QEMU `mps2-an386` with `-icount shift=0`, the
+//! firmware image's counter), instructions per 512 × 256 frame into an
+//! RGB565 frame buffer, every pixel written (background filled), against a
+//! plain z-buffer at the same precision (32-bit depth per pixel, the same
+//! fixed-point planes, the exact rasteriser's spans, runs of passing pixels
+//! written as spans; its depth clear included):
+//!
+//! | scene | faces drawn | trapezoids | cut (once per change) | resolve + decode, crossing | bisection | z-buffer |
+//! |---|---|---|---|---|---|---|
+//! | flat: 170 faces parallel to the screen | 170 | 249 | 0.60 M | 2.61 M | 2.61 M | 4.34 M |
+//! | tilted: 170 tilted faces, interpenetrating | 170 | 375 | 0.83 M | 2.94 M | 2.95 M | 3.86 M |
+//! | bars: a 10 × 7 map and 20 bars | 130 | 386 | 0.79 M | 1.87 M | 1.87 M | 2.66 M |
+//! | dense: 170 large triangles through each other (depth complexity about 40) | 170 | 322 | 0.78 M | 23.4 M | 23.7 M | 45.9 M |
+//!
+//! At 168 M instructions/s that is 64, 57, 90 and 7 frames/s when only the
+//! visible surfaces are recomputed (52, 45, 63 and 7 when every polygon is
+//! cut again too), against 39, 43, 63 and 4 for the z-buffer, with 512 KiB
+//! less memory (the whole 3D layer of `bars` takes about 52 KiB). Of a
+//! `flat` frame, about a fifth is stepping and sorting the active list,
+//! two fifths the sweep's bookkeeping (about 9 500 spans; 1 000
+//! trapezoids are left out as hidden), a fifth the depth compares and the
+//! runs, and a sixth the decoder. The two modes
+//! differ only where planes intersect: on `tilted`, 246 intersecting spans
+//! take 709 subdivisions by bisection and 246 at the crossing point; on
+//! `dense`, 951 take 2 028 and 974. The crossing point is the default.
+//!
+//! `cargo run --release -p host-tests --example visible_modes` measures
+//! the same scenes on the host (time, error, and the z-buffer), and writes
+//! them as display lists with `-- --write-lists DIR`.
 //!
 //! [`Face::key`]: crate::segment::Face::key
 
@@ -83,7 +123,7 @@ pub enum Resolve {
     Crossing,
 }
 
-/// One entry of the active list (112 bytes on 32-bit targets). The
+/// One entry of the active list (116 bytes on 32-bit targets). The
 /// caller provides the array, filled with [`Active::EMPTY`].
 ///
 /// Each entry holds one active trapezoid's stepping state (at a slot that
