@@ -12,9 +12,9 @@
 //! All of it is the caller's ([`StoreMemory`]), in pools with free lists,
 //! so emptying and refilling a segment never moves anything else:
 //!
-//! | pool | slot | holds | limit |
+//! | pool | slot (32-bit targets) | holds | limit |
 //! |---|---|---|---|
-//! | trapezoids | [`Trapezoid`], 92 bytes | edges, depth, colour, links | 65535 |
+//! | trapezoids | [`Trapezoid`], 96 bytes | edges, depth, colour, face, segment, links | 65535 |
 //! | faces | [`Face`], 64 bytes | exact plane, colour, tie key | 65535 |
 //! | segments | [`Segment`], 28 bytes | chains and counters | 65535 |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
@@ -563,6 +563,7 @@ impl<'a> TrapezoidStore<'a> {
                 },
             )?;
             let mut tr = Trapezoid::new(l, r, &depth, f, color, &clip);
+            tr.segment = s as u16;
             // Rows are inside the frame: the edges were cut to the clip.
             let top = tr.top() as usize;
             let head = rows.get(top).copied().unwrap_or(NONE);
@@ -686,6 +687,7 @@ mod tests {
             assert_eq!(n as u32, store.segment(s).unwrap().trapezoids());
             for (_, t) in store.segment_trapezoids(s) {
                 assert_eq!(store.face(t.face()).unwrap().segment(), s as u16);
+                assert_eq!(t.segment(), s as u16);
             }
             by_segs += n;
         }

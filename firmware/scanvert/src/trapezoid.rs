@@ -310,8 +310,8 @@ impl Depth {
 /// a face.
 ///
 /// # Size
-/// 92 bytes: two [`Edge`]s of 32, four `i32` (depth, colour), six `u16`
-/// (face, columns, and the store's links).
+/// 96 bytes: two [`Edge`]s of 32, four `i32` (depth, colour), seven
+/// `u16` (face, segment, columns, and the store's links).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Trapezoid {
     pub(crate) left: Edge,
@@ -321,6 +321,7 @@ pub struct Trapezoid {
     pub(crate) zy: i32,
     pub(crate) color: u32,
     pub(crate) face: u16,
+    pub(crate) segment: u16,
     pub(crate) x0: u16,
     pub(crate) x1: u16,
     pub(crate) next_row: u16,
@@ -347,6 +348,7 @@ impl Trapezoid {
         zy: 0,
         color: 0,
         face: NONE,
+        segment: NONE,
         x0: 0,
         x1: 0,
         next_row: NONE,
@@ -373,6 +375,7 @@ impl Trapezoid {
             zy: depth.zy,
             color: rgb_bits(color),
             face,
+            segment: NONE,
             x0: clip.x0(),
             x1: clip.x1(),
             next_row: NONE,
@@ -404,6 +407,11 @@ impl Trapezoid {
     /// The face (polygon) it belongs to.
     pub fn face(&self) -> u16 {
         self.face
+    }
+
+    /// The segment that owns it (`0xffff` before it is stored).
+    pub fn segment(&self) -> u16 {
+        self.segment
     }
 
     /// Its colour (the face's, kept here for the renderer).

@@ -65,8 +65,10 @@
 //! 512 × 256 scenes below. A z-buffer at the same depth precision misses
 //! ties and near-ties (1 pixel in 131 072 on `dense`).
 //!
-//! Cost on the Cortex-M4 (QEMU `mps2-an386` with `-icount shift=0`, the
-//! firmware image's counter), instructions per 512 × 256 frame into an
+//! Cost on the Cortex-M4 (QEMU `mps2-an386` with `-icount shift=0` and
+//! the firmware image's SysTick counter, in a variant of the image that
+//! renders these scenes' lists through the store, the workspace and a
+//! z-buffer), instructions per 512 × 256 frame into an
 //! RGB565 frame buffer, every pixel written (background filled), against a
 //! plain z-buffer at the same precision (32-bit depth per pixel, the same
 //! fixed-point planes, the exact rasteriser's spans, runs of passing pixels
@@ -74,15 +76,15 @@
 //!
 //! | scene | faces drawn | trapezoids | cut (once per change) | resolve + decode, crossing | bisection | z-buffer |
 //! |---|---|---|---|---|---|---|
-//! | flat: 170 faces parallel to the screen | 170 | 249 | 0.60 M | 2.61 M | 2.61 M | 4.34 M |
-//! | tilted: 170 tilted faces, interpenetrating | 170 | 375 | 0.83 M | 2.94 M | 2.95 M | 3.86 M |
-//! | bars: a 10 × 7 map and 20 bars | 130 | 386 | 0.79 M | 1.87 M | 1.87 M | 2.66 M |
-//! | dense: 170 large triangles through each other (depth complexity about 40) | 170 | 322 | 0.78 M | 23.4 M | 23.7 M | 45.9 M |
+//! | flat: 170 faces parallel to the screen | 170 | 249 | 0.60 M | 2.61 M | 2.61 M | 4.36 M |
+//! | tilted: 170 tilted faces, interpenetrating | 170 | 375 | 0.83 M | 2.94 M | 2.95 M | 3.89 M |
+//! | bars: a 10 × 7 map and 20 bars | 130 | 386 | 0.80 M | 1.87 M | 1.87 M | 2.68 M |
+//! | dense: 170 large triangles through each other (depth complexity about 40) | 170 | 322 | 0.79 M | 23.4 M | 23.7 M | 46.0 M |
 //!
 //! At 168 M instructions/s that is 64, 57, 90 and 7 frames/s when only the
 //! visible surfaces are recomputed (52, 45, 63 and 7 when every polygon is
 //! cut again too), against 39, 43, 63 and 4 for the z-buffer, with 512 KiB
-//! less memory (the whole 3D layer of `bars` takes about 52 KiB). Of a
+//! less memory (the whole 3D layer of `bars` takes about 54 KiB). Of a
 //! `flat` frame, about a fifth is stepping and sorting the active list,
 //! two fifths the sweep's bookkeeping (about 9 500 spans; 1 000
 //! trapezoids are left out as hidden), a fifth the depth compares and the
