@@ -31,17 +31,26 @@
 //! | `s = clz(d) − 1`, `dₙ = d << s` | normalised depth | `[2³⁰, 2³¹)` |
 //! | `r = ⌊2⁶² / dₙ⌋` | reciprocal, `1/d = r·2ˢ/2⁶²` | `(2³¹, 2³²]` |
 //! | `P = x · r` | | `< 2³⁰ · 2³² = 2⁶²` |
-//! | `(P >> 18) · f₁₆` (`f` in 1/16 px, `< 2¹⁹`) | | `< 2⁴⁴ · 2¹⁹ = 2⁶³` |
-//! | `sx − cx` in 1/256 px: that `>> (40 − s)`, rounded | | `< 2⁴⁵` |
+//! | `P = P₁ · 2³¹ + P₀`, `0 ≤ P₀ < 2³¹` | two halves | `|P₁| < 2³¹` |
+//! | `P₁ · f` and `P₀ · f` (`f` Q16.16 px, `< 2³¹`) | | `< 2⁶²` each |
+//! | `sx − cx = f·P / 2⁷⁰⁻ˢ` in 1/256 px: `(P₁·f + (P₀·f >> 31) + ½) >> (39 − s)` | exactly rounded | `< 2⁴⁵` |
 //! | `w = ⌊2ᴷ/d⌋ = r >> (1 + clz(near) − clz(d))`, `K = 31 + ⌊log₂ near⌋` | exact floor | `(0, 2³¹]` |
 //! | `z = Z_NEAR + (w(near) − w) · M >> 38`, `M = ⌊S·2³⁸ / (w(near) − w(far))⌋` | | product `< 2⁶²` |
 //!
-//! (`S` is the depth span, 65535 · 256 in 1/4096 units.) The error of `sx`
-//! and `sy` before the final rounding is below 2⁻⁷ px for a depth of at
-//! least one unit and below 2⁻⁴ px at the smallest near plane; after it,
-//! vertices are within 1/32 + 1/128 px of the exact projection. `z` is
-//! within 1/16 of a Q12.4 step of `A − B/d` before its final rounding,
-//! because `w(near) − w(far) ≥ 2²⁰` is required.
+//! (`S` is the depth span, 65535 · 256 in 1/4096 units.) The product
+//! `f · P` is formed in two `i64` halves, so the only errors of `sx` and
+//! `sy` before the output's rounding are the reciprocal's (relative, below
+//! 2⁻³¹) and the rounding to 1/256 px: together below 1/256 px anywhere in
+//! the window. The output vertices are then within 1/32 + 1/256 px of the
+//! exact projection of the view-space point. `z` is within 1/16 of a Q12.4
+//! step of `A − B/d` before its final rounding, because
+//! `w(near) − w(far) ≥ 2²⁰` is required.
+//!
+//! View space itself has a step of 2⁻¹⁶ units, which at depth `d` is
+//! `f · 2⁻¹⁶ / d` px on the screen. Transformed vertices, and the near
+//! clip's new vertices, are rounded to that step. A near plane at
+//! `near ≥ f / 2048` keeps it within 1/32 px everywhere (half of that for
+//! the rounding).
 //!
 //! Limits, checked by [`Perspective::new`]: `1/256 ≤ near < far < 16384`
 //! units, `far − near` large enough for 2²⁰ steps of `w` (about
@@ -175,7 +184,7 @@ impl Viewport {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Perspective {
-    /// Focal length in 1/16 px, `[16, 2¹⁹)`.
+    /// Focal length in Q16.16 px, `[2¹⁶, 2³¹)`.
     focal: i64,
     near: i32,
     far: i32,
@@ -218,8 +227,7 @@ impl Perspective {
             return Err(ProjectionError::Far);
         }
         let mut p = Perspective {
-            // Q16.16 px to 1/16 px, rounded: [16, 2¹⁹).
-            focal: (((f as i64) + (1 << 11)) >> 12).min((1 << 19) - 1),
+            focal: f as i64,
             near,
             far,
             near_lz: (near as u32).leading_zeros(),
@@ -264,9 +272,9 @@ impl Perspective {
         Q16::from_bits(self.far)
     }
 
-    /// The focal length in 1/16 px.
-    pub const fn focal_sixteenths(&self) -> i64 {
-        self.focal
+    /// The focal length in pixels.
+    pub const fn focal(&self) -> Q16 {
+        Q16::from_bits(self.focal as i32)
     }
 
     /// `⌊2ᴷ / d⌋` for `near ≤ d < 2³⁰`.
@@ -276,15 +284,22 @@ impl Perspective {
         r >> (1 + self.near_lz - (d as u32).leading_zeros())
     }
 
+    /// `f · P / 2⁷⁰⁻ˢ`, rounded, for `|P| < 2⁶²` and `1 ≤ s ≤ 22`: in two
+    /// halves of `P`, each product below 2⁶².
+    #[inline]
+    fn scale(&self, p: i64, s: u32) -> i64 {
+        let (hi, lo) = (p >> 31, p & ((1 << 31) - 1));
+        (hi * self.focal + ((lo * self.focal) >> 31) + (1 << (38 - s))) >> (39 - s)
+    }
+
     /// x and y offsets from the centre in 1/256 px, and depth in 1/4096,
     /// for `near ≤ d ≤ far`... or beyond `far`, where the depth is clamped.
     #[inline]
     fn project(&self, v: [i64; 3]) -> [i64; 3] {
         let d = v[2] as i32;
         let (r, s) = reciprocal(d);
-        let k = 40 - s;
-        let sx = round_shift(((v[0] * r) >> 18) * self.focal, k);
-        let sy = round_shift(((v[1] * r) >> 18) * self.focal, k);
+        let sx = self.scale(v[0] * r, s);
+        let sy = self.scale(v[1] * r, s);
         let z = if d > self.far {
             Z_NEAR_FINE + Z_SPAN_FINE
         } else {
@@ -595,7 +610,7 @@ mod tests {
         );
         // 90° across 512 px: f = 256.
         let p = Perspective::from_fov(Angle::QUARTER, 512, q(1), q(10)).unwrap();
-        assert_eq!(p.focal_sixteenths(), 256 * 16);
+        assert_eq!(p.focal(), q(256));
     }
 
     #[test]
