@@ -377,6 +377,59 @@ fn sine_and_cosine_of_every_angle() {
 }
 
 #[test]
+fn arctangent_of_many_vectors() {
+    let mut worst = 0i32;
+    let mut rng = 0x9e37_79b9_7f4a_7c15u64;
+    for i in 0..100_000 {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        let bits = 1 + (i % 62) as u32;
+        let x = (rng as i64) >> (63 - bits);
+        let y = ((rng >> 17) as i64 ^ (rng << 40) as i64) >> (63 - bits);
+        if x == 0 && y == 0 {
+            continue;
+        }
+        let got = trig::atan2(y, x).to_bits();
+        let want = ((y as f64).atan2(x as f64) / (2.0 * PI) * 65536.0)
+            .round()
+            .rem_euclid(65536.0) as u16;
+        let d = (got.wrapping_sub(want) as i16) as i32;
+        // Small vectors have coarse directions: allow their own step too.
+        let coarse = if bits < 16 {
+            (65536.0 / (2.0 * PI * x.unsigned_abs().max(y.unsigned_abs()) as f64)) as i32
+        } else {
+            0
+        };
+        assert!(d.abs() <= 2 + coarse, "{y} {x}: {got} vs {want}");
+        if bits >= 16 {
+            worst = worst.max(d.abs());
+        }
+    }
+    eprintln!("atan2 worst error: {worst} binary units");
+    assert!(worst <= 2);
+}
+
+#[test]
+fn look_at_points_the_view_axis_at_the_target() {
+    let mut pipe = cam_persp().pipeline();
+    for (eye, target) in [
+        ([0.0, 30.0, 40.0], [0.0, 0.0, 0.0]),
+        ([-12.5, 3.0, 7.0], [4.0, -1.0, -20.0]),
+        ([5.0, -9.0, 0.0], [5.0, 9.0, 0.1]),
+    ] {
+        pipe.set_view(&View::look_at(pt(eye), pt(target)).unwrap())
+            .unwrap();
+        let a = pipe.project_point(pt(target)).unwrap();
+        assert!(a.in_front && a.inside);
+        assert!(
+            (a.x - 256 * 16).abs() <= 1 && (a.y - 128 * 16).abs() <= 1,
+            "{a:?}"
+        );
+    }
+}
+
+#[test]
 fn integer_square_root() {
     for v in (0..u32::MAX).step_by(9_973).chain([u32::MAX]) {
         assert_eq!(

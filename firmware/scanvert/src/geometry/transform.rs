@@ -50,7 +50,7 @@
 //! restores it; the depth is a const generic, and overflow and underflow
 //! are errors, not panics.
 
-use super::trig::{cos, sin, Angle};
+use super::trig::{atan2, cos, sin, Angle};
 use core::fmt;
 
 /// Raw view-space bound: every coordinate satisfies `|raw| < VIEW_LIMIT`.
@@ -361,6 +361,24 @@ pub struct View {
 }
 
 impl View {
+    /// The eye at `eye` looking at `target`, without roll; `None` when the
+    /// two are the same point. Yaw and pitch come from [`atan2`], within
+    /// 0.011° of the exact direction.
+    pub fn look_at(eye: Point3, target: Point3) -> Option<View> {
+        let (e, t) = (eye.to_bits(), target.to_bits());
+        // Differences of i32 fit i64 (|·| < 2³²).
+        let d = [0, 1, 2].map(|k| t[k] as i64 - e[k] as i64);
+        if d == [0, 0, 0] {
+            return None;
+        }
+        // Forward = (−sin yaw · cos pitch, sin pitch, −cos yaw · cos pitch).
+        let yaw = atan2(-d[0], -d[2]);
+        // The horizontal length: squares below 2⁶⁴ summed in u128.
+        let h2 = (d[0] as i128 * d[0] as i128 + d[2] as i128 * d[2] as i128) as u128;
+        let pitch = atan2(d[1], isqrt_u128(h2) as i64);
+        Some(View { eye, yaw, pitch })
+    }
+
     /// The world-to-view matrix: `F · Rx(−pitch) · Ry(−yaw) · T(−eye)`,
     /// where `F = diag(1, −1, −1)` turns y up / looking along −z into
     /// view space's y down / z forward. [`TransformError::Range`] when the
@@ -375,6 +393,22 @@ impl View {
         flip.checked_mul(&Matrix::rotation_x(-self.pitch))?
             .checked_mul(&Matrix::rotation_y(-self.yaw))?
             .checked_mul(&Matrix::translation(back))
+    }
+}
+
+/// `⌊√v⌋` for a `u128` below 2⁶⁵, by Newton's method from above (set-up
+/// only).
+fn isqrt_u128(v: u128) -> u64 {
+    if v < 2 {
+        return v as u64;
+    }
+    let mut x = 1u128 << (128 - v.leading_zeros()).div_ceil(2);
+    loop {
+        let y = (x + v / x) / 2;
+        if y >= x {
+            return x as u64;
+        }
+        x = y;
     }
 }
 
@@ -593,6 +627,46 @@ mod tests {
             ..View::default()
         };
         assert_eq!(far.matrix(), Err(TransformError::Range));
+    }
+
+    #[test]
+    fn look_at_aims_the_eye() {
+        let v = View::look_at(p(0, 0, 10), p(0, 0, 0)).unwrap();
+        assert_eq!((v.yaw, v.pitch), (Angle::ZERO, Angle::ZERO));
+        let v = View::look_at(p(0, 0, 0), p(-3, 0, 0)).unwrap();
+        assert_eq!((v.yaw, v.pitch), (Angle::QUARTER, Angle::ZERO));
+        let v = View::look_at(p(0, 0, 0), p(0, 4, 0)).unwrap();
+        assert_eq!(v.pitch, Angle::QUARTER);
+        assert!(View::look_at(p(1, 2, 3), p(1, 2, 3)).is_none());
+        // The target lands on the view axis.
+        let (eye, target) = (p(7, 5, -9), p(-2, 1, 4));
+        let m = View::look_at(eye, target).unwrap().matrix().unwrap();
+        let t = m.transform(target).unwrap().to_bits();
+        assert!(
+            t[0].abs() < 1 << 10 && t[1].abs() < 1 << 10 && t[2] > 16 << 16,
+            "{t:?}"
+        );
+        let far = View::look_at(
+            Point3::new(Q16::MIN, Q16::MIN, Q16::MIN),
+            Point3::new(Q16::MAX, Q16::MAX, Q16::MAX),
+        );
+        assert!(far.is_some());
+        for v in [
+            0u128,
+            1,
+            2,
+            3,
+            4,
+            15,
+            16,
+            17,
+            u64::MAX as u128,
+            1 << 64,
+            (1 << 65) - 1,
+        ] {
+            let r = isqrt_u128(v) as u128;
+            assert!(r * r <= v && (r + 1) * (r + 1) > v, "{v}");
+        }
     }
 
     #[test]
