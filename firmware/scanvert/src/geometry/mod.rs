@@ -5,7 +5,7 @@
 //!
 //! | # | stage | file | what happens |
 //! |---|---|---|---|
-//! | 1 | transform | [`transform`] | model → view space by the current matrix of a push/pop stack (translate, rotate, scale in call order, the camera's [`View`] at the bottom) |
+//! | 1 | transform | [`transform`] | model → view space by the current matrix of a push/pop stack (translate, rotate, scale in call order, the camera's [`View`] at the bottom: eye and yaw/pitch, or [`View::look_at`]) |
 //! | 2 | cull | [`cull`] | a face whose first three vertices do not run counter-clockwise as displayed is dropped (edge-on ones too); points and lines pass |
 //! | 3 | light | [`light`] | Lambert: ambient plus a parallel light's share times `max(0, n̂ · l̂)` scales the face's colour |
 //! | 4 | near clip | [`near_clip`] | Sutherland–Hodgman in view space to `near ≤ z ≤ far`: nothing at or behind the eye is projected |
