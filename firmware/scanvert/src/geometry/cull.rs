@@ -29,11 +29,13 @@
 
 use super::project::Projection;
 
-/// `(v₁ − v₀) × (v₂ − v₀)` of view-space vertices.
+/// `(v₁ − v₀) × (v₂ − v₀)` of view-space vertices (each below 2³⁰, so the
+/// differences fit `i32` and the products are 32 × 32 bits).
 #[inline]
 pub(crate) fn normal(v0: [i64; 3], v1: [i64; 3], v2: [i64; 3]) -> [i64; 3] {
-    let a = [v1[0] - v0[0], v1[1] - v0[1], v1[2] - v0[2]];
-    let b = [v2[0] - v0[0], v2[1] - v0[1], v2[2] - v0[2]];
+    let d = |p: [i64; 3], k: usize| (p[k] - v0[k]) as i32 as i64;
+    let a = [d(v1, 0), d(v1, 1), d(v1, 2)];
+    let b = [d(v2, 0), d(v2, 1), d(v2, 2)];
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -42,14 +44,26 @@ pub(crate) fn normal(v0: [i64; 3], v1: [i64; 3], v2: [i64; 3]) -> [i64; 3] {
 }
 
 /// `true` when the face through `v0` with normal `n` shows its front.
+///
+/// For perspective the sign of `v₀ · n` is found from `n` shifted right to
+/// 31 bits (`n = 2ᵏ·n' + ρ`, `0 ≤ ρ < 2ᵏ`): `v₀ · n = 2ᵏ (v₀ · n') + v₀ · ρ`
+/// with `|v₀ · ρ| < 2ᵏ Σ|v₀|`, so `v₀ · n'` (`i64`) decides unless it is
+/// within `Σ|v₀|` of zero; then the exact `i128` product does.
 #[inline]
 pub(crate) fn is_front(projection: &Projection, v0: [i64; 3], n: [i64; 3]) -> bool {
     match projection {
         Projection::Perspective(_) => {
-            let det = v0[0] as i128 * n[0] as i128
-                + v0[1] as i128 * n[1] as i128
-                + v0[2] as i128 * n[2] as i128;
-            det < 0
+            let m = n.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+            let k = (64 - m.leading_zeros()).saturating_sub(31);
+            // |v₀| < 2³⁰, |n'| ≤ 2³¹: each product below 2⁶¹.
+            let approx: i64 = (0..3).map(|i| v0[i] * (n[i] >> k)).sum();
+            let slack: i64 = v0.iter().map(|c| c.abs()).sum();
+            if k == 0 || approx.abs() > slack {
+                approx < 0
+            } else {
+                let det: i128 = (0..3).map(|i| v0[i] as i128 * n[i] as i128).sum();
+                det < 0
+            }
         }
         Projection::Orthographic(_) => n[2] < 0,
     }
@@ -96,6 +110,51 @@ mod tests {
         let line = normal([0, 0, 10], [1, 1, 10], [2, 2, 10]);
         assert_eq!(line, [0, 0, 0]);
         assert!(!is_front(&persp(), [0, 0, 10], line) && !is_front(&ortho(), [0, 0, 10], line));
+    }
+
+    #[test]
+    fn the_fast_sign_agrees_with_the_exact_one() {
+        let p = persp();
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let v = ((seed >> 20) as i64 % (1 << 30)) >> (seed % 29);
+            if seed & 32 == 0 {
+                v
+            } else {
+                -v
+            }
+        };
+        for i in 0..40_000 {
+            let (a, b) = ([next(), next(), next()], [next(), next(), next()]);
+            // Every other face nearly holds the eye: c is close to the
+            // plane through the origin, a and b.
+            let c = if i % 2 == 0 {
+                [next(), next(), next()]
+            } else {
+                let t = next() % 7;
+                [0, 1, 2].map(|k| {
+                    ((a[k] * t + b[k] * (7 - t)) / 7 + next() % 3)
+                        .clamp(-(1 << 30) + 1, (1 << 30) - 1)
+                })
+            };
+            let n = normal(a, b, c);
+            let det: i128 = (0..3).map(|k| a[k] as i128 * n[k] as i128).sum();
+            assert_eq!(is_front(&p, a, n), det < 0, "{a:?} {b:?} {c:?}");
+        }
+        // Exactly edge-on faces far out (the plane y = 0 holds the eye): the
+        // slow path decides, in both windings; one unit off, it flips.
+        let e = (1i64 << 30) - 1;
+        let (a, b, c) = ([e, 0, e], [-e, 0, e], [e, 0, 1]);
+        assert!(!is_front(&p, a, normal(a, b, c)));
+        assert!(!is_front(&p, a, normal(a, c, b)));
+        let b1 = [-e, 1, e];
+        assert_ne!(
+            is_front(&p, a, normal(a, b1, c)),
+            is_front(&p, a, normal(a, c, b1))
+        );
     }
 
     #[test]

@@ -26,8 +26,9 @@
 //! | normal, scaled by a power of two | `i32` per component | largest in `[2¹⁴, 2¹⁵]` |
 //! | its squared length | `u32` | `≤ 3 · 2³⁰` |
 //! | its length, `isqrt` | `u16` | `≥ 2¹⁴` |
-//! | `n · l` | `i64` | `< 3 · 2³¹` |
-//! | `cos = n · l / |n|` | Q16.16, clamped to `[0, 1]` | one division per face |
+//! | light direction in the product | Q14 (`>> 2`) | `≤ 2¹⁴` |
+//! | `n · l` | `i32` | each product `< 2²⁹`; `≤ |n| · 2¹⁴` |
+//! | `cos = 4 · n · l / |n|` | Q16.16 in `u32`, clamped to `[0, 1]` | one 32-bit division per face |
 //! | intensity `((100 − p) · 2¹⁶ + p · cos) / 100` | Q16.16 | `≤ 2¹⁶` |
 //! | channel `(c · I + 2¹⁵) >> 16` | `u8` | `≤ 255` |
 //!
@@ -126,13 +127,16 @@ pub(crate) fn shade(color: Rgb888, n: [i64; 3], toward: [i32; 3], percent: u8) -
     let Some(s) = scale15(n) else {
         return color;
     };
-    let len = length15(s) as i64;
-    let dot: i64 = s
-        .iter()
-        .zip(&toward)
-        .map(|(&a, &b)| a as i64 * b as i64)
-        .sum();
-    let cos = (dot / len).clamp(0, 65536) as u32;
+    let len = length15(s);
+    // The light's direction in Q14: each product is below 2²⁹, and a
+    // positive n · l is at most |n| · 2¹⁴ < 2²⁹·⁶, so four times it fits
+    // u32 and one 32-bit division gives the cosine.
+    let dot: i32 = s.iter().zip(&toward).map(|(&a, &b)| a * (b >> 2)).sum();
+    let cos = if dot <= 0 {
+        0
+    } else {
+        ((dot as u32 * 4) / len).min(65536)
+    };
     let p = percent as u32;
     // ≤ 100 · 2¹⁶ before the division.
     let i = ((100 - p) * 65536 + p * cos) / 100;

@@ -117,7 +117,7 @@ pub use trig::Angle;
 use crate::fixed::{Coord, Vertex3};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
-use window_clip::Work;
+use window_clip::{Outcodes, Work};
 
 /// Where the geometry stage delivers screen-space polygons.
 pub trait PolygonSink {
@@ -369,8 +369,11 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         }
         let mut work = Work::<N>::new();
         let m = self.stack.current();
+        // The depth range is gathered on the way, for the near clip.
+        let mut depth = (i32::MAX, i32::MIN);
         for &p in points {
             let v = m.apply(p).map_err(|_| PipelineError::Range)?;
+            depth = (depth.0.min(v[2]), depth.1.max(v[2]));
             work.current_mut()
                 .push(v.map(i64::from))
                 .map_err(|_| full())?;
@@ -387,13 +390,16 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         }
 
         let (near, far) = (self.projection.near_raw(), self.projection.far_raw());
-        near_clip::clip_depth(&mut work, near as i64, far as i64).map_err(|_| full())?;
+        near_clip::clip_depth(&mut work, near, far, depth).map_err(|_| full())?;
         let poly = work.current_mut();
         if poly.is_empty() || (!two_sided && poly.len() < 3) {
             return Ok(Outcome::ClippedAway);
         }
+        // The screen's bounding box is gathered on the way, for the window clip.
+        let mut codes = Outcodes::EMPTY;
         for v in poly.iter_mut() {
             *v = self.projection.project(*v, &self.viewport);
+            codes.add(v, &self.viewport);
         }
         if two_sided {
             // Thickness in 1/16 px to half of it in 1/256 px: ≤ 2¹⁸.
@@ -404,12 +410,14 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
                 _ => return Ok(Outcome::ClippedAway),
             };
             poly.clear();
+            codes = Outcodes::EMPTY;
             for v in quad {
+                codes.add(&v, &self.viewport);
                 poly.push(v).map_err(|_| full())?;
             }
         }
 
-        window_clip::clip_window(&mut work, &self.viewport).map_err(|_| full())?;
+        window_clip::clip_window(&mut work, &self.viewport, codes).map_err(|_| full())?;
         let mut out = heapless::Vec::<Vertex3, N>::new();
         for &v in work.current() {
             let v = project::to_vertex3(v);

@@ -21,27 +21,23 @@
 
 use super::window_clip::{Full, Work};
 
-/// Clips the current view-space polygon of `work` to `near ≤ z ≤ far`;
-/// empty when nothing is left.
+/// Clips the current view-space polygon of `work`, whose depths span
+/// `lo..=hi`, to `near ≤ z ≤ far`; empty when nothing is left.
 pub(crate) fn clip_depth<const N: usize>(
     work: &mut Work<N>,
-    near: i64,
-    far: i64,
+    near: i32,
+    far: i32,
+    (lo, hi): (i32, i32),
 ) -> Result<(), Full> {
-    let (mut lo, mut hi) = (i64::MAX, i64::MIN);
-    for v in work.current() {
-        lo = lo.min(v[2]);
-        hi = hi.max(v[2]);
-    }
     if hi < near || lo > far {
         work.current_mut().clear();
         return Ok(());
     }
     if lo < near {
-        work.pass(2, near, true)?;
+        work.pass(2, near as i64, true)?;
     }
     if hi > far {
-        work.pass(2, far, false)?;
+        work.pass(2, far as i64, false)?;
     }
     Ok(())
 }
@@ -51,10 +47,12 @@ mod tests {
     use super::*;
     use crate::geometry::window_clip::Poly;
 
-    fn run<const N: usize>(pts: &[[i64; 3]], near: i64, far: i64) -> Result<Poly<N>, Full> {
+    fn run<const N: usize>(pts: &[[i64; 3]], near: i32, far: i32) -> Result<Poly<N>, Full> {
         let mut work = Work::<N>::new();
         work.current_mut().extend(pts.iter().copied());
-        clip_depth(&mut work, near, far)?;
+        let lo = pts.iter().map(|v| v[2] as i32).min().unwrap_or(0);
+        let hi = pts.iter().map(|v| v[2] as i32).max().unwrap_or(0);
+        clip_depth(&mut work, near, far, (lo, hi))?;
         Ok(work.current().clone())
     }
 
@@ -100,7 +98,7 @@ mod tests {
     #[test]
     fn view_space_extremes() {
         let e = (1i64 << 30) - 1;
-        let out = run::<8>(&[[-e, -e, -e], [e, e, e], [e, -e, e]], 256, e - 1).unwrap();
+        let out = run::<8>(&[[-e, -e, -e], [e, e, e], [e, -e, e]], 256, e as i32 - 1).unwrap();
         assert!(out.iter().all(|v| (256..=e - 1).contains(&v[2])));
         assert!(out.iter().all(|v| v[0].abs() <= e && v[1].abs() <= e));
     }

@@ -24,17 +24,18 @@
 //! space over a plane, so `z` is too, which is what the visible-surface
 //! stage needs (plain `d` would not be).
 //!
-//! One division per vertex, `u64 / u64`, gives a 32-bit reciprocal:
+//! One division per vertex gives a 32-bit reciprocal (64 by 32 bits, done
+//! as two 32-bit hardware divisions, see `div_2_63`):
 //!
 //! | step | value | bound |
 //! |---|---|---|
-//! | `s = clz(d) − 1`, `dₙ = d << s` | normalised depth | `[2³⁰, 2³¹)` |
-//! | `r = ⌊2⁶² / dₙ⌋` | reciprocal, `1/d = r·2ˢ/2⁶²` | `(2³¹, 2³²]` |
-//! | `P = x · r` | | `< 2³⁰ · 2³² = 2⁶²` |
+//! | `s`, `dₙ = d << s` | normalised depth | `(2³⁰, 2³¹]` |
+//! | `r = ⌊2⁶² / dₙ⌋` | reciprocal, `1/d = r·2ˢ/2⁶²` | `[2³¹, 2³²)`, `u32` |
+//! | `P = x · r = x · 2³¹ + x · (r − 2³¹)` | one 32 × 32-bit product | `< 2³⁰ · 2³² = 2⁶²` |
 //! | `P = P₁ · 2³¹ + P₀`, `0 ≤ P₀ < 2³¹` | two halves | `|P₁| < 2³¹` |
-//! | `P₁ · f` and `P₀ · f` (`f` Q16.16 px, `< 2³¹`) | | `< 2⁶²` each |
+//! | `P₁ · f` and `P₀ · f` (`f` Q16.16 px, `< 2³¹`) | 32 × 32-bit products | `< 2⁶²` each |
 //! | `sx − cx = f·P / 2⁷⁰⁻ˢ` in 1/256 px: `(P₁·f + (P₀·f >> 31) + ½) >> (39 − s)` | exactly rounded | `< 2⁴⁵` |
-//! | `w = ⌊2ᴷ/d⌋ = r >> (1 + clz(near) − clz(d))`, `K = 31 + ⌊log₂ near⌋` | exact floor | `(0, 2³¹]` |
+//! | `w = ⌊2ᴷ/d⌋ = r >> (clz(near) − s)`, `K = 62 − clz(near)` | exact floor | `(0, 2³¹]` |
 //! | `z = Z_NEAR + (w(near) − w) · M >> 38`, `M = ⌊S·2³⁸ / (w(near) − w(far))⌋` | | product `< 2⁶²` |
 //!
 //! (`S` is the depth span, 65535 · 256 in 1/4096 units.) The product
@@ -196,13 +197,58 @@ pub struct Perspective {
     depth_mul: i64,
 }
 
-/// `(r, s)` with `1/d = r · 2ˢ / 2⁶²`, for `1 ≤ d < 2³⁰`.
+/// `(r, s)` with `1/d = r · 2ˢ / 2⁶²`, for `1 ≤ d < 2³⁰`: `r` is
+/// `⌊2⁶² / dₙ⌋` exactly, `dₙ = d << s ∈ (2³⁰, 2³¹]`, so `r ∈ [2³¹, 2³²)`
+/// and `s ≤ clz(d)`.
 #[inline]
-fn reciprocal(d: i32) -> (i64, u32) {
+fn reciprocal(d: i32) -> (u32, u32) {
     let s = (d as u32).leading_zeros() - 1;
-    let dn = (d as u64) << s;
-    // dn ∈ [2³⁰, 2³¹): r ∈ (2³¹, 2³²].
-    (((1u64 << 62) / dn) as i64, s)
+    let dn = (d as u32) << s;
+    if dn == 1 << 30 {
+        // A power of two: one more shift gives dₙ = 2³¹ and r = 2³¹.
+        (1 << 31, s + 1)
+    } else {
+        // 2⁶² / dₙ = 2⁶³ / (2 dₙ).
+        (div_2_63(dn << 1), s)
+    }
+}
+
+/// `⌊2⁶³ / v⌋` for `2³¹ < v < 2³²`.
+///
+/// A 64-by-32-bit division in two 16-bit digits, each found with one
+/// 32-bit division and corrected at most twice (Knuth's algorithm D, as in
+/// Hacker's Delight's `divlu`). A Cortex-M has a 32-bit divide
+/// instruction, but a `u64` division is a library call several times
+/// slower; this is the one division per vertex of the projection. All
+/// arithmetic is `u32`: each product is checked against the digit base
+/// before it is formed, so none overflows.
+#[inline]
+fn div_2_63(v: u32) -> u32 {
+    const B: u32 = 1 << 16;
+    let (vn1, vn0) = (v >> 16, v & 0xFFFF);
+    // The dividend's digits: 2³¹ above, then 0 and 0.
+    let top = 1u32 << 31;
+    let mut q1 = top / vn1;
+    let mut rhat = top - q1 * vn1;
+    while q1 >= B || q1 * vn0 > B * rhat {
+        q1 -= 1;
+        rhat += vn1;
+        if rhat >= B {
+            break;
+        }
+    }
+    // The partial remainder, below v: exact modulo 2³².
+    let mid = top.wrapping_mul(B).wrapping_sub(q1.wrapping_mul(v));
+    let mut q0 = mid / vn1;
+    let mut rhat = mid - q0 * vn1;
+    while q0 >= B || q0 * vn0 > B * rhat {
+        q0 -= 1;
+        rhat += vn1;
+        if rhat >= B {
+            break;
+        }
+    }
+    q1 * B + q0
 }
 
 /// `round(v / 2ᵏ)` for `1 ≤ k ≤ 62`.
@@ -234,8 +280,8 @@ impl Perspective {
             w_near: 0,
             depth_mul: 0,
         };
-        p.w_near = p.w(near);
-        let steps = p.w_near - p.w(far);
+        p.w_near = p.w(reciprocal(near));
+        let steps = p.w_near - p.w(reciprocal(far));
         if steps < 1 << 20 {
             return Err(ProjectionError::DepthResolution);
         }
@@ -277,19 +323,25 @@ impl Perspective {
         Q16::from_bits(self.focal as i32)
     }
 
-    /// `⌊2ᴷ / d⌋` for `near ≤ d < 2³⁰`.
+    /// `⌊2ᴷ / d⌋` for `near ≤ d < 2³⁰`, from `reciprocal(d)`:
+    /// `r · 2ˢ · 2ᴷ / 2⁶²` with `K = 62 − clz(near)`, a right shift by
+    /// `clz(near) − s ≥ 0`.
     #[inline]
-    fn w(&self, d: i32) -> i64 {
-        let (r, _) = reciprocal(d);
-        r >> (1 + self.near_lz - (d as u32).leading_zeros())
+    fn w(&self, (r, s): (u32, u32)) -> i64 {
+        (r >> (self.near_lz - s)) as i64
     }
 
-    /// `f · P / 2⁷⁰⁻ˢ`, rounded, for `|P| < 2⁶²` and `1 ≤ s ≤ 22`: in two
-    /// halves of `P`, each product below 2⁶².
+    /// `f · x · r / 2⁷⁰⁻ˢ`, rounded, for `|x| < 2³⁰`, `r ∈ [2³¹, 2³²)` and
+    /// `1 ≤ s ≤ 23`. `P = x · r = x · 2³¹ + x · (r − 2³¹)` (`|P| < 2⁶²`) is
+    /// split as `P₁ · 2³¹ + P₀`; `P₁ · f` and `P₀ · f` are 32 × 32-bit
+    /// products below 2⁶².
     #[inline]
-    fn scale(&self, p: i64, s: u32) -> i64 {
-        let (hi, lo) = (p >> 31, p & ((1 << 31) - 1));
-        (hi * self.focal + ((lo * self.focal) >> 31) + (1 << (38 - s))) >> (39 - s)
+    fn scale(&self, x: i32, r: u32, s: u32) -> i64 {
+        let p = ((x as i64) << 31) + x as i64 * (r - (1 << 31)) as i32 as i64;
+        let (hi, lo) = ((p >> 31) as i32, (p as u32) & 0x7FFF_FFFF);
+        let f = self.focal as i32;
+        let lo_f = (lo as u64 * f as u64) >> 31;
+        (hi as i64 * f as i64 + lo_f as i64 + (1 << (38 - s))) >> (39 - s)
     }
 
     /// x and y offsets from the centre in 1/256 px, and depth in 1/4096,
@@ -298,13 +350,14 @@ impl Perspective {
     fn project(&self, v: [i64; 3]) -> [i64; 3] {
         let d = v[2] as i32;
         let (r, s) = reciprocal(d);
-        let sx = self.scale(v[0] * r, s);
-        let sy = self.scale(v[1] * r, s);
+        let sx = self.scale(v[0] as i32, r, s);
+        let sy = self.scale(v[1] as i32, r, s);
         let z = if d > self.far {
             Z_NEAR_FINE + Z_SPAN_FINE
         } else {
-            let w = r >> (1 + self.near_lz - (d as u32).leading_zeros());
-            Z_NEAR_FINE + round_shift((self.w_near - w) * self.depth_mul, 38)
+            // w(near) − w ∈ [0, 2³¹), M < 2⁴²: the product is below 2⁶².
+            let steps = (self.w_near - self.w((r, s))) as u64;
+            Z_NEAR_FINE + round_shift((steps * self.depth_mul as u64) as i64, 38)
         };
         [sx, sy, z]
     }
@@ -425,12 +478,14 @@ impl Projection {
 ///
 /// # Guarantees
 /// Exact for every input whose x and y lie inside the window and whose z
-/// lies between the planes' depths (as the window clip leaves them).
+/// lies between the planes' depths (as the window clip leaves them): all
+/// three are then below 2²⁴ in magnitude and the arithmetic is `i32`.
+/// Anything else still gives a valid [`Coord`] (clamped), never a panic.
 #[inline]
 pub(crate) fn to_vertex3(v: [i64; 3]) -> Vertex3 {
     let c = |u: i64, shift: u32| {
-        let r = (u + (1 << (shift - 1))) >> shift;
-        Coord::from_bits(r.clamp(i16::MIN as i64, i16::MAX as i64) as i16)
+        let r = (u as i32).wrapping_add(1 << (shift - 1)) >> shift;
+        Coord::from_bits(r.clamp(i16::MIN as i32, i16::MAX as i32) as i16)
     };
     Vertex3 {
         x: c(v[0], 4),
@@ -554,6 +609,44 @@ mod tests {
         assert_eq!(v.z.units(), 0);
         assert_eq!(to_vertex3(o.project([0, 0, -10 * U], &win())).z, Z_NEAR);
         assert_eq!(to_vertex3(o.project([0, 0, 10 * U], &win())).z, Z_FAR);
+    }
+
+    #[test]
+    fn reciprocals_are_exact() {
+        let check = |d: i32| {
+            let (r, s) = reciprocal(d);
+            let dn = (d as u64) << s;
+            assert!((1u64 << 30) < dn && dn <= 1u64 << 31, "{d}");
+            assert!(s <= (d as u32).leading_zeros());
+            assert_eq!(r as u64, (1u64 << 62) / dn, "d = {d}");
+        };
+        for d in 1..70_000 {
+            check(d);
+        }
+        let mut d: i32 = 1 << 29;
+        while d < (1 << 30) - 7_919 {
+            check(d);
+            d += 7_919;
+        }
+        for d in [
+            (1 << 30) - 1,
+            (1 << 29) + 1,
+            1 << 29,
+            (1 << 30) - (1 << 14),
+            3 << 28,
+        ] {
+            check(d);
+        }
+        for v in [
+            (1u32 << 31) + 1,
+            u32::MAX,
+            u32::MAX - 1,
+            0xC000_0000,
+            0x8000_FFFF,
+            0xFFFF_0000,
+        ] {
+            assert_eq!(div_2_63(v) as u64, (1u64 << 63) / v as u64, "{v}");
+        }
     }
 
     #[test]

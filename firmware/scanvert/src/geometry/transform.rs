@@ -50,7 +50,7 @@
 //! restores it; the depth is a const generic, and overflow and underflow
 //! are errors, not panics.
 
-use super::trig::{atan2, cos, sin, Angle};
+use super::trig::{atan2, cos, isqrt, sin, Angle};
 use core::fmt;
 
 /// Raw view-space bound: every coordinate satisfies `|raw| < VIEW_LIMIT`.
@@ -373,9 +373,11 @@ impl View {
         }
         // Forward = (−sin yaw · cos pitch, sin pitch, −cos yaw · cos pitch).
         let yaw = atan2(-d[0], -d[2]);
-        // The horizontal length: squares below 2⁶⁴ summed in u128.
-        let h2 = (d[0] as i128 * d[0] as i128 + d[2] as i128 * d[2] as i128) as u128;
-        let pitch = atan2(d[1], isqrt_u128(h2) as i64);
+        // The horizontal length, with the vector scaled to 15 bits (the
+        // precision atan2 works at): squares below 2³¹.
+        let s = super::light::scale15(d).unwrap_or([0, 0, 0]);
+        let h = isqrt((s[0] * s[0] + s[2] * s[2]) as u32);
+        let pitch = atan2(s[1] as i64, h as i64);
         Some(View { eye, yaw, pitch })
     }
 
@@ -393,22 +395,6 @@ impl View {
         flip.checked_mul(&Matrix::rotation_x(-self.pitch))?
             .checked_mul(&Matrix::rotation_y(-self.yaw))?
             .checked_mul(&Matrix::translation(back))
-    }
-}
-
-/// `⌊√v⌋` for a `u128` below 2⁶⁵, by Newton's method from above (set-up
-/// only).
-fn isqrt_u128(v: u128) -> u64 {
-    if v < 2 {
-        return v as u64;
-    }
-    let mut x = 1u128 << (128 - v.leading_zeros()).div_ceil(2);
-    loop {
-        let y = (x + v / x) / 2;
-        if y >= x {
-            return x as u64;
-        }
-        x = y;
     }
 }
 
@@ -651,22 +637,6 @@ mod tests {
             Point3::new(Q16::MAX, Q16::MAX, Q16::MAX),
         );
         assert!(far.is_some());
-        for v in [
-            0u128,
-            1,
-            2,
-            3,
-            4,
-            15,
-            16,
-            17,
-            u64::MAX as u128,
-            1 << 64,
-            (1 << 65) - 1,
-        ] {
-            let r = isqrt_u128(v) as u128;
-            assert!(r * r <= v && (r + 1) * (r + 1) > v, "{v}");
-        }
     }
 
     #[test]

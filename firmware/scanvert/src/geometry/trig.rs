@@ -34,8 +34,8 @@
 //!
 //! # Integer square root
 //!
-//! [`isqrt`] is `⌊√v⌋` for a `u32`, bit by bit (16 steps of shifts, adds
-//! and compares, no multiply and no division). Lighting and the line
+//! [`isqrt`] is `⌊√v⌋` for a `u32`, by Newton's method from a power of two
+//! above the root: a handful of steps, each one 32-bit division. Lighting and the line
 //! primitive scale their vectors below 2¹⁵ per component first, so their
 //! squared lengths fit in `u32`.
 
@@ -235,22 +235,21 @@ pub fn atan2(y: i64, x: i64) -> Angle {
 
 /// `⌊√v⌋`, exact for every `u32`.
 pub const fn isqrt(v: u32) -> u16 {
-    let mut rem = v;
-    let mut root: u32 = 0;
-    let mut bit: u32 = 1 << 30;
-    while bit > rem {
-        bit >>= 2;
+    if v == 0 {
+        return 0;
     }
-    while bit != 0 {
-        if rem >= root + bit {
-            rem -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
+    // Newton's method from a power of two at or above the root: the
+    // iterates fall monotonically to ⌊√v⌋ and then stop (x ≤ 2¹⁶ and
+    // v / x ≤ 2¹⁶ + 1, so the sum fits).
+    let bits = 32 - v.leading_zeros();
+    let mut x = 1u32 << bits.div_ceil(2);
+    loop {
+        let y = (x + v / x) / 2;
+        if y >= x {
+            return x as u16;
         }
-        bit >>= 2;
+        x = y;
     }
-    root as u16
 }
 
 #[cfg(test)]

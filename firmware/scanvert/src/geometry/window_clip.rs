@@ -164,33 +164,51 @@ impl<const N: usize> Work<N> {
     }
 }
 
-/// Clips the current polygon of `work` to the window; empty when nothing
-/// is left.
+/// Which sides of the window a polygon's vertices lie beyond (Cohen and
+/// Sutherland's outcodes): bit 0 left, 1 right, 2 above, 3 below.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Outcodes {
+    /// Sides some vertex is beyond: the planes to clip against.
+    any: u8,
+    /// Sides every vertex is beyond: non-zero means nothing is inside.
+    all: u8,
+}
+
+impl Outcodes {
+    /// The codes of no vertices.
+    pub(crate) const EMPTY: Outcodes = Outcodes { any: 0, all: 0xF };
+
+    /// Takes in the vertex `v` for the window `window`.
+    #[inline]
+    pub(crate) fn add(&mut self, v: &[i64; 3], window: &Viewport) {
+        let code = (v[0] < 0) as u8
+            | ((v[0] > window.right_fine()) as u8) << 1
+            | ((v[1] < 0) as u8) << 2
+            | ((v[1] > window.bottom_fine()) as u8) << 3;
+        self.any |= code;
+        self.all &= code;
+    }
+}
+
+/// Clips the current polygon of `work`, whose vertices have the codes
+/// `codes`, to the window; empty when nothing is left.
 pub(crate) fn clip_window<const N: usize>(
     work: &mut Work<N>,
     window: &Viewport,
+    codes: Outcodes,
 ) -> Result<(), Full> {
-    let (right, bottom) = (window.right_fine(), window.bottom_fine());
-    let mut lo = [i64::MAX; 2];
-    let mut hi = [i64::MIN; 2];
-    for v in work.current() {
-        for k in 0..2 {
-            lo[k] = lo[k].min(v[k]);
-            hi[k] = hi[k].max(v[k]);
-        }
-    }
-    if hi[0] < 0 || lo[0] > right || hi[1] < 0 || lo[1] > bottom {
+    if codes.all != 0 {
         work.current_mut().clear();
         return Ok(());
     }
     let passes = [
-        (lo[0] < 0, 0, 0, true),
-        (hi[0] > right, 0, right, false),
-        (lo[1] < 0, 1, 0, true),
-        (hi[1] > bottom, 1, bottom, false),
+        (0, 0, true),
+        (0, window.right_fine(), false),
+        (1, 0, true),
+        (1, window.bottom_fine(), false),
     ];
-    for (needed, axis, bound, keep_above) in passes {
-        if needed {
+    for (side, (axis, bound, keep_above)) in passes.into_iter().enumerate() {
+        if codes.any & (1 << side) != 0 {
             work.pass(axis, bound, keep_above)?;
         }
     }
@@ -204,7 +222,9 @@ mod tests {
     fn run<const N: usize>(pts: &[[i64; 3]], w: &Viewport) -> Result<Poly<N>, Full> {
         let mut work = Work::<N>::new();
         work.current_mut().extend(pts.iter().copied());
-        clip_window(&mut work, w)?;
+        let mut codes = Outcodes::EMPTY;
+        pts.iter().for_each(|v| codes.add(v, w));
+        clip_window(&mut work, w, codes)?;
         Ok(work.current().clone())
     }
 
