@@ -395,7 +395,8 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         if poly.is_empty() || (!two_sided && poly.len() < 3) {
             return Ok(Outcome::ClippedAway);
         }
-        // The screen's bounding box is gathered on the way, for the window clip.
+        // The sides of the window each vertex lies beyond are gathered on
+        // the way, for the window clip.
         let mut codes = Outcodes::EMPTY;
         for v in poly.iter_mut() {
             *v = self.projection.project(*v, &self.viewport);

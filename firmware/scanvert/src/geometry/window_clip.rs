@@ -6,8 +6,10 @@
 //! edges once and keeps the inside vertices and the crossing points, so
 //! concave polygons come out as one polygon too (possibly with edges
 //! running along the window's side, which cover nothing). Passes whose
-//! plane the bounding box does not cross are skipped; a polygon wholly
-//! inside costs one bounding-box scan.
+//! plane no vertex lies beyond are skipped: the projection gathers each
+//! vertex's outcode (the sides it lies beyond), so a polygon wholly inside
+//! costs no clipping at all, and one wholly beyond a side is dropped at
+//! once.
 //!
 //! # Crossings
 //!
