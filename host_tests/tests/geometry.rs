@@ -1542,3 +1542,45 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 3000, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Constructors and set-up functions take any input without a panic.
+    #[test]
+    fn set_up_never_panics(
+        a in any::<[i32; 3]>(),
+        b in any::<[i32; 3]>(),
+        x in any::<i64>(),
+        y in any::<i64>(),
+        fov in any::<u16>(),
+        width in any::<u16>(),
+        height in any::<u16>(),
+        near in any::<i32>(),
+        far in any::<i32>(),
+        k in any::<i32>(),
+        pct in any::<u8>(),
+        c in any::<(i16, i16)>(),
+    ) {
+        let p = |v: [i32; 3]| Point3::from_bits(v[0], v[1], v[2]);
+        if let Some(v) = View::look_at(p(a), p(b)) {
+            let _ = v.matrix();
+        }
+        let _ = trig::atan2(y, x);
+        let _ = Light::new(a, pct);
+        let _ = Q16::from_ratio(a[0], a[1]);
+        let _ = Angle::from_turns(a[0], a[1]);
+        let _ = Angle::from_degrees(a[2]);
+        let (n, f, kk) = (Q16::from_bits(near), Q16::from_bits(far), Q16::from_bits(k));
+        let _ = Perspective::from_fov(Angle::from_bits(fov), width, n, f);
+        let _ = Perspective::new(kk, n, f);
+        let _ = Orthographic::new(kk, n, f);
+        let _ = Viewport::new(width, height, Vertex::from_bits(c.0, c.1));
+        let _ = Viewport::centred(width, height);
+        let m = Matrix::from_rows([[a[0], a[1], a[2], b[0]], [b[1], b[2], a[0], a[1]], [a[2], b[0], b[1], b[2]]]);
+        if let Some(m) = m {
+            let _ = m.transform(p(b));
+            let _ = m.checked_mul(&m);
+        }
+    }
+}

@@ -50,7 +50,7 @@
 //! restores it; the depth is a const generic, and overflow and underflow
 //! are errors, not panics.
 
-use super::trig::{atan2, cos, isqrt, sin, Angle};
+use super::trig::{atan2, cos, sin, Angle};
 use core::fmt;
 
 /// Raw view-space bound: every coordinate satisfies `|raw| < VIEW_LIMIT`.
@@ -374,9 +374,9 @@ impl View {
         // Forward = (−sin yaw · cos pitch, sin pitch, −cos yaw · cos pitch).
         let yaw = atan2(-d[0], -d[2]);
         // The horizontal length, with the vector scaled to 15 bits (the
-        // precision atan2 works at): squares below 2³¹.
+        // precision atan2 works at; squares summed in u32).
         let s = super::light::scale15(d).unwrap_or([0, 0, 0]);
-        let h = isqrt((s[0] * s[0] + s[2] * s[2]) as u32);
+        let h = super::light::length15([s[0], 0, s[2]]);
         let pitch = atan2(s[1] as i64, h as i64);
         Some(View { eye, yaw, pitch })
     }
@@ -637,6 +637,13 @@ mod tests {
             Point3::new(Q16::MAX, Q16::MAX, Q16::MAX),
         );
         assert!(far.is_some());
+        // Both horizontal components at the scaled range's corner.
+        let v = View::look_at(
+            Point3::from_bits(65535, 0, 65535),
+            Point3::from_bits(0, 0, 0),
+        )
+        .unwrap();
+        assert_eq!(v.yaw, Angle::from_bits(0x2000));
     }
 
     #[test]
