@@ -19,8 +19,8 @@
 //! sum (see [`cull`]), it needs no projected vertex, and it is defined even
 //! when some of them lie behind the eye. So the cull and the light come
 //! before the clips, and a back face costs no clipping and no division.
-//! [`trig`] holds the angles, the sine table and the integer square root
-//! that the stages share.
+//! [`trig`] holds the angles, the sine table, the arctangent and the
+//! integer square root that the stages share.
 //!
 //! # Formats
 //!
