@@ -121,7 +121,13 @@ impl<'e> Controller<'e> {
                         command: "poly3",
                     })
                 }
-                _ => {}
+                Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
+                _ => {
+                    return Err(RenderError::Unsupported {
+                        offset,
+                        command: "3D scene",
+                    })
+                }
             }
         }
         Ok(())
@@ -190,7 +196,7 @@ impl<'e> Controller<'e> {
                     stats.pixels += counts.pixels as u64;
                 }
                 // Rejected by `check`.
-                Command::Poly3(_) => {}
+                _ => {}
             }
         }
         Ok(stats)
