@@ -402,7 +402,7 @@ fn malformed_binary_lists_are_rejected_with_a_byte_offset() {
         bin_case("wrong magic", with(0, b"SCVM"), Place::Either),
         bin_case("magic in lower case", with(0, b"scvl"), Place::Either),
         bin_case("version 0", with(4, &[0, 0]), at(4)),
-        bin_case("version 2", with(4, &[2, 0]), at(4)),
+        bin_case("version 3", with(4, &[3, 0]), at(4)),
         bin_case("version 0xffff", with(4, &[0xff, 0xff]), at(4)),
         bin_case("width 0", with(6, &[0, 0]), Place::Offset(6, 8)),
         bin_case(
@@ -473,6 +473,67 @@ fn malformed_binary_lists_are_rejected_with_a_byte_offset() {
             with(COLOR_AT, &[0x02]),
             Place::Offset(COLOR_AT, END),
         ),
+        // Version-2 commands: not in a version-1 list, and their operands
+        // checked.
+        bin_case(
+            "a 3D command in a version-1 list",
+            restamp(appended(&[0x26])),
+            at(END),
+        ),
+        bin_case(
+            "rotate about axis 3",
+            v2(restamp(appended(&[0x29, 3, 0, 0]))),
+            at(END),
+        ),
+        bin_case(
+            "light of 101 %",
+            v2(restamp(appended(&[
+                0x24, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 101,
+            ]))),
+            at(END),
+        ),
+        bin_case(
+            "negative thickness",
+            v2(restamp(appended(&[0x25, 0xff, 0xff]))),
+            at(END),
+        ),
+        bin_case(
+            "face of no vertex",
+            v2(restamp(appended(&[0x30, 0, 0]))),
+            at(END),
+        ),
+        bin_case(
+            "face whose count lies",
+            v2(restamp(appended(&[0x30, 2, 0, 1, 2, 3]))),
+            at(END),
+        ),
+        bin_case(
+            "empty label",
+            v2(restamp(appended(&[
+                0x31, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
+            ]))),
+            at(END),
+        ),
+        bin_case(
+            "label with a control character",
+            v2(restamp(appended(&[
+                0x31, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, b'a', 7,
+            ]))),
+            at(END),
+        ),
+        bin_case(
+            "label longer than what follows",
+            v2(restamp(appended(&[
+                0x31, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 200, b'a',
+            ]))),
+            at(END),
+        ),
     ];
     check_all("malformed", "scvl", &cases);
+}
+
+/// The list stamped as version 2.
+fn v2(mut b: Vec<u8>) -> Vec<u8> {
+    b[4] = 2;
+    b
 }

@@ -54,6 +54,46 @@ fn colour() -> impl Strategy<Value = String> {
     })
 }
 
+/// A world value (Q16.16 range) or an angle in degrees, in many spellings.
+fn world() -> impl Strategy<Value = String> {
+    (-32767i32..32767, 0u64..100_000_000, 0usize..3).prop_map(|(int, frac, style)| {
+        let sign = if int < 0 { "-" } else { "" };
+        let m = int.unsigned_abs();
+        match style {
+            0 => format!("{sign}{m}"),
+            1 => format!("{sign}{m}.{frac}"),
+            _ => format!("{sign}{m}.{frac:08}5"),
+        }
+    })
+}
+
+fn command3d() -> impl Strategy<Value = String> {
+    prop_oneof![
+        (0u32..65536).prop_map(|id| format!("segment {id}")),
+        (world(), world(), world()).prop_map(|(a, n, f)| format!("perspective {a} {n} {f}")),
+        (world(), world(), world()).prop_map(|(a, n, f)| format!("ortho {a} {n} {f}")),
+        prop::collection::vec(world(), 5).prop_map(|v| format!("view {}", v.join(" "))),
+        (prop::collection::vec(world(), 3), 0u8..=100)
+            .prop_map(|(v, p)| format!("light {} {p}", v.join(" "))),
+        (0u16..32768).prop_map(|t| format!("thickness {}", t as f64 / 16.0)),
+        Just("push".to_string()),
+        Just("pop".to_string()),
+        prop::collection::vec(world(), 3).prop_map(|v| format!("translate {}", v.join(" "))),
+        prop::collection::vec(world(), 3).prop_map(|v| format!("scale {}", v.join(" "))),
+        (prop::sample::select(vec!["x", "y", "z"]), world())
+            .prop_map(|(a, d)| format!("rotate {a} {d}")),
+        prop::collection::vec(world(), 3..18).prop_map(|v| {
+            let n = v.len() / 3 * 3;
+            format!("face {}", v[..n].join(" "))
+        }),
+        (
+            prop::collection::vec(world(), 3),
+            "[a-zA-Z0-9.,:;!?()+-]{1,12}( [a-z]{1,5}){0,3}"
+        )
+            .prop_map(|(v, t)| format!("label {} {t}", v.join(" "))),
+    ]
+}
+
 fn command() -> impl Strategy<Value = String> {
     prop_oneof![
         colour().prop_map(|c| format!("clear {c}")),
@@ -75,6 +115,8 @@ fn command() -> impl Strategy<Value = String> {
         }),
         Just("# only a comment".to_string()),
         Just(String::new()),
+        command3d(),
+        command3d(),
     ]
 }
 

@@ -392,7 +392,13 @@ impl<'e> Controller<'e> {
                     }
                     Some(_) => {}
                 },
-                _ => {}
+                Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
+                _ => {
+                    return Err(RenderError::Unsupported {
+                        offset,
+                        command: "3D scene",
+                    })
+                }
             }
         }
         Ok(())
@@ -485,6 +491,8 @@ impl<'e> Controller<'e> {
                 }
                 // The 3D layer, drawn below.
                 Command::Poly3(_) => {}
+                // Rejected by `check`.
+                _ => {}
             }
         }
         if let Some(layer) = layer {

@@ -13,6 +13,7 @@
 //! | stage | module | what happens |
 //! |---|---|---|
 //! | reader | [`display_list`] | validate the bytes once, then read commands infallibly |
+//! | 3D geometry | [`geometry`] | transform stack, cull, light, near clip, projection, points and lines, window clip, into screen-space polygons |
 //! | geometry | [`fixed`] | Q12.4 vertices and the widths of every intermediate |
 //! | edges | [`edge`] | per-edge set-up, then an exact Bresenham step per row |
 //! | edges, approximate | [`edge_dda`] | faster DDA steppers and vertex snapping, with their error documented |
@@ -71,6 +72,7 @@ pub mod edge;
 pub mod edge_dda;
 pub mod fixed;
 pub mod framebuffer;
+pub mod geometry;
 pub mod port;
 pub mod rle;
 pub mod scan;

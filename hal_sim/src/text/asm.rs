@@ -10,11 +10,12 @@
 //! is encoded; the binary list is then written with the firmware's own
 //! [`Writer`], so the two forms cannot drift apart.
 
-use super::number::{parse_coord, parse_int};
+use super::number::{parse_angle, parse_coord, parse_int, parse_q16};
 use super::{TextError, TextErrorKind};
 use scanvert::clip::ClipWindow;
-use scanvert::display_list::{Writer, HEADER_LEN, MAX_VERTICES};
-use scanvert::fixed::{Vertex, Vertex3};
+use scanvert::display_list::{Axis, Writer, HEADER_LEN, MAX_LABEL_LEN, MAX_VERTICES};
+use scanvert::fixed::{Coord, Vertex, Vertex3};
+use scanvert::geometry::{Angle, Point3, View, Q16};
 use scanvert::pixelcolor::Rgb888;
 
 /// A text scene assembled into the binary form.
@@ -46,16 +47,60 @@ enum Cmd {
     Color(Rgb888),
     Poly(Vec<Vertex>),
     Poly3(Vec<Vertex3>),
+    Segment(u16),
+    Perspective(Angle, Q16, Q16),
+    Ortho(Q16, Q16, Q16),
+    View(View),
+    Light(Point3, u8),
+    Thickness(Coord),
+    Push,
+    Pop,
+    Translate(Point3),
+    Rotate(Axis, Angle),
+    Scale(Point3),
+    Face(Vec<Point3>),
+    Label(Point3, String),
 }
 
 impl Cmd {
-    /// Its size in the binary form.
+    /// Its size in the binary form (see `scanvert::display_list`).
     fn size(&self) -> usize {
         match self {
-            Cmd::Clear(_) | Cmd::Color(_) => 4,
+            Cmd::Push | Cmd::Pop => 1,
+            Cmd::Segment(_) | Cmd::Thickness(_) => 3,
+            Cmd::Clear(_) | Cmd::Color(_) | Cmd::Rotate(..) => 4,
             Cmd::Clip(_) => 9,
+            Cmd::Perspective(..) => 11,
+            Cmd::Ortho(..) | Cmd::Translate(_) | Cmd::Scale(_) => 13,
+            Cmd::Light(..) => 14,
+            Cmd::View(_) => 17,
             Cmd::Poly(v) => 3 + 4 * v.len(),
             Cmd::Poly3(v) => 3 + 6 * v.len(),
+            Cmd::Face(v) => 3 + 12 * v.len(),
+            Cmd::Label(_, t) => 14 + t.len(),
+        }
+    }
+
+    fn write(&self, w: &mut Writer<'_>) -> Result<(), scanvert::display_list::WriteError> {
+        match self {
+            Cmd::Clear(c) => w.clear(*c),
+            Cmd::Clip(c) => w.clip(*c),
+            Cmd::Color(c) => w.color(*c),
+            Cmd::Poly(v) => w.poly(v.iter().copied()),
+            Cmd::Poly3(v) => w.poly3(v.iter().copied()),
+            Cmd::Segment(id) => w.segment(*id),
+            Cmd::Perspective(fov, near, far) => w.perspective(*fov, *near, *far),
+            Cmd::Ortho(scale, near, far) => w.ortho(*scale, *near, *far),
+            Cmd::View(v) => w.view(v.eye, v.yaw, v.pitch),
+            Cmd::Light(toward, percent) => w.light(*toward, *percent),
+            Cmd::Thickness(t) => w.thickness(*t),
+            Cmd::Push => w.push(),
+            Cmd::Pop => w.pop(),
+            Cmd::Translate(p) => w.translate(*p),
+            Cmd::Rotate(axis, a) => w.rotate(*axis, *a),
+            Cmd::Scale(p) => w.scale(*p),
+            Cmd::Face(v) => w.face(v.iter().copied()),
+            Cmd::Label(at, text) => w.label(*at, text),
         }
     }
 }
@@ -108,14 +153,7 @@ pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
     for (line, cmd) in &cmds {
         lines.push((at, *line));
         at += cmd.size();
-        match cmd {
-            Cmd::Clear(c) => w.clear(*c),
-            Cmd::Clip(c) => w.clip(*c),
-            Cmd::Color(c) => w.color(*c),
-            Cmd::Poly(v) => w.poly(v.iter().copied()),
-            Cmd::Poly3(v) => w.poly3(v.iter().copied()),
-        }
-        .map_err(|e| internal(*line, e))?;
+        cmd.write(&mut w).map_err(|e| internal(*line, e))?;
     }
     let len = w.finish().len();
     debug_assert_eq!(len, size);
@@ -133,7 +171,28 @@ fn internal(line: usize, e: scanvert::display_list::WriteError) -> TextError {
 }
 
 fn is_command(name: &str) -> bool {
-    matches!(name, "clear" | "clip" | "color" | "poly" | "poly3")
+    matches!(
+        name,
+        "clear"
+            | "clip"
+            | "color"
+            | "poly"
+            | "poly3"
+            | "segment"
+            | "perspective"
+            | "ortho"
+            | "view"
+            | "lookat"
+            | "light"
+            | "thickness"
+            | "push"
+            | "pop"
+            | "translate"
+            | "rotate"
+            | "scale"
+            | "face"
+            | "label"
+    )
 }
 
 /// The words of a line, comments removed.
@@ -204,6 +263,27 @@ fn coord(word: &[u8]) -> Result<scanvert::fixed::Coord, TextErrorKind> {
         word: quoted(w),
         error,
     })
+}
+
+fn q16(word: &[u8]) -> Result<Q16, TextErrorKind> {
+    let w = utf8(word)?;
+    parse_q16(w).map_err(|error| TextErrorKind::Number {
+        word: quoted(w),
+        error,
+    })
+}
+
+fn angle(word: &[u8]) -> Result<Angle, TextErrorKind> {
+    let w = utf8(word)?;
+    parse_angle(w).map_err(|error| TextErrorKind::Number {
+        word: quoted(w),
+        error,
+    })
+}
+
+/// Three world values from `words[0..3]`.
+fn point(words: &[&[u8]]) -> Result<Point3, TextErrorKind> {
+    Ok(Point3::new(q16(words[0])?, q16(words[1])?, q16(words[2])?))
 }
 
 fn colour(word: &[u8]) -> Result<Rgb888, TextErrorKind> {
@@ -289,6 +369,129 @@ fn parse_command(name: &str, operands: &[&[u8]]) -> Result<Cmd, TextErrorKind> {
                     })
                     .collect(),
             ))
+        }
+        "segment" => {
+            operand_count("segment", "1 (ID)", operands, operands.len() == 1)?;
+            Ok(Cmd::Segment(int(operands[0], 0, 65535, "0 … 65535")? as u16))
+        }
+        "perspective" => {
+            operand_count(
+                "perspective",
+                "3 (FOV NEAR FAR)",
+                operands,
+                operands.len() == 3,
+            )?;
+            Ok(Cmd::Perspective(
+                angle(operands[0])?,
+                q16(operands[1])?,
+                q16(operands[2])?,
+            ))
+        }
+        "ortho" => {
+            operand_count("ortho", "3 (SCALE NEAR FAR)", operands, operands.len() == 3)?;
+            Ok(Cmd::Ortho(
+                q16(operands[0])?,
+                q16(operands[1])?,
+                q16(operands[2])?,
+            ))
+        }
+        "view" => {
+            operand_count("view", "5 (X Y Z YAW PITCH)", operands, operands.len() == 5)?;
+            Ok(Cmd::View(View {
+                eye: point(operands)?,
+                yaw: angle(operands[3])?,
+                pitch: angle(operands[4])?,
+            }))
+        }
+        "lookat" => {
+            operand_count(
+                "lookat",
+                "6 (X Y Z TX TY TZ)",
+                operands,
+                operands.len() == 6,
+            )?;
+            let (eye, target) = (point(operands)?, point(&operands[3..])?);
+            Ok(Cmd::View(
+                View::look_at(eye, target).ok_or(TextErrorKind::LookAt)?,
+            ))
+        }
+        "light" => {
+            operand_count(
+                "light",
+                "4 (DX DY DZ PERCENT)",
+                operands,
+                operands.len() == 4,
+            )?;
+            let percent = int(operands[3], 0, 100, "0 … 100")? as u8;
+            Ok(Cmd::Light(point(operands)?, percent))
+        }
+        "thickness" => {
+            operand_count("thickness", "1 (T)", operands, operands.len() == 1)?;
+            let t = coord(operands[0])?;
+            if t.to_bits() < 0 {
+                let w = utf8(operands[0])?;
+                return Err(TextErrorKind::Number {
+                    word: quoted(w),
+                    error: super::NumberError::Range("0 … 2047.9375"),
+                });
+            }
+            Ok(Cmd::Thickness(t))
+        }
+        "push" | "pop" => {
+            let command = if name == "push" { "push" } else { "pop" };
+            operand_count(command, "no", operands, operands.is_empty())?;
+            Ok(if name == "push" { Cmd::Push } else { Cmd::Pop })
+        }
+        "translate" | "scale" => {
+            let command = if name == "translate" {
+                "translate"
+            } else {
+                "scale"
+            };
+            operand_count(command, "3 (X Y Z)", operands, operands.len() == 3)?;
+            let p = point(operands)?;
+            Ok(if name == "translate" {
+                Cmd::Translate(p)
+            } else {
+                Cmd::Scale(p)
+            })
+        }
+        "rotate" => {
+            operand_count("rotate", "2 (x|y|z DEGREES)", operands, operands.len() == 2)?;
+            let axis = match operands[0] {
+                b"x" => Axis::X,
+                b"y" => Axis::Y,
+                b"z" => Axis::Z,
+                other => return Err(TextErrorKind::Axis(quoted(&String::from_utf8_lossy(other)))),
+            };
+            Ok(Cmd::Rotate(axis, angle(operands[1])?))
+        }
+        "face" => {
+            let n = operands.len();
+            operand_count(
+                "face",
+                "a multiple of 3, ≥ 3 (X Y Z …)",
+                operands,
+                n >= 3 && n % 3 == 0,
+            )?;
+            vertex_limit(n / 3)?;
+            let points = operands
+                .chunks_exact(3)
+                .map(point)
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(Cmd::Face(points))
+        }
+        "label" => {
+            operand_count("label", "X Y Z and a text", operands, operands.len() >= 4)?;
+            let words = operands[3..]
+                .iter()
+                .map(|w| utf8(w))
+                .collect::<Result<Vec<_>, _>>()?;
+            let text = words.join(" ");
+            if text.len() > MAX_LABEL_LEN || !text.bytes().all(|c| (0x20..0x7f).contains(&c)) {
+                return Err(TextErrorKind::Label);
+            }
+            Ok(Cmd::Label(point(operands)?, text))
         }
         other => Err(TextErrorKind::UnknownCommand(quoted(other))),
     }

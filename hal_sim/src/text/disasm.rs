@@ -1,21 +1,50 @@
 //! Binary form → text form.
 
-use scanvert::display_list::{Command, DisplayList};
+use scanvert::display_list::{Axis, Command, DisplayList};
 use scanvert::fixed::Coord;
+use scanvert::geometry::{Angle, Point3, Q16};
 use scanvert::pixelcolor::{Rgb888, RgbColor};
 use std::fmt::Write;
 
-/// A coordinate exactly, in the fewest decimals: `12`, `-3.5`, `100.0625`.
-pub fn format_coord(c: Coord) -> String {
-    let u = c.units();
-    let (sign, m) = if u < 0 { ("-", -u) } else { ("", u) };
-    let (int, frac) = (m / 16, m % 16);
+/// `raw · 2^−frac_bits` exactly, in the fewest decimals (`frac_bits` ≤ 16):
+/// `k/2^f = k·5^f / 10^f`, so `f` decimals always suffice.
+pub fn format_fixed(raw: i64, frac_bits: u32) -> String {
+    let sign = if raw < 0 { "-" } else { "" };
+    let m = raw.unsigned_abs();
+    let (int, frac) = (m >> frac_bits, m & ((1 << frac_bits) - 1));
     if frac == 0 {
         return format!("{sign}{int}");
     }
-    // frac/16 = frac · 625 / 10000: four decimals, trailing zeros dropped.
-    let digits = format!("{:04}", frac * 625);
+    let digits = format!(
+        "{:0width$}",
+        frac * 5u64.pow(frac_bits),
+        width = frac_bits as usize
+    );
     format!("{sign}{int}.{}", digits.trim_end_matches('0'))
+}
+
+/// A coordinate exactly, in the fewest decimals: `12`, `-3.5`, `100.0625`.
+pub fn format_coord(c: Coord) -> String {
+    format_fixed(c.units() as i64, 4)
+}
+
+/// A world value (Q16.16) exactly.
+pub fn format_q16(q: Q16) -> String {
+    format_fixed(q.to_bits() as i64, 16)
+}
+
+/// An angle in degrees, exactly: `bits · 360/65536 = bits · 45 / 2¹³`.
+pub fn format_angle(a: Angle) -> String {
+    format_fixed(a.to_bits() as i64 * 45, 13)
+}
+
+fn point(p: Point3) -> String {
+    format!(
+        "{} {} {}",
+        format_q16(p.x),
+        format_q16(p.y),
+        format_q16(p.z)
+    )
 }
 
 fn hex(c: Rgb888) -> String {
@@ -51,6 +80,53 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
                 }
                 writeln!(s)
             }
+            Command::Segment(id) => writeln!(s, "segment {id}"),
+            Command::Perspective { fov, near, far } => writeln!(
+                s,
+                "perspective {} {} {}",
+                format_angle(fov),
+                format_q16(near),
+                format_q16(far)
+            ),
+            Command::Ortho { scale, near, far } => writeln!(
+                s,
+                "ortho {} {} {}",
+                format_q16(scale),
+                format_q16(near),
+                format_q16(far)
+            ),
+            Command::View { eye, yaw, pitch } => writeln!(
+                s,
+                "view {} {} {}",
+                point(eye),
+                format_angle(yaw),
+                format_angle(pitch)
+            ),
+            Command::Light { toward, percent } => {
+                writeln!(s, "light {} {percent}", point(toward))
+            }
+            Command::Thickness(t) => writeln!(s, "thickness {}", format_coord(t)),
+            Command::Push => writeln!(s, "push"),
+            Command::Pop => writeln!(s, "pop"),
+            Command::Translate(p) => writeln!(s, "translate {}", point(p)),
+            Command::Rotate(axis, a) => {
+                let axis = match axis {
+                    Axis::X => "x",
+                    Axis::Y => "y",
+                    Axis::Z => "z",
+                };
+                writeln!(s, "rotate {axis} {}", format_angle(a))
+            }
+            Command::Scale(p) => writeln!(s, "scale {}", point(p)),
+            Command::Face(v) => {
+                s.push_str("face");
+                for p in v.iter() {
+                    s.push(' ');
+                    s.push_str(&point(p));
+                }
+                writeln!(s)
+            }
+            Command::Label { at, text } => writeln!(s, "label {} {text}", point(at)),
         };
     }
     s
@@ -59,7 +135,7 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::text::parse_coord;
+    use crate::text::{parse_angle, parse_coord, parse_q16};
 
     #[test]
     fn every_coordinate_round_trips() {
@@ -72,5 +148,30 @@ mod tests {
         assert_eq!(format_coord(Coord::from_bits(24)), "1.5");
         assert_eq!(format_coord(Coord::MIN), "-2048");
         assert_eq!(format_coord(Coord::MAX), "2047.9375");
+    }
+
+    #[test]
+    fn every_angle_and_q16_corners_round_trip() {
+        for b in 0..=u16::MAX {
+            let a = Angle::from_bits(b);
+            assert_eq!(parse_angle(&format_angle(a)), Ok(a), "{b}");
+        }
+        for b in [
+            i32::MIN,
+            i32::MIN + 1,
+            -65536,
+            -1,
+            0,
+            1,
+            3,
+            65535,
+            65536,
+            i32::MAX,
+        ] {
+            let q = Q16::from_bits(b);
+            assert_eq!(parse_q16(&format_q16(q)), Ok(q), "{b}");
+        }
+        assert_eq!(format_q16(Q16::from_bits(-98304)), "-1.5");
+        assert_eq!(format_angle(Angle::from_bits(16384)), "90");
     }
 }

@@ -24,8 +24,8 @@ mod disasm;
 mod number;
 
 pub use asm::{assemble, assemble_bytes, Assembled};
-pub use disasm::{disassemble, format_coord};
-pub use number::{parse_coord, parse_int, NumberError};
+pub use disasm::{disassemble, format_angle, format_coord, format_fixed, format_q16};
+pub use number::{parse_angle, parse_coord, parse_fixed, parse_int, parse_q16, NumberError};
 
 use std::fmt;
 
@@ -62,6 +62,13 @@ pub enum TextErrorKind {
     Colour(String),
     /// A polygon with too many vertices for the binary form.
     TooManyVertices(usize),
+    /// A label that is too long or holds a character other than printable
+    /// ASCII.
+    Label,
+    /// `lookat` with the eye on the target.
+    LookAt,
+    /// A rotation axis other than `x`, `y` or `z`.
+    Axis(String),
 }
 
 /// A fault in the text form, with its 1-based line.
@@ -90,6 +97,13 @@ impl fmt::Display for TextErrorKind {
             } => write!(f, "`{command}` takes {expected}, not {got} operands"),
             TextErrorKind::Number { word, error } => write!(f, "`{word}`: {error}"),
             TextErrorKind::Colour(w) => write!(f, "`{w}` is not a colour `#rrggbb`"),
+            TextErrorKind::Label => write!(
+                f,
+                "a label is 1 to {} characters of printable ASCII",
+                scanvert::display_list::MAX_LABEL_LEN
+            ),
+            TextErrorKind::LookAt => f.write_str("`lookat`: the eye is on the target"),
+            TextErrorKind::Axis(a) => write!(f, "`{a}` is not an axis (x, y or z)"),
             TextErrorKind::TooManyVertices(n) => write!(
                 f,
                 "polygon has {n} vertices; a display list holds at most {}",

@@ -8,6 +8,7 @@
 //! overflows.
 
 use scanvert::fixed::Coord;
+use scanvert::geometry::{Angle, Q16};
 use std::fmt;
 
 /// Why a word is not an acceptable number.
@@ -74,28 +75,79 @@ fn int_value(int: &[u8], limit: i64) -> Option<i64> {
     Some(v)
 }
 
-/// A coordinate: rounded to the nearest 1/16, ties away from zero, and
-/// then required to lie in −2048 … +2047.9375.
-pub fn parse_coord(word: &str) -> Result<Coord, NumberError> {
-    const RANGE: NumberError = NumberError::Range("-2048 … 2047.9375");
+/// The exact decimal `word` rounded to the nearest multiple of
+/// 2^−`frac_bits` (ties away from zero), as a count of those steps, which
+/// must lie in `lo..=hi`. `frac_bits` is at most 16.
+pub fn parse_fixed(
+    word: &str,
+    frac_bits: u32,
+    lo: i64,
+    hi: i64,
+    range: &'static str,
+) -> Result<i64, NumberError> {
     let d = split(word)?;
-    let int = int_value(d.int, 4096).ok_or(RANGE)?;
-    // frac × 16 = q + rest, q in 0..16, rest a decimal fraction in [0, 1):
-    // multiply the digit string by 16 from its last digit.
+    let limit = (lo.unsigned_abs().max(hi.unsigned_abs()) >> frac_bits) as i64 + 1;
+    let int = int_value(d.int, limit).ok_or(NumberError::Range(range))?;
+    // frac × 2^k = q + rest, rest a decimal fraction in [0, 1): multiply
+    // the digit string by 2^k from its last digit (9·2¹⁶ + 2¹⁶ fits u32).
     let mut rest: Vec<u8> = d.frac.iter().map(|c| c - b'0').collect();
     let mut carry = 0u32;
     for digit in rest.iter_mut().rev() {
-        let v = *digit as u32 * 16 + carry;
+        let v = ((*digit as u32) << frac_bits) + carry;
         *digit = (v % 10) as u8;
         carry = v / 10;
     }
     // Round half up on the magnitude, which is ties away from zero.
     let half_or_more = rest.first().is_some_and(|&first| first >= 5);
-    let magnitude = int * 16 + carry as i64 + half_or_more as i64;
-    let units = if d.negative { -magnitude } else { magnitude };
-    i16::try_from(units)
-        .map(Coord::from_bits)
-        .map_err(|_| RANGE)
+    let magnitude = (int << frac_bits) + carry as i64 + half_or_more as i64;
+    let v = if d.negative { -magnitude } else { magnitude };
+    if (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(NumberError::Range(range))
+    }
+}
+
+/// A screen coordinate (Q12.4): rounded to the nearest 1/16, ties away
+/// from zero, and then required to lie in −2048 … +2047.9375.
+pub fn parse_coord(word: &str) -> Result<Coord, NumberError> {
+    parse_fixed(
+        word,
+        4,
+        i16::MIN as i64,
+        i16::MAX as i64,
+        "-2048 … 2047.9375",
+    )
+    .map(|v| Coord::from_bits(v as i16))
+}
+
+/// A world value (Q16.16): rounded to the nearest 1/65536, ties away from
+/// zero, in −32768 … 32767.99998.
+pub fn parse_q16(word: &str) -> Result<Q16, NumberError> {
+    parse_fixed(
+        word,
+        16,
+        i32::MIN as i64,
+        i32::MAX as i64,
+        "-32768 … 32767.99998",
+    )
+    .map(|v| Q16::from_bits(v as i32))
+}
+
+/// An angle in degrees (any value in ±32768, wrapping at a turn), to the
+/// nearest 1/65536 of a turn.
+pub fn parse_angle(word: &str) -> Result<Angle, NumberError> {
+    let q = parse_fixed(
+        word,
+        16,
+        i32::MIN as i64,
+        i32::MAX as i64,
+        "-32768 … 32767 degrees",
+    )?;
+    // Degrees in Q16.16 to 1/65536 turns: q / 360, rounded half away from zero.
+    let turns = (q.abs() + 180) / 360;
+    let turns = if q < 0 { -turns } else { turns };
+    Ok(Angle::from_bits(turns.rem_euclid(65536) as u16))
 }
 
 /// A whole number in `lo..=hi`. A fraction of zeros (`64.0`) is whole.
@@ -162,6 +214,19 @@ mod tests {
         ] {
             assert_eq!(parse_coord(bad), Err(NumberError::Syntax), "{bad:?}");
         }
+    }
+
+    #[test]
+    fn world_values_and_angles() {
+        assert_eq!(parse_q16("1.5").unwrap().to_bits(), 98304);
+        assert_eq!(parse_q16("-32768").unwrap().to_bits(), i32::MIN);
+        assert!(parse_q16("32768").is_err());
+        assert_eq!(parse_q16("0.0000076293945").unwrap().to_bits(), 0); // 1/131072 - ε
+        assert_eq!(parse_q16("0.00000762939453125").unwrap().to_bits(), 1); // a tie
+        assert_eq!(parse_angle("90").unwrap().to_bits(), 16384);
+        assert_eq!(parse_angle("-90").unwrap().to_bits(), 49152);
+        assert_eq!(parse_angle("360").unwrap().to_bits(), 0);
+        assert_eq!(parse_angle("720.0054931640625").unwrap().to_bits(), 1);
     }
 
     #[test]

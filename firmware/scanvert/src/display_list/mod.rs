@@ -1,11 +1,11 @@
 //! The display list: what the graphic controller reads.
 //!
-//! A display list is a byte string, little-endian, version 1:
+//! A display list is a byte string, little-endian:
 //!
 //! ```text
 //! offset size  field
 //!  0     4     magic  "SCVL"
-//!  4     2     version (1)
+//!  4     2     version: 1 (2D commands only) or 2 (with 3D commands)
 //!  6     2     frame width  W, 1..=4096
 //!  8     2     frame height H, 1..=4096
 //! 10     2     reserved, 0
@@ -21,6 +21,28 @@
 //! | `0x10` | `poly`  | `n: u16` (≥ 3), then `n × (x, y)`: `i16` Q12.4 | 3 + 4n |
 //! | `0x11` | `poly3` | `n: u16` (≥ 3), then `n × (x, y, z)`: `i16` Q12.4 | 3 + 6n |
 //!
+//! Version 2 adds the 3D scene (world values are `i32` Q16.16, angles `u16`
+//! binary angles, 65536 to the turn; see [`crate::geometry`]):
+//!
+//! | opcode | command | operands | size |
+//! |---|---|---|---|
+//! | `0x20` | `segment` | `id: u16` | 3 |
+//! | `0x21` | `perspective` | `fov: u16` angle, `near far`: Q16.16 | 11 |
+//! | `0x22` | `ortho` | `scale near far`: Q16.16 | 13 |
+//! | `0x23` | `view` | `eye x y z`: Q16.16, `yaw pitch`: angles | 17 |
+//! | `0x24` | `light` | `toward x y z`: Q16.16, `percent: u8` (≤ 100) | 14 |
+//! | `0x25` | `thickness` | `t: i16` Q12.4 px (≥ 0) | 3 |
+//! | `0x26` | `push` | | 1 |
+//! | `0x27` | `pop` | | 1 |
+//! | `0x28` | `translate` | `x y z`: Q16.16 | 13 |
+//! | `0x29` | `rotate` | `axis: u8` (0 x, 1 y, 2 z), angle | 4 |
+//! | `0x2a` | `scale` | `x y z`: Q16.16 | 13 |
+//! | `0x30` | `face` | `n: u16` (≥ 1), then `n × (x, y, z)`: Q16.16 | 3 + 12n |
+//! | `0x31` | `label` | `x y z`: Q16.16, `len: u8` (≥ 1), `len` bytes of printable ASCII | 14 + len |
+//!
+//! A version-1 list may hold only version-1 opcodes. [`Writer`] stamps the
+//! lowest version that holds what was written, so a 2D list stays version 1.
+//!
 //! Reading is done in two steps, after smoltcp's `wire` module:
 //! [`DisplayList::new_checked`] walks the whole list once and returns a
 //! typed [`Error`] with the byte offset of the first fault; after that, the
@@ -30,15 +52,19 @@
 mod reader;
 mod writer;
 
-pub use reader::{Command, Commands, DisplayList, Vertices, Vertices3};
+pub use reader::{Axis, Command, Commands, DisplayList, Points, Vertices, Vertices3};
 pub use writer::{WriteError, Writer};
 
 use core::fmt;
 
 /// The four bytes every display list starts with.
 pub const MAGIC: [u8; 4] = *b"SCVL";
-/// The format version this crate reads and writes.
-pub const VERSION: u16 = 1;
+/// The newest format version this crate reads and writes.
+pub const VERSION: u16 = 2;
+/// The version of lists that hold only 2D commands.
+pub const VERSION_2D: u16 = 1;
+/// Most bytes of a label's text.
+pub const MAX_LABEL_LEN: usize = u8::MAX as usize;
 /// Size of the header in bytes.
 pub const HEADER_LEN: usize = 16;
 /// Most vertices one polygon can have (the count is a `u16`).
@@ -59,6 +85,32 @@ pub enum Opcode {
     Poly = 0x10,
     /// A screen-space polygon with depth.
     Poly3 = 0x11,
+    /// Start (or return to) a segment of the 3D scene.
+    Segment = 0x20,
+    /// Perspective projection.
+    Perspective = 0x21,
+    /// Orthographic projection.
+    Ortho = 0x22,
+    /// The camera.
+    View = 0x23,
+    /// The parallel light.
+    Light = 0x24,
+    /// Thickness of points and lines.
+    Thickness = 0x25,
+    /// Save the modelling transform.
+    Push = 0x26,
+    /// Restore the modelling transform.
+    Pop = 0x27,
+    /// Translate the modelling transform.
+    Translate = 0x28,
+    /// Rotate the modelling transform about an axis.
+    Rotate = 0x29,
+    /// Scale the modelling transform.
+    Scale = 0x2a,
+    /// A 3D polygon (one vertex: a point; two: a line).
+    Face = 0x30,
+    /// A text label at a 3D point.
+    Label = 0x31,
 }
 
 impl Opcode {
@@ -70,8 +122,30 @@ impl Opcode {
             0x03 => Opcode::Color,
             0x10 => Opcode::Poly,
             0x11 => Opcode::Poly3,
+            0x20 => Opcode::Segment,
+            0x21 => Opcode::Perspective,
+            0x22 => Opcode::Ortho,
+            0x23 => Opcode::View,
+            0x24 => Opcode::Light,
+            0x25 => Opcode::Thickness,
+            0x26 => Opcode::Push,
+            0x27 => Opcode::Pop,
+            0x28 => Opcode::Translate,
+            0x29 => Opcode::Rotate,
+            0x2a => Opcode::Scale,
+            0x30 => Opcode::Face,
+            0x31 => Opcode::Label,
             _ => return None,
         })
+    }
+
+    /// The first format version that has this opcode.
+    pub const fn version(self) -> u16 {
+        if (self as u8) < 0x20 {
+            VERSION_2D
+        } else {
+            VERSION
+        }
     }
 }
 
@@ -103,8 +177,12 @@ pub enum ErrorKind {
     },
     /// A byte that is not an [`Opcode`].
     UnknownOpcode(u8),
-    /// A polygon with fewer than 3 vertices.
+    /// A polygon with fewer than 3 vertices (`face`: fewer than 1).
     TooFewVertices(u16),
+    /// An operand outside its range: a rotation axis over 2, a light over
+    /// 100 %, a negative thickness, an empty label or one with a byte that
+    /// is not printable ASCII.
+    BadOperand(Opcode),
 }
 
 /// A fault in a display list, with the byte offset where it was found.
@@ -125,7 +203,7 @@ impl fmt::Display for ErrorKind {
             ErrorKind::UnsupportedVersion(v) => {
                 write!(
                     f,
-                    "unsupported display-list version {v} (this reader knows {VERSION})"
+                    "unsupported display-list version {v} (this reader knows {VERSION_2D} and {VERSION})"
                 )
             }
             ErrorKind::BadFrameSize { width, height } => {
@@ -138,8 +216,12 @@ impl fmt::Display for ErrorKind {
             ),
             ErrorKind::UnknownOpcode(b) => write!(f, "unknown opcode 0x{b:02x}"),
             ErrorKind::TooFewVertices(n) => {
-                write!(f, "polygon has {n} vertices; at least 3 are needed")
+                write!(
+                    f,
+                    "polygon has {n} vertices; at least 3 are needed (a face: 1)"
+                )
             }
+            ErrorKind::BadOperand(op) => write!(f, "operand out of range in {op:?}"),
         }
     }
 }

@@ -1,0 +1,589 @@
+//! The 3D geometry stage: model points to visible, lit, clipped polygons
+//! in screen space, in fixed point.
+//!
+//! # The stages, in the order a polygon meets them
+//!
+//! | # | stage | file | what happens |
+//! |---|---|---|---|
+//! | 1 | transform | [`transform`] | model → view space by the current matrix of a push/pop stack (translate, rotate, scale in call order, the camera's [`View`] at the bottom: eye and yaw/pitch, or [`View::look_at`]) |
+//! | 2 | cull | [`cull`] | a face whose first three vertices do not run counter-clockwise as displayed is dropped (edge-on ones too); points and lines pass |
+//! | 3 | light | [`light`] | Lambert: ambient plus a parallel light's share times `max(0, n̂ · l̂)` scales the face's colour |
+//! | 4 | near clip | [`near_clip`] | Sutherland–Hodgman in view space to `near ≤ z ≤ far`: nothing at or behind the eye is projected |
+//! | 5 | project | [`project`] | perspective (`f·x/d`, depth `A − B/d`) or orthographic onto the window, one division per vertex |
+//! | 6 | points and lines | [`primitive`] | one vertex becomes a square, two a quad, of the pipeline's thickness |
+//! | 7 | window clip | [`window_clip`] | re-entrant polygon clipping against the window's four sides, depth interpolated |
+//! | 8 | sink | [`PolygonSink`] | the polygon, in [`Vertex3`]s inside the window, with its colour |
+//!
+//! Culling is decided in view space, on the first three vertices as
+//! transformed: there its sign is exactly that of the projected shoelace
+//! sum (see [`cull`]), it needs no projected vertex, and it is defined even
+//! when some of them lie behind the eye. So the cull and the light come
+//! before the clips, and a back face costs no clipping and no division.
+//! [`trig`] holds the angles, the sine table, the arctangent and the
+//! integer square root that the stages share.
+//!
+//! # Formats
+//!
+//! | quantity | type | range | unit |
+//! |---|---|---|---|
+//! | model and world coordinates | [`Point3`] of [`Q16`] (`i32` Q16.16) | ±32768 | the application's |
+//! | view-space coordinates | `i32` Q16.16 | **(−16384, 16384)**, checked | same |
+//! | angles | [`Angle`] (`u16`) | any, wraps | 1/65536 turn |
+//! | sine, cosine | `i32` Q16.16 | \[−1, 1\] | error < 1.3·10⁻⁵ |
+//! | matrix entries | [`Matrix`]: `i32` Q16.16, `i64` products | linear part ±16384, translation any `i32` | |
+//! | pre-clip screen x, y | `i64` | `< 2⁴⁶` | 1/256 px |
+//! | pre-clip depth | `i64` | the Q12.4 range | 1/4096 |
+//! | output x, y | [`Coord`] (Q12.4) | the window, `[0, width] × [0, height]` | 1/16 px |
+//! | output depth | [`Coord`] (Q12.4) | [`Z_NEAR`] (−2048) at the near plane to [`Z_FAR`] (2047.9375) at the far plane, larger farther, affine in screen space | |
+//! | point and line thickness | [`Coord`] | `[0, 2047.9375]` px | 1/16 px |
+//!
+//! Each stage's file gives the width of every intermediate. Input outside
+//! a range is never clamped silently and never panics:
+//!
+//! * a matrix whose entry would leave its range is refused with
+//!   [`TransformError::Range`], and the stack keeps its matrix;
+//! * a vertex whose view-space coordinate leaves (−16384, 16384) makes
+//!   [`Pipeline::polygon`] return [`PipelineError::Range`] and draw nothing
+//!   of that polygon;
+//! * a polygon that needs more than `N` vertices at any stage returns
+//!   [`PipelineError::Capacity`] and draws nothing;
+//! * parameters of projections and windows are checked when they are made
+//!   ([`ProjectionError`]).
+//!
+//! Depth beyond the far plane is clipped, not clamped, so planes stay
+//! planes.
+//!
+//! # Example
+//!
+//! ```
+//! use scanvert::fixed::Vertex3;
+//! use scanvert::geometry::{
+//!     Angle, Perspective, Pipeline, Point3, PolygonSink, Q16, View, Viewport,
+//! };
+//! use scanvert::pixelcolor::{Rgb888, RgbColor};
+//!
+//! // A sink that counts polygons and checks they lie in the window.
+//! struct Count(u32);
+//! impl PolygonSink for Count {
+//!     type Error = core::convert::Infallible;
+//!     fn polygon(&mut self, v: &[Vertex3], _: Rgb888, _: bool) -> Result<(), Self::Error> {
+//!         assert!(v.len() >= 3);
+//!         assert!(v.iter().all(|p| (0..=320 * 16).contains(&p.x.units())));
+//!         self.0 += 1;
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let q = Q16::from_int;
+//! let persp = Perspective::from_fov(Angle::from_degrees(60), 320, q(1), q(100)).unwrap();
+//! let mut pipe = Pipeline::<4, 16>::new(persp, Viewport::centred(320, 240).unwrap());
+//! pipe.set_view(&View { eye: Point3::from_int(0, 2, 10), yaw: Angle::ZERO, pitch: Angle::ZERO })?;
+//!
+//! // One square, counter-clockwise seen from +z (the eye's side), turned
+//! // a little about y.
+//! pipe.stack_mut().push()?;
+//! pipe.stack_mut().rotate_y(Angle::from_degrees(20))?;
+//! let square = [(-1, 0), (1, 0), (1, 2), (-1, 2)].map(|(x, y)| Point3::from_int(x, y, 0));
+//! let mut sink = Count(0);
+//! pipe.polygon(&square, Rgb888::RED, &mut sink).unwrap();
+//! // Its back, wound the other way, is culled.
+//! let mut back = square;
+//! back.reverse();
+//! pipe.polygon(&back, Rgb888::RED, &mut sink).unwrap();
+//! pipe.stack_mut().pop()?;
+//!
+//! assert_eq!(sink.0, 1);
+//! let s = pipe.stats();
+//! assert_eq!((s.faces_in, s.emitted, s.culled), (2, 1, 1));
+//! # Ok::<(), scanvert::geometry::TransformError>(())
+//! ```
+
+pub mod cull;
+pub mod light;
+pub mod near_clip;
+pub mod primitive;
+pub mod project;
+pub mod transform;
+pub mod trig;
+pub mod window_clip;
+
+pub use light::Light;
+pub use project::{
+    Anchor, Orthographic, Perspective, Projection, ProjectionError, Viewport, Z_FAR, Z_NEAR,
+};
+pub use transform::{Matrix, Point3, TransformError, TransformStack, View, Q16};
+pub use trig::Angle;
+
+use crate::fixed::{Coord, Vertex3};
+use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
+use window_clip::{Outcodes, Work};
+
+/// Where the geometry stage delivers screen-space polygons.
+pub trait PolygonSink {
+    /// What the sink can fail with (capacity, usually).
+    type Error;
+    /// One visible, lit polygon in screen space: at least 3 vertices, inside
+    /// the window, depth larger = farther. Points and lines arrive here as
+    /// small polygons too (their `two_sided` flag is set, so the sink does not cull them).
+    fn polygon(
+        &mut self,
+        vertices: &[Vertex3],
+        color: Rgb888,
+        two_sided: bool,
+    ) -> Result<(), Self::Error>;
+}
+
+/// Why a polygon was not delivered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PipelineError<E> {
+    /// A vertex left view space's range (−16384, 16384) under the current
+    /// transform. Nothing of the polygon was drawn.
+    Range,
+    /// The polygon had, or would have had after clipping, more vertices
+    /// than the pipeline's `N`. Nothing of it was drawn.
+    Capacity {
+        /// Vertices the pipeline holds.
+        capacity: usize,
+    },
+    /// The sink failed.
+    Sink(E),
+}
+
+impl<E: fmt::Debug> fmt::Display for PipelineError<E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PipelineError::Range => write!(f, "vertex outside the view-space range"),
+            PipelineError::Capacity { capacity } => {
+                write!(f, "polygon needs more than {capacity} vertices")
+            }
+            PipelineError::Sink(e) => write!(f, "polygon sink failed: {e:?}"),
+        }
+    }
+}
+
+impl<E: fmt::Debug> core::error::Error for PipelineError<E> {}
+
+/// What became of one polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Outcome {
+    /// Delivered to the sink.
+    Emitted,
+    /// A back face or an edge-on face.
+    Culled,
+    /// Nothing, or nothing with an area, is left inside the depth range
+    /// and the window.
+    ClippedAway,
+    /// No vertices were given; nothing is counted.
+    Empty,
+}
+
+/// Counters of the polygons through a [`Pipeline`], for statistics.
+///
+/// Every polygon with at least one vertex counts in `faces_in` and in
+/// exactly one of the others, so
+/// `faces_in = culled + clipped_away + emitted + rejected`. The counters
+/// wrap around at 2³².
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Stats {
+    /// Polygons, lines and points given.
+    pub faces_in: u32,
+    /// Back faces and edge-on faces.
+    pub culled: u32,
+    /// Wholly outside the depth range or the window (or left without area).
+    pub clipped_away: u32,
+    /// Delivered to the sink.
+    pub emitted: u32,
+    /// Refused with an error (range, capacity or the sink's).
+    pub rejected: u32,
+}
+
+/// The geometry stage: a transform stack of depth `DEPTH`, a projection,
+/// a window, a light and a point/line thickness, delivering polygons of up
+/// to `N` vertices.
+///
+/// # Capacity
+/// A polygon may have up to `N` vertices on input and at every stage of
+/// clipping; a convex one gains at most one per clip plane (six planes),
+/// so `N` = the largest input + 6 is always enough for convex faces.
+/// `N ≥ 4` is checked at compile time (a point or line needs four). The
+/// working buffers live on the stack during [`Pipeline::polygon`]: about
+/// `54 · N` bytes.
+#[derive(Clone, Debug)]
+pub struct Pipeline<const DEPTH: usize, const N: usize> {
+    stack: TransformStack<DEPTH>,
+    view: Matrix,
+    projection: Projection,
+    viewport: Viewport,
+    light: Light,
+    /// The light's direction in view space, unit Q16.16.
+    light_view: [i32; 3],
+    thickness: Coord,
+    stats: Stats,
+}
+
+impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
+    /// A pipeline with the identity transform (view space = world), only
+    /// ambient light, and points and lines one pixel thick.
+    pub fn new(projection: impl Into<Projection>, viewport: Viewport) -> Self {
+        const {
+            assert!(
+                N >= 4,
+                "a pipeline needs N >= 4 (points and lines are quads)"
+            )
+        };
+        Pipeline {
+            stack: TransformStack::new(),
+            view: Matrix::IDENTITY,
+            projection: projection.into(),
+            viewport,
+            light: Light::AMBIENT,
+            light_view: Light::AMBIENT.direction(),
+            thickness: Coord::from_bits(16),
+            stats: Stats::default(),
+        }
+    }
+
+    /// The transform stack.
+    pub fn stack(&self) -> &TransformStack<DEPTH> {
+        &self.stack
+    }
+
+    /// The transform stack, to push, pop, translate, rotate and scale.
+    pub fn stack_mut(&mut self) -> &mut TransformStack<DEPTH> {
+        &mut self.stack
+    }
+
+    /// Loads the camera's matrix as the current one (like loading the view
+    /// at the start of a frame) and turns the light into the new view
+    /// space. Saved matrices are not touched.
+    pub fn set_view(&mut self, view: &View) -> Result<(), TransformError> {
+        let m = view.matrix()?;
+        self.stack.load(m);
+        self.view = m;
+        self.light_view = m.rotate_vector(self.light.direction());
+        Ok(())
+    }
+
+    /// The projection.
+    pub fn projection(&self) -> &Projection {
+        &self.projection
+    }
+
+    /// Replaces the projection.
+    pub fn set_projection(&mut self, projection: impl Into<Projection>) {
+        self.projection = projection.into();
+    }
+
+    /// The window.
+    pub fn viewport(&self) -> &Viewport {
+        &self.viewport
+    }
+
+    /// Replaces the window.
+    pub fn set_viewport(&mut self, viewport: Viewport) {
+        self.viewport = viewport;
+    }
+
+    /// The light.
+    pub fn light(&self) -> &Light {
+        &self.light
+    }
+
+    /// Replaces the light; its direction is in the world of the last
+    /// [`Pipeline::set_view`] (in view space before any).
+    pub fn set_light(&mut self, light: Light) {
+        self.light = light;
+        self.light_view = self.view.rotate_vector(light.direction());
+    }
+
+    /// The thickness of points and lines in pixels.
+    pub fn thickness(&self) -> Coord {
+        self.thickness
+    }
+
+    /// Sets the thickness of points and lines in pixels; a negative value
+    /// counts as zero, and zero makes them invisible.
+    pub fn set_thickness(&mut self, thickness: Coord) {
+        self.thickness = thickness.max(Coord::ZERO);
+    }
+
+    /// The counters since the last reset.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    /// Zeroes the counters.
+    pub fn reset_stats(&mut self) {
+        self.stats = Stats::default();
+    }
+
+    /// Where `p` lands on the screen under the current transform: the
+    /// anchor of a label. [`TransformError::Range`] when it leaves view
+    /// space.
+    pub fn project_point(&self, p: Point3) -> Result<Anchor, TransformError> {
+        project::anchor_of(self.stack.current(), &self.projection, &self.viewport, p)
+    }
+
+    /// Runs one polygon (one vertex: a point; two: a line) through the
+    /// stages and hands what is visible of it to `sink`.
+    ///
+    /// Faces (three or more vertices) are culled by their first three
+    /// vertices and lit with the face's normal; they should be planar.
+    /// Points and lines are neither culled nor lit.
+    pub fn polygon<S: PolygonSink>(
+        &mut self,
+        points: &[Point3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        if points.is_empty() {
+            return Ok(Outcome::Empty);
+        }
+        let s = &mut self.stats;
+        s.faces_in = s.faces_in.wrapping_add(1);
+        let r = self.run(points, color, sink);
+        let s = &mut self.stats;
+        let counter = match r {
+            Ok(Outcome::Emitted) => &mut s.emitted,
+            Ok(Outcome::Culled) => &mut s.culled,
+            Ok(Outcome::ClippedAway | Outcome::Empty) => &mut s.clipped_away,
+            Err(_) => &mut s.rejected,
+        };
+        *counter = counter.wrapping_add(1);
+        r
+    }
+
+    fn run<S: PolygonSink>(
+        &self,
+        points: &[Point3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        let full = || PipelineError::Capacity { capacity: N };
+        if points.len() > N {
+            return Err(full());
+        }
+        let mut work = Work::<N>::new();
+        let m = self.stack.current();
+        // The depth range is gathered on the way, for the near clip.
+        let mut depth = (i32::MAX, i32::MIN);
+        for &p in points {
+            let v = m.apply(p).map_err(|_| PipelineError::Range)?;
+            depth = (depth.0.min(v[2]), depth.1.max(v[2]));
+            work.current_mut()
+                .push(v.map(i64::from))
+                .map_err(|_| full())?;
+        }
+
+        let two_sided = points.len() < 3;
+        let mut color = color;
+        if let [v0, v1, v2, ..] = *work.current().as_slice() {
+            let n = cull::normal(v0, v1, v2);
+            if !cull::is_front(&self.projection, v0, n) {
+                return Ok(Outcome::Culled);
+            }
+            color = light::shade(color, n, self.light_view, self.light.percent());
+        }
+
+        let (near, far) = (self.projection.near_raw(), self.projection.far_raw());
+        near_clip::clip_depth(&mut work, near, far, depth).map_err(|_| full())?;
+        let poly = work.current_mut();
+        if poly.is_empty() || (!two_sided && poly.len() < 3) {
+            return Ok(Outcome::ClippedAway);
+        }
+        // The sides of the window each vertex lies beyond are gathered on
+        // the way, for the window clip.
+        let mut codes = Outcodes::EMPTY;
+        for v in poly.iter_mut() {
+            *v = self.projection.project(*v, &self.viewport);
+            codes.add(v, &self.viewport);
+        }
+        if two_sided {
+            // Thickness in 1/16 px to half of it in 1/256 px: ≤ 2¹⁸.
+            let half = (self.thickness.units() as i64) << 3;
+            let quad = match *poly.as_slice() {
+                [p] => primitive::point_quad(p, half),
+                [a, b] => primitive::line_quad(a, b, half),
+                _ => return Ok(Outcome::ClippedAway),
+            };
+            poly.clear();
+            codes = Outcodes::EMPTY;
+            for v in quad {
+                codes.add(&v, &self.viewport);
+                poly.push(v).map_err(|_| full())?;
+            }
+        }
+
+        window_clip::clip_window(&mut work, &self.viewport, codes).map_err(|_| full())?;
+        let mut out = heapless::Vec::<Vertex3, N>::new();
+        for &v in work.current() {
+            let v = project::to_vertex3(v);
+            if out.last() != Some(&v) {
+                out.push(v).map_err(|_| full())?;
+            }
+        }
+        while out.len() > 1 && out.last() == out.first() {
+            out.pop();
+        }
+        if !has_area(&out) {
+            return Ok(Outcome::ClippedAway);
+        }
+        sink.polygon(&out, color, two_sided)
+            .map_err(PipelineError::Sink)?;
+        Ok(Outcome::Emitted)
+    }
+}
+
+/// `true` when the vertices do not all lie on one line (so at least three
+/// distinct ones). Q12.4 differences are below 2¹⁶, products below 2³².
+fn has_area(v: &[Vertex3]) -> bool {
+    let Some((&o, rest)) = v.split_first() else {
+        return false;
+    };
+    let d = |p: Vertex3| {
+        (
+            p.x.units() as i64 - o.x.units() as i64,
+            p.y.units() as i64 - o.y.units() as i64,
+        )
+    };
+    let Some(&a) = rest.iter().find(|&&p| d(p) != (0, 0)) else {
+        return false;
+    };
+    let (ax, ay) = d(a);
+    rest.iter().any(|&p| {
+        let (px, py) = d(p);
+        ax * py - ay * px != 0
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics_core::pixelcolor::RgbColor;
+
+    #[derive(Default)]
+    struct Collect {
+        polys: heapless::Vec<(heapless::Vec<Vertex3, 16>, Rgb888, bool), 16>,
+    }
+
+    impl PolygonSink for Collect {
+        type Error = ();
+        fn polygon(&mut self, v: &[Vertex3], c: Rgb888, two: bool) -> Result<(), ()> {
+            let v = heapless::Vec::from_slice(v).map_err(|_| ())?;
+            self.polys.push((v, c, two)).map_err(|_| ())
+        }
+    }
+
+    fn pipe() -> Pipeline<4, 16> {
+        let q = Q16::from_int;
+        let p = Perspective::new(q(100), q(1), q(100)).unwrap();
+        Pipeline::new(p, Viewport::centred(200, 100).unwrap())
+    }
+
+    const P: fn(i16, i16, i16) -> Point3 = Point3::from_int;
+
+    #[test]
+    fn a_front_face_is_emitted_inside_the_window() {
+        let mut p = pipe();
+        let mut sink = Collect::default();
+        // View space: y down, z forward; counter-clockwise as displayed.
+        let tri = [P(0, 0, 10), P(0, 1, 10), P(1, 1, 10)];
+        assert_eq!(
+            p.polygon(&tri, Rgb888::RED, &mut sink),
+            Ok(Outcome::Emitted)
+        );
+        let (v, c, two) = &sink.polys[0];
+        assert_eq!((*c, *two), (Rgb888::RED, false));
+        let px = |x: i16, y: i16| (x * 16, y * 16);
+        let got: heapless::Vec<_, 3> = v
+            .iter()
+            .map(|p| (p.x.units() as i16, p.y.units() as i16))
+            .collect();
+        assert_eq!(got.as_slice(), &[px(100, 50), px(100, 60), px(110, 60)]);
+        assert!(v.iter().all(|p| p.z == v[0].z));
+        let mut back = tri;
+        back.reverse();
+        assert_eq!(
+            p.polygon(&back, Rgb888::RED, &mut sink),
+            Ok(Outcome::Culled)
+        );
+    }
+
+    #[test]
+    fn stats_add_up_and_errors_are_counted() {
+        let mut p = pipe();
+        let mut sink = Collect::default();
+        let tri = [P(0, 0, 10), P(0, 1, 10), P(1, 1, 10)];
+        let _ = p.polygon(&tri, Rgb888::RED, &mut sink);
+        let behind = [P(1, 1, -10), P(0, 1, -10), P(0, 0, -10)];
+        assert_eq!(
+            p.polygon(&behind, Rgb888::RED, &mut sink),
+            Ok(Outcome::ClippedAway)
+        );
+        assert_eq!(p.polygon(&[], Rgb888::RED, &mut sink), Ok(Outcome::Empty));
+        let far = [P(0, 0, 10), P(0, 1, 10), P(16384, 1, 10)];
+        assert_eq!(
+            p.polygon(&far, Rgb888::RED, &mut sink),
+            Err(PipelineError::Range)
+        );
+        let many = [P(0, 0, 10); 17];
+        assert_eq!(
+            p.polygon(&many, Rgb888::RED, &mut sink),
+            Err(PipelineError::Capacity { capacity: 16 })
+        );
+        let s = p.stats();
+        assert_eq!(
+            s,
+            Stats {
+                faces_in: 4,
+                culled: 0,
+                clipped_away: 1,
+                emitted: 1,
+                rejected: 2
+            }
+        );
+        p.reset_stats();
+        assert_eq!(p.stats(), Stats::default());
+    }
+
+    #[test]
+    fn points_and_lines_are_two_sided_quads() {
+        let mut p = pipe();
+        p.set_thickness(Coord::from_bits(32));
+        let mut sink = Collect::default();
+        assert_eq!(
+            p.polygon(&[P(0, 0, 10)], Rgb888::GREEN, &mut sink),
+            Ok(Outcome::Emitted)
+        );
+        assert_eq!(
+            p.polygon(&[P(0, 0, 10), P(1, 0, 10)], Rgb888::GREEN, &mut sink),
+            Ok(Outcome::Emitted)
+        );
+        let (sq, c, two) = &sink.polys[0];
+        assert!(*two && *c == Rgb888::GREEN && sq.len() == 4);
+        let xs: heapless::Vec<i16, 4> = sq.iter().map(|v| v.x.units() as i16).collect();
+        assert_eq!(xs.as_slice(), &[99 * 16, 99 * 16, 101 * 16, 101 * 16]);
+        p.set_thickness(Coord::ZERO);
+        assert_eq!(
+            p.polygon(&[P(0, 0, 10)], Rgb888::GREEN, &mut sink),
+            Ok(Outcome::ClippedAway)
+        );
+    }
+
+    #[test]
+    fn area_test() {
+        let v = |x: i16, y: i16| Vertex3 {
+            x: Coord::from_bits(x),
+            y: Coord::from_bits(y),
+            z: Coord::ZERO,
+        };
+        assert!(!has_area(&[]));
+        assert!(!has_area(&[v(0, 0), v(0, 0), v(0, 0)]));
+        assert!(!has_area(&[v(0, 0), v(1, 1), v(2, 2), v(-5, -5)]));
+        assert!(has_area(&[v(0, 0), v(0, 0), v(1, 1), v(2, 3)]));
+    }
+}
