@@ -587,6 +587,43 @@ impl<'a> TrapezoidStore<'a> {
     }
 }
 
+/// One segment of a store as the geometry stage's
+/// [`PolygonSink`](crate::geometry::PolygonSink): every polygon delivered
+/// is cut into that segment's trapezoids under `clip` (winding is not
+/// looked at: the geometry stage has culled).
+#[derive(Debug)]
+pub struct SegmentSink<'s, 'a> {
+    store: &'s mut TrapezoidStore<'a>,
+    segment: usize,
+    clip: ClipRect,
+}
+
+impl<'s, 'a> SegmentSink<'s, 'a> {
+    /// A sink filling segment `segment` of `store`, writing only `clip`.
+    pub fn new(store: &'s mut TrapezoidStore<'a>, segment: usize, clip: ClipRect) -> Self {
+        SegmentSink {
+            store,
+            segment,
+            clip,
+        }
+    }
+}
+
+impl crate::geometry::PolygonSink for SegmentSink<'_, '_> {
+    type Error = StoreError;
+
+    fn polygon(
+        &mut self,
+        vertices: &[Vertex3],
+        color: Rgb888,
+        _two_sided: bool,
+    ) -> Result<(), StoreError> {
+        self.store
+            .add_polygon(self.segment, vertices.iter().copied(), color, &self.clip)
+            .map(|_| ())
+    }
+}
+
 /// Takes a slot from a pool: the free list first, then never-used slots.
 fn alloc(free: &mut u16, unused: &mut u16, len: usize, next: impl Fn(u16) -> u16) -> Option<u16> {
     if *free != NONE {
@@ -792,6 +829,18 @@ mod tests {
         assert_eq!(store.add_polygon(0, outside, Rgb888::RED, &clip), Ok(0));
         assert_eq!((store.len(), store.face_count()), (0, 0));
         assert_eq!(store.segment(0).unwrap().counters().polygons, 2);
+    }
+
+    #[test]
+    fn a_segment_is_a_polygon_sink() {
+        use crate::geometry::PolygonSink;
+        let mut mem = Mem::<16, 4>::new();
+        let mut store = mem.store();
+        let mut sink = SegmentSink::new(&mut store, 2, ClipRect::full(64, 64));
+        sink.polygon(&tri(0), Rgb888::RED, false).unwrap();
+        sink.polygon(&tri(1), Rgb888::RED, true).unwrap();
+        assert_eq!(store.segment(2).unwrap().counters().polygons, 2);
+        assert_eq!(store.segment(2).unwrap().trapezoids(), 4);
     }
 
     #[test]
