@@ -50,10 +50,10 @@ fn at(w: u16, x: i32, y: i32) -> usize {
     y as usize * w as usize + x as usize
 }
 
-/// scanvert's `Rasterizer::fill` into `FrameBuffer<Rgb565>` (or, with
-/// `WIDE`, into [`WideFb`]), with stepper `S`, vertices snapped to
+/// scanvert's `Rasterizer::fill` into `FrameBuffer<Rgb565>`, with stepper
+/// `S`, vertices snapped to
 /// `2^-SNAP` px first (4: not snapped).
-pub struct ScanvertFill<S: Stepper, const SNAP: u32, const WIDE: bool = false> {
+pub struct ScanvertFill<S: Stepper, const SNAP: u32> {
     name: &'static str,
     kind: Kind,
     polys: Vec<Vec<Vertex>>,
@@ -63,7 +63,7 @@ pub struct ScanvertFill<S: Stepper, const SNAP: u32, const WIDE: bool = false> {
     edges: Vec<S>,
 }
 
-impl<S: Stepper, const SNAP: u32, const WIDE: bool> ScanvertFill<S, SNAP, WIDE> {
+impl<S: Stepper, const SNAP: u32> ScanvertFill<S, SNAP> {
     /// The contender for `wl`, with `empty` filling the edge slots.
     pub fn new(name: &'static str, wl: &Workload, empty: S) -> Self {
         ScanvertFill {
@@ -94,24 +94,13 @@ impl<S: Stepper, const SNAP: u32, const WIDE: bool> ScanvertFill<S, SNAP, WIDE> 
     }
 }
 
-impl<S: Stepper, const SNAP: u32, const WIDE: bool> Contender for ScanvertFill<S, SNAP, WIDE> {
+impl<S: Stepper, const SNAP: u32> Contender for ScanvertFill<S, SNAP> {
     fn name(&self) -> &'static str {
         self.name
     }
     fn pass(&mut self) {
         let clip = ClipRect::full(self.w, self.h);
         let mut r = Rasterizer::new(&mut self.edges);
-        if WIDE {
-            let mut fb = WideFb {
-                pixels: &mut self.pixels,
-                w: self.w,
-                h: self.h,
-            };
-            for p in &self.polys {
-                Self::fill(&mut r, p, &clip, &mut fb);
-            }
-            return;
-        }
         let Some(mut fb) = FrameBuffer::new(&mut self.pixels, self.w, self.h) else {
             return;
         };
@@ -126,15 +115,6 @@ impl<S: Stepper, const SNAP: u32, const WIDE: bool> Contender for ScanvertFill<S
     fn draw_one(&mut self, i: usize) {
         let clip = ClipRect::full(self.w, self.h);
         let mut r = Rasterizer::new(&mut self.edges);
-        if WIDE {
-            let mut fb = WideFb {
-                pixels: &mut self.pixels,
-                w: self.w,
-                h: self.h,
-            };
-            Self::fill(&mut r, &self.polys[i], &clip, &mut fb);
-            return;
-        }
         let Some(mut fb) = FrameBuffer::new(&mut self.pixels, self.w, self.h) else {
             return;
         };
@@ -165,55 +145,6 @@ impl<S: Stepper, const SNAP: u32, const WIDE: bool> Contender for ScanvertFill<S
                 size_of::<S>()
             ),
         )
-    }
-}
-
-/// An RGB565 frame whose `fill_span` writes a run shorter than 64 pixels
-/// 8 pixels (16 bytes) at a time, the last 8 overlapping the previous
-/// ones, instead of `FrameBuffer`'s `slice::fill`, whose vectorised loops
-/// cost more to set up than to run on short runs. Longer runs still use
-/// `slice::fill`. The change proposed for
-/// `FrameBuffer::fill_span`, measured here first.
-pub struct WideFb<'a> {
-    pixels: &'a mut [Rgb565],
-    w: u16,
-    h: u16,
-}
-
-impl SpanTarget for WideFb<'_> {
-    type Color = Rgb565;
-    type Error = Infallible;
-
-    fn size(&self) -> (u16, u16) {
-        (self.w, self.h)
-    }
-
-    #[inline]
-    fn fill_span(&mut self, span: Span, color: Rgb565) -> Result<(), Infallible> {
-        let base = span.y as usize * self.w as usize;
-        let x1 = span.x1.min(self.w) as usize;
-        if span.y >= self.h || span.x0 as usize >= x1 {
-            return Ok(());
-        }
-        if let Some(run) = self.pixels.get_mut(base + span.x0 as usize..base + x1) {
-            let n = run.len();
-            if n >= 64 {
-                run.fill(color);
-            } else if n >= 8 {
-                let splat = [color; 8];
-                let mut i = 0;
-                while i + 8 <= n {
-                    run[i..i + 8].copy_from_slice(&splat);
-                    i += 8;
-                }
-                if i < n {
-                    run[n - 8..].copy_from_slice(&splat);
-                }
-            } else {
-                run.fill(color);
-            }
-        }
-        Ok(())
     }
 }
 
@@ -630,11 +561,6 @@ pub fn for_workload(wl: &Workload, counts: Vec<usize>) -> Vec<Box<dyn Contender>
         if wl.id == "W3" {
             v.push(Box::new(ScanvertList::new(wl)));
         }
-        v.push(Box::new(ScanvertFill::<Edge, 4, true>::new(
-            "scanvert exact, 16-byte-store `fill_span` (proposed)",
-            wl,
-            Edge::EMPTY,
-        )));
         v.push(Box::new(ScanvertFill::<Dda7, 4>::new(
             "scanvert DDA 1/128 px (`Dda7`)",
             wl,

@@ -153,9 +153,8 @@ fn load_average() -> String {
 }
 
 /// `--profile-w1 MODE PASSES`: only W1, for `valgrind --tool=callgrind`.
-/// MODE is `framebuffer` (the exact path), `wide` (the proposed
-/// `fill_span`), `null` (scan conversion without pixel writes) or
-/// `tiny-skia`.
+/// MODE is `framebuffer` (the exact path), `null` (scan conversion
+/// without pixel writes) or `tiny-skia`.
 fn profile_w1(mode: &str, passes: u32) {
     use scanvert::{clip::ClipRect, edge::Edge, scan::Rasterizer};
     let wl = workloads::w1();
@@ -177,7 +176,6 @@ fn profile_w1(mode: &str, passes: u32) {
         return;
     }
     let prefix = match mode {
-        "wide" => "scanvert exact, 16-byte",
         "tiny-skia" => "tiny-skia",
         _ => "scanvert exact (",
     };

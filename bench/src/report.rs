@@ -257,12 +257,9 @@ pub fn markdown(run: &Run, old: &str) -> String {
     let exact = "scanvert exact (`Rasterizer::fill`)";
     if let (Some(e), Some(t)) = (find(rows, "W1", exact), find(rows, "W1", "tiny-skia")) {
         let k = e.rate / t.rate;
-        let proposed = find(rows, "W1", "scanvert exact, 16-byte")
-            .map(|p| format!("; with the proposed `fill_span`: {:.2}×", p.rate / t.rate))
-            .unwrap_or_default();
         let _ = writeln!(
             s,
-            "| W1 ≥ 4× tiny-skia (no AA) | {:.2}× ({} vs {} polygons/s){proposed} | {}{} |",
+            "| W1 ≥ 4× tiny-skia (no AA) | {:.2}× ({} vs {} polygons/s) | {}{} |",
             k,
             thousands(e.rate),
             thousands(t.rate),
@@ -341,32 +338,25 @@ valgrind --tool=callgrind target/release/scanvert-bench --profile-w1 MODE 100
 ```
 
 where MODE is `null` (scan conversion into a target that discards the
-spans), `framebuffer` (the exact path as measured above), `wide` (the same
-into the 16-byte-store target) or `tiny-skia`:
+spans), `framebuffer` (the exact path as measured above) or `tiny-skia`:
 
 | W1, one 30×30 square | instructions per polygon | per row |
 |---|--:|--:|
 | scanvert scan conversion only (`null`) | 2,411 | 80 |
-| scanvert exact into `FrameBuffer` (`framebuffer`) | 6,298 | 210 |
-| scanvert exact, 16-byte-store `fill_span` (`wide`) | 4,322 | 144 |
-| tiny-skia `fill_path`, no AA (`tiny-skia`) | 14,392 | 480 |
+| scanvert exact into `FrameBuffer` (`framebuffer`) | 4,649 | 155 |
+| tiny-skia `fill_path`, no AA (`tiny-skia`) | 14,393 | 480 |
 
-- **W1 against tiny-skia.** Scan conversion itself is 38 % of the exact
-  path's instructions; the other 62 % (about 130 instructions a row) is
-  `FrameBuffer::fill_span`. Its `slice::fill` is vectorised (`perf
-  annotate`: a loop of two 16-byte stores for 16 pixels, then a loop of
-  8-byte stores for 4, then single pixels), but a 30-pixel run goes
-  through all three loops, and their set-up (lengths, masks, registers
-  spilled to the stack around them) costs more than the stores. The
-  `WideFb` target in `bench/src/contenders.rs` writes a run shorter than
-  64 pixels as 8-pixel copies with one overlapping last copy, and longer
-  runs with `slice::fill` as before: the "(proposed)" rows above. (With
-  8-pixel copies for long runs too it lost 20 % on W5.) It
-  lives in the bench because `framebuffer.rs` is outside this issue's
-  files; moving that `fill_span` into `FrameBuffer` is the proposed fix
-  for the W1 target. tiny-skia spends its 14,392 instructions in edge
-  set-up and its edge walker (`fill_path_impl`, 36 %), a `memcpy` of its
-  pipeline state (11 %) and its blitter (20 %).
+- **W1 against tiny-skia.** Scan conversion itself is 52 % of the exact
+  path's instructions; the other 48 % (about 75 instructions a row) is
+  `FrameBuffer::fill_span`. A plain `slice::fill` is vectorised into a
+  loop of two 16-byte stores for 16 pixels, a loop of 8-byte stores for 4,
+  and single pixels, and on a 30-pixel run the set-up of the three loops
+  costs more than the stores (6,298 instructions a polygon, 210 a row).
+  So `fill_span` writes runs of 8 to 63 pixels as 8-pixel copies with one
+  overlapping last copy, and only longer runs with `slice::fill` (8-pixel
+  copies for long runs too lost 20 % on W5). tiny-skia spends its 14,393
+  instructions in edge set-up and its edge walker (`fill_path_impl`,
+  36 %), a `memcpy` of its pipeline state (11 %) and its blitter (20 %).
 - **Faster options.** The DDA saves one compare and one conditional add
   per edge and row: about 5-20 % on W1, W3 and W4 (see the table), at the error
   shown. Snapping vertices to 1/4 px or whole pixels buys nothing in
