@@ -301,6 +301,33 @@ fn insertion_sort<S: Stepper>(e: &mut [S]) {
     }
 }
 
+/// The pixel rule for one pixel, straight from its definition: the number
+/// of crossings at or left of the centre of pixel `(i, j)` is odd. `xy`
+/// gives a vertex's position in units of 1/16 px. The oracle of the unit
+/// tests of every stage that covers pixels.
+#[cfg(test)]
+pub(crate) fn rule_covers<V: Copy>(
+    poly: &[V],
+    xy: impl Fn(V) -> (i32, i32),
+    i: i32,
+    j: i32,
+) -> bool {
+    let (xc, yc) = (16 * i as i64 + 8, 16 * j as i64 + 8);
+    let mut odd = false;
+    for k in 0..poly.len() {
+        let (a, b) = (xy(poly[k]), xy(poly[(k + 1) % poly.len()]));
+        let (mut x0, mut y0) = (a.0 as i64, a.1 as i64);
+        let (mut x1, mut y1) = (b.0 as i64, b.1 as i64);
+        if y0 > y1 {
+            (x0, y0, x1, y1) = (x1, y1, x0, y0);
+        }
+        if y0 <= yc && yc < y1 && x0 * (y1 - y0) + (yc - y0) * (x1 - x0) <= xc * (y1 - y0) {
+            odd = !odd;
+        }
+    }
+    odd
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -310,23 +337,9 @@ mod tests {
     const W: u16 = 48;
     const H: u16 = 40;
 
-    /// The pixel rule for one pixel, straight from its definition: the
-    /// number of crossings at or left of the centre is odd.
+    /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex], i: i32, j: i32) -> bool {
-        let (xc, yc) = (16 * i as i64 + 8, 16 * j as i64 + 8);
-        let mut odd = false;
-        for k in 0..poly.len() {
-            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
-            let (mut x0, mut y0) = (a.x.units() as i64, a.y.units() as i64);
-            let (mut x1, mut y1) = (b.x.units() as i64, b.y.units() as i64);
-            if y0 > y1 {
-                (x0, y0, x1, y1) = (x1, y1, x0, y0);
-            }
-            if y0 <= yc && yc < y1 && x0 * (y1 - y0) + (yc - y0) * (x1 - x0) <= xc * (y1 - y0) {
-                odd = !odd;
-            }
-        }
-        odd
+        crate::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
     }
 
     /// Random polygons of 3 to 12 vertices (concave and self-intersecting

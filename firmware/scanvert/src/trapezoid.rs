@@ -825,20 +825,7 @@ mod tests {
 
     /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {
-        let (xc, yc) = (16 * i as i64 + 8, 16 * j as i64 + 8);
-        let mut odd = false;
-        for k in 0..poly.len() {
-            let (a, b) = (poly[k], poly[(k + 1) % poly.len()]);
-            let (mut x0, mut y0) = (a.x.units() as i64, a.y.units() as i64);
-            let (mut x1, mut y1) = (b.x.units() as i64, b.y.units() as i64);
-            if y0 > y1 {
-                (x0, y0, x1, y1) = (x1, y1, x0, y0);
-            }
-            if y0 <= yc && yc < y1 && x0 * (y1 - y0) + (yc - y0) * (x1 - x0) <= xc * (y1 - y0) {
-                odd = !odd;
-            }
-        }
-        odd
+        crate::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
     }
 
     struct Rng(u32);
