@@ -24,6 +24,8 @@
 //! | store (3D) | [`segment`] | trapezoids and faces by segment, in caller-owned pools; the scan-line index by top row |
 //! | visible surfaces (3D) | [`visible`] | active trapezoids per row, spans classified and resolved by depth, no z-buffer |
 //! | run-length rows (3D) | [`rle`] | one run-length scan line per row, and its decoder into the port |
+//! | labels (3D) | [`label`] | text anchored at projected points, drawn last in `embedded-graphics` mono fonts |
+//! | scene (3D) | [`scene`] | segments built by the application's procedures, rebuilt only when stale; draws store and labels |
 //! | controller | [`controller`] | runs a display list through all of the above (`poly3` as a 3D layer over the 2D commands) |
 //! | colour | [`color`] | list colours to the frame buffer's pixel format |
 //! | embedded-graphics | `draw_target` (feature `embedded-graphics`) | spans into any `DrawTarget`; the frame buffer as a `DrawTarget` |
@@ -73,9 +75,11 @@ pub mod edge_dda;
 pub mod fixed;
 pub mod framebuffer;
 pub mod geometry;
+pub mod label;
 pub mod port;
 pub mod rle;
 pub mod scan;
+pub mod scene;
 pub mod segment;
 pub mod trapezoid;
 pub mod visible;

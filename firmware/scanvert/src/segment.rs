@@ -114,6 +114,7 @@ pub struct Segment {
     trapezoids: u32,
     face_count: u32,
     ordinal: u16,
+    stale: bool,
     work: Counters,
 }
 
@@ -125,6 +126,7 @@ impl Segment {
         trapezoids: 0,
         face_count: 0,
         ordinal: 0,
+        stale: false,
         work: Counters {
             polygons: 0,
             trapezoids: 0,
@@ -145,6 +147,12 @@ impl Segment {
     /// Work done for it.
     pub fn counters(&self) -> Counters {
         self.work
+    }
+
+    /// Marked as needing to be built again (see
+    /// [`TrapezoidStore::set_stale`]).
+    pub fn is_stale(&self) -> bool {
+        self.stale
     }
 }
 
@@ -450,6 +458,19 @@ impl<'a> TrapezoidStore<'a> {
         seg.face_count = 0;
         seg.ordinal = 0;
         seg.work.clears = seg.work.clears.wrapping_add(1);
+        Ok(())
+    }
+
+    /// Marks segment `s` as needing to be built again (`true`) or as built
+    /// (`false`). The store itself only keeps the mark: it is for the
+    /// [`Scene`](crate::scene::Scene) that owns the store.
+    pub fn set_stale(&mut self, s: usize, stale: bool) -> Result<(), StoreError> {
+        let capacity = self.segments.len();
+        let seg = self.segments.get_mut(s).ok_or(StoreError::Segment {
+            segment: s,
+            capacity,
+        })?;
+        seg.stale = stale;
         Ok(())
     }
 

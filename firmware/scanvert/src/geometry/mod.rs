@@ -268,6 +268,14 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         Ok(())
     }
 
+    /// Empties the transform stack and loads the camera's matrix (of the
+    /// last [`Pipeline::set_view`], the identity before any): where the
+    /// modelling transforms of a segment start.
+    pub fn reset_stack(&mut self) {
+        self.stack = TransformStack::new();
+        self.stack.load(self.view);
+    }
+
     /// The projection.
     pub fn projection(&self) -> &Projection {
         &self.projection

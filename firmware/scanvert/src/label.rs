@@ -1,0 +1,485 @@
+//! Labels: lines of text anchored at projected 3D points, drawn after the
+//! 3D layer and never hidden by it.
+//!
+//! A label is placed when its segment is built: its 3D point goes through
+//! the same transform and projection as the segment's faces
+//! ([`Pipeline::project_point`](crate::geometry::Pipeline::project_point)),
+//! and the store keeps the screen position, the colour and the text.
+//! [`LabelStore::draw`] then writes every label into a [`SpanTarget`] with
+//! an `embedded-graphics` mono font at its fixed scale, as horizontal spans.
+//!
+//! # Placement
+//!
+//! The anchor is the lower-left corner of the first character's cell: with
+//! the anchor at `(x, y)` (rounded to whole pixels, halves up), the first
+//! character covers columns `x .. x + w` and rows `y − h .. y`, where
+//! `w × h` is the font's character size. Characters follow at the font's
+//! pitch (width plus spacing). A label whose point lies before the near
+//! plane (at or behind the eye) is not placed; anything else is drawn as
+//! far as it lies on the frame, so a label that runs off an edge is cut
+//! there and one wholly off the frame costs one bounding-box test.
+//!
+//! # Memory
+//!
+//! All of it is the caller's: a slice of [`Label`] slots (24 bytes each on
+//! 32-bit targets) and a byte slice for the text of all labels together.
+//! Emptying a segment removes its labels and closes the gap in both, so
+//! the other segments' labels keep their order and the memory needed is
+//! that of the labels present, never of a worst case per label.
+
+use crate::color::ListColor;
+use crate::geometry::Anchor;
+use crate::port::{Span, SpanTarget};
+use core::fmt;
+use embedded_graphics::mono_font::{MonoFont, MonoTextStyle};
+use embedded_graphics::text::{Baseline, Text};
+use embedded_graphics::Drawable;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
+use embedded_graphics_core::pixelcolor::Rgb888;
+use embedded_graphics_core::Pixel;
+
+/// The font labels are drawn in unless another is given: 6 × 10 pixels,
+/// ASCII.
+pub const DEFAULT_FONT: &MonoFont<'static> = &embedded_graphics::mono_font::ascii::FONT_6X10;
+
+/// The longest label text, in bytes.
+pub const MAX_TEXT: usize = 255;
+
+/// Anchors farther than this many pixels from the frame's origin are not
+/// placed: no text of at most [`MAX_TEXT`] characters of any mono font
+/// could reach the frame from there, and every sum made while drawing
+/// stays far inside `i32`.
+pub const ANCHOR_LIMIT: i32 = 1 << 24;
+
+/// One placed label.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Label {
+    x: i32,
+    y: i32,
+    color: Rgb888,
+    start: u32,
+    len: u8,
+    segment: u16,
+}
+
+impl Label {
+    /// An unused slot.
+    pub const EMPTY: Label = Label {
+        x: 0,
+        y: 0,
+        color: Rgb888::new(0, 0, 0),
+        start: 0,
+        len: 0,
+        segment: 0,
+    };
+
+    /// The anchor, whole pixels: the lower-left corner of the first
+    /// character's cell.
+    pub fn anchor(&self) -> (i32, i32) {
+        (self.x, self.y)
+    }
+
+    /// The colour.
+    pub fn color(&self) -> Rgb888 {
+        self.color
+    }
+
+    /// The segment that owns it.
+    pub fn segment(&self) -> u16 {
+        self.segment
+    }
+}
+
+/// What ran out, or what was refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum LabelError {
+    /// Every label slot is taken.
+    Labels {
+        /// Slots the store holds.
+        capacity: usize,
+    },
+    /// The text space is full.
+    Text {
+        /// Bytes the store holds.
+        capacity: usize,
+    },
+    /// The text is empty, longer than [`MAX_TEXT`], or holds a byte
+    /// outside printable ASCII (`0x20..=0x7e`).
+    Invalid,
+}
+
+impl fmt::Display for LabelError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            LabelError::Labels { capacity } => {
+                write!(f, "more than the {capacity} labels the store holds")
+            }
+            LabelError::Text { capacity } => {
+                write!(
+                    f,
+                    "more than the {capacity} bytes of label text the store holds"
+                )
+            }
+            LabelError::Invalid => write!(
+                f,
+                "label text must be 1..={MAX_TEXT} bytes of printable ASCII"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for LabelError {}
+
+/// Checks a label's text: 1..=[`MAX_TEXT`] bytes of printable ASCII.
+pub fn check_text(text: &str) -> Result<(), LabelError> {
+    let b = text.as_bytes();
+    if b.is_empty() || b.len() > MAX_TEXT || !b.iter().all(|c| (0x20..=0x7e).contains(c)) {
+        return Err(LabelError::Invalid);
+    }
+    Ok(())
+}
+
+/// The anchor of a projected point in whole pixels: its 1/16-pixel
+/// position rounded to the nearest pixel corner, halves up.
+pub fn to_pixels(a: Anchor) -> (i32, i32) {
+    // i64: the anchor is saturated to i32, and + 8 must not wrap.
+    let px = |u: i32| ((u as i64 + 8) >> 4) as i32;
+    (px(a.x), px(a.y))
+}
+
+/// The labels of a scene, in caller-owned memory (see the
+/// [module](self) docs).
+#[derive(Debug)]
+pub struct LabelStore<'a> {
+    slots: &'a mut [Label],
+    text: &'a mut [u8],
+    len: usize,
+    text_len: usize,
+}
+
+impl<'a> LabelStore<'a> {
+    /// An empty store of `slots.len()` labels holding at most
+    /// `text.len()` bytes of text in all.
+    pub fn new(slots: &'a mut [Label], text: &'a mut [u8]) -> Self {
+        LabelStore {
+            slots,
+            text,
+            len: 0,
+            text_len: 0,
+        }
+    }
+
+    /// Labels placed.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// `true` with no label placed.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Bytes of text held.
+    pub fn text_len(&self) -> usize {
+        self.text_len
+    }
+
+    /// The placed labels with their text, oldest first.
+    pub fn iter(&self) -> impl Iterator<Item = (&Label, &str)> + '_ {
+        self.slots[..self.len].iter().map(|l| {
+            let bytes = &self.text[l.start as usize..l.start as usize + l.len as usize];
+            // Checked to be ASCII when placed.
+            (l, core::str::from_utf8(bytes).unwrap_or(""))
+        })
+    }
+
+    /// Places a label of segment `segment` with its anchor at `(x, y)`
+    /// whole pixels. An anchor outside ±[`ANCHOR_LIMIT`] is accepted and
+    /// dropped (it can never show); `Ok(false)` says so.
+    pub fn add(
+        &mut self,
+        segment: u16,
+        (x, y): (i32, i32),
+        color: Rgb888,
+        text: &str,
+    ) -> Result<bool, LabelError> {
+        check_text(text)?;
+        let bytes = text.as_bytes();
+        if x.unsigned_abs() > ANCHOR_LIMIT as u32 || y.unsigned_abs() > ANCHOR_LIMIT as u32 {
+            return Ok(false);
+        }
+        if self.len == self.slots.len() {
+            return Err(LabelError::Labels {
+                capacity: self.slots.len(),
+            });
+        }
+        let end = self.text_len + bytes.len();
+        if end > self.text.len() {
+            return Err(LabelError::Text {
+                capacity: self.text.len(),
+            });
+        }
+        self.text[self.text_len..end].copy_from_slice(bytes);
+        self.slots[self.len] = Label {
+            x,
+            y,
+            color,
+            // The text slice of a 32-bit target is below 2³² bytes.
+            start: self.text_len as u32,
+            len: bytes.len() as u8,
+            segment,
+        };
+        self.len += 1;
+        self.text_len = end;
+        Ok(true)
+    }
+
+    /// Removes the labels of segment `segment`, closing the gaps; the
+    /// others keep their order. Returns how many were removed.
+    pub fn clear_segment(&mut self, segment: u16) -> usize {
+        let (mut keep, mut text_at) = (0, 0);
+        for i in 0..self.len {
+            let l = self.slots[i];
+            if l.segment == segment {
+                continue;
+            }
+            let (s, n) = (l.start as usize, l.len as usize);
+            self.text.copy_within(s..s + n, text_at);
+            self.slots[keep] = Label {
+                start: text_at as u32,
+                ..l
+            };
+            keep += 1;
+            text_at += n;
+        }
+        let removed = self.len - keep;
+        self.len = keep;
+        self.text_len = text_at;
+        removed
+    }
+
+    /// Removes every label.
+    pub fn clear(&mut self) {
+        self.len = 0;
+        self.text_len = 0;
+    }
+
+    /// Draws every label into `target` with `font`, clipped to the
+    /// target's frame, and returns the spans written.
+    pub fn draw<T>(&self, font: &MonoFont<'_>, target: &mut T) -> Result<DrawCounts, T::Error>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        let mut counts = DrawCounts::default();
+        let (w, h) = target.size();
+        let pitch = (font.character_size.width + font.character_spacing) as i32;
+        let (cw, ch) = (
+            font.character_size.width as i32,
+            font.character_size.height as i32,
+        );
+        for (l, text) in self.iter() {
+            // |x|, |y| ≤ 2²⁴, text ≤ 255 characters of a font below 2¹⁶
+            // pixels: every sum below is far inside i32.
+            let right = l.x + (text.len() as i32 - 1) * pitch + cw;
+            let top = l.y - ch;
+            if right <= 0 || l.x >= w as i32 || l.y <= 0 || top >= h as i32 {
+                counts.off_frame += 1;
+                continue;
+            }
+            let mut adapter = Spans {
+                target: &mut *target,
+                size: (w, h),
+                run: None,
+                spans: 0,
+                pixels: 0,
+                error: None,
+            };
+            let style = MonoTextStyle::new(font, T::Color::from_rgb888(l.color));
+            // The bottom row of the cell is the row above the anchor.
+            let at = Point::new(l.x, l.y - 1);
+            let _ = Text::with_baseline(text, at, style, Baseline::Bottom).draw(&mut adapter);
+            adapter.flush();
+            counts.spans += adapter.spans;
+            counts.pixels += adapter.pixels;
+            if let Some(e) = adapter.error {
+                return Err(e);
+            }
+            counts.drawn += 1;
+        }
+        Ok(counts)
+    }
+}
+
+/// What [`LabelStore::draw`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct DrawCounts {
+    /// Labels drawn (at least partly on the frame).
+    pub drawn: u32,
+    /// Labels wholly off the frame, skipped.
+    pub off_frame: u32,
+    /// Spans written.
+    pub spans: u32,
+    /// Pixels written.
+    pub pixels: u32,
+}
+
+/// A [`DrawTarget`] over a [`SpanTarget`]: pixels that follow each other
+/// along a row become one span; pixels off the frame are dropped.
+struct Spans<'t, T: SpanTarget + ?Sized> {
+    target: &'t mut T,
+    size: (u16, u16),
+    /// The open run: row, first column, one past the last, colour.
+    run: Option<(u16, u16, u16, T::Color)>,
+    spans: u32,
+    pixels: u32,
+    error: Option<T::Error>,
+}
+
+impl<T: SpanTarget + ?Sized> Spans<'_, T> {
+    fn flush(&mut self) {
+        if let Some((y, x0, x1, c)) = self.run.take() {
+            if self.error.is_none() {
+                match self.target.fill_span(Span { y, x0, x1 }, c) {
+                    Ok(()) => {
+                        self.spans += 1;
+                        self.pixels += (x1 - x0) as u32;
+                    }
+                    Err(e) => self.error = Some(e),
+                }
+            }
+        }
+    }
+}
+
+impl<T: SpanTarget + ?Sized> OriginDimensions for Spans<'_, T> {
+    fn size(&self) -> Size {
+        Size::new(self.size.0 as u32, self.size.1 as u32)
+    }
+}
+
+impl<T: SpanTarget + ?Sized> DrawTarget for Spans<'_, T> {
+    type Color = T::Color;
+    type Error = core::convert::Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+    where
+        I: IntoIterator<Item = Pixel<Self::Color>>,
+    {
+        let (w, h) = self.size;
+        for Pixel(p, c) in pixels {
+            if p.x < 0 || p.y < 0 || p.x >= w as i32 || p.y >= h as i32 {
+                continue;
+            }
+            let (x, y) = (p.x as u16, p.y as u16);
+            match &mut self.run {
+                Some((ry, _, x1, rc)) if *ry == y && *x1 == x && *rc == c => *x1 += 1,
+                _ => {
+                    self.flush();
+                    self.run = Some((y, x, x + 1, c));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::framebuffer::FrameBuffer;
+    use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+
+    fn store<'a>(slots: &'a mut [Label], text: &'a mut [u8]) -> LabelStore<'a> {
+        LabelStore::new(slots, text)
+    }
+
+    #[test]
+    fn clear_segment_closes_gaps() {
+        let (mut slots, mut text) = ([Label::EMPTY; 4], [0u8; 16]);
+        let mut s = store(&mut slots, &mut text);
+        s.add(0, (1, 1), Rgb888::RED, "ab").unwrap();
+        s.add(1, (2, 2), Rgb888::RED, "cde").unwrap();
+        s.add(0, (3, 3), Rgb888::RED, "fg").unwrap();
+        s.add(2, (4, 4), Rgb888::RED, "h").unwrap();
+        assert_eq!(s.clear_segment(0), 2);
+        {
+            let left: heapless::Vec<(&str, (i32, i32)), 4> =
+                s.iter().map(|(l, t)| (t, l.anchor())).collect();
+            assert_eq!(&left[..], &[("cde", (2, 2)), ("h", (4, 4))]);
+        }
+        assert_eq!(s.text_len(), 4);
+        // The freed space is usable again.
+        s.add(3, (5, 5), Rgb888::RED, "ijklmnopqrst").unwrap();
+        assert_eq!(
+            s.add(3, (5, 5), Rgb888::RED, "u"),
+            Err(LabelError::Text { capacity: 16 })
+        );
+    }
+
+    #[test]
+    fn refuses_and_drops() {
+        let (mut slots, mut text) = ([Label::EMPTY; 1], [0u8; 300]);
+        let mut s = store(&mut slots, &mut text);
+        assert_eq!(s.add(0, (0, 0), Rgb888::RED, ""), Err(LabelError::Invalid));
+        assert_eq!(
+            s.add(0, (0, 0), Rgb888::RED, "a\tb"),
+            Err(LabelError::Invalid)
+        );
+        assert_eq!(s.add(0, (0, 0), Rgb888::RED, "é"), Err(LabelError::Invalid));
+        assert_eq!(s.add(0, (i32::MIN, 0), Rgb888::RED, "far"), Ok(false));
+        assert_eq!(s.add(0, (0, i32::MAX), Rgb888::RED, "far"), Ok(false));
+        assert_eq!(s.add(0, (0, 0), Rgb888::RED, "x"), Ok(true));
+        assert_eq!(
+            s.add(0, (0, 0), Rgb888::RED, "y"),
+            Err(LabelError::Labels { capacity: 1 })
+        );
+    }
+
+    #[test]
+    fn lower_left_corner_at_the_anchor() {
+        let (mut slots, mut text) = ([Label::EMPTY; 2], [0u8; 8]);
+        let mut s = store(&mut slots, &mut text);
+        // 'I' of FONT_6X10 has ink in its middle columns.
+        s.add(0, (10, 20), Rgb888::WHITE, "II").unwrap();
+        let mut px = [Rgb565::BLACK; 40 * 30];
+        let mut fb = FrameBuffer::new(&mut px, 40, 30).unwrap();
+        let c = s.draw(DEFAULT_FONT, &mut fb).unwrap();
+        assert_eq!((c.drawn, c.off_frame), (1, 0));
+        let (mut x0, mut x1, mut y0, mut y1) = (99, 0, 99, 0);
+        for y in 0..30u16 {
+            for x in 0..40u16 {
+                if fb.pixel(x, y) == Some(Rgb565::WHITE) {
+                    (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+                }
+            }
+        }
+        // Ink lies in the cells: columns 10..22, rows 10..20.
+        assert!(
+            x0 >= 10 && x1 < 22 && y0 >= 10 && y1 < 20,
+            "{x0} {x1} {y0} {y1}"
+        );
+        assert!(c.pixels > 0 && c.spans < c.pixels);
+    }
+
+    #[test]
+    fn off_frame_and_cut_at_edges() {
+        let (mut slots, mut text) = ([Label::EMPTY; 6], [0u8; 64]);
+        let mut s = store(&mut slots, &mut text);
+        for at in [(-100, 5), (5, -1), (50, 5), (5, 500)] {
+            s.add(0, at, Rgb888::WHITE, "MMMM").unwrap();
+        }
+        // Partly off the left and bottom edges.
+        s.add(0, (-9, 12), Rgb888::WHITE, "MMMM").unwrap();
+        s.add(0, (30, 25), Rgb888::WHITE, "MMMM").unwrap();
+        let mut px = [Rgb565::BLACK; 40 * 20];
+        let mut fb = FrameBuffer::new(&mut px, 40, 20).unwrap();
+        let c = s.draw(DEFAULT_FONT, &mut fb).unwrap();
+        assert_eq!((c.drawn, c.off_frame), (2, 4));
+        assert!(c.pixels > 0);
+    }
+}

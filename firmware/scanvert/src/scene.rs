@@ -1,0 +1,524 @@
+//! The scene: segments that the application's procedures build, kept
+//! between frames and rebuilt only when they change.
+//!
+//! This is the retained mode of the 3D layer, after the classic dynamic 3D
+//! display. A [`Scene`] holds
+//!
+//! * the [`Pipeline`] (camera, projection, light, window, the thickness of
+//!   points and lines, and the modelling transform stack),
+//! * the [`TrapezoidStore`]: every segment's trapezoids and faces, in
+//!   screen space, with the scan-line index, and
+//! * the [`LabelStore`]: every segment's labels, placed on the screen.
+//!
+//! The application supplies one [`Procedure`] per segment (a closure, or
+//! any type implementing the trait) that describes the segment through a
+//! [`Builder`]: modelling transforms, faces, points, lines, labels. A
+//! segment is *stale* when the application says it changed
+//! ([`Scene::invalidate`]) and when anything it was projected with
+//! changed: the camera, the projection, the light, the thickness or the
+//! clip mark every segment stale. [`Scene::update`] rebuilds the stale
+//! segments alone; the others keep their trapezoids and labels, so a frame
+//! where one segment changed cuts only that segment's polygons again. The
+//! store's per-segment [`Counters`](crate::segment::Counters) and
+//! [`Update`] count the work.
+//!
+//! [`Scene::draw`] then resolves the visible surfaces row by row into
+//! run-length-encoded scan lines, decodes them into the frame buffer as
+//! spans, and draws the labels last, over everything.
+//!
+//! # Capacities
+//!
+//! The transform stack's depth and the vertices of one polygon (at every
+//! clipping stage) are the const generics `DEPTH` and `N` of the
+//! [`Pipeline`]. Everything else is the caller's memory, given in
+//! [`SceneMemory`]: the store's pools (see [`segment`](crate::segment)),
+//! the label slots and the label text. Running out of any of them is an
+//! error that names the pool, and leaves the segment being built empty
+//! (and still stale), never half built.
+//!
+//! # Example
+//!
+//! ```
+//! use scanvert::fixed::{Coord, Vertex3};
+//! use scanvert::framebuffer::FrameBuffer;
+//! use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, Q16, View, Viewport};
+//! use scanvert::label::{Label, DEFAULT_FONT};
+//! use scanvert::pixelcolor::{Rgb565, Rgb888, RgbColor};
+//! use scanvert::rle::Run;
+//! use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
+//! use scanvert::segment::{Face, Segment, StoreMemory};
+//! use scanvert::trapezoid::{EdgeSlot, Trapezoid};
+//! use scanvert::visible::{Active, Cover, Resolve, Workspace};
+//!
+//! const W: u16 = 64;
+//! const H: u16 = 48;
+//! let (mut traps, mut faces, mut segs) = ([Trapezoid::EMPTY; 64], [Face::EMPTY; 16], [Segment::EMPTY; 2]);
+//! let (mut rows, mut edges) = ([0u16; H as usize], [EdgeSlot::EMPTY; 16]);
+//! let (mut labels, mut text) = ([Label::EMPTY; 2], [0u8; 16]);
+//! let mem = SceneMemory {
+//!     store: StoreMemory { trapezoids: &mut traps, faces: &mut faces, segments: &mut segs, rows: &mut rows, edges: &mut edges },
+//!     labels: &mut labels,
+//!     text: &mut text,
+//! };
+//! let q = Q16::from_int;
+//! let persp = Perspective::from_fov(Angle::from_degrees(60), W, q(1), q(100)).unwrap();
+//! let mut scene = Scene::new(mem, Pipeline::<4, 16>::new(persp, Viewport::centred(W, H).unwrap()))?;
+//! scene.set_view(&View { eye: Point3::from_int(0, 0, 10), yaw: Angle::ZERO, pitch: Angle::ZERO })?;
+//!
+//! // Segment 0: a red square; segment 1: a blue one further back that
+//! // moves, with a label.
+//! let mut x = 0i16;
+//! let square = |b: &mut Builder<'_, '_, 4, 16>, c: Rgb888| {
+//!     let sq = [(-2, -2), (2, -2), (2, 2), (-2, 2)].map(|(x, y)| Point3::from_int(x, y, 0));
+//!     b.face(&sq, c).map(|_| ())
+//! };
+//! let mut red = |b: &mut Builder<'_, '_, 4, 16>| square(b, Rgb888::RED);
+//! let mut blue = |b: &mut Builder<'_, '_, 4, 16>| {
+//!     b.translate(q(x), q(1), q(-5))?;
+//!     square(b, Rgb888::BLUE)?;
+//!     b.label(Point3::from_int(2, 2, 0), "B", Rgb888::WHITE).map(|_| ())
+//! };
+//! let u = scene.update(&mut [&mut red, &mut blue]).unwrap();
+//! assert_eq!(u.regenerated, 2);
+//!
+//! let mut px = [Rgb565::BLACK; W as usize * H as usize];
+//! let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+//! let (mut active, mut cover, mut runs) = ([Active::EMPTY; 16], [Cover::EMPTY; 16], [Run::EMPTY; W as usize]);
+//! let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+//! let f = scene.draw(&mut ws, Resolve::Crossing, Some(Rgb565::BLACK), DEFAULT_FONT, &mut fb).unwrap();
+//! assert_eq!(f.labels.drawn, 1);
+//! assert_eq!(fb.pixel(W / 2, H / 2), Some(Rgb565::RED));
+//!
+//! // Only the blue square moves: only its segment is rebuilt.
+//! scene.invalidate(1)?;
+//! let u = scene.update(&mut [&mut red, &mut blue]).unwrap();
+//! assert_eq!(u.regenerated, 1);
+//! assert_eq!(scene.store().segment(0).unwrap().counters().clears, 1);
+//! assert_eq!(scene.store().segment(1).unwrap().counters().clears, 2);
+//! # Ok::<(), SceneError>(())
+//! ```
+
+use crate::clip::ClipRect;
+use crate::color::ListColor;
+use crate::display_list::Axis;
+use crate::fixed::Coord;
+use crate::geometry::{
+    Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, TransformError,
+    TransformStack, View, Q16,
+};
+use crate::label::{DrawCounts, Label, LabelError, LabelStore};
+use crate::port::SpanTarget;
+use crate::rle::DecodeCounts;
+use crate::segment::SegmentSink;
+use crate::segment::{StoreError, StoreMemory, TrapezoidStore};
+use crate::visible::{self, Resolve, VisibleError, VisibleStats, Workspace};
+use core::fmt;
+use embedded_graphics::mono_font::MonoFont;
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// The caller's memory of a [`Scene`].
+#[derive(Debug)]
+pub struct SceneMemory<'a> {
+    /// The trapezoid store's pools; its `segments` slice sets how many
+    /// segments the scene has, and its `rows` must cover the window's
+    /// height.
+    pub store: StoreMemory<'a>,
+    /// Label slots, shared by all segments.
+    pub labels: &'a mut [Label],
+    /// Label text, shared by all segments.
+    pub text: &'a mut [u8],
+}
+
+/// Why a segment could not be built, or a scene made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum SceneError {
+    /// A pool of the trapezoid store ran out, or there is no such segment.
+    Store(StoreError),
+    /// The label slots or text ran out, or a text was refused.
+    Labels(LabelError),
+    /// A modelling transform failed: the stack is full or empty, or an
+    /// entry left its range.
+    Transform(TransformError),
+    /// A vertex left view space's range under the current transform.
+    Range,
+    /// A polygon needs more vertices than the pipeline's `N`.
+    Vertices {
+        /// Vertices the pipeline holds.
+        capacity: usize,
+    },
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SceneError::Store(e) => write!(f, "{e}"),
+            SceneError::Labels(e) => write!(f, "{e}"),
+            SceneError::Transform(e) => write!(f, "{e}"),
+            SceneError::Range => write!(f, "vertex outside the view-space range"),
+            SceneError::Vertices { capacity } => {
+                write!(f, "polygon needs more than {capacity} vertices")
+            }
+        }
+    }
+}
+
+impl core::error::Error for SceneError {}
+
+impl From<StoreError> for SceneError {
+    fn from(e: StoreError) -> Self {
+        SceneError::Store(e)
+    }
+}
+
+impl From<LabelError> for SceneError {
+    fn from(e: LabelError) -> Self {
+        SceneError::Labels(e)
+    }
+}
+
+impl From<TransformError> for SceneError {
+    fn from(e: TransformError) -> Self {
+        SceneError::Transform(e)
+    }
+}
+
+impl From<PipelineError<StoreError>> for SceneError {
+    fn from(e: PipelineError<StoreError>) -> Self {
+        match e {
+            PipelineError::Range => SceneError::Range,
+            PipelineError::Capacity { capacity } => SceneError::Vertices { capacity },
+            PipelineError::Sink(e) => SceneError::Store(e),
+        }
+    }
+}
+
+/// An [`Scene::update`] that failed: the segment, left empty and stale,
+/// and why.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct UpdateError {
+    /// The segment whose procedure failed.
+    pub segment: usize,
+    /// Why.
+    pub error: SceneError,
+}
+
+impl fmt::Display for UpdateError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "segment {}: {}", self.segment, self.error)
+    }
+}
+
+impl core::error::Error for UpdateError {}
+
+/// The application's description of one segment, run whenever the segment
+/// is rebuilt. Any `FnMut(&mut Builder) -> Result<(), SceneError>` is one.
+pub trait Procedure<const DEPTH: usize, const N: usize> {
+    /// Describes the segment into `segment`, which starts empty with the
+    /// camera's transform.
+    fn build(&mut self, segment: &mut Builder<'_, '_, DEPTH, N>) -> Result<(), SceneError>;
+}
+
+impl<F, const DEPTH: usize, const N: usize> Procedure<DEPTH, N> for F
+where
+    F: FnMut(&mut Builder<'_, '_, DEPTH, N>) -> Result<(), SceneError>,
+{
+    fn build(&mut self, segment: &mut Builder<'_, '_, DEPTH, N>) -> Result<(), SceneError> {
+        self(segment)
+    }
+}
+
+/// What one [`Scene::update`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Update {
+    /// Segments rebuilt.
+    pub regenerated: u32,
+    /// Polygons, lines and points given by their procedures.
+    pub polygons: u32,
+    /// Trapezoids cut for them.
+    pub trapezoids: u32,
+    /// Labels placed.
+    pub labels: u32,
+}
+
+/// What one [`Scene::draw`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Frame {
+    /// The visible-surface pass.
+    pub visible: VisibleStats,
+    /// The decoder's spans and pixels.
+    pub decoded: DecodeCounts,
+    /// The labels.
+    pub labels: DrawCounts,
+}
+
+/// Segments of polygons and labels, kept in screen space between frames
+/// (see the [module](self) docs).
+#[derive(Debug)]
+pub struct Scene<'a, const DEPTH: usize, const N: usize> {
+    store: TrapezoidStore<'a>,
+    labels: LabelStore<'a>,
+    pipeline: Pipeline<DEPTH, N>,
+    clip: ClipRect,
+}
+
+impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// An empty scene on the pipeline's window, every segment stale.
+    /// Fails when the store's index has fewer rows than the window.
+    pub fn new(mem: SceneMemory<'a>, pipeline: Pipeline<DEPTH, N>) -> Result<Self, SceneError> {
+        let (w, h) = (pipeline.viewport().width(), pipeline.viewport().height());
+        let store = TrapezoidStore::new(mem.store, w, h)?;
+        let mut scene = Scene {
+            store,
+            labels: LabelStore::new(mem.labels, mem.text),
+            pipeline,
+            clip: ClipRect::full(w, h),
+        };
+        scene.invalidate_all();
+        Ok(scene)
+    }
+
+    /// Segments the scene holds.
+    pub fn segments(&self) -> usize {
+        self.store.segments().len()
+    }
+
+    /// The trapezoid store, with its per-segment counters.
+    pub fn store(&self) -> &TrapezoidStore<'a> {
+        &self.store
+    }
+
+    /// The labels placed.
+    pub fn labels(&self) -> &LabelStore<'a> {
+        &self.labels
+    }
+
+    /// The geometry stage, with its counters.
+    pub fn pipeline(&self) -> &Pipeline<DEPTH, N> {
+        &self.pipeline
+    }
+
+    /// Moves the camera; every segment becomes stale.
+    pub fn set_view(&mut self, view: &View) -> Result<(), SceneError> {
+        self.pipeline.set_view(view)?;
+        self.invalidate_all();
+        Ok(())
+    }
+
+    /// Replaces the projection; every segment becomes stale.
+    pub fn set_projection(&mut self, projection: impl Into<Projection>) {
+        self.pipeline.set_projection(projection);
+        self.invalidate_all();
+    }
+
+    /// Replaces the light; every segment becomes stale.
+    pub fn set_light(&mut self, light: Light) {
+        self.pipeline.set_light(light);
+        self.invalidate_all();
+    }
+
+    /// Sets the thickness of points and lines; every segment becomes
+    /// stale.
+    pub fn set_thickness(&mut self, thickness: Coord) {
+        self.pipeline.set_thickness(thickness);
+        self.invalidate_all();
+    }
+
+    /// Draws polygons only inside `clip` (cut to the window); every
+    /// segment becomes stale. Labels are not clipped.
+    pub fn set_clip(&mut self, clip: ClipRect) {
+        self.clip = clip;
+        self.invalidate_all();
+    }
+
+    /// Marks segment `s` as changed: the next [`update`](Self::update)
+    /// rebuilds it.
+    pub fn invalidate(&mut self, s: usize) -> Result<(), SceneError> {
+        Ok(self.store.set_stale(s, true)?)
+    }
+
+    /// Marks every segment as changed.
+    pub fn invalidate_all(&mut self) {
+        for s in 0..self.segments() {
+            let _ = self.store.set_stale(s, true);
+        }
+    }
+
+    /// `true` when segment `s` will be rebuilt by the next update.
+    pub fn is_stale(&self, s: usize) -> bool {
+        self.store.segment(s).is_some_and(|g| g.is_stale())
+    }
+
+    /// Rebuilds every stale segment `s` that has a procedure
+    /// (`procedures[s]`), and nothing else. Stops at the first failure,
+    /// which leaves that segment empty and stale.
+    pub fn update(
+        &mut self,
+        procedures: &mut [&mut dyn Procedure<DEPTH, N>],
+    ) -> Result<Update, UpdateError> {
+        let mut u = Update::default();
+        for (s, p) in procedures.iter_mut().enumerate() {
+            if !self.is_stale(s) {
+                continue;
+            }
+            let before = self.store.segment(s).map(|g| g.counters());
+            let labels = self.labels.len();
+            self.rebuild(s, &mut **p)
+                .map_err(|error| UpdateError { segment: s, error })?;
+            if let (Some(b), Some(g)) = (before, self.store.segment(s)) {
+                let a = g.counters();
+                u.polygons += a.polygons.wrapping_sub(b.polygons);
+                u.trapezoids += a.trapezoids.wrapping_sub(b.trapezoids);
+            }
+            // The segment's labels were removed, then its new ones added.
+            u.labels += self.labels.len().saturating_sub(labels) as u32;
+            u.regenerated += 1;
+        }
+        Ok(u)
+    }
+
+    /// Rebuilds segment `s` with `procedure` now, stale or not. On a
+    /// failure the segment is left empty and stale.
+    pub fn rebuild(
+        &mut self,
+        s: usize,
+        procedure: &mut dyn Procedure<DEPTH, N>,
+    ) -> Result<(), SceneError> {
+        let mut b = self.open(s)?;
+        let r = procedure.build(&mut b);
+        if r.is_err() {
+            self.empty(s);
+        }
+        r
+    }
+
+    /// Empties segment `s` and returns a [`Builder`] to describe it anew
+    /// (what [`rebuild`](Self::rebuild) does around a procedure). The
+    /// segment counts as built from here on.
+    pub fn open(&mut self, s: usize) -> Result<Builder<'_, 'a, DEPTH, N>, SceneError> {
+        self.store.clear_segment(s)?;
+        self.labels.clear_segment(s as u16);
+        self.store.set_stale(s, false)?;
+        self.pipeline.reset_stack();
+        Ok(Builder {
+            scene: self,
+            segment: s,
+        })
+    }
+
+    fn empty(&mut self, s: usize) {
+        let _ = self.store.clear_segment(s);
+        self.labels.clear_segment(s as u16);
+        let _ = self.store.set_stale(s, true);
+    }
+
+    /// Draws the scene into `target`: the visible surfaces resolved with
+    /// `resolve` through `workspace` and decoded as spans (background runs
+    /// filled with `background`, or left as they are with `None`), then
+    /// every label in `font`, over everything.
+    pub fn draw<T>(
+        &self,
+        workspace: &mut Workspace<'_>,
+        resolve: Resolve,
+        background: Option<T::Color>,
+        font: &MonoFont<'_>,
+        target: &mut T,
+    ) -> Result<Frame, VisibleError<T::Error>>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        let (visible, decoded) =
+            visible::draw(&self.store, workspace, resolve, target, background)?;
+        let labels = self.labels.draw(font, target).map_err(VisibleError::Sink)?;
+        Ok(Frame {
+            visible,
+            decoded,
+            labels,
+        })
+    }
+}
+
+/// One segment being described: modelling transforms, polygons and
+/// labels, each through the scene's pipeline into the segment.
+#[derive(Debug)]
+pub struct Builder<'s, 'a, const DEPTH: usize, const N: usize> {
+    scene: &'s mut Scene<'a, DEPTH, N>,
+    segment: usize,
+}
+
+impl<const DEPTH: usize, const N: usize> Builder<'_, '_, DEPTH, N> {
+    /// The segment being built.
+    pub fn segment(&self) -> usize {
+        self.segment
+    }
+
+    /// The modelling transform stack (the camera's matrix at the bottom).
+    pub fn stack_mut(&mut self) -> &mut TransformStack<DEPTH> {
+        self.scene.pipeline.stack_mut()
+    }
+
+    /// Saves the modelling transform.
+    pub fn push(&mut self) -> Result<(), SceneError> {
+        Ok(self.stack_mut().push()?)
+    }
+
+    /// Restores the modelling transform saved last.
+    pub fn pop(&mut self) -> Result<(), SceneError> {
+        Ok(self.stack_mut().pop()?)
+    }
+
+    /// Translates what follows by `(x, y, z)`.
+    pub fn translate(&mut self, x: Q16, y: Q16, z: Q16) -> Result<(), SceneError> {
+        Ok(self.stack_mut().translate(x, y, z)?)
+    }
+
+    /// Rotates what follows about `axis`.
+    pub fn rotate(&mut self, axis: Axis, angle: Angle) -> Result<(), SceneError> {
+        let s = self.stack_mut();
+        Ok(match axis {
+            Axis::X => s.rotate_x(angle),
+            Axis::Y => s.rotate_y(angle),
+            Axis::Z => s.rotate_z(angle),
+        }?)
+    }
+
+    /// Scales what follows, per axis.
+    pub fn scale(&mut self, x: Q16, y: Q16, z: Q16) -> Result<(), SceneError> {
+        Ok(self.stack_mut().scale(x, y, z)?)
+    }
+
+    /// A polygon in model coordinates: one point, a point; two, a line;
+    /// three or more, a face, front where they run counter-clockwise.
+    pub fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<Outcome, SceneError> {
+        let Scene {
+            store,
+            pipeline,
+            clip,
+            ..
+        } = &mut *self.scene;
+        let mut sink = SegmentSink::new(store, self.segment, *clip);
+        let r = pipeline.polygon(points, color, &mut sink);
+        Ok(r?)
+    }
+
+    /// A label whose first character's lower-left corner is at the model
+    /// point `at` (see [`label`](crate::label)). `Ok(false)` when the point
+    /// lies before the near plane or too far off the window to show.
+    pub fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<bool, SceneError> {
+        let a = self.scene.pipeline.project_point(at)?;
+        if !a.in_front {
+            // Checked all the same, so that a bad text fails whatever the view.
+            return crate::label::check_text(text)
+                .map(|_| false)
+                .map_err(Into::into);
+        }
+        Ok(self
+            .scene
+            .labels
+            .add(self.segment as u16, crate::label::to_pixels(a), color, text)?)
+    }
+}
