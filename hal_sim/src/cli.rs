@@ -16,9 +16,12 @@ use crate::dual_port::DualPortRam;
 use crate::refresh::RefreshController;
 use crate::text::{self, Assembled};
 use crate::timing::VideoTiming;
-use scanvert::controller::{needs_3d, Controller, RenderError, Stats, Storage3d};
+use scanvert::controller::{
+    edges_3d, needs_3d, Controller, Needs3d, RenderError, Stats, Storage3d,
+};
 use scanvert::display_list::{Command, DisplayList, MAGIC};
 use scanvert::edge::Edge;
+use scanvert::label::Label;
 use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
 use scanvert::segment::{Face, Segment, StoreMemory};
@@ -158,16 +161,24 @@ pub struct Rendered {
 
 /// Runs the graphic controller on `scene` into a fresh (black) dual-port RAM.
 ///
-/// A scene with `poly3` gets the memory of the 3D layer too, sized from
-/// the scene by [`needs_3d`]: as many trapezoid slots as its front-facing
-/// `poly3`s are cut into, a face each, an active entry per trapezoid (the
-/// most that can overlap a row), a run per column.
+/// A scene with a 3D layer (`poly3`, or the 3D scene commands) gets its
+/// memory too, sized from the scene by [`needs_3d`]: as many trapezoid
+/// slots as its polygons are cut into, a face each, an active entry per
+/// trapezoid (the most that can overlap a row), a run per column, and the
+/// label slots and text its labels need.
 pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     let list = scene.list();
     let mut edges = vec![Edge::EMPTY; edges_needed(&list)];
-    let mut slots = vec![EdgeSlot::EMPTY; edges_needed(&list)];
-    let need = needs_3d(&list, &mut slots)
-        .ok_or_else(|| input(&scene.path, "edge slots sized below the largest poly3"))?;
+    let mut slots = vec![EdgeSlot::EMPTY; edges_3d(&list)];
+    // `None`: a scene command fails; rendering reports where.
+    let need = needs_3d(&list, &mut slots).unwrap_or(Needs3d {
+        poly3: 1,
+        rows: list.height() as usize,
+        runs: list.width() as usize,
+        ..Needs3d::default()
+    });
+    let mut labels = vec![Label::EMPTY; need.labels];
+    let mut text = vec![0u8; need.text];
     let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
     let mut faces = vec![Face::EMPTY; need.faces];
     let mut segments = [Segment::EMPTY; 1];
@@ -176,7 +187,8 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     let mut cover = vec![Cover::EMPTY; need.trapezoids];
     let mut runs = vec![Run::EMPTY; need.runs];
     let mut controller = Controller::new(Rasterizer::new(&mut edges));
-    if need.poly3 > 0 {
+    if need.any() {
+        controller = controller.with_labels(&mut labels, &mut text);
         controller = controller.with_3d(Storage3d {
             store: StoreMemory {
                 trapezoids: &mut traps,
@@ -299,12 +311,15 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                     s.spans,
                     s.pixels,
                     s.clears
-                ) + &if s.poly3 + s.culled > 0 {
+                ) + &if s.poly3 + s.faces + s.culled + s.clipped_away + s.labels > 0 {
                     format!(
-                        "{}: {} poly3 ({} culled), {} trapezoids, {} runs, {} intersecting spans\n",
+                        "{}: {} poly3, {} faces ({} culled, {} clipped away), {} labels, {} trapezoids, {} runs, {} intersecting spans\n",
                         path.display(),
                         s.poly3,
+                        s.faces,
                         s.culled,
+                        s.clipped_away,
+                        s.labels,
                         s.trapezoids,
                         s.visible.runs,
                         s.visible.intersecting

@@ -15,22 +15,80 @@
 //! negative (counter-clockwise as displayed). At equal depth the earlier
 //! `poly3` is in front.
 //!
+//! # The 3D scene (version 2)
+//!
+//! The scene commands of version 2 feed the same 3D layer. They are
+//! executed in list order through a [`Pipeline`] of [`LIST_STACK`] saved
+//! transforms and polygons of up to [`LIST_VERTICES`] vertices (after
+//! clipping), starting from these defaults:
+//!
+//! | state | default | set by |
+//! |---|---|---|
+//! | projection | perspective, 60° horizontal field of view, near 1, far 1000 | `perspective`, `ortho` |
+//! | window | the frame, the view axis through its middle | (fixed) |
+//! | camera | eye at the origin, yaw 0, pitch 0: looking along −z, y up | `view` (`lookat`) |
+//! | light | ambient only: every face keeps its colour | `light` |
+//! | thickness of points and lines | 1 px | `thickness` |
+//! | modelling transform | the camera's, nothing saved | `push`, `pop`, `translate`, `rotate`, `scale` |
+//! | colour and clip | the list's `color` and `clip` registers, as for `poly3` | `color`, `clip` |
+//!
+//! Each state command acts on the faces and labels that follow it. A
+//! `segment` command empties the transform stack and loads the camera's
+//! matrix again, so each segment starts from the camera; a `view` loads
+//! the new camera as the current matrix. A one-shot render draws every
+//! segment (the retained, per-segment rebuilding is [`Scene`]'s); at equal
+//! depth the face earlier in the list is in front, whatever its segment.
+//! `face`s are culled by their first three vertices (see
+//! [`geometry::cull`](crate::geometry::cull)) and lit; `label`s are drawn
+//! after the whole 3D layer, in the colour in force at their place, with
+//! the lower-left corner of their first character at the projected point
+//! (see [`label`](crate::label)), never hidden.
+//!
+//! # Memory
+//!
 //! The 3D layer needs memory of its own ([`Storage3d`], given with
-//! [`Controller::with_3d`]). Without it a list with a `poly3` is rejected
-//! as [`RenderError::Unsupported`]; with too little, as
-//! [`RenderError::Capacity3d`]. Both are found before anything is drawn.
+//! [`Controller::with_3d`]), and labels need label slots and text space
+//! ([`Controller::with_labels`]). Without 3D storage a list with a `poly3`
+//! or any scene command is rejected as [`RenderError::Unsupported`];
+//! with too little of either, as [`RenderError::Capacity3d`]. A scene
+//! command that fails (a `pop` with nothing saved, a vertex outside view
+//! space, a projection out of range) is a [`RenderError::Scene`]. All of
+//! these are found before anything is drawn. [`needs_3d`] sizes the memory
+//! for a list.
+//!
+//! [`Pipeline`]: crate::geometry::Pipeline
+//! [`Scene`]: crate::scene::Scene
 
 use crate::clip::ClipRect;
 use crate::color::ListColor;
-use crate::display_list::{Command, DisplayList, Vertices3};
+use crate::display_list::{Axis, Command, DisplayList, Vertices3};
+use crate::fixed::Vertex3;
+use crate::geometry::{
+    Angle, Light, Orthographic, Perspective, Pipeline, PipelineError, Point3, PolygonSink, View,
+    Viewport, Q16,
+};
+use crate::label::{self, Label, LabelError, LabelStore};
 use crate::port::SpanTarget;
 use crate::rle::Run;
 use crate::scan::{FillError, Rasterizer};
+use crate::scene::SceneError;
 use crate::segment::{StoreError, StoreMemory, TrapezoidStore};
 use crate::trapezoid::{EdgeSlot, Polygon};
 use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+
+/// Matrices the transform stack of a list's 3D scene saves (`push`
+/// without `pop`).
+pub const LIST_STACK: usize = 16;
+
+/// Vertices of one 3D polygon of a list, at every stage of clipping: a
+/// `face` may have up to `LIST_VERTICES − 6` (each of the six clip planes
+/// adds at most one to a convex face).
+pub const LIST_VERTICES: usize = 64;
+
+/// The geometry stage of a list's 3D scene.
+type ListPipeline = Pipeline<LIST_STACK, LIST_VERTICES>;
 
 /// The colour of `poly` before the first `color` command.
 pub const DEFAULT_COLOR: Rgb888 = Rgb888::WHITE;
@@ -68,6 +126,13 @@ pub enum RenderError<E> {
         /// How many the storage holds.
         capacity: usize,
     },
+    /// A command of the 3D scene failed. Found before anything is drawn.
+    Scene {
+        /// Byte offset of the command in the list.
+        offset: usize,
+        /// Why.
+        error: SceneError,
+    },
     /// The frame-buffer port failed at the command at `offset`.
     Target {
         /// Byte offset of the command in the list.
@@ -84,6 +149,7 @@ impl<E> RenderError<E> {
             RenderError::Capacity { offset, .. }
             | RenderError::Capacity3d { offset, .. }
             | RenderError::Unsupported { offset, .. }
+            | RenderError::Scene { offset, .. }
             | RenderError::Target { offset, .. } => offset,
         }
     }
@@ -107,6 +173,7 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
             RenderError::Unsupported { command, .. } => {
                 write!(f, "`{command}` is not supported by this renderer yet")
             }
+            RenderError::Scene { error, .. } => write!(f, "{error}"),
             RenderError::Target { error, .. } => write!(f, "frame-buffer port failed: {error:?}"),
         }
     }
@@ -130,6 +197,12 @@ pub enum Resource {
     Active,
     /// Runs of one row (the frame's width).
     Runs,
+    /// Vertices of one 3D `face` ([`LIST_VERTICES`] less six).
+    FaceVertices,
+    /// Label slots.
+    Labels,
+    /// Bytes of label text.
+    LabelText,
 }
 
 impl fmt::Display for Resource {
@@ -142,6 +215,9 @@ impl fmt::Display for Resource {
             Resource::Rows => "index rows",
             Resource::Active => "active entries",
             Resource::Runs => "runs",
+            Resource::FaceVertices => "vertices of a face",
+            Resource::Labels => "labels",
+            Resource::LabelText => "bytes of label text",
         })
     }
 }
@@ -157,6 +233,15 @@ impl Resource {
             StoreError::Rows { capacity, .. } => (Resource::Rows, capacity),
         }
     }
+
+    fn of_labels(e: LabelError) -> (Resource, usize) {
+        match e {
+            LabelError::Labels { capacity } => (Resource::Labels, capacity),
+            LabelError::Text { capacity } => (Resource::LabelText, capacity),
+            // The reader checked every text.
+            LabelError::Invalid => (Resource::LabelText, 0),
+        }
+    }
 }
 
 /// What a render did.
@@ -169,16 +254,22 @@ pub struct Stats {
     pub polygons: u32,
     /// Clears executed.
     pub clears: u32,
-    /// Spans written by polygons (and by the 3D layer).
+    /// Spans written by polygons, the 3D layer and labels.
     pub spans: u32,
-    /// Pixels written by polygons (and by the 3D layer).
+    /// Pixels written by polygons, the 3D layer and labels.
     pub pixels: u64,
     /// `poly3`s drawn (front-facing).
     pub poly3: u32,
-    /// `poly3`s culled (back-facing or edge-on).
+    /// `poly3`s and `face`s culled (back-facing or edge-on).
     pub culled: u32,
-    /// Trapezoids the drawn `poly3`s were cut into.
+    /// `face`s (points and lines too) that reached the 3D layer.
+    pub faces: u32,
+    /// `face`s wholly outside the depth range or the window.
+    pub clipped_away: u32,
+    /// Trapezoids the 3D layer was cut into.
     pub trapezoids: u32,
+    /// Labels drawn (at least partly on the frame).
+    pub labels: u32,
     /// What the visible-surface stage did.
     pub visible: VisibleStats,
 }
@@ -200,22 +291,35 @@ pub struct Storage3d<'a> {
     pub resolve: Resolve,
 }
 
-/// What the `poly3`s of a list need, from [`needs_3d`].
+/// What the 3D layer of a list needs, from [`needs_3d`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Needs3d {
     /// `poly3` commands in the list.
     pub poly3: usize,
+    /// Scene commands (version 2) in the list.
+    pub scene: usize,
     /// Trapezoid slots.
     pub trapezoids: usize,
     /// Face slots.
     pub faces: usize,
-    /// Edge slots: the most vertices of one `poly3`.
+    /// Edge slots: the most vertices of one polygon reaching the layer.
     pub edges: usize,
     /// Rows of the scan-line index: the frame's height.
     pub rows: usize,
     /// Runs of one row: the frame's width.
     pub runs: usize,
+    /// Label slots.
+    pub labels: usize,
+    /// Bytes of label text.
+    pub text: usize,
+}
+
+impl Needs3d {
+    /// `true` when the list has a 3D layer at all.
+    pub fn any(&self) -> bool {
+        self.poly3 + self.scene > 0
+    }
 }
 
 /// `true` when the `poly3` is drawn: the shoelace sum of its vertices is
@@ -236,67 +340,250 @@ pub fn front_facing(v: &Vertices3<'_>) -> bool {
     s < 0
 }
 
-/// Calls `f(offset, vertices, colour, clip)` for every front-facing
-/// `poly3` of `list`, with the state in force at its place, on a frame of
-/// `w × h`.
-fn each_poly3<E>(
-    list: &DisplayList<'_>,
-    (w, h): (u16, u16),
-    mut f: impl FnMut(usize, Vertices3<'_>, Rgb888, &ClipRect) -> Result<(), E>,
-) -> Result<(), E> {
-    let mut clip = ClipRect::full(w, h);
-    let mut color = DEFAULT_COLOR;
-    for (offset, cmd) in list.commands() {
-        match cmd {
-            Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
-            Command::Color(c) => color = c,
-            Command::Poly3(v) if front_facing(&v) => f(offset, v, color, &clip)?,
-            _ => {}
-        }
+/// Edge slots a polygon of the 3D layer may need, from its command alone:
+/// a `poly3`'s vertices; a `face`'s plus the six it may gain by clipping,
+/// at most [`LIST_VERTICES`], and at least four (points and lines).
+fn edge_bound(cmd: &Command<'_>) -> usize {
+    match cmd {
+        Command::Poly3(v) => v.len(),
+        Command::Face(p) => (p.len() + 6).clamp(4, LIST_VERTICES),
+        _ => 0,
     }
-    Ok(())
 }
 
-/// Sizes [`Storage3d`] for `list` by cutting its front-facing `poly3`s
-/// (nothing is drawn), with `edges` as scratch. Returns `None` when
-/// `edges` has fewer slots than the largest `poly3` has vertices. Active
-/// entries are not counted: at most [`Needs3d::trapezoids`] are needed,
-/// and [`Workspace::check`] gives the exact number once the store is
-/// built.
+/// Edge slots the 3D layer of `list` needs: what [`needs_3d`] wants as
+/// scratch, and [`Storage3d`]'s store as edge slots.
+pub fn edges_3d(list: &DisplayList<'_>) -> usize {
+    list.commands()
+        .map(|(_, c)| edge_bound(&c))
+        .max()
+        .unwrap_or(0)
+}
+
+/// `true` for the commands of the 3D scene (version 2).
+fn is_scene_command(cmd: &Command<'_>) -> bool {
+    !matches!(
+        cmd,
+        Command::Clear(_)
+            | Command::Clip(_)
+            | Command::Color(_)
+            | Command::Poly(_)
+            | Command::Poly3(_)
+    )
+}
+
+/// Where the 3D layer goes: the store and the labels of a render, or
+/// counters sizing them.
+trait Layer3d {
+    /// A polygon of the layer, in screen space.
+    fn polygon(
+        &mut self,
+        vertices: impl IntoIterator<Item = Vertex3>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), (Resource, usize)>;
+    /// A label, placed.
+    fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str)
+        -> Result<(), (Resource, usize)>;
+}
+
+/// The geometry stage's polygons into a [`Layer3d`], under one clip.
+struct Faces<'l, L> {
+    layer: &'l mut L,
+    clip: ClipRect,
+}
+
+impl<L: Layer3d> PolygonSink for Faces<'_, L> {
+    type Error = (Resource, usize);
+    fn polygon(&mut self, v: &[Vertex3], color: Rgb888, _: bool) -> Result<(), Self::Error> {
+        self.layer.polygon(v.iter().copied(), color, &self.clip)
+    }
+}
+
+/// What [`run_layer`] counted.
+#[derive(Clone, Copy, Debug, Default)]
+struct LayerCounts {
+    poly3: u32,
+    culled: u32,
+    faces: u32,
+    clipped_away: u32,
+}
+
+/// Executes the 3D layer of `list` (its `poly3`s and its scene commands,
+/// in list order) into `layer`, on a frame of `w × h`.
+#[inline(never)]
+fn run_layer<L: Layer3d>(
+    list: &DisplayList<'_>,
+    (w, h): (u16, u16),
+    layer: &mut L,
+) -> Result<LayerCounts, RenderError<core::convert::Infallible>> {
+    let mut n = LayerCounts::default();
+    let mut clip = ClipRect::full(w, h);
+    let mut color = DEFAULT_COLOR;
+    let mut pipe: Option<ListPipeline> = None;
+    let full = |offset, (resource, capacity)| RenderError::Capacity3d {
+        offset,
+        resource,
+        capacity,
+    };
+    let scene = |offset, error: SceneError| RenderError::Scene { offset, error };
+    for (offset, cmd) in list.commands() {
+        // The pipeline is made at the first scene command.
+        if pipe.is_none() && is_scene_command(&cmd) {
+            let window = Viewport::centred(w, h).map_err(|e| scene(offset, e.into()))?;
+            let q = Q16::from_int;
+            let persp = Perspective::from_fov(Angle::from_degrees(60), w, q(1), q(1000))
+                .map_err(|e| scene(offset, e.into()))?;
+            pipe = Some(ListPipeline::new(persp, window));
+        }
+        let err = |e: SceneError| scene(offset, e);
+        match (cmd, pipe.as_mut()) {
+            (Command::Clip(win), _) => clip = ClipRect::from_window(win, w, h),
+            (Command::Color(c), _) => color = c,
+            (Command::Poly3(v), _) => {
+                if front_facing(&v) {
+                    layer
+                        .polygon(v.iter(), color, &clip)
+                        .map_err(|e| full(offset, e))?;
+                    n.poly3 += 1;
+                } else {
+                    n.culled += 1;
+                }
+            }
+            (Command::Clear(_) | Command::Poly(_), _) | (_, None) => {}
+            (Command::Segment(_), Some(p)) => p.reset_stack(),
+            (Command::Perspective { fov, near, far }, Some(p)) => p.set_projection(
+                Perspective::from_fov(fov, w, near, far).map_err(|e| err(e.into()))?,
+            ),
+            (Command::Ortho { scale, near, far }, Some(p)) => {
+                p.set_projection(Orthographic::new(scale, near, far).map_err(|e| err(e.into()))?)
+            }
+            (Command::View { eye, yaw, pitch }, Some(p)) => p
+                .set_view(&View { eye, yaw, pitch })
+                .map_err(|e| err(e.into()))?,
+            (Command::Light { toward, percent }, Some(p)) => {
+                p.set_light(Light::new(toward.to_bits(), percent).ok_or(err(SceneError::Light))?)
+            }
+            (Command::Thickness(t), Some(p)) => p.set_thickness(t),
+            (Command::Push, Some(p)) => p.stack_mut().push().map_err(|e| err(e.into()))?,
+            (Command::Pop, Some(p)) => p.stack_mut().pop().map_err(|e| err(e.into()))?,
+            (Command::Translate(t), Some(p)) => p
+                .stack_mut()
+                .translate(t.x, t.y, t.z)
+                .map_err(|e| err(e.into()))?,
+            (Command::Rotate(axis, a), Some(p)) => {
+                let s = p.stack_mut();
+                match axis {
+                    Axis::X => s.rotate_x(a),
+                    Axis::Y => s.rotate_y(a),
+                    Axis::Z => s.rotate_z(a),
+                }
+                .map_err(|e| err(e.into()))?
+            }
+            (Command::Scale(f), Some(p)) => p
+                .stack_mut()
+                .scale(f.x, f.y, f.z)
+                .map_err(|e| err(e.into()))?,
+            (Command::Face(points), Some(p)) => {
+                let mut v: heapless::Vec<Point3, LIST_VERTICES> = heapless::Vec::new();
+                for q in points.iter() {
+                    v.push(q)
+                        .map_err(|_| full(offset, (Resource::FaceVertices, LIST_VERTICES - 6)))?;
+                }
+                let mut sink = Faces {
+                    layer: &mut *layer,
+                    clip,
+                };
+                match p.polygon(&v, color, &mut sink) {
+                    Ok(crate::geometry::Outcome::Emitted) => n.faces += 1,
+                    Ok(crate::geometry::Outcome::Culled) => n.culled += 1,
+                    Ok(_) => n.clipped_away += 1,
+                    Err(PipelineError::Sink(e)) => return Err(full(offset, e)),
+                    Err(PipelineError::Capacity { .. }) => {
+                        return Err(full(offset, (Resource::FaceVertices, LIST_VERTICES - 6)))
+                    }
+                    Err(PipelineError::Range) => return Err(err(SceneError::Range)),
+                }
+            }
+            (Command::Label { at, text }, Some(p)) => {
+                let a = p.project_point(at).map_err(|e| err(e.into()))?;
+                if a.in_front {
+                    layer
+                        .label(label::to_pixels(a), color, text)
+                        .map_err(|e| full(offset, e))?;
+                }
+            }
+        }
+    }
+    Ok(n)
+}
+
+/// Counts what the 3D layer needs, cutting polygons without keeping them.
+struct Count<'e> {
+    edges: &'e mut [EdgeSlot],
+    need: Needs3d,
+}
+
+impl Layer3d for Count<'_> {
+    fn polygon(
+        &mut self,
+        v: impl IntoIterator<Item = Vertex3>,
+        _: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), (Resource, usize)> {
+        let cap = self.edges.len();
+        let poly =
+            Polygon::load(&mut *self.edges, v, clip).map_err(|_| (Resource::EdgeSlots, cap))?;
+        if poly.plane().is_none() {
+            return Ok(());
+        }
+        let t = poly.cut(|_, _| Ok::<(), ()>(())).unwrap_or(0) as usize;
+        self.need.trapezoids += t;
+        self.need.faces += (t > 0) as usize;
+        Ok(())
+    }
+
+    fn label(&mut self, _: (i32, i32), _: Rgb888, text: &str) -> Result<(), (Resource, usize)> {
+        self.need.labels += 1;
+        self.need.text += text.len();
+        Ok(())
+    }
+}
+
+/// Sizes [`Storage3d`] and the label memory for `list` by running its 3D
+/// layer (nothing is drawn), with `edges` as scratch. Returns `None` when
+/// `edges` has fewer slots than [`Needs3d::edges`] or a scene command
+/// fails (rendering reports it). Active entries are not counted: at most
+/// [`Needs3d::trapezoids`] are needed, and [`Workspace::check`] gives the
+/// exact number once the store is built. Labels are counted when their
+/// point is in front of the eye, on the frame or not.
 pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3d> {
     let (w, h) = (list.width(), list.height());
-    let mut n = Needs3d {
+    let mut need = Needs3d {
         rows: h as usize,
         runs: w as usize,
         ..Needs3d::default()
     };
     for (_, cmd) in list.commands() {
-        if let Command::Poly3(v) = cmd {
-            n.poly3 += 1;
-            n.edges = n.edges.max(v.len());
+        match cmd {
+            Command::Poly3(_) => need.poly3 += 1,
+            Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
+            _ => need.scene += 1,
         }
+        need.edges = need.edges.max(edge_bound(&cmd));
     }
-    if edges.len() < n.edges {
+    if edges.len() < need.edges {
         return None;
     }
-    each_poly3(list, (w, h), |_, v, _, clip| {
-        let poly = Polygon::load(&mut *edges, v.iter(), clip).map_err(|_| ())?;
-        if poly.plane().is_none() {
-            return Ok::<(), ()>(());
-        }
-        let t = poly.cut(|_, _| Ok::<(), ()>(()))? as usize;
-        n.trapezoids += t;
-        n.faces += (t > 0) as usize;
-        Ok(())
-    })
-    .ok()?;
-    Some(n)
+    let mut count = Count { edges, need };
+    run_layer(list, (w, h), &mut count).ok()?;
+    Some(count.need)
 }
 
 /// The graphic controller.
 ///
-/// For 2D lists it needs only a [`Rasterizer`]; `poly3` also needs the
-/// memory of the 3D layer:
+/// For 2D lists it needs only a [`Rasterizer`]; `poly3` and the 3D scene
+/// also need the memory of the 3D layer, and labels their own:
 ///
 /// ```
 /// use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
@@ -339,6 +626,7 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 pub struct Controller<'e> {
     raster: Rasterizer<'e>,
     three: Option<Storage3d<'e>>,
+    labels: Option<(&'e mut [Label], &'e mut [u8])>,
 }
 
 impl<'e> Controller<'e> {
@@ -347,21 +635,31 @@ impl<'e> Controller<'e> {
         Controller {
             raster,
             three: None,
+            labels: None,
         }
     }
 
-    /// The same controller, rendering `poly3` with `storage`.
+    /// The same controller, rendering `poly3` and the 3D scene with
+    /// `storage`.
     pub fn with_3d(mut self, storage: Storage3d<'e>) -> Self {
         self.three = Some(storage);
         self
     }
 
+    /// The same controller, placing labels in `slots` with their text in
+    /// `text` (see [`label`](crate::label)).
+    pub fn with_labels(mut self, slots: &'e mut [Label], text: &'e mut [u8]) -> Self {
+        self.labels = Some((slots, text));
+        self
+    }
+
     /// Checks, without drawing, what can be checked before the 3D layer
-    /// is built: polygon sizes against the edge storage, `poly3` sizes
-    /// against the edge slots, known commands, and `poly3` only with 3D
-    /// storage. [`render`](Self::render) checks the rest (trapezoids,
-    /// faces, active entries) after cutting the layer, still before
-    /// drawing.
+    /// is built: polygon sizes against the edge storage, `poly3` and
+    /// `face` sizes against the edge slots, known commands, the 3D layer
+    /// only with 3D storage and labels only with label memory.
+    /// [`render`](Self::render) checks the rest (trapezoids, faces,
+    /// labels, active entries, the scene's commands) after building the
+    /// layer, still before drawing.
     pub fn check(
         &self,
         list: &DisplayList<'_>,
@@ -376,28 +674,41 @@ impl<'e> Controller<'e> {
                         capacity,
                     })
                 }
-                Command::Poly3(v) => match &self.three {
-                    None => {
+                Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
+                _ => {
+                    let Some(t) = &self.three else {
                         return Err(RenderError::Unsupported {
                             offset,
-                            command: "poly3",
-                        })
+                            command: if matches!(cmd, Command::Poly3(_)) {
+                                "poly3"
+                            } else {
+                                "3D scene"
+                            },
+                        });
+                    };
+                    if let Command::Face(p) = &cmd {
+                        if p.len() > LIST_VERTICES - 6 {
+                            return Err(RenderError::Capacity3d {
+                                offset,
+                                resource: Resource::FaceVertices,
+                                capacity: LIST_VERTICES - 6,
+                            });
+                        }
                     }
-                    Some(t) if v.len() > t.store.edges.len() => {
+                    if edge_bound(&cmd) > t.store.edges.len() {
                         return Err(RenderError::Capacity3d {
                             offset,
                             resource: Resource::EdgeSlots,
                             capacity: t.store.edges.len(),
-                        })
+                        });
                     }
-                    Some(_) => {}
-                },
-                Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
-                _ => {
-                    return Err(RenderError::Unsupported {
-                        offset,
-                        command: "3D scene",
-                    })
+                    if matches!(cmd, Command::Label { .. }) && self.labels.is_none() {
+                        return Err(RenderError::Capacity3d {
+                            offset,
+                            resource: Resource::Labels,
+                            capacity: 0,
+                        });
+                    }
                 }
             }
         }
@@ -408,8 +719,8 @@ impl<'e> Controller<'e> {
     /// the whole frame and the colour [`DEFAULT_COLOR`].
     ///
     /// The frame is the list's, cut to the target's size. The list is
-    /// [`check`](Self::check)ed first: on a capacity or unsupported-command
-    /// error nothing is drawn.
+    /// [`check`](Self::check)ed and its 3D layer built first: on any error
+    /// but the port's, nothing is drawn.
     pub fn render<T>(
         &mut self,
         list: &DisplayList<'_>,
@@ -419,44 +730,30 @@ impl<'e> Controller<'e> {
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        self.check(list).map_err(|e| match e {
-            RenderError::Capacity {
-                offset,
-                vertices,
-                capacity,
-            } => RenderError::Capacity {
-                offset,
-                vertices,
-                capacity,
-            },
-            RenderError::Capacity3d {
-                offset,
-                resource,
-                capacity,
-            } => RenderError::Capacity3d {
-                offset,
-                resource,
-                capacity,
-            },
-            RenderError::Unsupported { offset, command } => {
-                RenderError::Unsupported { offset, command }
-            }
-            RenderError::Target { error, .. } => match error {},
-        })?;
+        self.check(list).map_err(widen)?;
         let (tw, th) = target.size();
         let (w, h) = (list.width().min(tw), list.height().min(th));
         let mut stats = Stats::default();
-        let Controller { raster, three } = self;
-        // The 3D layer is cut first: running out of memory is found before
-        // anything is drawn.
+        let Controller {
+            raster,
+            three,
+            labels,
+        } = self;
+        // The 3D layer is built first: running out of memory, or a scene
+        // command that fails, is found before anything is drawn.
         let layer = match three.as_mut() {
-            // Without 3D storage, `check` has refused any `poly3`.
+            // Without 3D storage, `check` has refused the 3D layer.
             None => None,
-            Some(t) => match list
-                .commands()
-                .find(|(_, c)| matches!(c, Command::Poly3(_)))
-            {
-                Some((first, _)) => Some(build_layer(t, list, (w, h), first, &mut stats)?),
+            Some(t) => match list.commands().find(|(_, c)| {
+                !matches!(
+                    c,
+                    Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_)
+                )
+            }) {
+                Some((first, _)) => Some(
+                    build_layer(t, labels.as_mut(), list, (w, h), first, &mut stats)
+                        .map_err(widen)?,
+                ),
                 None => None,
             },
         };
@@ -490,8 +787,6 @@ impl<'e> Controller<'e> {
                     stats.pixels += counts.pixels as u64;
                 }
                 // The 3D layer, drawn below.
-                Command::Poly3(_) => {}
-                // Rejected by `check`.
                 _ => {}
             }
         }
@@ -502,12 +797,41 @@ impl<'e> Controller<'e> {
     }
 }
 
-/// Draws a cut 3D layer into `target` over what is there. Kept out of
-/// line, so that the 2D path of [`Controller::render`] compiles as it
-/// does without it.
+/// A render error of no port, as one of a port's.
+fn widen<E>(e: RenderError<core::convert::Infallible>) -> RenderError<E> {
+    match e {
+        RenderError::Capacity {
+            offset,
+            vertices,
+            capacity,
+        } => RenderError::Capacity {
+            offset,
+            vertices,
+            capacity,
+        },
+        RenderError::Capacity3d {
+            offset,
+            resource,
+            capacity,
+        } => RenderError::Capacity3d {
+            offset,
+            resource,
+            capacity,
+        },
+        RenderError::Unsupported { offset, command } => {
+            RenderError::Unsupported { offset, command }
+        }
+        RenderError::Scene { offset, error } => RenderError::Scene { offset, error },
+        RenderError::Target { error, .. } => match error {},
+    }
+}
+
+/// Draws a built 3D layer into `target` over what is there, then its
+/// labels. Kept out of line, so that the 2D path of
+/// [`Controller::render`] compiles as it does without it.
 #[inline(never)]
 fn draw_layer<T>(
-    (store, mut ws, resolve, first): Layer<'_>,
+    (store, mut ws, resolve, first, labels): Layer<'_>,
     target: &mut T,
     stats: &mut Stats,
 ) -> Result<(), RenderError<T::Error>>
@@ -536,22 +860,79 @@ where
     stats.visible = v;
     stats.spans += counts.spans;
     stats.pixels += counts.pixels as u64;
+    if let Some(labels) = labels {
+        let c = labels
+            .draw(label::DEFAULT_FONT, target)
+            .map_err(|error| RenderError::Target {
+                offset: first,
+                error,
+            })?;
+        stats.labels = c.drawn;
+        stats.spans += c.spans;
+        stats.pixels += c.pixels as u64;
+    }
     Ok(())
 }
 
-/// The store and workspace of a cut 3D layer, ready to draw.
-type Layer<'t> = (TrapezoidStore<'t>, Workspace<'t>, Resolve, usize);
+/// The store, workspace and labels of a built 3D layer, ready to draw.
+type Layer<'t> = (
+    TrapezoidStore<'t>,
+    Workspace<'t>,
+    Resolve,
+    usize,
+    Option<LabelStore<'t>>,
+);
 
-/// Cuts every front-facing `poly3` of `list` into trapezoids in `t` and
-/// checks the active list and the run buffer against them.
+/// The store and labels of a render as a [`Layer3d`]; everything goes
+/// into segment 0, in list order.
+struct Keep<'s, 't> {
+    store: &'s mut TrapezoidStore<'t>,
+    labels: Option<&'s mut LabelStore<'t>>,
+    trapezoids: u32,
+}
+
+impl Layer3d for Keep<'_, '_> {
+    fn polygon(
+        &mut self,
+        v: impl IntoIterator<Item = Vertex3>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), (Resource, usize)> {
+        self.trapezoids += self
+            .store
+            .add_polygon(0, v, color, clip)
+            .map_err(Resource::of_store)?;
+        Ok(())
+    }
+
+    fn label(
+        &mut self,
+        at: (i32, i32),
+        color: Rgb888,
+        text: &str,
+    ) -> Result<(), (Resource, usize)> {
+        match self.labels.as_mut() {
+            Some(l) => l
+                .add(0, at, color, text)
+                .map(|_| ())
+                .map_err(Resource::of_labels),
+            // `check` refuses labels without label memory.
+            None => Err((Resource::Labels, 0)),
+        }
+    }
+}
+
+/// Builds the 3D layer of `list` in `t` (and `labels`) and checks the
+/// active list and the run buffer against it.
 #[inline(never)]
-fn build_layer<'t, E>(
+fn build_layer<'t>(
     t: &'t mut Storage3d<'_>,
+    labels: Option<&'t mut (&mut [Label], &mut [u8])>,
     list: &DisplayList<'_>,
     (w, h): (u16, u16),
     first: usize,
     stats: &mut Stats,
-) -> Result<Layer<'t>, RenderError<E>> {
+) -> Result<Layer<'t>, RenderError<core::convert::Infallible>> {
     let full = |offset: usize, (resource, capacity): (Resource, usize)| RenderError::Capacity3d {
         offset,
         resource,
@@ -566,28 +947,25 @@ fn build_layer<'t, E>(
     };
     let mut store =
         TrapezoidStore::new(mem, w, h).map_err(|e| full(first, Resource::of_store(e)))?;
-    let mut culled = 0u32;
-    for (_, cmd) in list.commands() {
-        if let Command::Poly3(v) = cmd {
-            culled += !front_facing(&v) as u32;
-        }
-    }
-    stats.culled = culled;
-    each_poly3(list, (w, h), |offset, v, color, clip| {
-        let n = store
-            .add_polygon(0, v.iter(), color, clip)
-            .map_err(|e| full(offset, Resource::of_store(e)))?;
-        stats.poly3 += 1;
-        stats.trapezoids += n;
-        Ok(())
-    })?;
+    let mut labels = labels.map(|(s, x)| LabelStore::new(&mut **s, &mut **x));
+    let mut keep = Keep {
+        store: &mut store,
+        labels: labels.as_mut(),
+        trapezoids: 0,
+    };
+    let n = run_layer(list, (w, h), &mut keep)?;
+    stats.trapezoids = keep.trapezoids;
+    stats.poly3 = n.poly3;
+    stats.culled = n.culled;
+    stats.faces = n.faces;
+    stats.clipped_away = n.clipped_away;
     let mut ws = Workspace::new(&mut *t.active, &mut *t.cover, &mut *t.runs);
     ws.check(&store).map_err(|e| match e {
         VisibleError::Active { capacity } => full(first, (Resource::Active, capacity)),
         VisibleError::Runs { capacity } => full(first, (Resource::Runs, capacity)),
         VisibleError::Sink(e) => match e {},
     })?;
-    Ok((store, ws, t.resolve, first))
+    Ok((store, ws, t.resolve, first, labels))
 }
 
 #[cfg(test)]

@@ -103,8 +103,8 @@ use crate::color::ListColor;
 use crate::display_list::Axis;
 use crate::fixed::Coord;
 use crate::geometry::{
-    Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, TransformError,
-    TransformStack, View, Q16,
+    Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, ProjectionError,
+    TransformError, TransformStack, View, Q16,
 };
 use crate::label::{DrawCounts, Label, LabelError, LabelStore};
 use crate::port::SpanTarget;
@@ -147,6 +147,10 @@ pub enum SceneError {
         /// Vertices the pipeline holds.
         capacity: usize,
     },
+    /// A projection or window was refused.
+    Projection(ProjectionError),
+    /// A light's direction is zero.
+    Light,
 }
 
 impl fmt::Display for SceneError {
@@ -159,6 +163,8 @@ impl fmt::Display for SceneError {
             SceneError::Vertices { capacity } => {
                 write!(f, "polygon needs more than {capacity} vertices")
             }
+            SceneError::Projection(e) => write!(f, "{e}"),
+            SceneError::Light => write!(f, "the light's direction is zero"),
         }
     }
 }
@@ -174,6 +180,12 @@ impl From<StoreError> for SceneError {
 impl From<LabelError> for SceneError {
     fn from(e: LabelError) -> Self {
         SceneError::Labels(e)
+    }
+}
+
+impl From<ProjectionError> for SceneError {
+    fn from(e: ProjectionError) -> Self {
+        SceneError::Projection(e)
     }
 }
 
