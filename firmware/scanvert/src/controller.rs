@@ -947,7 +947,7 @@ fn build_layer<'t>(
     };
     let mut store =
         TrapezoidStore::new(mem, w, h).map_err(|e| full(first, Resource::of_store(e)))?;
-    let mut labels = labels.map(|(s, x)| LabelStore::new(&mut **s, &mut **x));
+    let mut labels = labels.map(|(s, x)| LabelStore::new(s, x));
     let mut keep = Keep {
         store: &mut store,
         labels: labels.as_mut(),
