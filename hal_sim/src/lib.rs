@@ -49,6 +49,7 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 
 pub mod cli;
+pub mod demo;
 pub mod dual_port;
 pub mod image;
 pub mod refresh;

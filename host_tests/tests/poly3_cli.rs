@@ -45,7 +45,10 @@ fn render_draws_the_3d_layer_over_the_2d_commands() {
         "--stats",
     ])
     .expect("render");
-    assert!(out.contains("3 poly3, 0 faces (1 culled, 0 clipped away)"), "{out}");
+    assert!(
+        out.contains("3 poly3, 0 faces (1 culled, 0 clipped away)"),
+        "{out}"
+    );
     let bytes = std::fs::read(&png).expect("png written");
     let (w, h, rgb) = scanvert_sim::image::decode_png(&bytes).expect("decode");
     assert_eq!((w, h), (48, 32));

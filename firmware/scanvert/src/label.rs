@@ -187,7 +187,8 @@ impl<'a> LabelStore<'a> {
         self.text_len
     }
 
-    /// The placed labels with their text, oldest first.
+    /// The placed labels with their text, by segment, and in the order
+    /// placed within a segment.
     pub fn iter(&self) -> impl Iterator<Item = (&Label, &str)> + '_ {
         self.slots[..self.len].iter().map(|l| {
             let bytes = &self.text[l.start as usize..l.start as usize + l.len as usize];
@@ -222,14 +223,32 @@ impl<'a> LabelStore<'a> {
                 capacity: self.text.len(),
             });
         }
-        self.text[self.text_len..end].copy_from_slice(bytes);
-        self.slots[self.len] = Label {
+        // Kept in segment order, so that overlapping labels are drawn in
+        // the same order however the segments were rebuilt: after the
+        // last label of a segment up to `segment`.
+        let at = self.slots[..self.len]
+            .iter()
+            .position(|l| l.segment > segment)
+            .unwrap_or(self.len);
+        let start = self
+            .slots
+            .get(at)
+            .filter(|_| at < self.len)
+            .map_or(self.text_len, |l| l.start as usize);
+        let n = bytes.len();
+        self.text.copy_within(start..self.text_len, start + n);
+        self.text[start..start + n].copy_from_slice(bytes);
+        self.slots.copy_within(at..self.len, at + 1);
+        for l in &mut self.slots[at + 1..=self.len] {
+            l.start += n as u32;
+        }
+        self.slots[at] = Label {
             x,
             y,
             color,
             // The text slice of a 32-bit target is below 2³² bytes.
-            start: self.text_len as u32,
-            len: bytes.len() as u8,
+            start: start as u32,
+            len: n as u8,
             segment,
         };
         self.len += 1;
@@ -419,6 +438,17 @@ mod tests {
             s.add(3, (5, 5), Rgb888::RED, "u"),
             Err(LabelError::Text { capacity: 16 })
         );
+    }
+
+    #[test]
+    fn kept_in_segment_order() {
+        let (mut slots, mut text) = ([Label::EMPTY; 5], [0u8; 32]);
+        let mut s = store(&mut slots, &mut text);
+        for (seg, t) in [(2, "c1"), (0, "a1"), (1, "b1"), (0, "a2"), (2, "c2")] {
+            s.add(seg, (0, 0), Rgb888::RED, t).unwrap();
+        }
+        let order: heapless::Vec<&str, 5> = s.iter().map(|(_, t)| t).collect();
+        assert_eq!(&order[..], &["a1", "a2", "b1", "c1", "c2"]);
     }
 
     #[test]

@@ -247,7 +247,10 @@ where
 pub struct Update {
     /// Segments rebuilt.
     pub regenerated: u32,
-    /// Polygons, lines and points given by their procedures.
+    /// Polygons, lines and points their procedures gave.
+    pub given: u32,
+    /// Of those, the ones that reached the store (not culled, not clipped
+    /// away).
     pub polygons: u32,
     /// Trapezoids cut for them.
     pub trapezoids: u32,
@@ -377,6 +380,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
                 continue;
             }
             let before = self.store.segment(s).map(|g| g.counters());
+            let given = self.pipeline.stats().faces_in;
             let labels = self.labels.len();
             self.rebuild(s, &mut **p)
                 .map_err(|error| UpdateError { segment: s, error })?;
@@ -385,6 +389,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
                 u.polygons += a.polygons.wrapping_sub(b.polygons);
                 u.trapezoids += a.trapezoids.wrapping_sub(b.trapezoids);
             }
+            u.given += self.pipeline.stats().faces_in.wrapping_sub(given);
             // The segment's labels were removed, then its new ones added.
             u.labels += self.labels.len().saturating_sub(labels) as u32;
             u.regenerated += 1;
