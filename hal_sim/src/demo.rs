@@ -218,9 +218,28 @@ struct Memory {
     edges: Vec<EdgeSlot>,
     labels: Vec<Label>,
     text: Vec<u8>,
+}
+
+/// The visible-surface pass's memory: as many active entries as
+/// trapezoids can overlap one row, a run per column.
+struct Work {
     active: Vec<Active>,
     cover: Vec<Cover>,
     runs: Vec<Run>,
+}
+
+impl Work {
+    fn new() -> Work {
+        Work {
+            active: vec![Active::EMPTY; 512],
+            cover: vec![Cover::EMPTY; 512],
+            runs: vec![Run::EMPTY; WIDTH as usize],
+        }
+    }
+
+    fn workspace(&mut self) -> Workspace<'_> {
+        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
+    }
 }
 
 impl Memory {
@@ -233,9 +252,6 @@ impl Memory {
             edges: vec![EdgeSlot::EMPTY; N],
             labels: vec![Label::EMPTY; 64],
             text: vec![0; 1024],
-            active: vec![Active::EMPTY; 512],
-            cover: vec![Cover::EMPTY; 512],
-            runs: vec![Run::EMPTY; WIDTH as usize],
         }
     }
 
@@ -339,13 +355,8 @@ pub struct DemoFrame {
 
 /// Runs the animation of `frames` frames through the simulator.
 pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
-    let mut mem = Memory::new();
-    let (mut active, mut cover, mut runs) = (
-        std::mem::take(&mut mem.active),
-        std::mem::take(&mut mem.cover),
-        std::mem::take(&mut mem.runs),
-    );
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+    let (mut mem, mut work) = (Memory::new(), Work::new());
+    let mut ws = work.workspace();
     let mut scene = mem.scene();
     let mut ram = DualPortRam::double_buffered(WIDTH, HEIGHT);
     let mut refresh = RefreshController::new(VideoTiming::for_frame(WIDTH, HEIGHT));
@@ -381,13 +392,8 @@ pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
 /// The frame of `step` drawn from scratch into a plain frame buffer: what
 /// the monitor must show for it.
 pub fn reference_frame(step: Step) -> Result<Vec<Rgb565>, CliError> {
-    let mut mem = Memory::new();
-    let (mut active, mut cover, mut runs) = (
-        std::mem::take(&mut mem.active),
-        std::mem::take(&mut mem.cover),
-        std::mem::take(&mut mem.runs),
-    );
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+    let (mut mem, mut work) = (Memory::new(), Work::new());
+    let mut ws = work.workspace();
     let mut scene = mem.scene();
     advance(&mut scene, None, step)?;
     let mut pixels = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
@@ -399,13 +405,8 @@ pub fn reference_frame(step: Step) -> Result<Vec<Rgb565>, CliError> {
 /// Speeds on the host, frames per second: `(camera moves, threshold
 /// changes, nothing changes)`.
 pub fn speeds() -> Result<(f64, f64, f64), CliError> {
-    let mut mem = Memory::new();
-    let (mut active, mut cover, mut runs) = (
-        std::mem::take(&mut mem.active),
-        std::mem::take(&mut mem.cover),
-        std::mem::take(&mut mem.runs),
-    );
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+    let (mut mem, mut work) = (Memory::new(), Work::new());
+    let mut ws = work.workspace();
     let mut scene = mem.scene();
     let mut pixels = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
     let mut fb = FrameBuffer::new(&mut pixels, WIDTH, HEIGHT).expect("frame");
