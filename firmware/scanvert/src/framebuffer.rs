@@ -89,12 +89,12 @@ fn fill_run<C: Copy>(run: &mut [C], color: C) {
     let n = run.len();
     if (8..64).contains(&n) {
         let splat = [color; 8];
-        let mut i = 0;
-        while i + 8 <= n {
-            run[i..i + 8].copy_from_slice(&splat);
-            i += 8;
+        // Whole chunks need no bounds check; the last, overlapping copy
+        // covers the tail.
+        for c in run.chunks_exact_mut(8) {
+            c.copy_from_slice(&splat);
         }
-        if i < n {
+        if n % 8 != 0 {
             run[n - 8..].copy_from_slice(&splat);
         }
     } else {
