@@ -7,7 +7,8 @@
 //! measured here only, never in a test. `-- --only W3` times one workload
 //! and writes nothing; `-- --only 3D` times the 3D scenes alone, and
 //! `-- --only 3D:170` those of 170 faces; `-- --profile-w1 MODE PASSES`
-//! runs W1 alone for callgrind.
+//! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
+//! alone, for callgrind.
 
 mod contenders;
 mod heap;
@@ -207,6 +208,10 @@ fn profile_w1(mode: &str, passes: u32) {
 
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().collect();
+    if args.len() == 4 && args[1] == "--profile-3d" {
+        visible3d::profile(&args[2], args[3].parse().unwrap_or(25));
+        return Ok(());
+    }
     if args.len() == 4 && args[1] == "--profile-w1" {
         profile_w1(&args[2], args[3].parse().unwrap_or(100));
         return Ok(());

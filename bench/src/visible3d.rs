@@ -7,6 +7,7 @@
 //! (`visible::draw(…, None)`), so that every contender does the same clear.
 
 use crate::reference3d;
+use crate::report::thousands;
 use crate::scenes3d::{Scene, Version, H, VIEWS, W};
 use crate::time_fns;
 use core::mem::size_of;
@@ -372,6 +373,67 @@ fn alone<'a, 'm: 'a>(
     })
 }
 
+/// A z-buffer frame of every view, as a pass.
+fn zbuffer<'a, D: DepthCell + 'a>(scene: &'a Scene, inks: &'a [Rgb565]) -> Box<dyn FnMut() + 'a> {
+    let mut z = ZTarget::<D, Rgb565>::new();
+    let mut edges = vec![Edge::EMPTY; scene.max_vertices().max(3)];
+    let clip = ClipRect::full(W, H);
+    Box::new(move || {
+        for v in &scene.views {
+            z.frame(black_box(v), inks, &mut edges, &clip);
+        }
+        black_box(&z.pixels);
+    })
+}
+
+/// The faces' colours in RGB565.
+fn inks_565(scene: &Scene) -> Vec<Rgb565> {
+    (0..scene.faces)
+        .map(|k| <Rgb565 as scanvert::color::ListColor>::from_rgb888(color_of(k)))
+        .collect()
+}
+
+/// `--profile-3d MODE PASSES`: the 170-face 3D scene alone, `PASSES`
+/// times every view, for counting instructions under callgrind. MODE is
+/// `crossing` or `bisect` (full frames), `crossing-alone` or
+/// `bisect-alone` (resolve + decode), `cut` (the cut alone), `z16` or
+/// `z32`.
+pub fn profile(mode: &str, passes: u32) {
+    let scene = crate::scenes3d::scene(Version::Tilted, 170);
+    let clip = ClipRect::full(W, H);
+    let inks = inks_565(&scene);
+    let cap = 8 * scene.faces + 64;
+    let mut mems: Vec<StoreMem> = (0..VIEWS).map(|_| StoreMem::for_scene(&scene)).collect();
+    let mut stores: Vec<TrapezoidStore<'_>> = mems.iter_mut().map(StoreMem::store).collect();
+    if mode.ends_with("-alone") {
+        for (s, v) in stores.iter_mut().zip(&scene.views) {
+            cut(s, v, &clip);
+        }
+    }
+    let mut own = StoreMem::for_scene(&scene);
+    let mut store = own.store();
+    let mut f: Box<dyn FnMut() + '_> = match mode {
+        "crossing" => full(Resolve::Crossing, &mut store, &scene, cap),
+        "bisect" => full(Resolve::Bisect, &mut store, &scene, cap),
+        "crossing-alone" => alone(Resolve::Crossing, &stores, cap),
+        "bisect-alone" => alone(Resolve::Bisect, &stores, cap),
+        "cut" => Box::new(|| {
+            for v in &scene.views {
+                cut(&mut store, black_box(v), &clip);
+            }
+        }),
+        "z16" => zbuffer::<i16>(&scene, &inks),
+        "z32" => zbuffer::<i32>(&scene, &inks),
+        _ => {
+            eprintln!("unknown mode {mode}");
+            return;
+        }
+    };
+    for _ in 0..passes {
+        f();
+    }
+}
+
 /// Pixels where `shown` (the face per pixel) differs from `want`.
 fn mismatches(shown: impl Iterator<Item = Option<u32>>, want: &[Option<u32>]) -> u64 {
     shown.zip(want).filter(|(g, w)| g != *w).count() as u64
@@ -456,24 +518,28 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
         stats.push((inter, splits));
     }
     let scan_mem = {
-        let parts = [
-            (most_traps, size_of::<Trapezoid>(), "trapezoids"),
-            (most_faces, size_of::<Face>(), "faces"),
-            (1, size_of::<Segment>(), "segment"),
-            (H as usize, size_of::<u16>(), "index rows"),
-            (scene.max_vertices(), size_of::<EdgeSlot>(), "edge slots"),
-            (max_active as usize, size_of::<Active>(), "active"),
-            (max_active as usize, size_of::<Cover>(), "cover"),
-            (W as usize, size_of::<Run>(), "runs"),
-        ];
-        let structs = size_of::<TrapezoidStore<'_>>() + size_of::<Workspace<'_>>();
-        let total = parts.iter().map(|p| p.0 * p.1).sum::<usize>() + structs;
-        let how = parts
-            .iter()
-            .map(|(n, s, what)| format!("{n} {what} × {s}"))
-            .collect::<Vec<_>>()
-            .join(" + ");
-        (total, format!("{how} + {structs} B structs"))
+        let traps = most_traps * size_of::<Trapezoid>();
+        let faces = most_faces * size_of::<Face>();
+        let act = max_active as usize * (size_of::<Active>() + size_of::<Cover>());
+        let rows_runs = H as usize * size_of::<u16>() + W as usize * size_of::<Run>();
+        let other = size_of::<Segment>()
+            + scene.max_vertices() * size_of::<EdgeSlot>()
+            + size_of::<TrapezoidStore<'_>>()
+            + size_of::<Workspace<'_>>();
+        (
+            traps + faces + act + rows_runs + other,
+            format!(
+                "trapezoids {} ({most_traps} × {}), faces {} ({most_faces} × {}), active + cover {} ({max_active} × {}), index + runs {}, other {} (segment, edge slots, structs)",
+                thousands(traps as f64),
+                size_of::<Trapezoid>(),
+                thousands(faces as f64),
+                size_of::<Face>(),
+                thousands(act as f64),
+                size_of::<Active>() + size_of::<Cover>(),
+                thousands(rows_runs as f64),
+                other
+            ),
+        )
     };
 
     // z-buffers: error with index colours.
@@ -501,54 +567,36 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
     };
     let z16_err = z_err(&mut edges, true);
     let z32_err = z_err(&mut edges, false);
-    let z_mem = |cell: usize, bits: &str| {
+    let z_mem = |cell: usize| {
         let buf = n_px * cell;
-        let rest = most_v * size_of::<Edge>()
+        let other = most_v * size_of::<Edge>()
             + size_of::<Rasterizer<'_, Edge>>()
             + size_of::<ClipRect>()
             + size_of::<ZPlane>();
         (
-            buf + rest,
+            buf + other,
             format!(
-                "{W}×{H} {bits} depth buffer {buf} B + {most_v} edge slots × {} B + {} B structs",
-                size_of::<Edge>(),
-                rest - most_v * size_of::<Edge>()
+                "depth buffer {} ({W}×{H} × {cell}), other {other} (edge slots, structs)",
+                thousands(buf as f64)
             ),
         )
     };
 
     // The timed passes: every view once.
-    let inks565: Vec<Rgb565> = inks888
-        .iter()
-        .map(|&c| <Rgb565 as scanvert::color::ListColor>::from_rgb888(c))
-        .collect();
+    let inks565 = inks_565(scene);
     // The stores of the full frames persist from pass to pass, as on a
     // device: each frame empties the segment and cuts every face again.
     let mut full_mems = [StoreMem::for_scene(scene), StoreMem::for_scene(scene)];
     let [m0, m1] = &mut full_mems;
     let (mut full_c, mut full_b) = (m0.store(), m1.store());
-    let mut z16 = ZTarget::<i16, Rgb565>::new();
-    let mut z32 = ZTarget::<i32, Rgb565>::new();
-    let mut edges16 = edges.clone();
-    let mut edges32 = edges;
     let mut limit_px = vec![Rgb565::BLACK; n_px];
     let mut fns: Vec<Box<dyn FnMut() + '_>> = vec![
         full(Resolve::Crossing, &mut full_c, scene, most_traps),
         full(Resolve::Bisect, &mut full_b, scene, most_traps),
         alone(Resolve::Crossing, &stores, most_traps),
         alone(Resolve::Bisect, &stores, most_traps),
-        Box::new(|| {
-            for v in &scene.views {
-                z16.frame(black_box(v), &inks565, &mut edges16, &clip);
-            }
-            black_box(&z16.pixels);
-        }),
-        Box::new(|| {
-            for v in &scene.views {
-                z32.frame(black_box(v), &inks565, &mut edges32, &clip);
-            }
-            black_box(&z32.pixels);
-        }),
+        zbuffer::<i16>(scene, &inks565),
+        zbuffer::<i32>(scene, &inks565),
         Box::new(|| {
             for &n in &covered {
                 limit_px.fill(Rgb565::BLACK);
@@ -581,8 +629,8 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
             scan_mem.clone(),
         ),
         row(BISECT, ms[1], Some(ms[3]), Some(scan_err[1]), scan_mem),
-        row(Z16, ms[4], None, Some(z16_err), z_mem(2, "`i16`")),
-        row(Z32, ms[5], None, Some(z32_err), z_mem(4, "`i32`")),
+        row(Z16, ms[4], None, Some(z16_err), z_mem(2)),
+        row(Z32, ms[5], None, Some(z32_err), z_mem(4)),
         row(LIMIT, ms[6], None, None, (0, "none".into())),
     ];
     let v = VIEWS as f64;
