@@ -1,16 +1,23 @@
 //! Speed against error: scanvert's rasterisers, their faster options and
-//! their peers on the 2D workloads of issue 5, timed in one process run.
+//! their peers on the 2D workloads of issue 5, and its scan-line visible
+//! surfaces against z-buffers on the 3D scenes, timed in one process run.
 //!
-//! `cargo run --release -p scanvert-bench` writes `docs/performance.md`
-//! and `docs/speed-vs-error.png`. Speed is measured here only, never in a
-//! test. `-- --only W3` times one workload and writes nothing;
-//! `-- --profile-w1 MODE PASSES` runs W1 alone for callgrind.
+//! `cargo run --release -p scanvert-bench` writes `docs/performance.md`,
+//! `docs/speed-vs-error.png` and `docs/time-vs-trapezoids.png`. Speed is
+//! measured here only, never in a test. `-- --only W3` times one workload
+//! and writes nothing; `-- --only 3D` times the 3D scenes alone, and
+//! `-- --only 3D:170` those of 170 faces; `-- --profile-w1 MODE PASSES`
+//! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
+//! alone, for callgrind.
 
 mod contenders;
 mod heap;
 mod plot;
 mod reference;
+mod reference3d;
 mod report;
+mod scenes3d;
+mod visible3d;
 mod workloads;
 
 use std::hint::black_box;
@@ -119,26 +126,37 @@ fn error_of(c: &mut dyn contenders::Contender, masks: &Masks, covered: u64) -> E
 /// Best seconds per pass of each contender: each is calibrated to runs of
 /// at least [`MIN_RUN`], then all are timed round-robin [`ROUNDS`] times.
 fn time_all(cs: &mut [Box<dyn contenders::Contender>]) -> Vec<f64> {
-    let iters: Vec<u32> = cs
+    let mut fs: Vec<Box<dyn FnMut() + '_>> = cs
         .iter_mut()
-        .map(|c| {
-            c.pass();
+        .map(|c| Box::new(move || black_box(&mut **c).pass()) as Box<dyn FnMut()>)
+        .collect();
+    time_fns(&mut fs, MIN_RUN, ROUNDS)
+}
+
+/// Best seconds per call of each of `fs`: each is calibrated (for an
+/// eighth of `min_run`) to runs of at least `min_run`, then all are timed
+/// round-robin `rounds` times.
+pub fn time_fns(fs: &mut [Box<dyn FnMut() + '_>], min_run: Duration, rounds: usize) -> Vec<f64> {
+    let iters: Vec<u32> = fs
+        .iter_mut()
+        .map(|f| {
+            f();
             let t = Instant::now();
             let mut n = 0u32;
-            while t.elapsed() < Duration::from_millis(25) {
-                c.pass();
+            while t.elapsed() < min_run / 8 {
+                f();
                 n += 1;
             }
             let per = t.elapsed().as_secs_f64() / n as f64;
-            (MIN_RUN.as_secs_f64() / per).ceil().max(1.0) as u32
+            (min_run.as_secs_f64() / per).ceil().max(1.0) as u32
         })
         .collect();
-    let mut best = vec![f64::INFINITY; cs.len()];
-    for _ in 0..ROUNDS {
-        for (k, c) in cs.iter_mut().enumerate() {
+    let mut best = vec![f64::INFINITY; fs.len()];
+    for _ in 0..rounds {
+        for (k, f) in fs.iter_mut().enumerate() {
             let t = Instant::now();
             for _ in 0..iters[k] {
-                black_box(&mut *c).pass();
+                f();
             }
             best[k] = best[k].min(t.elapsed().as_secs_f64() / iters[k] as f64);
         }
@@ -190,6 +208,10 @@ fn profile_w1(mode: &str, passes: u32) {
 
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().collect();
+    if args.len() == 4 && args[1] == "--profile-3d" {
+        visible3d::profile(&args[2], args[3].parse().unwrap_or(25));
+        return Ok(());
+    }
     if args.len() == 4 && args[1] == "--profile-w1" {
         profile_w1(&args[2], args[3].parse().unwrap_or(100));
         return Ok(());
@@ -259,12 +281,57 @@ fn main() -> std::io::Result<()> {
             rows.push(row);
         }
     }
+    let mut rows3 = Vec::new();
+    let mut scenes3 = Vec::new();
+    let start3 = Instant::now();
+    for scene in scenes3d::all() {
+        if let Some(id) = &only {
+            let all = id == "3D";
+            let this = id.strip_prefix("3D:") == Some(scene.faces.to_string().as_str());
+            if !all && !this {
+                continue;
+            }
+        }
+        let (rows, st) = visible3d::measure(&scene);
+        eprintln!(
+            "3D scene, {}: {} faces, {:.0} trapezoids, {:.0} px covered, depth complexity {:.2}, {} active at most, {:.0} intersecting spans",
+            scene.version.short(),
+            st.faces,
+            st.trapezoids,
+            st.covered,
+            st.complexity,
+            st.max_active,
+            st.intersecting
+        );
+        for r in &rows {
+            eprintln!(
+                "  {:<48} {:>8.3} ms/frame {} {:>6.2}× z16 {} mem {}",
+                r.contender,
+                r.ms,
+                r.resolve_ms
+                    .map(|m| format!("(alone {m:.3})"))
+                    .unwrap_or_default(),
+                r.vs_z,
+                r.err
+                    .map(|e| format!("err {:.3}/1000 worst {}", e.per_1000, e.worst))
+                    .unwrap_or_default(),
+                r.mem.0
+            );
+        }
+        rows3.extend(rows);
+        scenes3.push(st);
+    }
+    let seconds3 = start3.elapsed().as_secs_f64();
     if only.is_some() {
+        eprintln!("3D part: {seconds3:.1} s");
         return Ok(());
     }
     let run = report::Run {
         rows,
         checks,
+        rows3,
+        scenes3,
+        seconds3,
         load_before,
         load_after: load_average(),
         seconds: start.elapsed().as_secs_f64(),
@@ -274,15 +341,24 @@ fn main() -> std::io::Result<()> {
     let md_path = docs.join("performance.md");
     let old = std::fs::read_to_string(&md_path).unwrap_or_default();
     std::fs::write(&md_path, report::markdown(&run, &old))?;
-    let (w, h, rgb) = plot::render(&run.rows);
-    let file = std::io::BufWriter::new(std::fs::File::create(docs.join("speed-vs-error.png"))?);
+    write_png(&docs.join("speed-vs-error.png"), plot::render(&run.rows))?;
+    write_png(
+        &docs.join("time-vs-trapezoids.png"),
+        plot::render_3d(&run.rows3),
+    )?;
+    eprintln!(
+        "wrote docs/performance.md, docs/speed-vs-error.png and docs/time-vs-trapezoids.png in {:.0} s",
+        run.seconds
+    );
+    Ok(())
+}
+
+/// Writes an RGB888 picture `(width, height, bytes)` as PNG.
+fn write_png(path: &std::path::Path, (w, h, rgb): (u32, u32, Vec<u8>)) -> std::io::Result<()> {
+    let file = std::io::BufWriter::new(std::fs::File::create(path)?);
     let mut enc = png::Encoder::new(file, w, h);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);
     enc.write_header()?.write_image_data(&rgb)?;
-    eprintln!(
-        "wrote docs/performance.md and docs/speed-vs-error.png in {:.0} s",
-        run.seconds
-    );
     Ok(())
 }

@@ -1,5 +1,6 @@
-//! The speed-vs-error plot, drawn with embedded-graphics primitives and its
-//! mono font into an RGB888 frame, written as PNG.
+//! The plots, drawn with embedded-graphics primitives and its mono font
+//! into an RGB888 frame, written as PNG: speed against error (2D
+//! workloads) and time per frame against trapezoids per frame (3D scenes).
 
 use crate::contenders::EgFrame;
 use crate::Row;
@@ -172,4 +173,208 @@ fn decade(d: i32) -> String {
 fn legend(n: &str) -> String {
     let s: String = n.chars().filter(|&c| c != '`').collect();
     s.chars().take(58).collect()
+}
+
+/// One line of the 3D plot: a contender's time per frame (ms) on one
+/// version, by trapezoids per frame.
+struct Series {
+    name: String,
+    layered: bool,
+    color: Rgb888,
+    points: Vec<(f64, f64)>,
+}
+
+/// Renders time per frame against trapezoids per frame for the 3D scenes
+/// (both log scales) and returns `(width, height, rgb bytes)`.
+pub fn render_3d(rows: &[crate::visible3d::Row3]) -> (u32, u32, Vec<u8>) {
+    use crate::scenes3d::Version;
+    use crate::visible3d::CROSSING;
+    let mut series: Vec<Series> = Vec::new();
+    let mut names: Vec<String> = Vec::new();
+    let mut push = |name: String, layered: bool, p: (f64, f64)| {
+        if !names.contains(&name) {
+            names.push(name.clone());
+        }
+        let k = names.iter().position(|n| *n == name).unwrap_or(0);
+        match series
+            .iter_mut()
+            .find(|s| s.name == name && s.layered == layered)
+        {
+            Some(s) => s.points.push(p),
+            None => series.push(Series {
+                name,
+                layered,
+                color: PALETTE[k % PALETTE.len()],
+                points: vec![p],
+            }),
+        }
+    };
+    for r in rows {
+        let layered = r.version == Version::Layered;
+        push(legend(r.contender), layered, (r.trapezoids, r.ms));
+        if let (true, Some(alone)) = (r.contender == CROSSING, r.resolve_ms) {
+            push(
+                "scanvert Resolve::Crossing, resolve + decode alone".into(),
+                layered,
+                (r.trapezoids, alone),
+            );
+        }
+    }
+    let mut f = EgFrame::new(W, H, Rgb888::WHITE);
+    let Ok(()) = draw_3d(&mut f, &series);
+    let bytes = f
+        .pixels
+        .iter()
+        .flat_map(|c| [c.r(), c.g(), c.b()])
+        .collect();
+    (W, H, bytes)
+}
+
+fn draw_3d(f: &mut EgFrame<Rgb888>, series: &[Series]) -> Result<(), core::convert::Infallible> {
+    let text = MonoTextStyle::new(&FONT_6X10, Rgb888::BLACK);
+    let grey = PrimitiveStyle::with_stroke(Rgb888::new(0xdd, 0xdd, 0xdd), 1);
+    let axis = PrimitiveStyle::with_stroke(Rgb888::BLACK, 1);
+    let all = || series.iter().flat_map(|s| s.points.iter());
+    let decades = |v: &mut dyn Iterator<Item = f64>| {
+        let (lo, hi) = v.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
+            let l = x.max(1e-9).log10();
+            (lo.min(l), hi.max(l))
+        });
+        let lo = if lo.is_finite() { lo.floor() } else { 0.0 };
+        (lo, hi.ceil().max(lo + 1.0))
+    };
+    let (x_lo, x_hi) = decades(&mut all().map(|p| p.0));
+    let (y_lo, y_hi) = decades(&mut all().map(|p| p.1));
+    let xpix =
+        |v: f64| L + ((v.max(1e-9).log10() - x_lo) / (x_hi - x_lo) * (R - L) as f64).round() as i32;
+    let ypix =
+        |v: f64| B - ((v.max(1e-9).log10() - y_lo) / (y_hi - y_lo) * (B - T) as f64).round() as i32;
+
+    for d in y_lo as i32..=y_hi as i32 {
+        for m in [1.0, 2.0, 5.0] {
+            let v = m * 10f64.powi(d);
+            if v.log10() > y_hi + 1e-9 {
+                continue;
+            }
+            let y = ypix(v);
+            Line::new(Point::new(L, y), Point::new(R, y))
+                .into_styled(grey)
+                .draw(f)?;
+            Text::with_alignment(&number(v), Point::new(L - 6, y + 3), text, Alignment::Right)
+                .draw(f)?;
+        }
+    }
+    for d in x_lo as i32..=x_hi as i32 {
+        for m in [1.0, 2.0, 5.0] {
+            let v = m * 10f64.powi(d);
+            if v.log10() > x_hi + 1e-9 {
+                continue;
+            }
+            let x = xpix(v);
+            Line::new(Point::new(x, T), Point::new(x, B))
+                .into_styled(grey)
+                .draw(f)?;
+            Text::with_alignment(&number(v), Point::new(x, B + 14), text, Alignment::Center)
+                .draw(f)?;
+        }
+    }
+    Rectangle::with_corners(Point::new(L, T), Point::new(R, B))
+        .into_styled(axis)
+        .draw(f)?;
+    Text::with_alignment(
+        "trapezoids per frame (log scale)",
+        Point::new((L + R) / 2, B + 32),
+        text,
+        Alignment::Center,
+    )
+    .draw(f)?;
+    Text::new(
+        "milliseconds per frame, 512x256, this host (log scale)",
+        Point::new(L - 60, T - 8),
+        text,
+    )
+    .draw(f)?;
+    Text::new(
+        "3D scenes: time against trapezoids, 10 to 1000 faces",
+        Point::new(L - 60, T - 22),
+        text,
+    )
+    .draw(f)?;
+
+    // Lines first, then the marks over them.
+    for s in series {
+        let style = PrimitiveStyle::with_stroke(s.color, if s.layered { 1 } else { 2 });
+        for w in s.points.windows(2) {
+            Line::new(
+                Point::new(xpix(w[0].0), ypix(w[0].1)),
+                Point::new(xpix(w[1].0), ypix(w[1].1)),
+            )
+            .into_styled(style)
+            .draw(f)?;
+        }
+    }
+    for s in series {
+        for &(x, y) in &s.points {
+            mark(f, Point::new(xpix(x), ypix(y)), s.color, s.layered)?;
+        }
+    }
+
+    // Legend: colours, then the two marks.
+    let mut names: Vec<(&str, Rgb888)> = Vec::new();
+    for s in series {
+        if !names.iter().any(|n| n.0 == s.name) {
+            names.push((&s.name, s.color));
+        }
+    }
+    let mut y = T + 10;
+    for (n, c) in &names {
+        Line::new(Point::new(R + 12, y), Point::new(R + 28, y))
+            .into_styled(PrimitiveStyle::with_stroke(*c, 2))
+            .draw(f)?;
+        Text::new(
+            &n.chars().take(58).collect::<String>(),
+            Point::new(R + 34, y + 3),
+            text,
+        )
+        .draw(f)?;
+        y += 18;
+    }
+    y += 8;
+    for (layered, what) in [
+        (true, "2D version: faces parallel to the screen"),
+        (false, "3D version: tilted, interpenetrating"),
+    ] {
+        mark(f, Point::new(R + 20, y), Rgb888::BLACK, layered)?;
+        Text::new(what, Point::new(R + 34, y + 3), text).draw(f)?;
+        y += 18;
+    }
+    Ok(())
+}
+
+/// A filled disc (2D version) or a square outline (3D version).
+fn mark(
+    f: &mut EgFrame<Rgb888>,
+    p: Point,
+    c: Rgb888,
+    layered: bool,
+) -> Result<(), core::convert::Infallible> {
+    if layered {
+        Circle::with_center(p, 9)
+            .into_styled(PrimitiveStyle::with_fill(c))
+            .draw(f)
+    } else {
+        Rectangle::with_center(p, Size::new(9, 9))
+            .into_styled(PrimitiveStyle::with_stroke(c, 2))
+            .draw(f)
+    }
+}
+
+/// A tick label: `0.05`, `2`, `1000`.
+fn number(v: f64) -> String {
+    if v >= 1.0 {
+        format!("{v:.0}")
+    } else {
+        let s = format!("{v:.6}");
+        s.trim_end_matches('0').to_string()
+    }
 }
