@@ -10,7 +10,8 @@
 //! Times are of this host, in release mode; they are for comparing the
 //! contenders with each other, not a target's figures.
 //! `-- --profile SCENE MODE FRAMES` only resolves and decodes one scene
-//! (`flat`, `tilted` or `bars`; `Bisect`, `Crossing` or `zbuffer`), for
+//! (`flat`, `tilted`, `bars` or `dense`; `Bisect`, `Crossing` or
+//! `zbuffer`), or only cuts it into trapezoids (`cut`), for
 //! counting instructions under callgrind; `-- --write-lists DIR` writes
 //! the scenes as binary display lists.
 
@@ -281,6 +282,7 @@ fn profile(scene: &[Poly3], mode: &str, frames: u32) {
         black_box(&zb.color);
         return;
     }
+    let cut_only = mode == "cut";
     let mode = if mode == "Bisect" {
         Resolve::Bisect
     } else {
@@ -304,15 +306,25 @@ fn profile(scene: &[Poly3], mode: &str, frames: u32) {
         H,
     )
     .unwrap();
-    for &k in &shown {
-        store
-            .add_polygon(
-                0,
-                scene[k].poly.iter().copied().map(vertex3),
-                color_of(k),
-                &ClipRect::full(W, H),
-            )
-            .unwrap();
+    let fill = |store: &mut TrapezoidStore<'_>| {
+        store.clear_segment(0).unwrap();
+        for &k in &shown {
+            store
+                .add_polygon(
+                    0,
+                    scene[k].poly.iter().copied().map(vertex3),
+                    color_of(k),
+                    &ClipRect::full(W, H),
+                )
+                .unwrap();
+        }
+    };
+    fill(&mut store);
+    if cut_only {
+        for _ in 1..frames {
+            fill(&mut store);
+        }
+        return;
     }
     let mut active = vec![Active::EMPTY; store.len()];
     let mut cover = vec![Cover::EMPTY; store.len()];

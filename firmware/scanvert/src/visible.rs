@@ -527,14 +527,24 @@ struct Ctx<'s, 'r> {
     stats: VisibleStats,
 }
 
-/// Cuts the row into spans at every `l` and `r` of the live trapezoids
-/// and resolves each. The cover array holds the trapezoids covering the
-/// current span by decreasing `r`, so that those ending leave from its
-/// end.
+/// Resolves the row by a sweep over the `l` and `r` of the live
+/// trapezoids. The cover array holds the trapezoids covering the current
+/// pixel by decreasing `r`, so that those ending leave from its end.
+///
+/// The sweep keeps a *front*: a covering trapezoid that is nearest on
+/// every pixel from the sweep's position to its own `r`, against every
+/// trapezoid in the cover array. It is established by comparing it with
+/// each of the others at the two ends of their common pixels (see the
+/// [module](self) docs), and kept until it ends or a trapezoid enters
+/// that it does not dominate in the same way. A trapezoid that leaves
+/// while the front holds costs nothing, and one that enters behind it
+/// two comparisons. Where no front can be established (a plane crosses
+/// it before its end), the span up to the next `l` or `r` is resolved and
+/// subdivided as in [`span`].
 fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>) {
     let (mut x, mut nc, mut p) = (0i32, 0usize, 0usize);
     let mut next = live.first().map_or(width, |a| a.hot.l.min(width));
-    // The nearest trapezoid at the last pixel resolved, if any.
+    // The front, nearest on x..front.r against every cover.
     let mut front: Option<Cover> = None;
     while x < width {
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
@@ -551,13 +561,17 @@ fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>)
                 color: h.color,
                 face: h.face,
             };
-            // Hidden: the last front covers all of it and is in front at
-            // both its ends, so everywhere on it. It never shows, and
-            // makes no span.
             if let Some(f) = front {
-                if f.r >= c.r && f.r > x && cx.dominates(&f, &c, x, c.r - 1) {
-                    cx.stats.hidden += 1;
-                    continue;
+                // The front keeps its place when it is in front of the
+                // new one on all their common pixels; the new one is
+                // hidden when those are all of its pixels.
+                if cx.dominates(&f, &c, x, f.r.min(c.r) - 1) {
+                    if c.r <= f.r {
+                        cx.stats.hidden += 1;
+                        continue;
+                    }
+                } else {
+                    front = None;
                 }
             }
             if nc >= cover.len() {
@@ -571,7 +585,7 @@ fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>)
             cover[q] = c;
             nc += 1;
         }
-        // Leave the trapezoids ending here: the last ones.
+        // Leave the trapezoids ending here or before: the last ones.
         while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
             if c.r > x {
                 break;
@@ -579,15 +593,34 @@ fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>)
             nc -= 1;
         }
         let cov = &cover[..nc];
-        let Some(last) = cov.last() else {
-            cx.stats.empty += 1;
-            cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+        if front.is_some_and(|f| f.r <= x) {
             front = None;
-            x = next;
-            continue;
+        }
+        let f = match front {
+            Some(f) => f,
+            None => {
+                let Some(last) = cov.last() else {
+                    cx.stats.empty += 1;
+                    cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+                    x = next;
+                    continue;
+                };
+                match cx.establish(cov, x) {
+                    Some(f) => {
+                        front = Some(f);
+                        f
+                    }
+                    None => {
+                        let t = next.min(last.r);
+                        span(cov, x, t, cx);
+                        x = t;
+                        continue;
+                    }
+                }
+            }
         };
-        let t = next.min(last.r);
-        front = Some(span(cov, x, t, cx));
+        let t = next.min(f.r);
+        cx.emit(t - x, f.face, f.color);
         x = t;
     }
 }
@@ -672,6 +705,30 @@ fn crossing_point(a: &Cover, b: &Cover, s: i32, t: i32) -> i32 {
 }
 
 impl Ctx<'_, '_> {
+    /// The covering trapezoid nearest at pixel `x` when it is also in
+    /// front of every other on all their common pixels (`x` to the end of
+    /// the shorter), so on `x..r` of its own; `None` when another crosses
+    /// it there.
+    #[inline]
+    fn establish(&mut self, cov: &[Cover], x: i32) -> Option<Cover> {
+        let f = self.front(cov, x);
+        if cov.len() == 1 {
+            self.stats.single += 1;
+            return Some(*f);
+        }
+        for c in cov {
+            if core::ptr::eq(c, f) {
+                continue;
+            }
+            let e = f.r.min(c.r) - 1;
+            if !self.nearer(f, f.z_at(e), c, c.z_at(e), e) {
+                return None;
+            }
+        }
+        self.stats.multiple += 1;
+        Some(*f)
+    }
+
     /// The covering trapezoid nearest at pixel `i`.
     fn front<'v>(&mut self, cov: &'v [Cover], i: i32) -> &'v Cover {
         let (first, rest) = match cov.split_first() {
