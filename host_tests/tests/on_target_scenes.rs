@@ -87,7 +87,11 @@ fn color3(k: usize) -> Rgb888 {
 /// A `poly3` scene as a display list: each `poly3` after its `color`, no
 /// clear (the frame starts black) and no clip.
 fn scene3_list(polys: &[Poly3]) -> Vec<u8> {
-    let need = 64 + polys.iter().map(|p| 4 + 3 + 6 * p.poly.len()).sum::<usize>();
+    let need = 64
+        + polys
+            .iter()
+            .map(|p| 4 + 3 + 6 * p.poly.len())
+            .sum::<usize>();
     let mut buf = vec![0u8; need];
     let mut w = Writer::new(&mut buf, scenes3d::W, scenes3d::H).expect("frame size");
     for (k, p) in polys.iter().enumerate() {
