@@ -585,20 +585,21 @@ fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>)
             cover[q] = c;
             nc += 1;
         }
-        // Leave the trapezoids ending here or before: the last ones.
-        while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
-            if c.r > x {
-                break;
-            }
-            nc -= 1;
-        }
-        let cov = &cover[..nc];
         if front.is_some_and(|f| f.r <= x) {
             front = None;
         }
         let f = match front {
             Some(f) => f,
             None => {
+                // Leave the trapezoids ending here or before: the last
+                // ones. (While a front holds, they wait.)
+                while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
+                    if c.r > x {
+                        break;
+                    }
+                    nc -= 1;
+                }
+                let cov = &cover[..nc];
                 let Some(last) = cov.last() else {
                     cx.stats.empty += 1;
                     cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
