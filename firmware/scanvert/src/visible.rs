@@ -101,11 +101,13 @@
 
 use crate::color::ListColor;
 use crate::edge::Edge;
+use crate::port::Span;
 use crate::port::SpanTarget;
-use crate::rle::{decode_row, Run, RunWriter, RunsFull};
+use crate::rle::{DecodeCounts, Run, RunWriter, RunsFull};
 use crate::segment::TrapezoidStore;
 use crate::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How an intersecting span is subdivided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -410,88 +412,228 @@ impl<'a> Workspace<'a> {
         &mut self,
         store: &TrapezoidStore<'_>,
         mode: Resolve,
-        mut sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
+        sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
     ) -> Result<VisibleStats, VisibleError<E>> {
-        let width = store.width() as i32;
-        if self.runs.len() < width as usize {
+        self.check_runs(store)?;
+        let out = ToSink {
+            out: RunWriter::new(self.runs),
+            sink,
+            y: 0,
+        };
+        resolve_into(self.active, self.cover, store, mode, out).map(|(stats, _)| stats)
+    }
+
+    /// `Err` when a row of the store's width does not fit the run buffer.
+    fn check_runs<E>(&self, store: &TrapezoidStore<'_>) -> Result<(), VisibleError<E>> {
+        if self.runs.len() < store.width() as usize {
             return Err(VisibleError::Runs {
                 capacity: self.runs.len(),
             });
         }
-        let cap = self.capacity();
-        let act = &mut self.active[..cap];
-        let cover = &mut self.cover[..cap];
-        for (i, a) in act.iter_mut().enumerate() {
-            a.free = i as u16;
+        Ok(())
+    }
+}
+
+/// Resolves every row of `store` into `out`, with the active list and the
+/// cover array of a workspace (the capacity is the shorter, at most
+/// 65535). Returns `out` when done.
+fn resolve_into<O: RowOut>(
+    active: &mut [Active],
+    cover: &mut [Cover],
+    store: &TrapezoidStore<'_>,
+    mode: Resolve,
+    out: O,
+) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
+    let width = store.width() as i32;
+    let cap = active.len().min(cover.len()).min(NONE as usize);
+    let act = &mut active[..cap];
+    let cover = &mut cover[..cap];
+    for (i, a) in act.iter_mut().enumerate() {
+        a.free = i as u16;
+    }
+    let mut cx = Ctx {
+        store,
+        out,
+        ink: Run::BACKGROUND,
+        len: 0,
+        color: BACKGROUND,
+        mode,
+        y: 0,
+        stats: VisibleStats::default(),
+    };
+    // act[..k].hot: the live trapezoids, sorted by l as of the last
+    // row; act[..nf].free: the free slots.
+    let (mut k, mut nf) = (0usize, cap);
+    for y in 0..store.height() {
+        let yi = y as i32;
+        cx.y = yi;
+        // Step the live trapezoids to this row, dropping those that
+        // ended, and reload their pixels (in place, keeping the order).
+        let mut w = 0;
+        for p in 0..k {
+            let slot = act[p].hot.slot;
+            let e = &mut act[slot as usize].entry;
+            if e.left.end() <= yi {
+                act[nf].free = slot;
+                nf += 1;
+                continue;
+            }
+            e.left.step();
+            e.right.step();
+            e.z = e.z.wrapping_add(e.zy);
+            let h = e.hot(slot);
+            act[w].hot = h;
+            w += 1;
         }
-        let mut cx = Ctx {
-            store,
-            out: RunWriter::new(self.runs),
-            ink: Run::BACKGROUND,
-            len: 0,
-            color: BACKGROUND,
-            mode,
-            y: 0,
-            stats: VisibleStats::default(),
+        k = w;
+        // Enter the trapezoids whose top is this row.
+        let mut t = store.row_head(y as usize);
+        while let Some(tr) = store.trapezoid(t) {
+            if nf == 0 {
+                return Err(VisibleError::Active { capacity: cap });
+            }
+            nf -= 1;
+            let slot = act[nf].free;
+            let e = &mut act[slot as usize].entry;
+            *e = Entry::from(tr);
+            let h = e.hot(slot);
+            act[k].hot = h;
+            k += 1;
+            cx.stats.trapezoids += 1;
+            t = tr.next_row;
+        }
+        cx.stats.max_active = cx.stats.max_active.max(k as u32);
+        cx.out.start(y);
+        (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
+        if k == 0 {
+            cx.len = width;
+            cx.stats.empty += 1;
+        } else {
+            let live = &mut act[..k];
+            sort(live);
+            sweep(live, cover, width, &mut cx);
+        }
+        cx.flush();
+        cx.stats.rows += 1;
+        cx.stats.runs += cx.out.finish().map_err(VisibleError::Sink)?;
+    }
+    Ok((cx.stats, cx.out))
+}
+
+/// Where the resolved runs go, one row at a time.
+trait RowOut {
+    /// What the caller's end can fail with.
+    type Error;
+    /// Starts row `y`.
+    fn start(&mut self, y: u16);
+    /// Appends `len > 0` pixels of `ink` in `color` (`BACKGROUND` for
+    /// the background). Runs next to each other differ in colour.
+    fn run(&mut self, len: i32, ink: u16, color: u32);
+    /// Ends the row; the runs it had.
+    fn finish(&mut self) -> Result<u32, Self::Error>;
+}
+
+/// Rows of runs in the workspace's buffer, each handed to the caller.
+struct ToSink<'r, F> {
+    out: RunWriter<'r>,
+    sink: F,
+    y: u16,
+}
+
+impl<E, F: FnMut(u16, &[Run]) -> Result<(), E>> RowOut for ToSink<'_, F> {
+    type Error = E;
+
+    #[inline]
+    fn start(&mut self, y: u16) {
+        self.y = y;
+        self.out.clear();
+    }
+
+    /// The buffer holds at least the width's runs (checked before the
+    /// first row), so it never overflows.
+    #[inline]
+    fn run(&mut self, len: i32, ink: u16, _color: u32) {
+        self.out.append(len as u16, ink);
+    }
+
+    #[inline]
+    fn finish(&mut self) -> Result<u32, E> {
+        (self.sink)(self.y, self.out.runs())?;
+        Ok(self.out.runs().len() as u32)
+    }
+}
+
+/// Runs written straight into a frame-buffer port as spans, as
+/// [`decode_row`](crate::rle::decode_row) writes a row of runs: the same
+/// spans, without the row buffer or the face lookup per run.
+struct ToTarget<'t, T: SpanTarget + ?Sized> {
+    target: &'t mut T,
+    background: Option<T::Color>,
+    size: (u32, u32),
+    y: u16,
+    x: u32,
+    runs: u32,
+    counts: DecodeCounts,
+    error: Option<T::Error>,
+}
+
+impl<T> RowOut for ToTarget<'_, T>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    type Error = T::Error;
+
+    #[inline]
+    fn start(&mut self, y: u16) {
+        self.y = y;
+        self.x = 0;
+        self.runs = 0;
+    }
+
+    #[inline]
+    fn run(&mut self, len: i32, _ink: u16, color: u32) {
+        self.runs += 1;
+        let x0 = self.x;
+        // A row is the store's width at most, within 4096.
+        self.x += len as u32;
+        let (w, h) = self.size;
+        if self.y as u32 >= h || x0 >= w || self.error.is_some() {
+            return;
+        }
+        let x1 = self.x.min(w);
+        let c = if color == BACKGROUND {
+            match self.background {
+                Some(c) => c,
+                None => return,
+            }
+        } else {
+            T::Color::from_rgb888(Rgb888::new(
+                (color >> 16) as u8,
+                (color >> 8) as u8,
+                color as u8,
+            ))
         };
-        // act[..k].hot: the live trapezoids, sorted by l as of the last
-        // row; act[..nf].free: the free slots.
-        let (mut k, mut nf) = (0usize, cap);
-        for y in 0..store.height() {
-            let yi = y as i32;
-            cx.y = yi;
-            // Step the live trapezoids to this row, dropping those that
-            // ended, and reload their pixels (in place, keeping the order).
-            let mut w = 0;
-            for p in 0..k {
-                let slot = act[p].hot.slot;
-                let e = &mut act[slot as usize].entry;
-                if e.left.end() <= yi {
-                    act[nf].free = slot;
-                    nf += 1;
-                    continue;
-                }
-                e.left.step();
-                e.right.step();
-                e.z = e.z.wrapping_add(e.zy);
-                let h = e.hot(slot);
-                act[w].hot = h;
-                w += 1;
+        let span = Span {
+            y: self.y,
+            x0: x0 as u16,
+            x1: x1 as u16,
+        };
+        match self.target.fill_span(span, c) {
+            Ok(()) => {
+                self.counts.spans += 1;
+                self.counts.pixels += x1 - x0;
             }
-            k = w;
-            // Enter the trapezoids whose top is this row.
-            let mut t = store.row_head(y as usize);
-            while let Some(tr) = store.trapezoid(t) {
-                if nf == 0 {
-                    return Err(VisibleError::Active { capacity: cap });
-                }
-                nf -= 1;
-                let slot = act[nf].free;
-                let e = &mut act[slot as usize].entry;
-                *e = Entry::from(tr);
-                let h = e.hot(slot);
-                act[k].hot = h;
-                k += 1;
-                cx.stats.trapezoids += 1;
-                t = tr.next_row;
-            }
-            cx.stats.max_active = cx.stats.max_active.max(k as u32);
-            cx.out.clear();
-            (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
-            if k == 0 {
-                cx.len = width;
-                cx.stats.empty += 1;
-            } else {
-                let live = &mut act[..k];
-                sort(live);
-                sweep(live, cover, width, &mut cx);
-            }
-            cx.flush();
-            cx.stats.rows += 1;
-            cx.stats.runs += cx.out.runs().len() as u32;
-            sink(y, cx.out.runs()).map_err(VisibleError::Sink)?;
+            Err(e) => self.error = Some(e),
         }
-        Ok(cx.stats)
+    }
+
+    #[inline]
+    fn finish(&mut self) -> Result<u32, T::Error> {
+        match self.error.take() {
+            Some(e) => Err(e),
+            None => Ok(self.runs),
+        }
     }
 }
 
@@ -514,9 +656,9 @@ fn sort(live: &mut [Active]) {
 }
 
 /// What the resolution of a row needs besides the active list.
-struct Ctx<'s, 'r> {
+struct Ctx<'s, O> {
     store: &'s TrapezoidStore<'s>,
-    out: RunWriter<'r>,
+    out: O,
     /// The pending run: its ink, length and colour (`BACKGROUND` for the
     /// background).
     ink: u16,
@@ -541,7 +683,7 @@ struct Ctx<'s, 'r> {
 /// two comparisons. Where no front can be established (a plane crosses
 /// it before its end), the span up to the next `l` or `r` is resolved and
 /// subdivided as in [`span`].
-fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>) {
+fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, O>) {
     let (mut x, mut nc, mut p) = (0i32, 0usize, 0usize);
     let mut next = live.first().map_or(width, |a| a.hot.l.min(width));
     // The front, nearest on x..front.r against every cover.
@@ -629,7 +771,7 @@ fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>)
 /// Resolves the span `s..t` covered by `cov`; returns the nearest at its
 /// last pixel.
 #[inline]
-fn span(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Cover {
+fn span<O: RowOut>(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
     let Some((first, rest)) = cov.split_first() else {
         return Cover::EMPTY;
     };
@@ -663,7 +805,15 @@ fn span(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Cover {
 
 /// Subdivides `s..t` (at least 2 pixels), whose nearest covering
 /// trapezoids at the ends are `a` and `b ≠ a`.
-fn split(cov: &[Cover], s: i32, t: i32, a: &Cover, b: &Cover, cross: bool, cx: &mut Ctx<'_, '_>) {
+fn split<O: RowOut>(
+    cov: &[Cover],
+    s: i32,
+    t: i32,
+    a: &Cover,
+    b: &Cover,
+    cross: bool,
+    cx: &mut Ctx<'_, O>,
+) {
     cx.stats.splits += 1;
     let crossing = cx.mode == Resolve::Crossing && cross;
     let m = if crossing {
@@ -705,7 +855,7 @@ fn crossing_point(a: &Cover, b: &Cover, s: i32, t: i32) -> i32 {
     k.clamp(s as i64 + 1, t as i64 - 1) as i32
 }
 
-impl Ctx<'_, '_> {
+impl<O: RowOut> Ctx<'_, O> {
     /// The covering trapezoid nearest at pixel `x` when it is also in
     /// front of every other on all their common pixels (`x` to the end of
     /// the shorter), so on `x..r` of its own; `None` when another crosses
@@ -798,12 +948,11 @@ impl Ctx<'_, '_> {
         self.color = color;
     }
 
-    /// Writes the pending run out. The buffer holds at least the width's
-    /// runs (checked before the first row), so it never overflows.
+    /// Writes the pending run out.
     #[inline]
     fn flush(&mut self) {
         if self.len > 0 {
-            self.out.append(self.len as u16, self.ink);
+            self.out.run(self.len, self.ink, self.color);
         }
         self.len = 0;
     }
@@ -829,20 +978,20 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
-    let mut counts = crate::rle::DecodeCounts::default();
-    let black = T::Color::from_rgb888(embedded_graphics_core::pixelcolor::Rgb888::new(0, 0, 0));
-    let stats = workspace.resolve(store, mode, |y, runs| {
-        let ink = |f: u16| {
-            store
-                .face(f)
-                .map_or(black, |f| T::Color::from_rgb888(f.color()))
-        };
-        let c = decode_row(target, y, runs, ink, background)?;
-        counts.spans += c.spans;
-        counts.pixels += c.pixels;
-        Ok(())
-    })?;
-    Ok((stats, counts))
+    workspace.check_runs(store)?;
+    let (tw, th) = target.size();
+    let out = ToTarget {
+        target,
+        background,
+        size: (tw as u32, th as u32),
+        y: 0,
+        x: 0,
+        runs: 0,
+        counts: DecodeCounts::default(),
+        error: None,
+    };
+    let (stats, out) = resolve_into(workspace.active, workspace.cover, store, mode, out)?;
+    Ok((stats, out.counts))
 }
 
 #[cfg(test)]
