@@ -10,15 +10,24 @@
 //! 3. The active list is sorted by `l` with an insertion sort over an
 //!    index array, which costs one compare per entry when the order is the
 //!    last row's (the usual case).
-//! 4. A sweep cuts the row at every `l` and `r` into spans, and each span
-//!    is classified by the trapezoids covering it:
-//!    * **empty**: the background;
+//! 4. A sweep from left to right keeps a *front*: a covering trapezoid
+//!    known to be nearest from the sweep's position to its own `r`,
+//!    because it is in front of every other covering trapezoid at both ends
+//!    of their common pixels. A trapezoid that starts behind the front
+//!    costs two depth compares (and is *hidden*, left out, when the front
+//!    outlasts it); one that ends behind it costs nothing. A new front is
+//!    sought where the front ends or a trapezoid starts in front of it, and
+//!    what is found there is counted by kind:
+//!    * **empty**: no trapezoid, the background up to the next `l`;
 //!    * **single**: one trapezoid;
-//!    * **multiple**: several, and the same one is nearest at both ends:
-//!      it is nearest on the whole span;
-//!    * **intersecting**: another is nearest at one end; the span is
-//!      subdivided ([`Resolve`]) until every part is of the kinds above.
-//! 5. The row's runs go to the caller ([`rle`](crate::rle) format).
+//!    * **multiple**: several, and the nearest one is the front;
+//!    * **intersecting**: several, another crosses the nearest before its
+//!      end, so no front holds: the span up to the next `l` or `r` is
+//!      resolved from its two ends and, if they differ, subdivided
+//!      ([`Resolve`]) until every part has the same nearest trapezoid at
+//!      both ends (or, if they agree, counted as *multiple*).
+//! 5. The row's runs go to the caller ([`rle`](crate::rle) format), or
+//!    with [`draw`] straight to the frame-buffer port as spans.
 //! 6. Trapezoids that end drop out; the rest step down a row.
 //!
 //! Per row the work is proportional to the edges crossed (plus the
@@ -47,10 +56,18 @@
 //! [`Resolve`] modes are therefore exact for planar faces; they differ in
 //! speed.
 //!
+//! The front rests on the same argument, pair by pair: two trapezoids both
+//! cover the pixels from the later `l` to the earlier `r`, so a front that
+//! is nearer than a trapezoid at the sweep's position and at the last of
+//! their common pixels is nearer on all of them. It is checked so against
+//! every trapezoid covering the position when it is found, and against
+//! every trapezoid that starts while it holds, so it is the nearest on
+//! every pixel it is given. A trapezoid it hides entirely never shows.
+//!
 //! # Memory
 //!
 //! An [`Active`] entry is 116 bytes (two edges, depth, and one element
-//! each of the sorted and free arrays) and a [`Cover`] 16; the list needs
+//! each of the sorted and free arrays) and a [`Cover`] 20; the list needs
 //! as many of each as trapezoids overlap one
 //! row ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
@@ -65,14 +82,22 @@
 //! 512 × 256 scenes below. A z-buffer at the same depth precision misses
 //! ties and near-ties (1 pixel in 131 072 on `dense`).
 //!
-//! Cost on the Cortex-M4 (QEMU `mps2-an386` with `-icount shift=0` and
-//! the firmware image's SysTick counter, in a variant of the image that
-//! renders these scenes' lists through the store, the workspace and a
-//! z-buffer), instructions per 512 × 256 frame into an
-//! RGB565 frame buffer, every pixel written (background filled), against a
-//! plain z-buffer at the same precision (32-bit depth per pixel, the same
-//! fixed-point planes, the exact rasteriser's spans, runs of passing pixels
-//! written as spans; its depth clear included):
+//! Cost on the Cortex-M4: the firmware image renders `flat` and `tilted`
+//! as `poly3-layered` and `poly3-tilted` (one colour per face, the
+//! background left as it is) and counts the cut and the resolution
+//! separately; `firmware/image/measure.sh` publishes the counts in the
+//! on-target section of `docs/performance.md`. There, resolving and
+//! decoding take about 2.3 M instructions a frame on `flat` and 2.7 M on
+//! `tilted`, and cutting 0.55 M and 0.77 M.
+//!
+//! Before the sweep kept a front (it classified a span between every two
+//! neighbouring `l` and `r`: about 9 500 spans a `flat` row set against
+//! 5 500 fronts now), an earlier variant of the image measured all four
+//! scenes, every pixel written (background filled), against a plain
+//! z-buffer at the same precision (32-bit depth per pixel, the same
+//! fixed-point planes, the exact rasteriser's spans, runs of passing
+//! pixels written as spans; its depth clear included), in instructions
+//! per 512 × 256 RGB565 frame:
 //!
 //! | scene | faces drawn | trapezoids | cut (once per change) | resolve + decode, crossing | bisection | z-buffer |
 //! |---|---|---|---|---|---|---|
@@ -81,17 +106,13 @@
 //! | bars: a 10 × 7 map and 20 bars | 130 | 386 | 0.80 M | 1.87 M | 1.87 M | 2.68 M |
 //! | dense: 170 large triangles through each other (depth complexity about 40) | 170 | 322 | 0.79 M | 23.4 M | 23.7 M | 46.0 M |
 //!
-//! At 168 M instructions/s that is 64, 57, 90 and 7 frames/s when only the
-//! visible surfaces are recomputed (52, 45, 63 and 7 when every polygon is
-//! cut again too), against 39, 43, 63 and 4 for the z-buffer, with 512 KiB
-//! less memory (the whole 3D layer of `bars` takes about 54 KiB). Of a
-//! `flat` frame, about a fifth is stepping and sorting the active list,
-//! two fifths the sweep's bookkeeping (about 9 500 spans; 1 000
-//! trapezoids are left out as hidden), a fifth the depth compares and the
-//! runs, and a sixth the decoder. The two modes
-//! differ only where planes intersect: on `tilted`, 246 intersecting spans
-//! take 709 subdivisions by bisection and 246 at the crossing point; on
-//! `dense`, 951 take 2 028 and 974. The crossing point is the default.
+//! At 168 M instructions/s that was 64, 57, 90 and 7 frames/s when only
+//! the visible surfaces are recomputed, against 39, 43, 63 and 4 for the
+//! z-buffer, with 512 KiB less memory (the whole 3D layer of `bars` takes
+//! about 54 KiB). The two modes differ only where planes intersect: on
+//! `tilted`, 246 intersecting spans took 709 subdivisions by bisection
+//! and 246 at the crossing point; on `dense`, 951 took 2 028 and 974. The
+//! crossing point is the default.
 //!
 //! `cargo run --release -p host-tests --example visible_modes` measures
 //! the same scenes on the host (time, error, and the z-buffer), and writes
