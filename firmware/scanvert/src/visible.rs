@@ -401,25 +401,26 @@ impl<'a> Workspace<'a> {
             });
         }
         let cap = self.capacity();
+        // The last rows of the trapezoids overlapping the row, as a binary
+        // min-heap in `cover[..k].r`: O(log k) per trapezoid, nothing per
+        // row where none starts or ends.
+        let heap = &mut self.cover[..cap];
         let mut k = 0usize;
         let mut most = 0usize;
         for y in 0..store.height() {
-            let mut q = 0;
-            while q < k {
-                if self.cover[q].r <= y as i32 {
-                    k -= 1;
-                    self.cover[q].r = self.cover[k].r;
-                } else {
-                    q += 1;
-                }
+            while k > 0 && heap[0].r <= y as i32 {
+                k -= 1;
+                heap[0].r = heap[k].r;
+                sift_down(&mut heap[..k]);
             }
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
                 if k >= cap {
                     return Err(VisibleError::Active { capacity: cap });
                 }
-                self.cover[k].r = tr.end();
+                heap[k].r = tr.end();
                 k += 1;
+                sift_up(&mut heap[..k]);
                 t = tr.next_row;
             }
             most = most.max(k);
@@ -453,6 +454,44 @@ impl<'a> Workspace<'a> {
         }
         Ok(())
     }
+}
+
+/// Moves the last element of the min-heap `h` (by `r`) up to its place.
+fn sift_up(h: &mut [Cover]) {
+    let Some(mut i) = h.len().checked_sub(1) else {
+        return;
+    };
+    let r = h[i].r;
+    while i > 0 {
+        let parent = (i - 1) / 2;
+        if h[parent].r <= r {
+            break;
+        }
+        h[i].r = h[parent].r;
+        i = parent;
+    }
+    h[i].r = r;
+}
+
+/// Moves the first element of the min-heap `h` (by `r`) down to its place.
+fn sift_down(h: &mut [Cover]) {
+    let Some(r) = h.first().map(|c| c.r) else {
+        return;
+    };
+    let mut i = 0;
+    loop {
+        let mut child = 2 * i + 1;
+        let Some(left) = h.get(child) else { break };
+        if h.get(child + 1).is_some_and(|c| c.r < left.r) {
+            child += 1;
+        }
+        if r <= h[child].r {
+            break;
+        }
+        h[i].r = h[child].r;
+        i = child;
+    }
+    h[i].r = r;
 }
 
 /// Resolves every row of `store` into `out`, with the active list and the
