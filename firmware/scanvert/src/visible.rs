@@ -745,87 +745,102 @@ struct Ctx<'s, O> {
 /// subdivided as in [`span`].
 fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, O>) {
     let (mut x, mut nc, mut p) = (0i32, 0usize, 0usize);
-    let mut next = live.first().map_or(width, |a| a.hot.l.min(width));
-    // The front, nearest on x..front.r against every cover.
-    let mut front: Option<Cover> = None;
     while x < width {
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
-        while next <= x {
-            let Some(a) = live.get(p) else { break };
-            let h = a.hot;
+        while let Some(a) = live.get(p) {
+            if a.hot.l > x {
+                break;
+            }
             p += 1;
-            next = live.get(p).map_or(width, |a| a.hot.l.min(width));
-            let c = Cover {
-                r: h.r,
-                z: h.z,
-                zx: h.zx,
-                color: h.color,
-                face: h.face,
-            };
-            if let Some(f) = front {
-                // The front keeps its place when it is in front of the
-                // new one on all their common pixels; the new one is
-                // hidden when those are all of its pixels.
+            insert(cover, &mut nc, cover_of(&a.hot));
+        }
+        let mut next = live.get(p).map_or(width, |a| a.hot.l.min(width));
+        // Leave the trapezoids ending here or before: the last ones.
+        while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
+            if c.r > x {
+                break;
+            }
+            nc -= 1;
+        }
+        let cov = &cover[..nc];
+        let Some(last) = cov.last() else {
+            cx.stats.empty += 1;
+            cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+            x = next;
+            continue;
+        };
+        let Some(f) = cx.establish(cov, x) else {
+            let t = next.min(last.r);
+            span(cov, x, t, cx);
+            x = t;
+            continue;
+        };
+        // The front holds from x until it ends or a trapezoid starts that
+        // it does not dominate. Those that end behind it wait in the
+        // cover array until the next front is sought.
+        let start = x;
+        loop {
+            x = next.min(f.r);
+            if x >= f.r {
+                break;
+            }
+            let mut broken = false;
+            while let Some(a) = live.get(p) {
+                if a.hot.l > x {
+                    break;
+                }
+                p += 1;
+                let c = cover_of(&a.hot);
+                // The front is in front of the new one on all their
+                // common pixels: when those are all of its pixels, it is
+                // hidden (the front is in the cover array, so this holds
+                // even after the front has lost its place).
                 if cx.dominates(&f, &c, x, f.r.min(c.r) - 1) {
                     if c.r <= f.r {
                         cx.stats.hidden += 1;
                         continue;
                     }
                 } else {
-                    front = None;
+                    broken = true;
                 }
+                insert(cover, &mut nc, c);
             }
-            if nc >= cover.len() {
-                continue;
+            next = live.get(p).map_or(width, |a| a.hot.l.min(width));
+            if broken {
+                break;
             }
-            let mut q = nc;
-            while q > 0 && cover[q - 1].r < c.r {
-                cover[q] = cover[q - 1];
-                q -= 1;
-            }
-            cover[q] = c;
-            nc += 1;
         }
-        if front.is_some_and(|f| f.r <= x) {
-            front = None;
-        }
-        let f = match front {
-            Some(f) => f,
-            None => {
-                // Leave the trapezoids ending here or before: the last
-                // ones. (While a front holds, they wait.)
-                while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
-                    if c.r > x {
-                        break;
-                    }
-                    nc -= 1;
-                }
-                let cov = &cover[..nc];
-                let Some(last) = cov.last() else {
-                    cx.stats.empty += 1;
-                    cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
-                    x = next;
-                    continue;
-                };
-                match cx.establish(cov, x) {
-                    Some(f) => {
-                        front = Some(f);
-                        f
-                    }
-                    None => {
-                        let t = next.min(last.r);
-                        span(cov, x, t, cx);
-                        x = t;
-                        continue;
-                    }
-                }
-            }
-        };
-        let t = next.min(f.r);
-        cx.emit(t - x, f.face, f.color);
-        x = t;
+        cx.emit(x - start, f.face, f.color);
     }
+}
+
+/// The cover element of a live trapezoid.
+#[inline(always)]
+fn cover_of(h: &Hot) -> Cover {
+    Cover {
+        r: h.r,
+        z: h.z,
+        zx: h.zx,
+        color: h.color,
+        face: h.face,
+    }
+}
+
+/// Inserts `c` into `cover[..nc]`, kept by decreasing `r`. The array has
+/// a place for every live trapezoid, so it never overflows.
+#[inline(always)]
+fn insert(cover: &mut [Cover], nc: &mut usize, c: Cover) {
+    if *nc >= cover.len() {
+        return;
+    }
+    let mut q = *nc;
+    while q > 0 && cover[q - 1].r < c.r {
+        cover[q] = cover[q - 1];
+        q -= 1;
+    }
+    cover[q] = c;
+    *nc += 1;
 }
 
 /// Resolves the span `s..t` covered by `cov`; returns the nearest at its
