@@ -702,10 +702,10 @@ where
 #[inline]
 fn sort(live: &mut [Active]) {
     for p in 1..live.len() {
-        let h = live[p].hot;
-        if live[p - 1].hot.l <= h.l {
+        if live[p - 1].hot.l <= live[p].hot.l {
             continue;
         }
+        let h = live[p].hot;
         let mut q = p;
         while q > 0 && live[q - 1].hot.l > h.l {
             live[q].hot = live[q - 1].hot;
