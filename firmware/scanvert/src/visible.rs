@@ -122,6 +122,7 @@
 
 use crate::color::ListColor;
 use crate::edge::Edge;
+use crate::fixed::ceil_px;
 use crate::port::Span;
 use crate::port::SpanTarget;
 use crate::rle::{DecodeCounts, Run, RunWriter, RunsFull};
@@ -246,19 +247,24 @@ impl Entry {
         }
     }
 
-    /// The row's pixels and depth, for the sorted array.
+    /// The row's pixels `l..r`, cut to the columns, and depth. With no
+    /// pixel, `l` is `i32::MAX`: sorted last, never entered (`x1` is the
+    /// width at most).
     #[inline(always)]
-    fn hot(&mut self, slot: u16) -> Hot {
-        self.left.load_pixel();
-        self.right.load_pixel();
-        let l = self.left.pixel().max(self.x0 as i32);
-        let r = self.right.pixel().min(self.x1 as i32);
+    fn pixels(&self) -> (i32, i32, i32) {
+        let l = ceil_px(self.left.units()).max(self.x0 as i32);
+        let r = ceil_px(self.right.units()).min(self.x1 as i32);
+        (if l < r { l } else { i32::MAX }, r, self.z)
+    }
+
+    /// The row's element of the sorted array.
+    #[inline(always)]
+    fn hot(&self, slot: u16) -> Hot {
+        let (l, r, z) = self.pixels();
         Hot {
-            // No pixel: sorted last, never entered (x1 is the width at
-            // most).
-            l: if l < r { l } else { i32::MAX },
+            l,
             r,
-            z: self.z,
+            z,
             zx: self.zx,
             color: self.color,
             face: self.face,
