@@ -717,7 +717,7 @@ impl<'s> Polygon<'s> {
                 }
             }
             while next < n && slots[next].top <= y {
-                slots.swap(active, next);
+                swap(slots, active, next);
                 slots[active].open = None;
                 active += 1;
                 next += 1;
@@ -774,13 +774,27 @@ impl<'s> Polygon<'s> {
                         close(&slots[i].ends, &op, y)?;
                     }
                     active -= 1;
-                    slots.swap(i, active);
+                    swap(slots, i, active);
                 } else {
                     i += 1;
                 }
             }
         }
         Ok(count)
+    }
+}
+
+/// Swaps slots `a` and `b` as two distinct places (`slice::swap` allows
+/// for them being one, and calls a library `memmove` on 32-bit targets).
+#[inline(always)]
+fn swap(slots: &mut [EdgeSlot], a: usize, b: usize) {
+    let (lo, hi) = (a.min(b), a.max(b));
+    if lo == hi {
+        return;
+    }
+    let (head, tail) = slots.split_at_mut(hi);
+    if let (Some(x), Some(y)) = (head.get_mut(lo), tail.first_mut()) {
+        core::mem::swap(x, y);
     }
 }
 
@@ -802,7 +816,7 @@ fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
                 .then_with(|| cmp_x(&e[j - 1], &e[j], last))
                 .is_gt()
         {
-            e.swap(j - 1, j);
+            swap(e, j - 1, j);
             j -= 1;
         }
     }
