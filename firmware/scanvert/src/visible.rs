@@ -87,8 +87,8 @@
 //! background left as it is) and counts the cut and the resolution
 //! separately; `firmware/image/measure.sh` publishes the counts in the
 //! on-target section of `docs/performance.md`. There, resolving and
-//! decoding take about 2.3 M instructions a frame on `flat` and 2.7 M on
-//! `tilted`, and cutting 0.55 M and 0.77 M.
+//! decoding take about 2.1 M instructions a frame on `flat` and 2.5 M on
+//! `tilted`, and cutting 0.48 M and 0.69 M.
 //!
 //! Before the sweep kept a front (it classified a span between every two
 //! neighbouring `l` and `r`: about 9 500 spans a `flat` row set against
