@@ -192,9 +192,9 @@ struct Hot {
     slot: u16,
 }
 
-/// One entry of the cover array (20 bytes): a trapezoid covering the
-/// current span. The caller provides the array, as many as the active
-/// list, filled with [`Cover::EMPTY`].
+/// One entry of the cover array (20 bytes): a trapezoid that has started
+/// on the row and may still show. The caller provides the array, as many
+/// as the active list, filled with [`Cover::EMPTY`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Cover {
     r: i32,
@@ -736,8 +736,9 @@ struct Ctx<'s, O> {
 }
 
 /// Resolves the row by a sweep over the `l` and `r` of the live
-/// trapezoids. The cover array holds the trapezoids covering the current
-/// pixel by decreasing `r`, so that those ending leave from its end.
+/// trapezoids. The cover array holds the trapezoids that have started by
+/// decreasing `r`; those that have ended leave from its end whenever a
+/// new front is sought.
 ///
 /// The sweep keeps a *front*: a covering trapezoid that is nearest on
 /// every pixel from the sweep's position to its own `r`, against every
