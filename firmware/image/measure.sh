@@ -166,6 +166,30 @@ EOF
   table "$out/arm.log"
   cat <<'EOF'
 
+*Polygons* counts `poly` and drawn `poly3` together.
+
+#### The 3D layer, stage by stage
+
+The `poly3-*` lists are the 3D layer alone on a 512 × 256 frame
+(`host_tests::scenes3d`): 170 `poly3`s, one colour each, parallel to
+the screen at depths of their own (*layered*), or tilted and through
+each other (*tilted*). The image renders each twice: once stage by stage
+(counted below), then through `Controller::render` (the table above,
+and *whole render* here), both into a black frame and both with the
+host's checksum. *Spans* are those the sweep resolves (empty, single,
+multiple and intersecting; a row with no trapezoid is one). *Cut* is every drawn `poly3` into trapezoids in the
+store (plane, edge set-up, cut, scan-line index); *check* is
+`Workspace::check`; *resolve + decode* is `visible::draw` with
+crossing points, the background left as it is; *without pixel writes*
+is the same into the `discard` port. The whole render adds the list
+check and the cull to the stages.
+
+| scene | poly3 drawn | trapezoids | spans | cut | per poly3 | check | resolve + decode | per span | without pixel writes | whole render | frames/s at 168 MHz (est.) | resolve + decode only, frames/s (est.) |
+|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
+EOF
+  stages_table "$out/arm.log"
+  cat <<'EOF'
+
 #### Proposal: two pixels to a word
 
 `FrameBuffer` writes one `strh` a pixel. The image built with
@@ -227,7 +251,7 @@ frames() {
   awk '$1 == "frame" {
     split($3, wh, "x")
     for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
-    print $2, wh[1], wh[2], f["polygons"], f["clears"], f["spans"], f["pixels"], f["instructions"]
+    print $2, wh[1], wh[2], f["polygons"] + f["poly3"], f["clears"], f["spans"], f["pixels"], f["instructions"]
   }' "$1"
 }
 
@@ -251,6 +275,29 @@ table() {
     scan=$(instructions_of "$name" "$out/arm-discard.log")
     writes=$(fmt "$(awk -v i="$instr" -v s="$scan" 'BEGIN { print 100 * (i - s) / i }')" 0)
     echo "| $name | ${w}×${h} | $(thousands "$polys") | $(thousands "$spans") | $(thousands "$written") | $(thousands "$instr") | $per_poly | $per_px | $(thousands "$scan") | ${writes} % | $fps | $poly_rate |"
+  done
+}
+
+# "stages NAME faces=.. trapezoids=.. cut=.. check=.. resolve=.. ..." as
+# "NAME faces trapezoids cut check resolve spans", spans being those the
+# sweep resolved (empty, single, multiple and intersecting).
+stages() {
+  awk '$1 == "stages" {
+    for (i = 3; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+    print $2, f["faces"], f["trapezoids"], f["cut"], f["check"], f["resolve"],
+      f["empty"] + f["single"] + f["multiple"] + f["intersecting"]
+  }' "$1"
+}
+
+stages_table() { # ARM-LOG
+  stages "$1" | while read -r name faces traps cut check resolve spans; do
+    total=$(instructions_of "$name" "$1")
+    scan=$(stages "$out/arm-discard.log" | awk -v n="$name" '$1 == n { print $6 }')
+    per_face=$(fmt "$(awk -v c="$cut" -v f="$faces" 'BEGIN { print c / f }')" 0)
+    per_span=$(fmt "$(awk -v r="$resolve" -v s="$spans" 'BEGIN { print r / s }')" 0)
+    fps=$(fmt "$(awk -v i="$total" 'BEGIN { print 168e6 / i }')" 1)
+    fps_r=$(fmt "$(awk -v i="$resolve" 'BEGIN { print 168e6 / i }')" 1)
+    echo "| $name | $(thousands "$faces") | $(thousands "$traps") | $(thousands "$spans") | $(thousands "$cut") | $per_face | $(thousands "$check") | $(thousands "$resolve") | $per_span | $(thousands "$scan") | $(thousands "$total") | $fps | $fps_r |"
   done
 }
 

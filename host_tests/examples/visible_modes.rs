@@ -10,13 +10,15 @@
 //! Times are of this host, in release mode; they are for comparing the
 //! contenders with each other, not a target's figures.
 //! `-- --profile SCENE MODE FRAMES` only resolves and decodes one scene
-//! (`flat`, `tilted` or `bars`; `Bisect`, `Crossing` or `zbuffer`), for
+//! (`flat`, `tilted`, `bars` or `dense`; `Bisect`, `Crossing` or
+//! `zbuffer`), or only cuts it into trapezoids (`cut`), for
 //! counting instructions under callgrind; `-- --write-lists DIR` writes
 //! the scenes as binary display lists.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use host_tests::harness3d::{build_list3, color_of, index_of, vertex3};
 use host_tests::reference3d::{drawn, resolve, Poly3};
+use host_tests::scenes3d::{self, H, W};
 use scanvert::clip::ClipRect;
 use scanvert::edge::Edge;
 use scanvert::fixed::Vertex;
@@ -30,168 +32,6 @@ use scanvert::visible::{self, Active, Cover, Resolve, Workspace};
 use std::convert::Infallible;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
-
-const W: u16 = 512;
-const H: u16 = 256;
-
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn range(&mut self, lo: i32, hi: i32) -> i32 {
-        lo + (self.next() % (hi - lo) as u64) as i32
-    }
-}
-
-type V3 = (i32, i32, i32);
-
-fn add(a: V3, b: V3) -> V3 {
-    (a.0 + b.0, a.1 + b.1, a.2 + b.2)
-}
-
-fn scale(a: V3, k: i32) -> V3 {
-    (a.0 * k, a.1 * k, a.2 * k)
-}
-
-fn front(mut p: Vec<V3>) -> Poly3 {
-    if !drawn(&p) {
-        p.reverse();
-    }
-    Poly3 {
-        poly: p,
-        clip: None,
-    }
-}
-
-/// 170 faces parallel to the screen, each at a depth of its own.
-fn flat(rng: &mut Rng) -> Vec<Poly3> {
-    (0..170)
-        .map(|k| {
-            let (x, y) = (
-                rng.range(-400, W as i32 * 16),
-                rng.range(-400, H as i32 * 16),
-            );
-            let (w, h) = (rng.range(160, 1400), rng.range(160, 1000));
-            let z = rng.range(-30000, 30000) / 170 * 170 + k;
-            if k % 2 == 0 {
-                front(vec![
-                    (x, y, z),
-                    (x, y + h, z),
-                    (x + w, y + h, z),
-                    (x + w, y, z),
-                ])
-            } else {
-                front(vec![
-                    (x, y, z),
-                    (x - w / 2, y + h, z),
-                    (x + w, y + h / 2, z),
-                ])
-            }
-        })
-        .collect()
-}
-
-/// 170 tilted triangles and parallelograms whose depths overlap.
-fn tilted(rng: &mut Rng) -> Vec<Poly3> {
-    (0..170)
-        .map(|k| {
-            let o = (
-                rng.range(-400, W as i32 * 16),
-                rng.range(-400, H as i32 * 16),
-                rng.range(-8000, 8000),
-            );
-            let u = (
-                rng.range(-1200, 1200),
-                rng.range(-800, 800),
-                rng.range(-6000, 6000),
-            );
-            let v = (
-                rng.range(-1200, 1200),
-                rng.range(-800, 800),
-                rng.range(-6000, 6000),
-            );
-            if k % 2 == 0 {
-                front(vec![o, add(o, u), add(o, v)])
-            } else {
-                front(vec![o, add(o, u), add(add(o, u), v), add(o, v)])
-            }
-        })
-        .collect()
-}
-
-/// 170 large triangles through each other: many intersecting spans.
-fn dense(rng: &mut Rng) -> Vec<Poly3> {
-    (0..170)
-        .map(|_| {
-            let p = |rng: &mut Rng| {
-                (
-                    rng.range(-1600, W as i32 * 16 + 1600),
-                    rng.range(-800, H as i32 * 16 + 800),
-                    rng.range(-30000, 30000),
-                )
-            };
-            front(vec![p(rng), p(rng), p(rng)])
-        })
-        .collect()
-}
-
-/// Bars over a map, in an oblique parallel projection: a 10 × 7 grid of
-/// tiles and 20 bars (boxes, three faces culled each), about 190 `poly3`s.
-fn bars(rng: &mut Rng) -> Vec<Poly3> {
-    // Screen-space images of the world axes (x east, y north, z up), in
-    // units; depth grows to the north and to the west and falls upwards.
-    let ex = (640, 96, -900);
-    let ey = (-288, -224, 1600);
-    let ez = (0, -480, -400);
-    let origin = (1100, 3000, 2000);
-    let at =
-        |x: i32, y: i32, z: i32| add(add(add(origin, scale(ex, x)), scale(ey, y)), scale(ez, z));
-    let mut out = Vec::new();
-    for gy in 0..7 {
-        for gx in 0..10 {
-            // Corners in eighths of a cell, so that the tiles are planar.
-            let c = |x: i32, y: i32| {
-                let p = add(add(scale(ex, x), scale(ey, y)), scale(origin, 8));
-                (p.0 / 8, p.1 / 8, p.2 / 8)
-            };
-            let (x, y) = (gx * 8, gy * 8);
-            out.push(front(vec![
-                c(x, y),
-                c(x + 8, y),
-                c(x + 8, y + 8),
-                c(x, y + 8),
-            ]));
-        }
-    }
-    for _ in 0..20 {
-        let (gx, gy) = (rng.range(0, 10), rng.range(0, 7));
-        let h = rng.range(1, 4);
-        let o = at(gx, gy, 0);
-        let (u, v, w) = (scale(ex, 1), scale(ey, 1), scale(ez, h));
-        // Outward windings; the culling rule drops the back three.
-        let face = |c: V3, e1: V3, e2: V3| vec![c, add(c, e1), add(add(c, e1), e2), add(c, e2)];
-        for f in [
-            face(o, v, u),
-            face(add(o, w), u, v),
-            face(o, w, v),
-            face(add(o, u), v, w),
-            face(o, u, w),
-            face(add(o, v), w, u),
-        ] {
-            // Both windings are possible for a left-handed image of the
-            // axes; keep the given winding and let culling decide.
-            out.push(Poly3 {
-                poly: f,
-                clip: None,
-            });
-        }
-    }
-    out
-}
 
 /// A plain z-buffer at the same depth precision: every face's pixels by
 /// the exact rasteriser, each tested against a 32-bit depth per pixel
@@ -263,13 +103,7 @@ fn time(mut f: impl FnMut()) -> Duration {
 }
 
 fn main() {
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
-    let scenes = [
-        ("flat", flat(&mut rng)),
-        ("tilted", tilted(&mut rng)),
-        ("bars", bars(&mut rng)),
-        ("dense", dense(&mut rng)),
-    ];
+    let scenes = scenes3d::all();
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("--write-lists") {
         for (name, scene) in &scenes {
@@ -448,6 +282,7 @@ fn profile(scene: &[Poly3], mode: &str, frames: u32) {
         black_box(&zb.color);
         return;
     }
+    let cut_only = mode == "cut";
     let mode = if mode == "Bisect" {
         Resolve::Bisect
     } else {
@@ -471,15 +306,25 @@ fn profile(scene: &[Poly3], mode: &str, frames: u32) {
         H,
     )
     .unwrap();
-    for &k in &shown {
-        store
-            .add_polygon(
-                0,
-                scene[k].poly.iter().copied().map(vertex3),
-                color_of(k),
-                &ClipRect::full(W, H),
-            )
-            .unwrap();
+    let fill = |store: &mut TrapezoidStore<'_>| {
+        store.clear_segment(0).unwrap();
+        for &k in &shown {
+            store
+                .add_polygon(
+                    0,
+                    scene[k].poly.iter().copied().map(vertex3),
+                    color_of(k),
+                    &ClipRect::full(W, H),
+                )
+                .unwrap();
+        }
+    };
+    fill(&mut store);
+    if cut_only {
+        for _ in 1..frames {
+            fill(&mut store);
+        }
+        return;
     }
     let mut active = vec![Active::EMPTY; store.len()];
     let mut cover = vec![Cover::EMPTY; store.len()];

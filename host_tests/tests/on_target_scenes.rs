@@ -16,18 +16,29 @@
 //! The lists: `demo` is `scenes/demo.dl` assembled to binary; `w1` to `w5`
 //! are the 2D benchmark workloads of `bench/src/workloads.rs`, each pass
 //! of a workload as one frame: `color #ff0000` and its polygons, or one
-//! `clear #ff0000` (W2), on a frame that starts black.
+//! `clear #ff0000` (W2), on a frame that starts black. `poly3-layered` and
+//! `poly3-tilted` are the 3D layer alone: the `flat` and `tilted` scenes of
+//! `host_tests::scenes3d` (170 `poly3`s on 512 × 256, parallel to the
+//! screen in layers, or tilted and through each other), each `poly3`
+//! after a `color` of its own that no other has in RGB565.
 
 #[allow(dead_code)]
 #[path = "../../bench/src/workloads.rs"]
 mod workloads;
 
 use embedded_graphics_core::pixelcolor::Rgb888;
+use host_tests::harness3d::vertex3;
+use host_tests::reference3d::Poly3;
+use host_tests::scenes3d;
 use scanvert::checksum::frame_checksum;
-use scanvert::controller::Controller;
+use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
 use scanvert::display_list::{Command, DisplayList, Writer};
 use scanvert::edge::Edge;
+use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
+use scanvert::segment::{Face, Segment, StoreMemory};
+use scanvert::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::visible::{Active, Cover, Resolve};
 use scanvert_sim::dual_port::DualPortRam;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -66,12 +77,39 @@ fn demo_list() -> Vec<u8> {
         .bytes
 }
 
+/// The colour of the `k`-th `poly3`: different from every other `k <
+/// 2048` in RGB565, so that no two faces merge into one run.
+fn color3(k: usize) -> Rgb888 {
+    let (r, g) = ((k & 31) as u8, (16 + (k >> 5)) as u8);
+    Rgb888::new(r << 3, (g & 63) << 2, (31 - r) << 3)
+}
+
+/// A `poly3` scene as a display list: each `poly3` after its `color`, no
+/// clear (the frame starts black) and no clip.
+fn scene3_list(polys: &[Poly3]) -> Vec<u8> {
+    let need = 64
+        + polys
+            .iter()
+            .map(|p| 4 + 3 + 6 * p.poly.len())
+            .sum::<usize>();
+    let mut buf = vec![0u8; need];
+    let mut w = Writer::new(&mut buf, scenes3d::W, scenes3d::H).expect("frame size");
+    for (k, p) in polys.iter().enumerate() {
+        w.color(color3(k)).expect("fits");
+        w.poly3(p.poly.iter().copied().map(vertex3)).expect("fits");
+    }
+    w.finish().to_vec()
+}
+
 /// Every list the image embeds, by name, in the order it renders them.
 fn lists() -> Vec<(String, Vec<u8>)> {
     let mut out = vec![("demo".to_string(), demo_list())];
     for wl in workloads::all() {
         out.push((wl.id.to_lowercase(), workload_list(&wl)));
     }
+    let [(_, flat), (_, tilted), ..] = scenes3d::all();
+    out.push(("poly3-layered".to_string(), scene3_list(&flat)));
+    out.push(("poly3-tilted".to_string(), scene3_list(&tilted)));
     out
 }
 
@@ -87,16 +125,53 @@ fn max_vertices(list: &DisplayList<'_>) -> usize {
         .unwrap_or(0)
 }
 
+/// The 3D memory the image must hold (the most over its lists).
+#[derive(Default)]
+struct Memory3d {
+    trapezoids: usize,
+    faces: usize,
+    active: usize,
+    rows: usize,
+    runs: usize,
+}
+
 /// The checksum of `bytes` rendered on the host, into a fresh (black)
-/// dual-port RAM.
-fn host_checksum(bytes: &[u8]) -> u32 {
+/// dual-port RAM, with 3D storage sized by `needs_3d` (as `scanvert
+/// checksum` does); the render's statistics.
+fn host_render(bytes: &[u8]) -> (u32, Stats) {
     let list = DisplayList::new_checked(bytes).expect("valid list");
-    let mut edges = vec![Edge::EMPTY; max_vertices(&list).max(3)];
+    let slots_needed = max_vertices(&list).max(3);
+    let mut edges = vec![Edge::EMPTY; slots_needed];
+    let mut slots = vec![EdgeSlot::EMPTY; slots_needed];
+    let need = needs_3d(&list, &mut slots).expect("slots sized");
+    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
+    let mut faces = vec![Face::EMPTY; need.faces];
+    let mut segs = [Segment::EMPTY; 1];
+    let mut rows = vec![0u16; need.rows];
+    let mut active = vec![Active::EMPTY; need.trapezoids];
+    let mut cover = vec![Cover::EMPTY; need.trapezoids];
+    let mut runs = vec![Run::EMPTY; need.runs];
     let mut ram = DualPortRam::new(list.width(), list.height());
-    Controller::new(Rasterizer::new(&mut edges))
+    let mut controller = Controller::new(Rasterizer::new(&mut edges));
+    if need.poly3 > 0 {
+        controller = controller.with_3d(Storage3d {
+            store: StoreMemory {
+                trapezoids: &mut traps,
+                faces: &mut faces,
+                segments: &mut segs,
+                rows: &mut rows,
+                edges: &mut slots,
+            },
+            active: &mut active,
+            cover: &mut cover,
+            runs: &mut runs,
+            resolve: Resolve::Crossing,
+        });
+    }
+    let stats = controller
         .render(&list, &mut ram.write_port())
         .expect("renders");
-    frame_checksum(ram.contents())
+    (frame_checksum(ram.contents()), stats)
 }
 
 /// The table the image compiles in.
@@ -112,6 +187,7 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
          use crate::Scene;\n\n",
     );
     let mut rows = String::new();
+    let mut m = Memory3d::default();
     for (name, bytes) in lists {
         let list = DisplayList::new_checked(bytes).expect("valid list");
         slots = slots.max(max_vertices(&list));
@@ -119,16 +195,37 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
             list.width() as usize * list.height() as usize <= IMAGE_FRAME_PIXELS,
             "{name}: frame larger than the image's frame buffer"
         );
+        let (sum, stats) = host_render(bytes);
+        if stats.poly3 > 0 {
+            m.trapezoids = m.trapezoids.max(stats.trapezoids as usize);
+            m.faces = m.faces.max(stats.poly3 as usize);
+            m.active = m.active.max(stats.visible.max_active as usize);
+            m.rows = m.rows.max(list.height() as usize);
+            m.runs = m.runs.max(list.width() as usize);
+        }
         writeln!(
             rows,
-            "    Scene {{\n        name: \"{name}\",\n        list: include_bytes!(\"../scenes/{name}.scvl\"),\n        checksum: 0x{:08x},\n    }},",
-            host_checksum(bytes)
+            "    Scene {{\n        name: \"{name}\",\n        list: include_bytes!(\"../scenes/{name}.scvl\"),\n        checksum: 0x{sum:08x},\n    }},",
         )
         .unwrap();
     }
     writeln!(
         s,
         "/// Edge slots for the largest polygon of any scene.\npub const EDGE_SLOTS: usize = {slots};\n"
+    )
+    .unwrap();
+    writeln!(
+        s,
+        "/// Trapezoid slots of the 3D layer: the most of any scene.\npub const TRAPEZOID_SLOTS: usize = {};\n\n\
+         /// Face slots: the most `poly3`s drawn in any scene.\npub const FACE_SLOTS: usize = {};\n\n\
+         /// Active-list entries: the most trapezoids on one row of any scene.\npub const ACTIVE_SLOTS: usize = {};\n\n\
+         /// Rows of the scan-line index: the tallest 3D scene.\npub const INDEX_ROWS: usize = {};\n\n\
+         /// Runs of one row: the widest 3D scene.\npub const RUN_SLOTS: usize = {};\n",
+        m.trapezoids.max(1),
+        m.faces.max(1),
+        m.active.max(1),
+        m.rows.max(1),
+        m.runs.max(1),
     )
     .unwrap();
     s += "/// The scenes, in the order the image renders them.\npub const SCENES: &[Scene] = &[\n";

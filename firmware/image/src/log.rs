@@ -2,7 +2,7 @@
 //! frames with the `defmt` feature. The lines starting `frame` and
 //! `checksum` are read by `measure.sh` and by CI.
 
-use crate::Cost;
+use crate::{Cost, Stages};
 use core::convert::Infallible;
 use scanvert::controller::{RenderError, Stats};
 use scanvert::display_list::Error;
@@ -42,8 +42,8 @@ pub fn calibration(expected: u64, ticks: u64, measured: u64, ok: bool) {
 pub fn frame(name: &str, w: u16, h: u16, s: &Stats, cost: Cost) {
     #[cfg(not(feature = "defmt"))]
     println!(
-        "frame {name} {w}x{h} commands={} polygons={} clears={} spans={} pixels={} ticks={} instructions={}",
-        s.commands, s.polygons, s.clears, s.spans, s.pixels, cost.ticks, cost.instructions
+        "frame {name} {w}x{h} commands={} polygons={} clears={} spans={} pixels={} poly3={} trapezoids={} ticks={} instructions={}",
+        s.commands, s.polygons, s.clears, s.spans, s.pixels, s.poly3, s.trapezoids, cost.ticks, cost.instructions
     );
     #[cfg(feature = "defmt")]
     defmt::info!(
@@ -57,8 +57,51 @@ pub fn frame(name: &str, w: u16, h: u16, s: &Stats, cost: Cost) {
     );
 }
 
+/// The instructions of each stage of a 3D layer, and what the
+/// visible-surface stage did.
+pub fn stages(name: &str, s: &Stages) {
+    let v = &s.visible;
+    #[cfg(not(feature = "defmt"))]
+    println!(
+        "stages {name} faces={} trapezoids={} cut={} check={} resolve={} max_active={} hidden={} empty={} single={} multiple={} intersecting={} splits={} exact={} runs={}",
+        s.faces, s.trapezoids, s.cut, s.check, s.resolve, v.max_active, v.hidden, v.empty, v.single,
+        v.multiple, v.intersecting, v.splits, v.exact, v.runs
+    );
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "stages {=str} faces={=u32} trapezoids={=u32} cut={=u64} check={=u64} resolve={=u64} {}",
+        name,
+        s.faces,
+        s.trapezoids,
+        s.cut,
+        s.check,
+        s.resolve,
+        v
+    );
+}
+
+/// A stage of a 3D layer that failed.
+pub fn stage_error(name: &str, what: &str) {
+    #[cfg(not(feature = "defmt"))]
+    println!("ERROR {name}: {what}");
+    #[cfg(feature = "defmt")]
+    defmt::error!("ERROR {=str}: {=str}", name, what);
+}
+
+/// A 3D layer rendered stage by stage whose checksum is not the host's.
+pub fn stage_mismatch(name: &str, got: u32, expected: u32) {
+    #[cfg(not(feature = "defmt"))]
+    println!("MISMATCH {name} by stages: {got:08x}, the host's is {expected:08x}");
+    #[cfg(feature = "defmt")]
+    defmt::error!(
+        "MISMATCH {=str} by stages: {=u32:08x}, the host's is {=u32:08x}",
+        name,
+        got,
+        expected
+    );
+}
+
 /// One frame's checksum, in the form `scanvert checksum` prints.
-#[cfg(not(feature = "discard"))]
 pub fn checksum(name: &str, sum: u32) {
     #[cfg(not(feature = "defmt"))]
     println!("checksum {name} {sum:08x}");
@@ -67,7 +110,6 @@ pub fn checksum(name: &str, sum: u32) {
 }
 
 /// A frame whose checksum is not the host's.
-#[cfg(not(feature = "discard"))]
 pub fn mismatch(name: &str, expected: u32) {
     #[cfg(not(feature = "defmt"))]
     println!("MISMATCH {name}: the host's checksum is {expected:08x}");

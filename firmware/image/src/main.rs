@@ -3,7 +3,9 @@
 //! Renders every display list of [`scenes::SCENES`] (embedded with
 //! `include_bytes!`) into a 512 × 256 RGB565 frame buffer, and for each
 //! frame prints its statistics, the instructions the render took, and
-//! the frame's checksum, through semihosting. Each checksum is compared
+//! the frame's checksum, through semihosting. A list with `poly3`s is
+//! also rendered stage by stage (cut into trapezoids, then resolved and
+//! decoded), each stage counted on its own. Each checksum is compared
 //! with the host's render of the same list (the table in `scenes.rs`,
 //! which a host test keeps current). The image exits QEMU with status 0
 //! when every frame matches, 1 on a mismatch or a fault, and 101 on a
@@ -37,14 +39,19 @@ mod scenes;
 use core::convert::Infallible;
 #[cfg(not(any(feature = "discard", feature = "packed")))]
 use scanvert::checksum::frame_checksum;
-use scanvert::controller::Controller;
-use scanvert::display_list::DisplayList;
+use scanvert::clip::ClipRect;
+use scanvert::controller::{front_facing, Controller, Storage3d, DEFAULT_COLOR};
+use scanvert::display_list::{Command, DisplayList};
 use scanvert::edge::Edge;
 #[cfg(not(any(feature = "discard", feature = "packed")))]
 use scanvert::framebuffer::FrameBuffer;
 use scanvert::pixelcolor::{Rgb565, RgbColor};
 use scanvert::port::SpanTarget;
+use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
+use scanvert::segment::{Face, Segment, StoreMemory, TrapezoidStore};
+use scanvert::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::visible::{self, Active, Cover, Resolve, VisibleStats, Workspace};
 
 #[cfg(feature = "discard")]
 mod discard;
@@ -98,6 +105,63 @@ pub struct Cost {
     pub instructions: u64,
 }
 
+/// The memory of the 3D layer, sized for the scenes by `scenes.rs`:
+/// about 60 KiB, in `.bss`.
+pub struct Memory3d {
+    trapezoids: [Trapezoid; scenes::TRAPEZOID_SLOTS],
+    faces: [Face; scenes::FACE_SLOTS],
+    segments: [Segment; 1],
+    rows: [u16; scenes::INDEX_ROWS],
+    edges: [EdgeSlot; scenes::EDGE_SLOTS],
+    active: [Active; scenes::ACTIVE_SLOTS],
+    cover: [Cover; scenes::ACTIVE_SLOTS],
+    runs: [Run; scenes::RUN_SLOTS],
+}
+
+impl Memory3d {
+    /// Every slot unused.
+    pub const EMPTY: Memory3d = Memory3d {
+        trapezoids: [Trapezoid::EMPTY; scenes::TRAPEZOID_SLOTS],
+        faces: [Face::EMPTY; scenes::FACE_SLOTS],
+        segments: [Segment::EMPTY; 1],
+        rows: [0; scenes::INDEX_ROWS],
+        edges: [EdgeSlot::EMPTY; scenes::EDGE_SLOTS],
+        active: [Active::EMPTY; scenes::ACTIVE_SLOTS],
+        cover: [Cover::EMPTY; scenes::ACTIVE_SLOTS],
+        runs: [Run::EMPTY; scenes::RUN_SLOTS],
+    };
+
+    /// The store's memory, the active list, the cover array and the runs.
+    fn parts(&mut self) -> (StoreMemory<'_>, &mut [Active], &mut [Cover], &mut [Run]) {
+        let store = StoreMemory {
+            trapezoids: &mut self.trapezoids,
+            faces: &mut self.faces,
+            segments: &mut self.segments,
+            rows: &mut self.rows,
+            edges: &mut self.edges,
+        };
+        (store, &mut self.active, &mut self.cover, &mut self.runs)
+    }
+}
+
+/// Instructions of the stages of a 3D layer.
+#[derive(Clone, Copy, Debug)]
+pub struct Stages {
+    /// `poly3`s drawn (front-facing).
+    pub faces: u32,
+    /// Trapezoids they were cut into.
+    pub trapezoids: u32,
+    /// Cutting every drawn `poly3` into trapezoids in the store (plane,
+    /// edges, trapezoids, the scan-line index).
+    pub cut: u64,
+    /// `Workspace::check`: the most trapezoids on a row.
+    pub check: u64,
+    /// Resolving the rows and decoding the runs into the frame.
+    pub resolve: u64,
+    /// What the visible-surface stage did.
+    pub visible: VisibleStats,
+}
+
 /// Loop length for the check of the counter's factor: about 4 million
 /// instructions.
 const CALIBRATION_LOOP: u32 = 1_999_999;
@@ -128,14 +192,13 @@ fn calibrate(counter: &platform::Counter) -> bool {
 fn render<T>(
     name: &str,
     list: &DisplayList<'_>,
-    edges: &mut [Edge],
+    mut controller: Controller<'_>,
     target: &mut T,
     counter: &platform::Counter,
 ) -> Option<()>
 where
     T: SpanTarget<Color = Pixel, Error = Infallible>,
 {
-    let mut controller = Controller::new(Rasterizer::new(edges));
     let t0 = counter.ticks();
     let rendered = controller.render(list, target);
     let ticks = counter.ticks() - t0;
@@ -155,6 +218,159 @@ where
     }
 }
 
+/// Renders the 3D layer of `list` into `target` stage by stage, as the
+/// controller does (`poly3`s with the colour and clip in force, culled by
+/// `front_facing`, cut into one segment of the store, then resolved by
+/// crossing points and decoded with the background left as it is),
+/// counting each stage, and logs the counts. `None` (logged) if a stage
+/// failed.
+///
+/// Never inlined, for the reason given at [`render`].
+#[inline(never)]
+fn stages<T>(
+    name: &str,
+    list: &DisplayList<'_>,
+    mem: &mut Memory3d,
+    target: &mut T,
+    counter: &platform::Counter,
+) -> Option<()>
+where
+    T: SpanTarget<Color = Pixel, Error = Infallible>,
+{
+    let (tw, th) = target.size();
+    let (w, h) = (list.width().min(tw), list.height().min(th));
+    let (store_memory, active, cover, runs) = mem.parts();
+    let t0 = counter.ticks();
+    let Ok(mut store) = TrapezoidStore::new(store_memory, w, h) else {
+        log::stage_error(name, "the 3D store does not fit the frame");
+        return None;
+    };
+    let mut clip = ClipRect::full(w, h);
+    let mut color = DEFAULT_COLOR;
+    let (mut faces, mut trapezoids) = (0u32, 0u32);
+    for (_, cmd) in list.commands() {
+        match cmd {
+            Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
+            Command::Color(c) => color = c,
+            Command::Poly3(v) if front_facing(&v) => {
+                let Ok(n) = store.add_polygon(0, v.iter(), color, &clip) else {
+                    log::stage_error(name, "the 3D store is too small");
+                    return None;
+                };
+                faces += 1;
+                trapezoids += n;
+            }
+            _ => {}
+        }
+    }
+    let t1 = counter.ticks();
+    let mut ws = Workspace::new(active, cover, runs);
+    if ws.check(&store).is_err() {
+        log::stage_error(name, "the active list is too small");
+        return None;
+    }
+    let t2 = counter.ticks();
+    let drawn = visible::draw(&store, &mut ws, Resolve::Crossing, target, None);
+    let t3 = counter.ticks();
+    let Ok((visible, _)) = drawn else {
+        log::stage_error(name, "resolving failed");
+        return None;
+    };
+    let per = platform::INSTRUCTIONS_PER_TICK;
+    log::stages(
+        name,
+        &Stages {
+            faces,
+            trapezoids,
+            cut: (t1 - t0) * per,
+            check: (t2 - t1) * per,
+            resolve: (t3 - t2) * per,
+            visible,
+        },
+    );
+    Some(())
+}
+
+/// A frame the image renders into: its checksum, when it keeps pixels.
+trait Checked: SpanTarget<Color = Pixel, Error = Infallible> {
+    fn checksum(&self) -> Option<u32>;
+}
+
+#[cfg(feature = "discard")]
+impl Checked for discard::Discard {
+    fn checksum(&self) -> Option<u32> {
+        None
+    }
+}
+
+#[cfg(all(feature = "packed", not(feature = "discard")))]
+impl Checked for packed::PackedFrame<'_> {
+    fn checksum(&self) -> Option<u32> {
+        Some(packed::PackedFrame::checksum(self))
+    }
+}
+
+#[cfg(not(any(feature = "discard", feature = "packed")))]
+impl Checked for FrameBuffer<'_, Pixel> {
+    fn checksum(&self) -> Option<u32> {
+        Some(frame_checksum(self.pixels()))
+    }
+}
+
+/// Renders `list` into `target` (which starts black) with the
+/// controller, and logs and compares the checksum; for a list with
+/// `poly3`s, first renders it stage by stage into the same target and
+/// compares that frame's checksum too. `true` when all match.
+fn render_and_check<T: Checked>(
+    scene: &Scene,
+    list: &DisplayList<'_>,
+    edges: &mut [Edge],
+    mem: &mut Memory3d,
+    target: &mut T,
+    counter: &platform::Counter,
+) -> bool {
+    let three = list.commands().any(|(_, c)| matches!(c, Command::Poly3(_)));
+    if three {
+        if stages(scene.name, list, mem, target, counter).is_none() {
+            return false;
+        }
+        if let Some(sum) = target.checksum() {
+            if sum != scene.checksum {
+                log::stage_mismatch(scene.name, sum, scene.checksum);
+                return false;
+            }
+        }
+        let _ = target.clear(BLACK);
+    }
+    let rendered = if three {
+        let (store, active, cover, runs) = mem.parts();
+        let storage = Storage3d {
+            store,
+            active,
+            cover,
+            runs,
+            resolve: Resolve::Crossing,
+        };
+        let controller = Controller::new(Rasterizer::new(edges)).with_3d(storage);
+        render(scene.name, list, controller, target, counter)
+    } else {
+        let controller = Controller::new(Rasterizer::new(edges));
+        render(scene.name, list, controller, target, counter)
+    };
+    if rendered.is_none() {
+        return false;
+    }
+    let Some(sum) = target.checksum() else {
+        return true;
+    };
+    log::checksum(scene.name, sum);
+    if sum != scene.checksum {
+        log::mismatch(scene.name, scene.checksum);
+        return false;
+    }
+    true
+}
+
 /// Renders one scene, times it, and compares its checksum. `true` when it
 /// matches the host's.
 ///
@@ -165,6 +381,7 @@ fn frame(
     scene: &Scene,
     pixels: &mut [Cell],
     edges: &mut [Edge],
+    mem: &mut Memory3d,
     counter: &platform::Counter,
 ) -> bool {
     let list = match DisplayList::new_checked(scene.list) {
@@ -180,7 +397,7 @@ fn frame(
     {
         let _ = pixels;
         let mut target = discard::Discard::new(w, h);
-        render(scene.name, &list, edges, &mut target, counter).is_some()
+        render_and_check(scene, &list, edges, mem, &mut target, counter)
     }
 
     #[cfg(all(feature = "packed", not(feature = "discard")))]
@@ -196,16 +413,7 @@ fn frame(
             log::too_big(scene.name, w, h);
             return false;
         };
-        if render(scene.name, &list, edges, &mut frame, counter).is_none() {
-            return false;
-        }
-        let checksum = frame.checksum();
-        log::checksum(scene.name, checksum);
-        if checksum != scene.checksum {
-            log::mismatch(scene.name, scene.checksum);
-            return false;
-        }
-        true
+        render_and_check(scene, &list, edges, mem, &mut frame, counter)
     }
 
     #[cfg(not(any(feature = "discard", feature = "packed")))]
@@ -219,16 +427,7 @@ fn frame(
             log::too_big(scene.name, w, h);
             return false;
         };
-        if render(scene.name, &list, edges, &mut fb, counter).is_none() {
-            return false;
-        }
-        let checksum = frame_checksum(fb.pixels());
-        log::checksum(scene.name, checksum);
-        if checksum != scene.checksum {
-            log::mismatch(scene.name, scene.checksum);
-            return false;
-        }
-        true
+        render_and_check(scene, &list, edges, mem, &mut fb, counter)
     }
 }
 
@@ -248,10 +447,14 @@ pub fn run() -> bool {
         log::fault("the frame memory is taken");
         return false;
     };
+    let Some(mem) = platform::memory_3d() else {
+        log::fault("the 3D memory is taken");
+        return false;
+    };
     let mut edges = [Edge::EMPTY; scenes::EDGE_SLOTS];
     let mut matched = 0;
     for scene in scenes::SCENES {
-        if frame(scene, pixels, &mut edges, &counter) {
+        if frame(scene, pixels, &mut edges, mem, &counter) {
             matched += 1;
         } else {
             ok = false;

@@ -47,3 +47,8 @@ pub fn known_loop(n: u32) -> u64 {
 pub fn frame_memory() -> Option<&'static mut [crate::Cell; crate::CELLS]> {
     riscv::singleton!(: [crate::Cell; crate::CELLS] = [crate::BLACK_CELL; crate::CELLS])
 }
+
+/// The memory of the 3D layer, in `.bss`, handed out once.
+pub fn memory_3d() -> Option<&'static mut crate::Memory3d> {
+    riscv::singleton!(: crate::Memory3d = crate::Memory3d::EMPTY)
+}

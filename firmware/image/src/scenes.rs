@@ -10,6 +10,21 @@ use crate::Scene;
 /// Edge slots for the largest polygon of any scene.
 pub const EDGE_SLOTS: usize = 48;
 
+/// Trapezoid slots of the 3D layer: the most of any scene.
+pub const TRAPEZOID_SLOTS: usize = 375;
+
+/// Face slots: the most `poly3`s drawn in any scene.
+pub const FACE_SLOTS: usize = 170;
+
+/// Active-list entries: the most trapezoids on one row of any scene.
+pub const ACTIVE_SLOTS: usize = 40;
+
+/// Rows of the scan-line index: the tallest 3D scene.
+pub const INDEX_ROWS: usize = 256;
+
+/// Runs of one row: the widest 3D scene.
+pub const RUN_SLOTS: usize = 512;
+
 /// The scenes, in the order the image renders them.
 pub const SCENES: &[Scene] = &[
     Scene {
@@ -41,5 +56,15 @@ pub const SCENES: &[Scene] = &[
         name: "w5",
         list: include_bytes!("../scenes/w5.scvl"),
         checksum: 0x2e14dca5,
+    },
+    Scene {
+        name: "poly3-layered",
+        list: include_bytes!("../scenes/poly3-layered.scvl"),
+        checksum: 0xadaf071c,
+    },
+    Scene {
+        name: "poly3-tilted",
+        list: include_bytes!("../scenes/poly3-tilted.scvl"),
+        checksum: 0x48a997ee,
     },
 ];

@@ -20,7 +20,7 @@
 //!
 //! The widths of every quantity are in [`crate::fixed`].
 
-use crate::fixed::{ceil_div_i64, ceil_px, Vertex, HALF, ONE};
+use crate::fixed::{ceil_div_i32, ceil_div_i64, ceil_px, Vertex, HALF, ONE};
 
 /// How the scan converter steps one edge down the rows.
 ///
@@ -111,13 +111,25 @@ impl Edge {
         let (dx, dy) = (x1 - x0, y1 - y0);
         // (x − ½)·dy at the first row's centre, exactly.
         let yc = top * ONE + HALF;
+        // |num| < 2³³ (see `fixed`); on a frame of ordinary size it fits
+        // in `i32`, and a 32-bit division is one instruction on a 32-bit
+        // core where a 64-bit one is a library call.
         let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
-        let x = ceil_div_i64(num, dy as i64);
-        let err = (x * dy as i64 - num) as i32;
+        let (x, err) = match i32::try_from(num) {
+            Ok(n) => {
+                let x = ceil_div_i32(n, dy);
+                // 0 ≤ x·dy − n < dy: the product is within dy of n.
+                (x, x.wrapping_mul(dy).wrapping_sub(n))
+            }
+            Err(_) => {
+                let x = ceil_div_i64(num, dy as i64);
+                (x as i32, (x * dy as i64 - num) as i32)
+            }
+        };
         let step = (ONE * dx).div_euclid(dy);
         let rem = (ONE * dx).rem_euclid(dy);
         Some(Edge {
-            x: x as i32,
+            x,
             err,
             step,
             rem,

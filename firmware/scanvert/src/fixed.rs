@@ -117,6 +117,20 @@ pub(crate) const fn ceil_div_i64(n: i64, d: i64) -> i64 {
     }
 }
 
+/// `ceil(n / d)` for `d > 0`, exact for every `n`.
+#[inline]
+pub(crate) const fn ceil_div_i32(n: i32, d: i32) -> i32 {
+    // Truncating division: the quotient is already the ceiling for n ≤ 0
+    // or an exact division. |q| ≤ |n| and d ≥ 1, so nothing overflows
+    // (n = i32::MIN with d = 1 divides exactly).
+    let q = n.wrapping_div(d);
+    if n > 0 && q.wrapping_mul(d) != n {
+        q + 1
+    } else {
+        q
+    }
+}
+
 /// `ceil(units / 16)`: the whole pixel index at or above a unit position.
 #[inline(always)]
 pub(crate) const fn ceil_px(units: i32) -> i32 {
@@ -132,6 +146,32 @@ mod tests {
         for u in -40_000..40_000 {
             let expect = ceil_div_i64(u as i64, ONE as i64) as i32;
             assert_eq!(ceil_px(u), expect, "u = {u}");
+        }
+    }
+
+    #[test]
+    fn ceil_div_i32_matches_i64() {
+        let ns = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65536,
+            -17,
+            -16,
+            -1,
+            0,
+            1,
+            15,
+            16,
+            17,
+            65535,
+            i32::MAX,
+        ];
+        let ds = [1, 2, 3, 7, 16, 65535, 65536, i32::MAX];
+        for &n in &ns {
+            for &d in &ds {
+                let want = ceil_div_i64(n as i64, d as i64);
+                assert_eq!(ceil_div_i32(n, d) as i64, want, "{n} / {d}");
+            }
         }
     }
 

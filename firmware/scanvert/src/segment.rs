@@ -18,7 +18,7 @@
 //! | faces | [`Face`], 64 bytes | exact plane, colour, tie key | 65535 |
 //! | segments | [`Segment`], 28 bytes | chains and counters | 65535 |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
-//! | edge slots | [`EdgeSlot`], 40 bytes | scratch while a polygon is cut | its vertex count |
+//! | edge slots | [`EdgeSlot`], 32 bytes | scratch while a polygon is cut | its vertex count |
 //!
 //! The scan-line index is one `u16` per row: the head of a doubly linked
 //! list, threaded through the trapezoids, of the trapezoids whose top row

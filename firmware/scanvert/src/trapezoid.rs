@@ -499,15 +499,17 @@ impl Ends {
     }
 }
 
-/// A trapezoid being built: its left edge holds it, with its right edge.
+/// A trapezoid being built: its left edge holds it, with its right edge
+/// and its first row (a row of the clip, so within `0..4096`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Open {
     right: Ends,
     right_id: u16,
-    start: i32,
+    start: i16,
 }
 
-/// Scratch storage for one edge while a polygon is cut (40 bytes). The
+/// Scratch storage for one edge while a polygon is cut (32 bytes, so
+/// that moving one is a few word loads and stores). The
 /// caller owns it, as the edge storage of a
 /// [`Rasterizer`](crate::scan::Rasterizer): a polygon of `n` vertices needs
 /// at most `n` slots.
@@ -684,7 +686,8 @@ impl<'s> Polygon<'s> {
         }
         let mut close = |l: &Ends, op: &Open, end: i32| -> Result<(), E> {
             let r = &op.right;
-            if *l == *r || op.start >= end {
+            let start = op.start as i32;
+            if *l == *r || start >= end {
                 return Ok(());
             }
             let rmax = r.x0.max(r.x1) as i32;
@@ -692,7 +695,7 @@ impl<'s> Polygon<'s> {
             if ceil_px(rmax - HALF) <= cols.0 || ceil_px(lmin - HALF) >= cols.1 {
                 return Ok(());
             }
-            let rows = (op.start, end);
+            let rows = (start, end);
             if let (Some(le), Some(re)) =
                 (Edge::new(l.a(), l.b(), rows), Edge::new(r.a(), r.b(), rows))
             {
@@ -714,7 +717,7 @@ impl<'s> Polygon<'s> {
                 }
             }
             while next < n && slots[next].top <= y {
-                slots.swap(active, next);
+                swap(slots, active, next);
                 slots[active].open = None;
                 active += 1;
                 next += 1;
@@ -758,7 +761,8 @@ impl<'s> Polygon<'s> {
                     pair[0].open = Some(Open {
                         right: pair[1].ends,
                         right_id: pair[1].id,
-                        start: y,
+                        // y is a row of the clip: 0 ≤ y < 4096.
+                        start: y as i16,
                     });
                 }
             }
@@ -770,13 +774,27 @@ impl<'s> Polygon<'s> {
                         close(&slots[i].ends, &op, y)?;
                     }
                     active -= 1;
-                    slots.swap(i, active);
+                    swap(slots, i, active);
                 } else {
                     i += 1;
                 }
             }
         }
         Ok(count)
+    }
+}
+
+/// Swaps slots `a` and `b` as two distinct places (`slice::swap` allows
+/// for them being one, and calls a library `memmove` on 32-bit targets).
+#[inline(always)]
+fn swap(slots: &mut [EdgeSlot], a: usize, b: usize) {
+    let (lo, hi) = (a.min(b), a.max(b));
+    if lo == hi {
+        return;
+    }
+    let (head, tail) = slots.split_at_mut(hi);
+    if let (Some(x), Some(y)) = (head.get_mut(lo), tail.first_mut()) {
+        core::mem::swap(x, y);
     }
 }
 
@@ -798,7 +816,7 @@ fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
                 .then_with(|| cmp_x(&e[j - 1], &e[j], last))
                 .is_gt()
         {
-            e.swap(j - 1, j);
+            swap(e, j - 1, j);
             j -= 1;
         }
     }
@@ -943,6 +961,11 @@ mod tests {
                 assert_eq!(hit[(j * W + i) as usize], covers(&bow, i, j) as u8);
             }
         }
+    }
+
+    #[test]
+    fn an_edge_slot_is_32_bytes() {
+        assert_eq!(core::mem::size_of::<EdgeSlot>(), 32);
     }
 
     #[test]

@@ -10,15 +10,24 @@
 //! 3. The active list is sorted by `l` with an insertion sort over an
 //!    index array, which costs one compare per entry when the order is the
 //!    last row's (the usual case).
-//! 4. A sweep cuts the row at every `l` and `r` into spans, and each span
-//!    is classified by the trapezoids covering it:
-//!    * **empty**: the background;
+//! 4. A sweep from left to right keeps a *front*: a covering trapezoid
+//!    known to be nearest from the sweep's position to its own `r`,
+//!    because it is in front of every other covering trapezoid at both ends
+//!    of their common pixels. A trapezoid that starts behind the front
+//!    costs two depth compares (and is *hidden*, left out, when the front
+//!    outlasts it); one that ends behind it costs nothing. A new front is
+//!    sought where the front ends or a trapezoid starts in front of it, and
+//!    what is found there is counted by kind:
+//!    * **empty**: no trapezoid, the background up to the next `l`;
 //!    * **single**: one trapezoid;
-//!    * **multiple**: several, and the same one is nearest at both ends:
-//!      it is nearest on the whole span;
-//!    * **intersecting**: another is nearest at one end; the span is
-//!      subdivided ([`Resolve`]) until every part is of the kinds above.
-//! 5. The row's runs go to the caller ([`rle`](crate::rle) format).
+//!    * **multiple**: several, and the nearest one is the front;
+//!    * **intersecting**: several, another crosses the nearest before its
+//!      end, so no front holds: the span up to the next `l` or `r` is
+//!      resolved from its two ends and, if they differ, subdivided
+//!      ([`Resolve`]) until every part has the same nearest trapezoid at
+//!      both ends (or, if they agree, counted as *multiple*).
+//! 5. The row's runs go to the caller ([`rle`](crate::rle) format), or
+//!    with [`draw`] straight to the frame-buffer port as spans.
 //! 6. Trapezoids that end drop out; the rest step down a row.
 //!
 //! Per row the work is proportional to the edges crossed (plus the
@@ -47,10 +56,18 @@
 //! [`Resolve`] modes are therefore exact for planar faces; they differ in
 //! speed.
 //!
+//! The front rests on the same argument, pair by pair: two trapezoids both
+//! cover the pixels from the later `l` to the earlier `r`, so a front that
+//! is nearer than a trapezoid at the sweep's position and at the last of
+//! their common pixels is nearer on all of them. It is checked so against
+//! every trapezoid covering the position when it is found, and against
+//! every trapezoid that starts while it holds, so it is the nearest on
+//! every pixel it is given. A trapezoid it hides entirely never shows.
+//!
 //! # Memory
 //!
 //! An [`Active`] entry is 116 bytes (two edges, depth, and one element
-//! each of the sorted and free arrays) and a [`Cover`] 16; the list needs
+//! each of the sorted and free arrays) and a [`Cover`] 20; the list needs
 //! as many of each as trapezoids overlap one
 //! row ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
@@ -65,14 +82,22 @@
 //! 512 × 256 scenes below. A z-buffer at the same depth precision misses
 //! ties and near-ties (1 pixel in 131 072 on `dense`).
 //!
-//! Cost on the Cortex-M4 (QEMU `mps2-an386` with `-icount shift=0` and
-//! the firmware image's SysTick counter, in a variant of the image that
-//! renders these scenes' lists through the store, the workspace and a
-//! z-buffer), instructions per 512 × 256 frame into an
-//! RGB565 frame buffer, every pixel written (background filled), against a
-//! plain z-buffer at the same precision (32-bit depth per pixel, the same
-//! fixed-point planes, the exact rasteriser's spans, runs of passing pixels
-//! written as spans; its depth clear included):
+//! Cost on the Cortex-M4: the firmware image renders `flat` and `tilted`
+//! as `poly3-layered` and `poly3-tilted` (one colour per face, the
+//! background left as it is) and counts the cut and the resolution
+//! separately; `firmware/image/measure.sh` publishes the counts in the
+//! on-target section of `docs/performance.md`. There, resolving and
+//! decoding take about 2.1 M instructions a frame on `flat` and 2.5 M on
+//! `tilted`, and cutting 0.48 M and 0.69 M.
+//!
+//! Before the sweep kept a front (it classified a span between every two
+//! neighbouring `l` and `r`: about 9 500 spans a `flat` row set against
+//! 5 500 fronts now), an earlier variant of the image measured all four
+//! scenes, every pixel written (background filled), against a plain
+//! z-buffer at the same precision (32-bit depth per pixel, the same
+//! fixed-point planes, the exact rasteriser's spans, runs of passing
+//! pixels written as spans; its depth clear included), in instructions
+//! per 512 × 256 RGB565 frame:
 //!
 //! | scene | faces drawn | trapezoids | cut (once per change) | resolve + decode, crossing | bisection | z-buffer |
 //! |---|---|---|---|---|---|---|
@@ -81,17 +106,13 @@
 //! | bars: a 10 × 7 map and 20 bars | 130 | 386 | 0.80 M | 1.87 M | 1.87 M | 2.68 M |
 //! | dense: 170 large triangles through each other (depth complexity about 40) | 170 | 322 | 0.79 M | 23.4 M | 23.7 M | 46.0 M |
 //!
-//! At 168 M instructions/s that is 64, 57, 90 and 7 frames/s when only the
-//! visible surfaces are recomputed (52, 45, 63 and 7 when every polygon is
-//! cut again too), against 39, 43, 63 and 4 for the z-buffer, with 512 KiB
-//! less memory (the whole 3D layer of `bars` takes about 54 KiB). Of a
-//! `flat` frame, about a fifth is stepping and sorting the active list,
-//! two fifths the sweep's bookkeeping (about 9 500 spans; 1 000
-//! trapezoids are left out as hidden), a fifth the depth compares and the
-//! runs, and a sixth the decoder. The two modes
-//! differ only where planes intersect: on `tilted`, 246 intersecting spans
-//! take 709 subdivisions by bisection and 246 at the crossing point; on
-//! `dense`, 951 take 2 028 and 974. The crossing point is the default.
+//! At 168 M instructions/s that was 64, 57, 90 and 7 frames/s when only
+//! the visible surfaces are recomputed, against 39, 43, 63 and 4 for the
+//! z-buffer, with 512 KiB less memory (the whole 3D layer of `bars` takes
+//! about 54 KiB). The two modes differ only where planes intersect: on
+//! `tilted`, 246 intersecting spans took 709 subdivisions by bisection
+//! and 246 at the crossing point; on `dense`, 951 took 2 028 and 974. The
+//! crossing point is the default.
 //!
 //! `cargo run --release -p host-tests --example visible_modes` measures
 //! the same scenes on the host (time, error, and the z-buffer), and writes
@@ -101,11 +122,14 @@
 
 use crate::color::ListColor;
 use crate::edge::Edge;
+use crate::fixed::ceil_px;
+use crate::port::Span;
 use crate::port::SpanTarget;
-use crate::rle::{decode_row, Run, RunWriter, RunsFull};
+use crate::rle::{DecodeCounts, Run, RunWriter, RunsFull};
 use crate::segment::TrapezoidStore;
 use crate::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How an intersecting span is subdivided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -168,9 +192,9 @@ struct Hot {
     slot: u16,
 }
 
-/// One entry of the cover array (20 bytes): a trapezoid covering the
-/// current span. The caller provides the array, as many as the active
-/// list, filled with [`Cover::EMPTY`].
+/// One entry of the cover array (20 bytes): a trapezoid that has started
+/// on the row and may still show. The caller provides the array, as many
+/// as the active list, filled with [`Cover::EMPTY`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Cover {
     r: i32,
@@ -223,19 +247,24 @@ impl Entry {
         }
     }
 
-    /// The row's pixels and depth, for the sorted array.
+    /// The row's pixels `l..r`, cut to the columns, and depth. With no
+    /// pixel, `l` is `i32::MAX`: sorted last, never entered (`x1` is the
+    /// width at most).
     #[inline(always)]
-    fn hot(&mut self, slot: u16) -> Hot {
-        self.left.load_pixel();
-        self.right.load_pixel();
-        let l = self.left.pixel().max(self.x0 as i32);
-        let r = self.right.pixel().min(self.x1 as i32);
+    fn pixels(&self) -> (i32, i32, i32) {
+        let l = ceil_px(self.left.units()).max(self.x0 as i32);
+        let r = ceil_px(self.right.units()).min(self.x1 as i32);
+        (if l < r { l } else { i32::MAX }, r, self.z)
+    }
+
+    /// The row's element of the sorted array.
+    #[inline(always)]
+    fn hot(&self, slot: u16) -> Hot {
+        let (l, r, z) = self.pixels();
         Hot {
-            // No pixel: sorted last, never entered (x1 is the width at
-            // most).
-            l: if l < r { l } else { i32::MAX },
+            l,
             r,
-            z: self.z,
+            z,
             zx: self.zx,
             color: self.color,
             face: self.face,
@@ -378,25 +407,26 @@ impl<'a> Workspace<'a> {
             });
         }
         let cap = self.capacity();
+        // The last rows of the trapezoids overlapping the row, as a binary
+        // min-heap in `cover[..k].r`: O(log k) per trapezoid, nothing per
+        // row where none starts or ends.
+        let heap = &mut self.cover[..cap];
         let mut k = 0usize;
         let mut most = 0usize;
         for y in 0..store.height() {
-            let mut q = 0;
-            while q < k {
-                if self.cover[q].r <= y as i32 {
-                    k -= 1;
-                    self.cover[q].r = self.cover[k].r;
-                } else {
-                    q += 1;
-                }
+            while k > 0 && heap[0].r <= y as i32 {
+                k -= 1;
+                heap[0].r = heap[k].r;
+                sift_down(&mut heap[..k]);
             }
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
                 if k >= cap {
                     return Err(VisibleError::Active { capacity: cap });
                 }
-                self.cover[k].r = tr.end();
+                heap[k].r = tr.end();
                 k += 1;
+                sift_up(&mut heap[..k]);
                 t = tr.next_row;
             }
             most = most.max(k);
@@ -410,88 +440,266 @@ impl<'a> Workspace<'a> {
         &mut self,
         store: &TrapezoidStore<'_>,
         mode: Resolve,
-        mut sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
+        sink: impl FnMut(u16, &[Run]) -> Result<(), E>,
     ) -> Result<VisibleStats, VisibleError<E>> {
-        let width = store.width() as i32;
-        if self.runs.len() < width as usize {
+        self.check_runs(store)?;
+        let out = ToSink {
+            out: RunWriter::new(self.runs),
+            sink,
+            y: 0,
+        };
+        resolve_into(self.active, self.cover, store, mode, out).map(|(stats, _)| stats)
+    }
+
+    /// `Err` when a row of the store's width does not fit the run buffer.
+    fn check_runs<E>(&self, store: &TrapezoidStore<'_>) -> Result<(), VisibleError<E>> {
+        if self.runs.len() < store.width() as usize {
             return Err(VisibleError::Runs {
                 capacity: self.runs.len(),
             });
         }
-        let cap = self.capacity();
-        let act = &mut self.active[..cap];
-        let cover = &mut self.cover[..cap];
-        for (i, a) in act.iter_mut().enumerate() {
-            a.free = i as u16;
+        Ok(())
+    }
+}
+
+/// Moves the last element of the min-heap `h` (by `r`) up to its place.
+fn sift_up(h: &mut [Cover]) {
+    let Some(mut i) = h.len().checked_sub(1) else {
+        return;
+    };
+    let r = h[i].r;
+    while i > 0 {
+        let parent = (i - 1) / 2;
+        if h[parent].r <= r {
+            break;
         }
-        let mut cx = Ctx {
-            store,
-            out: RunWriter::new(self.runs),
-            ink: Run::BACKGROUND,
-            len: 0,
-            color: BACKGROUND,
-            mode,
-            y: 0,
-            stats: VisibleStats::default(),
+        h[i].r = h[parent].r;
+        i = parent;
+    }
+    h[i].r = r;
+}
+
+/// Moves the first element of the min-heap `h` (by `r`) down to its place.
+fn sift_down(h: &mut [Cover]) {
+    let Some(r) = h.first().map(|c| c.r) else {
+        return;
+    };
+    let mut i = 0;
+    loop {
+        let mut child = 2 * i + 1;
+        let Some(left) = h.get(child) else { break };
+        if h.get(child + 1).is_some_and(|c| c.r < left.r) {
+            child += 1;
+        }
+        if r <= h[child].r {
+            break;
+        }
+        h[i].r = h[child].r;
+        i = child;
+    }
+    h[i].r = r;
+}
+
+/// Resolves every row of `store` into `out`, with the active list and the
+/// cover array of a workspace (the capacity is the shorter, at most
+/// 65535). Returns `out` when done.
+fn resolve_into<O: RowOut>(
+    active: &mut [Active],
+    cover: &mut [Cover],
+    store: &TrapezoidStore<'_>,
+    mode: Resolve,
+    out: O,
+) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
+    let width = store.width() as i32;
+    let cap = active.len().min(cover.len()).min(NONE as usize);
+    let act = &mut active[..cap];
+    let cover = &mut cover[..cap];
+    for (i, a) in act.iter_mut().enumerate() {
+        a.free = i as u16;
+    }
+    let mut cx = Ctx {
+        store,
+        out,
+        ink: Run::BACKGROUND,
+        len: 0,
+        color: BACKGROUND,
+        mode,
+        y: 0,
+        stats: VisibleStats::default(),
+    };
+    // act[..k].hot: the live trapezoids, sorted by l as of the last
+    // row; act[..nf].free: the free slots.
+    let (mut k, mut nf) = (0usize, cap);
+    for y in 0..store.height() {
+        let yi = y as i32;
+        cx.y = yi;
+        // Step the live trapezoids to this row, dropping those that
+        // ended, and reload their pixels (in place, keeping the order).
+        let mut w = 0;
+        for p in 0..k {
+            let slot = act[p].hot.slot;
+            let e = &mut act[slot as usize].entry;
+            if e.left.end() <= yi {
+                act[nf].free = slot;
+                nf += 1;
+                continue;
+            }
+            e.left.step();
+            e.right.step();
+            e.z = e.z.wrapping_add(e.zy);
+            let h = e.hot(slot);
+            act[w].hot = h;
+            w += 1;
+        }
+        k = w;
+        // Enter the trapezoids whose top is this row.
+        let mut t = store.row_head(y as usize);
+        while let Some(tr) = store.trapezoid(t) {
+            if nf == 0 {
+                return Err(VisibleError::Active { capacity: cap });
+            }
+            nf -= 1;
+            let slot = act[nf].free;
+            let e = &mut act[slot as usize].entry;
+            *e = Entry::from(tr);
+            let h = e.hot(slot);
+            act[k].hot = h;
+            k += 1;
+            cx.stats.trapezoids += 1;
+            t = tr.next_row;
+        }
+        cx.stats.max_active = cx.stats.max_active.max(k as u32);
+        cx.out.start(y);
+        (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
+        if k == 0 {
+            cx.len = width;
+            cx.stats.empty += 1;
+        } else {
+            let live = &mut act[..k];
+            sort(live);
+            sweep(live, cover, width, &mut cx);
+        }
+        cx.flush();
+        cx.stats.rows += 1;
+        cx.stats.runs += cx.out.finish().map_err(VisibleError::Sink)?;
+    }
+    Ok((cx.stats, cx.out))
+}
+
+/// Where the resolved runs go, one row at a time.
+trait RowOut {
+    /// What the caller's end can fail with.
+    type Error;
+    /// Starts row `y`.
+    fn start(&mut self, y: u16);
+    /// Appends `len > 0` pixels of `ink` in `color` (`BACKGROUND` for
+    /// the background). Runs next to each other differ in colour.
+    fn run(&mut self, len: i32, ink: u16, color: u32);
+    /// Ends the row; the runs it had.
+    fn finish(&mut self) -> Result<u32, Self::Error>;
+}
+
+/// Rows of runs in the workspace's buffer, each handed to the caller.
+struct ToSink<'r, F> {
+    out: RunWriter<'r>,
+    sink: F,
+    y: u16,
+}
+
+impl<E, F: FnMut(u16, &[Run]) -> Result<(), E>> RowOut for ToSink<'_, F> {
+    type Error = E;
+
+    #[inline]
+    fn start(&mut self, y: u16) {
+        self.y = y;
+        self.out.clear();
+    }
+
+    /// The buffer holds at least the width's runs (checked before the
+    /// first row), so it never overflows.
+    #[inline]
+    fn run(&mut self, len: i32, ink: u16, _color: u32) {
+        self.out.append(len as u16, ink);
+    }
+
+    #[inline]
+    fn finish(&mut self) -> Result<u32, E> {
+        (self.sink)(self.y, self.out.runs())?;
+        Ok(self.out.runs().len() as u32)
+    }
+}
+
+/// Runs written straight into a frame-buffer port as spans, as
+/// [`decode_row`](crate::rle::decode_row) writes a row of runs: the same
+/// spans, without the row buffer or the face lookup per run.
+struct ToTarget<'t, T: SpanTarget + ?Sized> {
+    target: &'t mut T,
+    background: Option<T::Color>,
+    size: (u32, u32),
+    y: u16,
+    x: u32,
+    runs: u32,
+    counts: DecodeCounts,
+    error: Option<T::Error>,
+}
+
+impl<T> RowOut for ToTarget<'_, T>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    type Error = T::Error;
+
+    #[inline]
+    fn start(&mut self, y: u16) {
+        self.y = y;
+        self.x = 0;
+        self.runs = 0;
+    }
+
+    #[inline]
+    fn run(&mut self, len: i32, _ink: u16, color: u32) {
+        self.runs += 1;
+        let x0 = self.x;
+        // A row is the store's width at most, within 4096.
+        self.x += len as u32;
+        let (w, h) = self.size;
+        if self.y as u32 >= h || x0 >= w || self.error.is_some() {
+            return;
+        }
+        let x1 = self.x.min(w);
+        let c = if color == BACKGROUND {
+            match self.background {
+                Some(c) => c,
+                None => return,
+            }
+        } else {
+            T::Color::from_rgb888(Rgb888::new(
+                (color >> 16) as u8,
+                (color >> 8) as u8,
+                color as u8,
+            ))
         };
-        // act[..k].hot: the live trapezoids, sorted by l as of the last
-        // row; act[..nf].free: the free slots.
-        let (mut k, mut nf) = (0usize, cap);
-        for y in 0..store.height() {
-            let yi = y as i32;
-            cx.y = yi;
-            // Step the live trapezoids to this row, dropping those that
-            // ended, and reload their pixels (in place, keeping the order).
-            let mut w = 0;
-            for p in 0..k {
-                let slot = act[p].hot.slot;
-                let e = &mut act[slot as usize].entry;
-                if e.left.end() <= yi {
-                    act[nf].free = slot;
-                    nf += 1;
-                    continue;
-                }
-                e.left.step();
-                e.right.step();
-                e.z = e.z.wrapping_add(e.zy);
-                let h = e.hot(slot);
-                act[w].hot = h;
-                w += 1;
+        let span = Span {
+            y: self.y,
+            x0: x0 as u16,
+            x1: x1 as u16,
+        };
+        match self.target.fill_span(span, c) {
+            Ok(()) => {
+                self.counts.spans += 1;
+                self.counts.pixels += x1 - x0;
             }
-            k = w;
-            // Enter the trapezoids whose top is this row.
-            let mut t = store.row_head(y as usize);
-            while let Some(tr) = store.trapezoid(t) {
-                if nf == 0 {
-                    return Err(VisibleError::Active { capacity: cap });
-                }
-                nf -= 1;
-                let slot = act[nf].free;
-                let e = &mut act[slot as usize].entry;
-                *e = Entry::from(tr);
-                let h = e.hot(slot);
-                act[k].hot = h;
-                k += 1;
-                cx.stats.trapezoids += 1;
-                t = tr.next_row;
-            }
-            cx.stats.max_active = cx.stats.max_active.max(k as u32);
-            cx.out.clear();
-            (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
-            if k == 0 {
-                cx.len = width;
-                cx.stats.empty += 1;
-            } else {
-                let live = &mut act[..k];
-                sort(live);
-                sweep(live, cover, width, &mut cx);
-            }
-            cx.flush();
-            cx.stats.rows += 1;
-            cx.stats.runs += cx.out.runs().len() as u32;
-            sink(y, cx.out.runs()).map_err(VisibleError::Sink)?;
+            Err(e) => self.error = Some(e),
         }
-        Ok(cx.stats)
+    }
+
+    #[inline]
+    fn finish(&mut self) -> Result<u32, T::Error> {
+        match self.error.take() {
+            Some(e) => Err(e),
+            None => Ok(self.runs),
+        }
     }
 }
 
@@ -500,10 +708,10 @@ impl<'a> Workspace<'a> {
 #[inline]
 fn sort(live: &mut [Active]) {
     for p in 1..live.len() {
-        let h = live[p].hot;
-        if live[p - 1].hot.l <= h.l {
+        if live[p - 1].hot.l <= live[p].hot.l {
             continue;
         }
+        let h = live[p].hot;
         let mut q = p;
         while q > 0 && live[q - 1].hot.l > h.l {
             live[q].hot = live[q - 1].hot;
@@ -514,9 +722,9 @@ fn sort(live: &mut [Active]) {
 }
 
 /// What the resolution of a row needs besides the active list.
-struct Ctx<'s, 'r> {
+struct Ctx<'s, O> {
     store: &'s TrapezoidStore<'s>,
-    out: RunWriter<'r>,
+    out: O,
     /// The pending run: its ink, length and colour (`BACKGROUND` for the
     /// background).
     ink: u16,
@@ -527,51 +735,35 @@ struct Ctx<'s, 'r> {
     stats: VisibleStats,
 }
 
-/// Cuts the row into spans at every `l` and `r` of the live trapezoids
-/// and resolves each. The cover array holds the trapezoids covering the
-/// current span by decreasing `r`, so that those ending leave from its
-/// end.
-fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>) {
+/// Resolves the row by a sweep over the `l` and `r` of the live
+/// trapezoids. The cover array holds the trapezoids that have started by
+/// decreasing `r`; those that have ended leave from its end whenever a
+/// new front is sought.
+///
+/// The sweep keeps a *front*: a covering trapezoid that is nearest on
+/// every pixel from the sweep's position to its own `r`, against every
+/// trapezoid in the cover array. It is established by comparing it with
+/// each of the others at the two ends of their common pixels (see the
+/// [module](self) docs), and kept until it ends or a trapezoid enters
+/// that it does not dominate in the same way. A trapezoid that leaves
+/// while the front holds costs nothing, and one that enters behind it
+/// two comparisons. Where no front can be established (a plane crosses
+/// it before its end), the span up to the next `l` or `r` is resolved and
+/// subdivided as in [`span`].
+fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, O>) {
     let (mut x, mut nc, mut p) = (0i32, 0usize, 0usize);
-    let mut next = live.first().map_or(width, |a| a.hot.l.min(width));
-    // The nearest trapezoid at the last pixel resolved, if any.
-    let mut front: Option<Cover> = None;
     while x < width {
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
-        while next <= x {
-            let Some(a) = live.get(p) else { break };
-            let h = a.hot;
+        while let Some(a) = live.get(p) {
+            if a.hot.l > x {
+                break;
+            }
             p += 1;
-            next = live.get(p).map_or(width, |a| a.hot.l.min(width));
-            let c = Cover {
-                r: h.r,
-                z: h.z,
-                zx: h.zx,
-                color: h.color,
-                face: h.face,
-            };
-            // Hidden: the last front covers all of it and is in front at
-            // both its ends, so everywhere on it. It never shows, and
-            // makes no span.
-            if let Some(f) = front {
-                if f.r >= c.r && f.r > x && cx.dominates(&f, &c, x, c.r - 1) {
-                    cx.stats.hidden += 1;
-                    continue;
-                }
-            }
-            if nc >= cover.len() {
-                continue;
-            }
-            let mut q = nc;
-            while q > 0 && cover[q - 1].r < c.r {
-                cover[q] = cover[q - 1];
-                q -= 1;
-            }
-            cover[q] = c;
-            nc += 1;
+            insert(cover, &mut nc, cover_of(&a.hot));
         }
-        // Leave the trapezoids ending here: the last ones.
+        let mut next = live.get(p).map_or(width, |a| a.hot.l.min(width));
+        // Leave the trapezoids ending here or before: the last ones.
         while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
             if c.r > x {
                 break;
@@ -582,20 +774,86 @@ fn sweep(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, '_>)
         let Some(last) = cov.last() else {
             cx.stats.empty += 1;
             cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
-            front = None;
             x = next;
             continue;
         };
-        let t = next.min(last.r);
-        front = Some(span(cov, x, t, cx));
-        x = t;
+        let Some(f) = cx.establish(cov, x) else {
+            let t = next.min(last.r);
+            span(cov, x, t, cx);
+            x = t;
+            continue;
+        };
+        // The front holds from x until it ends or a trapezoid starts that
+        // it does not dominate. Those that end behind it wait in the
+        // cover array until the next front is sought.
+        let start = x;
+        loop {
+            x = next.min(f.r);
+            if x >= f.r {
+                break;
+            }
+            let mut broken = false;
+            while let Some(a) = live.get(p) {
+                if a.hot.l > x {
+                    break;
+                }
+                p += 1;
+                let c = cover_of(&a.hot);
+                // The front is in front of the new one on all their
+                // common pixels: when those are all of its pixels, it is
+                // hidden (the front is in the cover array, so this holds
+                // even after the front has lost its place).
+                if cx.dominates(&f, &c, x, f.r.min(c.r) - 1) {
+                    if c.r <= f.r {
+                        cx.stats.hidden += 1;
+                        continue;
+                    }
+                } else {
+                    broken = true;
+                }
+                insert(cover, &mut nc, c);
+            }
+            next = live.get(p).map_or(width, |a| a.hot.l.min(width));
+            if broken {
+                break;
+            }
+        }
+        cx.emit(x - start, f.face, f.color);
     }
+}
+
+/// The cover element of a live trapezoid.
+#[inline(always)]
+fn cover_of(h: &Hot) -> Cover {
+    Cover {
+        r: h.r,
+        z: h.z,
+        zx: h.zx,
+        color: h.color,
+        face: h.face,
+    }
+}
+
+/// Inserts `c` into `cover[..nc]`, kept by decreasing `r`. The array has
+/// a place for every live trapezoid, so it never overflows.
+#[inline(always)]
+fn insert(cover: &mut [Cover], nc: &mut usize, c: Cover) {
+    if *nc >= cover.len() {
+        return;
+    }
+    let mut q = *nc;
+    while q > 0 && cover[q - 1].r < c.r {
+        cover[q] = cover[q - 1];
+        q -= 1;
+    }
+    cover[q] = c;
+    *nc += 1;
 }
 
 /// Resolves the span `s..t` covered by `cov`; returns the nearest at its
 /// last pixel.
 #[inline]
-fn span(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Cover {
+fn span<O: RowOut>(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
     let Some((first, rest)) = cov.split_first() else {
         return Cover::EMPTY;
     };
@@ -629,7 +887,15 @@ fn span(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, '_>) -> Cover {
 
 /// Subdivides `s..t` (at least 2 pixels), whose nearest covering
 /// trapezoids at the ends are `a` and `b ≠ a`.
-fn split(cov: &[Cover], s: i32, t: i32, a: &Cover, b: &Cover, cross: bool, cx: &mut Ctx<'_, '_>) {
+fn split<O: RowOut>(
+    cov: &[Cover],
+    s: i32,
+    t: i32,
+    a: &Cover,
+    b: &Cover,
+    cross: bool,
+    cx: &mut Ctx<'_, O>,
+) {
     cx.stats.splits += 1;
     let crossing = cx.mode == Resolve::Crossing && cross;
     let m = if crossing {
@@ -671,7 +937,31 @@ fn crossing_point(a: &Cover, b: &Cover, s: i32, t: i32) -> i32 {
     k.clamp(s as i64 + 1, t as i64 - 1) as i32
 }
 
-impl Ctx<'_, '_> {
+impl<O: RowOut> Ctx<'_, O> {
+    /// The covering trapezoid nearest at pixel `x` when it is also in
+    /// front of every other on all their common pixels (`x` to the end of
+    /// the shorter), so on `x..r` of its own; `None` when another crosses
+    /// it there.
+    #[inline]
+    fn establish(&mut self, cov: &[Cover], x: i32) -> Option<Cover> {
+        let f = self.front(cov, x);
+        if cov.len() == 1 {
+            self.stats.single += 1;
+            return Some(*f);
+        }
+        for c in cov {
+            if core::ptr::eq(c, f) {
+                continue;
+            }
+            let e = f.r.min(c.r) - 1;
+            if !self.nearer(f, f.z_at(e), c, c.z_at(e), e) {
+                return None;
+            }
+        }
+        self.stats.multiple += 1;
+        Some(*f)
+    }
+
     /// The covering trapezoid nearest at pixel `i`.
     fn front<'v>(&mut self, cov: &'v [Cover], i: i32) -> &'v Cover {
         let (first, rest) = match cov.split_first() {
@@ -740,12 +1030,11 @@ impl Ctx<'_, '_> {
         self.color = color;
     }
 
-    /// Writes the pending run out. The buffer holds at least the width's
-    /// runs (checked before the first row), so it never overflows.
+    /// Writes the pending run out.
     #[inline]
     fn flush(&mut self) {
         if self.len > 0 {
-            self.out.append(self.len as u16, self.ink);
+            self.out.run(self.len, self.ink, self.color);
         }
         self.len = 0;
     }
@@ -771,20 +1060,20 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
-    let mut counts = crate::rle::DecodeCounts::default();
-    let black = T::Color::from_rgb888(embedded_graphics_core::pixelcolor::Rgb888::new(0, 0, 0));
-    let stats = workspace.resolve(store, mode, |y, runs| {
-        let ink = |f: u16| {
-            store
-                .face(f)
-                .map_or(black, |f| T::Color::from_rgb888(f.color()))
-        };
-        let c = decode_row(target, y, runs, ink, background)?;
-        counts.spans += c.spans;
-        counts.pixels += c.pixels;
-        Ok(())
-    })?;
-    Ok((stats, counts))
+    workspace.check_runs(store)?;
+    let (tw, th) = target.size();
+    let out = ToTarget {
+        target,
+        background,
+        size: (tw as u32, th as u32),
+        y: 0,
+        x: 0,
+        runs: 0,
+        counts: DecodeCounts::default(),
+        error: None,
+    };
+    let (stats, out) = resolve_into(workspace.active, workspace.cover, store, mode, out)?;
+    Ok((stats, out.counts))
 }
 
 #[cfg(test)]
