@@ -32,7 +32,7 @@ use host_tests::reference3d::Poly3;
 use host_tests::scenes3d;
 use scanvert::checksum::frame_checksum;
 use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
-use scanvert::display_list::{Command, DisplayList, Writer};
+use scanvert::display_list::{DisplayList, Writer};
 use scanvert::edge::Edge;
 use scanvert::rle::Run;
 use scanvert::scan::Rasterizer;
@@ -113,18 +113,6 @@ fn lists() -> Vec<(String, Vec<u8>)> {
     out
 }
 
-/// Vertices of the largest polygon in `list`.
-fn max_vertices(list: &DisplayList<'_>) -> usize {
-    list.commands()
-        .map(|(_, c)| match c {
-            Command::Poly(v) => v.len(),
-            Command::Poly3(v) => v.len(),
-            _ => 0,
-        })
-        .max()
-        .unwrap_or(0)
-}
-
 /// The 3D memory the image must hold (the most over its lists).
 #[derive(Default)]
 struct Memory3d {
@@ -140,7 +128,7 @@ struct Memory3d {
 /// checksum` does); the render's statistics.
 fn host_render(bytes: &[u8]) -> (u32, Stats) {
     let list = DisplayList::new_checked(bytes).expect("valid list");
-    let slots_needed = max_vertices(&list).max(3);
+    let slots_needed = scanvert_sim::cli::edges_needed(&list).max(3);
     let mut edges = vec![Edge::EMPTY; slots_needed];
     let mut slots = vec![EdgeSlot::EMPTY; slots_needed];
     let need = needs_3d(&list, &mut slots).expect("slots sized");
@@ -190,7 +178,7 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
     let mut m = Memory3d::default();
     for (name, bytes) in lists {
         let list = DisplayList::new_checked(bytes).expect("valid list");
-        slots = slots.max(max_vertices(&list));
+        slots = slots.max(scanvert_sim::cli::edges_needed(&list));
         assert!(
             list.width() as usize * list.height() as usize <= IMAGE_FRAME_PIXELS,
             "{name}: frame larger than the image's frame buffer"

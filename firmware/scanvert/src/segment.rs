@@ -415,11 +415,7 @@ impl<'a> TrapezoidStore<'a> {
     /// Empties segment `s`: its trapezoids and faces go back to the pools.
     /// No other segment is touched.
     pub fn clear_segment(&mut self, s: usize) -> Result<(), StoreError> {
-        let capacity = self.segments.len();
-        let seg = self.segments.get_mut(s).ok_or(StoreError::Segment {
-            segment: s,
-            capacity,
-        })?;
+        let seg = segment_at(self.segments, s)?;
         let mut t = seg.traps;
         while let Some(tr) = self.traps.get(t as usize).copied() {
             // Unlink from the row list.
@@ -465,11 +461,7 @@ impl<'a> TrapezoidStore<'a> {
     /// (`false`). The store itself only keeps the mark: it is for the
     /// [`Scene`](crate::scene::Scene) that owns the store.
     pub fn set_stale(&mut self, s: usize, stale: bool) -> Result<(), StoreError> {
-        let capacity = self.segments.len();
-        let seg = self.segments.get_mut(s).ok_or(StoreError::Segment {
-            segment: s,
-            capacity,
-        })?;
+        let seg = segment_at(self.segments, s)?;
         seg.stale = stale;
         Ok(())
     }
@@ -519,11 +511,7 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        let capacity = self.segments.len();
-        let seg = self.segments.get_mut(s).ok_or(StoreError::Segment {
-            segment: s,
-            capacity,
-        })?;
+        let seg = segment_at(self.segments, s)?;
         // The clip cut to the store's frame (a clip is within 0..=4096).
         let clip = ClipRect::from_window(
             ClipWindow {
@@ -646,6 +634,15 @@ impl crate::geometry::PolygonSink for SegmentSink<'_, '_> {
 }
 
 /// Takes a slot from a pool: the free list first, then never-used slots.
+/// Segment `s` of `segments`, or the error that names it.
+fn segment_at(segments: &mut [Segment], s: usize) -> Result<&mut Segment, StoreError> {
+    let capacity = segments.len();
+    segments.get_mut(s).ok_or(StoreError::Segment {
+        segment: s,
+        capacity,
+    })
+}
+
 fn alloc(free: &mut u16, unused: &mut u16, len: usize, next: impl Fn(u16) -> u16) -> Option<u16> {
     if *free != NONE {
         let t = *free;
