@@ -10,16 +10,16 @@ use embedded_graphics::{
     primitives::{PrimitiveStyle, Rectangle, Styled, Triangle},
 };
 use scanvert::{
-    clip::ClipRect,
     controller::Controller,
     display_list::{DisplayList, Writer},
-    edge::{Edge, Stepper},
-    edge_dda::{self, Dda16, Dda7},
     fixed::Vertex,
-    framebuffer::FrameBuffer,
     pixelcolor::{Rgb565, Rgb888, RgbColor},
+    port::framebuffer::FrameBuffer,
     port::{Span, SpanTarget},
-    scan::{FillCounts, Rasterizer},
+    raster::clip::ClipRect,
+    raster::dda::{self, Dda16, Dda7},
+    raster::edge::{Edge, Stepper},
+    raster::scan::{FillCounts, Rasterizer},
 };
 
 /// The colour everything draws in (on black or transparent).
@@ -87,7 +87,7 @@ impl<S: Stepper, const SNAP: u32> ScanvertFill<S, SNAP> {
         let res = if SNAP >= 4 {
             r.fill(p.iter().copied(), clip, INK, fb)
         } else {
-            r.fill(p.iter().map(|&v| edge_dda::snap(v, SNAP)), clip, INK, fb)
+            r.fill(p.iter().map(|&v| dda::snap(v, SNAP)), clip, INK, fb)
         };
         debug_assert!(res.is_ok());
         let _ = res;

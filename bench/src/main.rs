@@ -174,7 +174,7 @@ fn load_average() -> String {
 /// MODE is `framebuffer` (the exact path), `null` (scan conversion
 /// without pixel writes) or `tiny-skia`.
 fn profile_w1(mode: &str, passes: u32) {
-    use scanvert::{clip::ClipRect, edge::Edge, scan::Rasterizer};
+    use scanvert::{raster::clip::ClipRect, raster::edge::Edge, raster::scan::Rasterizer};
     let wl = workloads::w1();
     if mode == "null" {
         let mut slots = [Edge::EMPTY; 4];

@@ -12,16 +12,16 @@ use crate::scenes3d::{Scene, Version, H, VIEWS, W};
 use crate::time_fns;
 use core::mem::size_of;
 use scanvert::{
-    clip::ClipRect,
-    edge::Edge,
     fixed::{Vertex, Vertex3},
-    framebuffer::FrameBuffer,
     pixelcolor::{PixelColor, Rgb565, Rgb888, RgbColor},
+    port::framebuffer::FrameBuffer,
     port::{Span, SpanTarget},
-    rle::Run,
-    scan::Rasterizer,
-    segment::{Face, Segment, StoreMemory, TrapezoidStore},
-    trapezoid::{EdgeSlot, Trapezoid},
+    raster::clip::ClipRect,
+    raster::edge::Edge,
+    raster::scan::Rasterizer,
+    visible::rle::Run,
+    visible::store::{Face, Segment, StoreMemory, TrapezoidStore},
+    visible::trapezoid::{EdgeSlot, Trapezoid},
     visible::{self, Active, Cover, Resolve, VisibleStats, Workspace},
 };
 use std::convert::Infallible;

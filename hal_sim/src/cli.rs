@@ -20,13 +20,13 @@ use scanvert::controller::{
     edges_3d, needs_3d, Controller, Needs3d, RenderError, Stats, Storage3d,
 };
 use scanvert::display_list::{Command, DisplayList, MAGIC};
-use scanvert::edge::Edge;
-use scanvert::label::Label;
-use scanvert::rle::Run;
-use scanvert::scan::Rasterizer;
-use scanvert::segment::{Face, Segment, StoreMemory};
-use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Cover, Resolve};
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::scene::label::Label;
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Face, Segment, StoreMemory};
+use scanvert::visible::sweep::{Active, Cover, Resolve};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -383,7 +383,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                     .unwrap_or_default();
                 s += &format!(
                     "checksum {stem} {:08x}\n",
-                    scanvert::checksum::frame_checksum(r.ram.contents())
+                    scanvert::port::checksum::frame_checksum(r.ram.contents())
                 );
             }
             Ok(s)

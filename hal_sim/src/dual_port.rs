@@ -36,7 +36,7 @@
 use crate::timing::Clock;
 use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::Rgb565;
-use scanvert::framebuffer::MAX_SIDE;
+use scanvert::port::framebuffer::MAX_SIDE;
 use scanvert::port::{Span, SpanTarget};
 
 /// The write port's clock in the reference design: 50 MHz, one pixel per

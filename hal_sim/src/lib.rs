@@ -19,8 +19,8 @@
 //! ```
 //! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 //! use scanvert::{
-//!     controller::Controller, display_list::{DisplayList, Writer}, edge::Edge,
-//!     fixed::Vertex, scan::Rasterizer,
+//!     controller::Controller, display_list::{DisplayList, Writer}, raster::edge::Edge,
+//!     fixed::Vertex, raster::scan::Rasterizer,
 //! };
 //! use scanvert_sim::{dual_port::DualPortRam, image, refresh::RefreshController, timing::VideoTiming};
 //!

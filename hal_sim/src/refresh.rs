@@ -113,9 +113,9 @@ impl Frame {
     }
 
     /// The frame checksum shared with the target
-    /// ([`scanvert::checksum::frame_checksum`]).
+    /// ([`scanvert::port::checksum::frame_checksum`]).
     pub fn checksum(&self) -> u32 {
-        scanvert::checksum::frame_checksum(&self.pixels)
+        scanvert::port::checksum::frame_checksum(&self.pixels)
     }
 }
 

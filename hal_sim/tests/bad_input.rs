@@ -6,9 +6,9 @@
 //! leave no output file behind.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
-use scanvert::clip::ClipWindow;
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::fixed::Vertex;
+use scanvert::raster::clip::ClipWindow;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

@@ -6,10 +6,10 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use scanvert::controller::Controller;
 use scanvert::display_list::{DisplayList, Writer};
-use scanvert::edge::Edge;
 use scanvert::fixed::Vertex;
-use scanvert::framebuffer::FrameBuffer;
-use scanvert::scan::Rasterizer;
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
 use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::refresh::{CoSimulation, Frame, RefreshController};
 use scanvert_sim::timing::VideoTiming;

@@ -2,14 +2,14 @@
 //! and the read port against the write port.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use scanvert::clip::ClipWindow;
 use scanvert::color::ToRgb888;
 use scanvert::controller::Controller;
 use scanvert::display_list::{DisplayList, Writer};
-use scanvert::edge::Edge;
 use scanvert::fixed::Vertex;
-use scanvert::framebuffer::FrameBuffer;
-use scanvert::scan::Rasterizer;
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::raster::clip::ClipWindow;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
 use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::image;
 use scanvert_sim::refresh::RefreshController;
@@ -183,7 +183,7 @@ fn check_read_out_equals_reference(w: u16, h: u16, seed: u32) {
     }
     assert_eq!(
         frame.checksum(),
-        scanvert::checksum::frame_checksum(fb.pixels())
+        scanvert::port::checksum::frame_checksum(fb.pixels())
     );
     let wc = ram.write_counters();
     assert_eq!(wc.clears, 1);

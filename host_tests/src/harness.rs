@@ -7,11 +7,11 @@ use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use scanvert::controller::{Controller, RenderError, Stats};
 use scanvert::display_list::{DisplayList, Writer};
-use scanvert::edge::{Edge, Stepper};
 use scanvert::fixed::Vertex;
-use scanvert::framebuffer::FrameBuffer;
+use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::port::{Span, SpanTarget};
-use scanvert::scan::Rasterizer;
+use scanvert::raster::edge::{Edge, Stepper};
+use scanvert::raster::scan::Rasterizer;
 use std::cell::Cell;
 
 /// Edge slots the harness gives the rasteriser unless told otherwise.

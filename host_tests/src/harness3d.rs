@@ -10,14 +10,14 @@ use crate::reference3d::{resolve, Poly3};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
 use scanvert::display_list::{DisplayList, Writer};
-use scanvert::edge::Edge;
 use scanvert::fixed::{Coord, Vertex3};
-use scanvert::framebuffer::FrameBuffer;
-use scanvert::rle::Run;
-use scanvert::scan::Rasterizer;
-use scanvert::segment::{Face, Segment, StoreMemory};
-use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Cover, Resolve};
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Face, Segment, StoreMemory};
+use scanvert::visible::sweep::{Active, Cover, Resolve};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 /// The colour of the `k`-th `poly3` (never the black background).
 pub fn color_of(k: usize) -> Rgb888 {

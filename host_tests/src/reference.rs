@@ -1,7 +1,7 @@
 //! An exact reference rasteriser, written from the pixel rule of
 //! `shared/specs/text-form.md` and nothing else.
 //!
-//! It shares no code with `scanvert::scan` or `scanvert::edge`: no stepper,
+//! It shares no code with `scanvert::raster::scan` or `scanvert::raster::edge`: no stepper,
 //! no active-edge list, no sort, no division. Every pixel is decided on its
 //! own, with `i128` products of the vertex coordinates (in units of 1/16 px),
 //! so it is exact for any `i32` input.
@@ -69,8 +69,8 @@ impl Window {
     }
 
     /// The same window as the library's register type.
-    pub fn to_clip_window(self) -> scanvert::clip::ClipWindow {
-        scanvert::clip::ClipWindow {
+    pub fn to_clip_window(self) -> scanvert::raster::clip::ClipWindow {
+        scanvert::raster::clip::ClipWindow {
             x0: self.x0,
             y0: self.y0,
             x1: self.x1,

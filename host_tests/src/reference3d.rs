@@ -1,7 +1,7 @@
 //! An exact reference for `poly3`, written from the spec
 //! (`shared/specs/text-form.md`) and nothing else.
 //!
-//! It shares no code with `scanvert::trapezoid`, `segment` or `visible`:
+//! It shares no code with `scanvert::visible::trapezoid`, `segment` or `visible`:
 //! no trapezoid, no stepper, no fixed point. Every pixel is decided on its
 //! own:
 //!

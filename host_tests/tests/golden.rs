@@ -12,12 +12,12 @@
 //! `poly`), which accepts only exact multiples of 1/16.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
-use scanvert::clip::ClipWindow;
 use scanvert::controller::Controller;
 use scanvert::display_list::{DisplayList, Writer};
-use scanvert::edge::Edge;
 use scanvert::fixed::Vertex;
-use scanvert::scan::Rasterizer;
+use scanvert::raster::clip::ClipWindow;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
 use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::image;
 use scanvert_sim::refresh::RefreshController;

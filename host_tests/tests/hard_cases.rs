@@ -6,10 +6,10 @@ use host_tests::harness::{
     assert_same, render_counting, render_poly, CountingEdge, CountingTarget, Draw,
 };
 use host_tests::reference::{assert_pattern, rasterize, Window};
-use scanvert::clip::{ClipRect, ClipWindow};
 use scanvert::controller::RenderError;
-use scanvert::edge::Edge;
-use scanvert::scan::{FillError, Rasterizer};
+use scanvert::raster::clip::{ClipRect, ClipWindow};
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::{FillError, Rasterizer};
 
 const W: u16 = 64;
 const H: u16 = 48;

@@ -22,7 +22,7 @@ use host_tests::reference3d::Poly3;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestRunner};
-use scanvert::visible::Resolve;
+use scanvert::visible::sweep::Resolve;
 
 const W: u16 = 64;
 const H: u16 = 48;

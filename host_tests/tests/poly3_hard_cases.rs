@@ -7,7 +7,7 @@ use host_tests::harness3d::{compare, render3};
 use host_tests::reference::{rasterize, Window};
 use host_tests::reference3d::Poly3;
 use proptest::prelude::*;
-use scanvert::visible::Resolve;
+use scanvert::visible::sweep::Resolve;
 
 const MODES: [Resolve; 2] = [Resolve::Bisect, Resolve::Crossing];
 

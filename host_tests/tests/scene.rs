@@ -14,17 +14,17 @@ use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tests::harness3d::{color_of, index_of};
 use host_tests::reference3d::{drawn, resolve, Poly3};
 use scanvert::fixed::Vertex3;
-use scanvert::framebuffer::FrameBuffer;
 use scanvert::geometry::{
     Angle, Matrix, Orthographic, Outcome, Perspective, Pipeline, Point3, PolygonSink, Projection,
     View, Viewport, Q16,
 };
-use scanvert::label::{Label, DEFAULT_FONT};
-use scanvert::rle::Run;
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::scene::label::{Label, DEFAULT_FONT};
 use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
-use scanvert::segment::{Face, Segment, StoreError, StoreMemory};
-use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
+use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 const W: u16 = 160;
 const H: u16 = 120;

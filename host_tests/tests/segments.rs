@@ -4,11 +4,11 @@
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use host_tests::harness3d::vertex3;
-use scanvert::clip::ClipRect;
-use scanvert::rle::Run;
-use scanvert::segment::{Counters, Face, Segment, StoreMemory, TrapezoidStore};
-use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{Active, Cover, Resolve, Workspace};
+use scanvert::raster::clip::ClipRect;
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Counters, Face, Segment, StoreMemory, TrapezoidStore};
+use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 const W: u16 = 96;
 const H: u16 = 64;

@@ -37,20 +37,20 @@ mod log;
 mod scenes;
 
 use core::convert::Infallible;
-#[cfg(not(any(feature = "discard", feature = "packed")))]
-use scanvert::checksum::frame_checksum;
-use scanvert::clip::ClipRect;
 use scanvert::controller::{front_facing, Controller, Storage3d, DEFAULT_COLOR};
 use scanvert::display_list::{Command, DisplayList};
-use scanvert::edge::Edge;
-#[cfg(not(any(feature = "discard", feature = "packed")))]
-use scanvert::framebuffer::FrameBuffer;
 use scanvert::pixelcolor::{Rgb565, RgbColor};
+#[cfg(not(any(feature = "discard", feature = "packed")))]
+use scanvert::port::checksum::frame_checksum;
+#[cfg(not(any(feature = "discard", feature = "packed")))]
+use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::port::SpanTarget;
-use scanvert::rle::Run;
-use scanvert::scan::Rasterizer;
-use scanvert::segment::{Face, Segment, StoreMemory, TrapezoidStore};
-use scanvert::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::raster::clip::ClipRect;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Face, Segment, StoreMemory, TrapezoidStore};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use scanvert::visible::{self, Active, Cover, Resolve, VisibleStats, Workspace};
 
 #[cfg(feature = "discard")]

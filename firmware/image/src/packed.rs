@@ -12,8 +12,8 @@
 
 use crate::Pixel;
 use core::convert::Infallible;
-use scanvert::checksum::Checksum;
 use scanvert::pixelcolor::IntoStorage;
+use scanvert::port::checksum::Checksum;
 use scanvert::port::{Span, SpanTarget};
 
 /// A `width × height` frame over caller-owned words, `width` even.

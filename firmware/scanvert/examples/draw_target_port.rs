@@ -17,10 +17,10 @@ use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::Rectangle;
 use scanvert::controller::Controller;
 use scanvert::display_list::DisplayList;
-use scanvert::draw_target::DrawTargetPort;
-use scanvert::edge::Edge;
 use scanvert::pixelcolor::Rgb565;
-use scanvert::scan::Rasterizer;
+use scanvert::port::draw_target::DrawTargetPort;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
 
 /// The demo scene in binary form, as the firmware image embeds it.
 const DEMO: &[u8] = include_bytes!("../../image/scenes/demo.scvl");

@@ -17,11 +17,11 @@ use embedded_graphics::text::Text;
 use scanvert::color::ToRgb888;
 use scanvert::controller::Controller;
 use scanvert::display_list::{DisplayList, Writer};
-use scanvert::edge::Edge;
 use scanvert::fixed::Vertex;
-use scanvert::framebuffer::FrameBuffer;
 use scanvert::pixelcolor::{Rgb565, Rgb888};
-use scanvert::scan::Rasterizer;
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
 
 const W: u16 = 96;
 const H: u16 = 40;

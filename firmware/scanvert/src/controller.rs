@@ -5,9 +5,9 @@
 //!
 //! `clear` and `poly` are executed in list order (painter's order). The
 //! `poly3`s are the *3D layer*: all of them are resolved together by the
-//! visible-surface stages ([`trapezoid`](crate::trapezoid) →
-//! [`segment`](crate::segment) → [`visible`](mod@crate::visible) →
-//! [`rle`](crate::rle)), and the layer is drawn **after** every 2D command
+//! visible-surface stages ([`trapezoid`](crate::visible::trapezoid) →
+//! [`segment`](crate::visible::store) → [`visible`](mod@crate::visible::sweep) →
+//! [`rle`](crate::visible::rle)), and the layer is drawn **after** every 2D command
 //! of the list, writing only the pixels its faces cover: where no `poly3`
 //! is, the 2D content shows through. Each `poly3` takes the colour and the
 //! clip registers in force at its place in the list, and is culled by the
@@ -42,7 +42,7 @@
 //! [`geometry::cull`](crate::geometry::cull)) and lit; `label`s are drawn
 //! after the whole 3D layer, in the colour in force at their place, with
 //! the lower-left corner of their first character at the projected point
-//! (see [`label`](crate::label)), never hidden.
+//! (see [`scene::label`](crate::scene::label)), never hidden.
 //!
 //! # Memory
 //!
@@ -59,7 +59,6 @@
 //! [`Pipeline`]: crate::geometry::Pipeline
 //! [`Scene`]: crate::scene::Scene
 
-use crate::clip::ClipRect;
 use crate::color::ListColor;
 use crate::display_list::{Axis, Command, DisplayList, Vertices3};
 use crate::fixed::Vertex3;
@@ -67,13 +66,14 @@ use crate::geometry::{
     Angle, Light, Orthographic, Perspective, Pipeline, PipelineError, Point3, PolygonSink, View,
     Viewport, Q16,
 };
-use crate::label::{self, Label, LabelError, LabelStore};
 use crate::port::SpanTarget;
-use crate::rle::Run;
-use crate::scan::{FillError, Rasterizer};
+use crate::raster::clip::ClipRect;
+use crate::raster::scan::{FillError, Rasterizer};
+use crate::scene::label::{self, Label, LabelError, LabelStore};
 use crate::scene::SceneError;
-use crate::segment::{StoreError, StoreMemory, TrapezoidStore};
-use crate::trapezoid::{EdgeSlot, Polygon};
+use crate::visible::rle::Run;
+use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
+use crate::visible::trapezoid::{EdgeSlot, Polygon};
 use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -228,7 +228,7 @@ impl Resource {
             StoreError::Trapezoids { capacity } => (Resource::Trapezoids, capacity),
             StoreError::Faces { capacity } => (Resource::Faces, capacity),
             StoreError::Edges { capacity } => (Resource::EdgeSlots, capacity),
-            StoreError::Vertices => (Resource::EdgeSlots, crate::trapezoid::MAX_VERTICES),
+            StoreError::Vertices => (Resource::EdgeSlots, crate::visible::trapezoid::MAX_VERTICES),
             StoreError::Segment { capacity, .. } => (Resource::Segments, capacity),
             StoreError::Rows { capacity, .. } => (Resource::Rows, capacity),
         }
@@ -588,9 +588,9 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 /// ```
 /// use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 /// use scanvert::{
-///     controller::{Controller, Storage3d}, display_list::{DisplayList, Writer}, edge::Edge,
-///     fixed::{Coord, Vertex3}, framebuffer::FrameBuffer, rle::Run, scan::Rasterizer,
-///     segment::{Face, Segment, StoreMemory}, trapezoid::{EdgeSlot, Trapezoid},
+///     controller::{Controller, Storage3d}, display_list::{DisplayList, Writer}, raster::edge::Edge,
+///     fixed::{Coord, Vertex3}, port::framebuffer::FrameBuffer, visible::rle::Run, raster::scan::Rasterizer,
+///     segment::{Face, Segment, StoreMemory}, visible::trapezoid::{EdgeSlot, Trapezoid},
 ///     visible::{Active, Cover, Resolve},
 /// };
 ///
@@ -647,7 +647,7 @@ impl<'e> Controller<'e> {
     }
 
     /// The same controller, placing labels in `slots` with their text in
-    /// `text` (see [`label`](crate::label)).
+    /// `text` (see [`scene::label`](crate::scene::label)).
     pub fn with_labels(mut self, slots: &'e mut [Label], text: &'e mut [u8]) -> Self {
         self.labels = Some((slots, text));
         self
@@ -972,11 +972,11 @@ fn build_layer<'t>(
 mod tests {
     use super::*;
     use crate::display_list::Writer;
-    use crate::edge::Edge;
     use crate::fixed::{Coord, Vertex, Vertex3};
-    use crate::framebuffer::FrameBuffer;
-    use crate::segment::{Face, Segment};
-    use crate::trapezoid::Trapezoid;
+    use crate::port::framebuffer::FrameBuffer;
+    use crate::raster::edge::Edge;
+    use crate::visible::store::{Face, Segment};
+    use crate::visible::trapezoid::Trapezoid;
     use embedded_graphics_core::pixelcolor::Rgb888;
 
     const W: u16 = 24;
@@ -1093,7 +1093,7 @@ mod tests {
             )
             .unwrap();
             w.color(Rgb888::new(60, 0, 0)).unwrap();
-            w.clip(crate::clip::ClipWindow {
+            w.clip(crate::raster::clip::ClipWindow {
                 x0: 0,
                 y0: 0,
                 x1: 5,

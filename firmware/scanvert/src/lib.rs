@@ -10,33 +10,28 @@
 //!
 //! # The pipeline, display list to pixel
 //!
+//! The folders are the stages, in the order the data goes through them:
+//!
 //! | stage | module | what happens |
 //! |---|---|---|
-//! | reader | [`display_list`] | validate the bytes once, then read commands infallibly |
-//! | 3D geometry | [`geometry`] | transform stack, cull, light, near clip, projection, points and lines, window clip, into screen-space polygons |
-//! | geometry | [`fixed`] | Q12.4 vertices and the widths of every intermediate |
-//! | edges | [`edge`] | per-edge set-up, then an exact Bresenham step per row |
-//! | edges, approximate | [`edge_dda`] | faster DDA steppers and vertex snapping, with their error documented |
-//! | spans | [`scan`] | active-edge list, even-odd pairing of crossings |
-//! | clip registers | [`clip`] | the window every span is cut to |
-//! | port | [`port`], [`framebuffer`] | spans into memory (or hardware) |
-//! | trapezoids (3D) | [`trapezoid`] | a screen-space polygon cut into trapezoids with horizontal parallel sides; its plane, exact and in fixed point |
-//! | store (3D) | [`segment`] | trapezoids and faces by segment, in caller-owned pools; the scan-line index by top row |
-//! | visible surfaces (3D) | [`visible`] | active trapezoids per row, spans classified and resolved by depth, no z-buffer |
-//! | run-length rows (3D) | [`rle`] | one run-length scan line per row, and its decoder into the port |
-//! | labels (3D) | [`label`] | text anchored at projected points, drawn last in `embedded-graphics` mono fonts |
-//! | scene (3D) | [`scene`] | segments built by the application's procedures, rebuilt only when stale; draws store and labels |
-//! | controller | [`controller`] | runs a display list through all of the above (`poly3` as a 3D layer over the 2D commands) |
-//! | colour | [`color`] | list colours to the frame buffer's pixel format |
-//! | embedded-graphics | `draw_target` (feature `embedded-graphics`) | spans into any `DrawTarget`; the frame buffer as a `DrawTarget` |
+//! | 1. read | [`display_list`] | validate the bytes once, then read commands infallibly |
+//! | 2D: 2. raster | [`raster`] | edge set-up, an exact error-counter step per row, even-odd spans, the clip registers |
+//! | 3D: 2. geometry | [`geometry`] | transform stack, cull, light, near clip, projection, points and lines, window clip, into screen-space polygons |
+//! | 3D: 3. visible | [`visible`] | polygons cut into trapezoids, kept by segment, resolved row by row into run-length rows with no z-buffer |
+//! | 3D: scene | [`scene`] | segments built by the application's procedures, rebuilt only when stale; labels drawn last |
+//! | 4. port | [`port`] | spans into memory or hardware: the frame buffer, the checksum, any embedded-graphics `DrawTarget` |
+//! | all | [`controller`] | runs a display list through all of the above (`poly3` and the 3D scene as a layer over the 2D commands) |
+//!
+//! Beside them: [`fixed`] (Q12.4 vertices and the widths of every
+//! intermediate) and [`color`] (list colours to the port's pixel format).
 //!
 //! # Example
 //!
 //! ```
 //! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 //! use scanvert::{
-//!     controller::Controller, display_list::{DisplayList, Writer}, edge::Edge,
-//!     fixed::Vertex, framebuffer::FrameBuffer, scan::Rasterizer,
+//!     controller::Controller, display_list::{DisplayList, Writer}, raster::edge::Edge,
+//!     fixed::Vertex, port::framebuffer::FrameBuffer, raster::scan::Rasterizer,
 //! };
 //!
 //! // Assemble a list: a red triangle on a black frame of 32 × 16.
@@ -63,25 +58,14 @@
 #![deny(rustdoc::broken_intra_doc_links)]
 #![deny(clippy::float_arithmetic)]
 
-pub mod checksum;
-pub mod clip;
 pub mod color;
 pub mod controller;
 pub mod display_list;
-#[cfg(feature = "embedded-graphics")]
-pub mod draw_target;
-pub mod edge;
-pub mod edge_dda;
 pub mod fixed;
-pub mod framebuffer;
 pub mod geometry;
-pub mod label;
 pub mod port;
-pub mod rle;
-pub mod scan;
+pub mod raster;
 pub mod scene;
-pub mod segment;
-pub mod trapezoid;
 pub mod visible;
 
 pub use embedded_graphics_core::pixelcolor;

@@ -12,11 +12,11 @@
 
 use super::number::{parse_angle, parse_coord, parse_int, parse_q16};
 use super::{TextError, TextErrorKind};
-use scanvert::clip::ClipWindow;
 use scanvert::display_list::{Axis, Writer, HEADER_LEN, MAX_LABEL_LEN, MAX_VERTICES};
 use scanvert::fixed::{Coord, Vertex, Vertex3};
 use scanvert::geometry::{Angle, Point3, View, Q16};
 use scanvert::pixelcolor::Rgb888;
+use scanvert::raster::clip::ClipWindow;
 
 /// A text scene assembled into the binary form.
 #[derive(Clone, Debug)]

@@ -1,9 +1,9 @@
 //! The checked, zero-copy reader.
 
 use super::{Error, ErrorKind, Opcode, HEADER_LEN, MAGIC, VERSION, VERSION_2D};
-use crate::clip::ClipWindow;
 use crate::fixed::{Coord, Vertex, Vertex3};
 use crate::geometry::{Angle, Point3, Q16};
+use crate::raster::clip::ClipWindow;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// A display list that has passed [`DisplayList::new_checked`].

@@ -1,9 +1,9 @@
 //! Emitting a display list into a caller-owned buffer.
 
 use super::{Axis, Opcode, HEADER_LEN, MAGIC, MAX_LABEL_LEN, MAX_VERTICES, VERSION_2D};
-use crate::clip::ClipWindow;
 use crate::fixed::{Coord, Vertex, Vertex3};
 use crate::geometry::{Angle, Point3, Q16};
+use crate::raster::clip::ClipWindow;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 

@@ -3,8 +3,16 @@
 //! The unit of work is the horizontal span, as on the write port of the
 //! dual-port frame-buffer RAM that the graphic controller drives. A target
 //! implements two methods; a plain in-memory implementation is
-//! [`FrameBuffer`](crate::framebuffer::FrameBuffer), and the simulator's
+//! [`FrameBuffer`], and the simulator's
 //! dual-port RAM is another.
+
+pub mod checksum;
+#[cfg(feature = "embedded-graphics")]
+pub mod draw_target;
+pub mod framebuffer;
+
+pub use checksum::Checksum;
+pub use framebuffer::FrameBuffer;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
 

@@ -17,8 +17,8 @@
 //! use embedded_graphics_core::prelude::*;
 //! use embedded_graphics_core::primitives::Rectangle;
 //! use scanvert::{
-//!     controller::Controller, display_list::{DisplayList, Writer}, draw_target::DrawTargetPort,
-//!     edge::Edge, fixed::Vertex, framebuffer::FrameBuffer, scan::Rasterizer,
+//!     controller::Controller, display_list::{DisplayList, Writer}, port::draw_target::DrawTargetPort,
+//!     edge::Edge, fixed::Vertex, port::framebuffer::FrameBuffer, raster::scan::Rasterizer,
 //! };
 //!
 //! let mut bytes = [0u8; 64];
@@ -50,7 +50,7 @@
 //! are in scope, name the one meant: `DrawTarget::clear(&mut fb, c)`. Both
 //! `clear`s write the same pixels.
 
-use crate::framebuffer::{FrameBuffer, MAX_SIDE};
+use crate::port::framebuffer::{FrameBuffer, MAX_SIDE};
 use crate::port::{Span, SpanTarget};
 use core::convert::Infallible;
 use embedded_graphics_core::draw_target::DrawTarget;
@@ -326,9 +326,9 @@ mod tests {
     use super::*;
     use crate::controller::Controller;
     use crate::display_list::{DisplayList, Writer};
-    use crate::edge::Edge;
     use crate::fixed::Vertex;
-    use crate::scan::Rasterizer;
+    use crate::raster::edge::Edge;
+    use crate::raster::scan::Rasterizer;
     use embedded_graphics::mock_display::MockDisplay;
     use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
     use embedded_graphics::primitives::{Circle, PointsIter, Primitive, PrimitiveStyle, Triangle};

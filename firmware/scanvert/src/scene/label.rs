@@ -410,7 +410,7 @@ impl<T: SpanTarget + ?Sized> DrawTarget for Spans<'_, T> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::framebuffer::FrameBuffer;
+    use crate::port::framebuffer::FrameBuffer;
     use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 
     fn store<'a>(slots: &'a mut [Label], text: &'a mut [u8]) -> LabelStore<'a> {

@@ -24,7 +24,7 @@
 //! background is either filled with a colour or skipped, so that the 3D
 //! layer can lie over 2D content already in the frame buffer.
 //!
-//! [`Face::color`]: crate::segment::Face::color
+//! [`Face::color`]: crate::visible::store::Face::color
 
 use crate::port::{Span, SpanTarget};
 use core::fmt;
@@ -235,7 +235,7 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::framebuffer::FrameBuffer;
+    use crate::port::framebuffer::FrameBuffer;
     use embedded_graphics_core::pixelcolor::{Gray8, GrayColor};
 
     #[test]

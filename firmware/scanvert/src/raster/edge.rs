@@ -24,9 +24,9 @@ use crate::fixed::{ceil_div_i32, ceil_div_i64, ceil_px, Vertex, HALF, ONE};
 
 /// How the scan converter steps one edge down the rows.
 ///
-/// [`Rasterizer`](crate::scan::Rasterizer) is generic over it, with the
+/// [`Rasterizer`](crate::raster::scan::Rasterizer) is generic over it, with the
 /// exact [`Edge`] the default; the faster, approximate steppers of
-/// [`edge_dda`](crate::edge_dda) implement it too. Row `j` is sampled on
+/// [`dda`](crate::raster::dda) implement it too. Row `j` is sampled on
 /// `y = j + ½`; a stepper reports, for each row from [`top`](Stepper::top)
 /// to [`end`](Stepper::end), the first pixel whose centre is at or right of
 /// its crossing (exactly or approximately).
@@ -57,7 +57,7 @@ pub trait Stepper: Copy {
 /// classic Bresenham error counter.
 ///
 /// Storage for edges is owned by the caller (see
-/// [`Rasterizer`](crate::scan::Rasterizer)); [`Edge::EMPTY`] fills it.
+/// [`Rasterizer`](crate::raster::scan::Rasterizer)); [`Edge::EMPTY`] fills it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Edge {
     /// `⌈x − ½⌉` at the current row, in units of 1/16 px.

@@ -38,9 +38,9 @@
 //! the same depth at a pixel, the lower key is in front: the lower
 //! segment, then the earlier polygon.
 
-use crate::clip::{ClipRect, ClipWindow};
 use crate::fixed::Vertex3;
-use crate::trapezoid::{EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE};
+use crate::raster::clip::{ClipRect, ClipWindow};
+use crate::visible::trapezoid::{EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -257,7 +257,7 @@ pub struct StoreMemory<'a> {
 ///
 /// ```
 /// use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-/// use scanvert::{clip::ClipRect, fixed::{Coord, Vertex3}, segment::*, trapezoid::*};
+/// use scanvert::{raster::clip::ClipRect, fixed::{Coord, Vertex3}, visible::store::*, visible::trapezoid::*};
 ///
 /// let (mut traps, mut faces) = ([Trapezoid::EMPTY; 64], [Face::EMPTY; 16]);
 /// let (mut segs, mut rows, mut edges) = ([Segment::EMPTY; 2], [0u16; 48], [EdgeSlot::EMPTY; 8]);

@@ -20,10 +20,10 @@
 //! pixels: a pixel is covered when an odd number of crossings lie at or
 //! left of its centre, and that count only depends on the integers.
 
-use crate::clip::ClipRect;
-use crate::edge::{Edge, Stepper};
 use crate::fixed::{ceil_px, Vertex, HALF};
 use crate::port::{Span, SpanTarget};
+use crate::raster::clip::ClipRect;
+use crate::raster::edge::{Edge, Stepper};
 use core::fmt;
 
 /// Why a polygon could not be drawn.
@@ -73,7 +73,7 @@ pub struct FillCounts {
 /// The storage is the active-edge list too, so no other memory is used.
 ///
 /// ```
-/// use scanvert::{edge::Edge, scan::Rasterizer};
+/// use scanvert::{raster::edge::Edge, raster::scan::Rasterizer};
 /// let mut slots = [Edge::EMPTY; 64]; // const-generic capacity on the stack
 /// let raster = Rasterizer::new(&mut slots);
 /// assert_eq!(raster.capacity(), 64);
@@ -82,10 +82,10 @@ pub struct FillCounts {
 /// # Steppers
 /// The edge stepper is the type parameter `S`: the exact [`Edge`] by
 /// default, or one of the approximate, faster steppers of
-/// [`edge_dda`](crate::edge_dda), chosen by the type of the storage:
+/// [`dda`](crate::raster::dda), chosen by the type of the storage:
 ///
 /// ```
-/// use scanvert::{edge_dda::Dda16, scan::Rasterizer};
+/// use scanvert::{raster::dda::Dda16, raster::scan::Rasterizer};
 /// let mut slots = [Dda16::EMPTY; 16];
 /// let raster: Rasterizer<'_, Dda16> = Rasterizer::new(&mut slots);
 /// assert_eq!(raster.capacity(), 16);
@@ -331,7 +331,7 @@ pub(crate) fn rule_covers<V: Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::framebuffer::FrameBuffer;
+    use crate::port::framebuffer::FrameBuffer;
     use embedded_graphics_core::pixelcolor::BinaryColor;
 
     const W: u16 = 48;
@@ -339,7 +339,7 @@ mod tests {
 
     /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex], i: i32, j: i32) -> bool {
-        crate::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
+        crate::raster::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
     }
 
     /// Random polygons of 3 to 12 vertices (concave and self-intersecting
@@ -368,7 +368,7 @@ mod tests {
             let (x0, y0) = (rnd(W as u32) as i32, rnd(H as u32) as i32);
             let (x1, y1) = (x0 + rnd(W as u32) as i32, y0 + rnd(H as u32) as i32);
             let clip = ClipRect::from_window(
-                crate::clip::ClipWindow {
+                crate::raster::clip::ClipWindow {
                     x0: x0 as i16,
                     y0: y0 as i16,
                     x1: x1 as i16,

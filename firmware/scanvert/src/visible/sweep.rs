@@ -26,7 +26,7 @@
 //!      resolved from its two ends and, if they differ, subdivided
 //!      ([`Resolve`]) until every part has the same nearest trapezoid at
 //!      both ends (or, if they agree, counted as *multiple*).
-//! 5. The row's runs go to the caller ([`rle`](crate::rle) format), or
+//! 5. The row's runs go to the caller ([`rle`](crate::visible::rle) format), or
 //!    with [`draw`] straight to the frame-buffer port as spans.
 //! 6. Trapezoids that end drop out; the rest step down a row.
 //!
@@ -40,9 +40,9 @@
 //! The nearest trapezoid at pixel `(i, j)` is the one whose face's plane
 //! has the smallest depth `z` at the pixel centre; at equal depth, the
 //! face with the lower key ([`Face::key`]: lower segment, then earlier
-//! polygon). Depths are first compared in fixed point ([`Depth`](crate::trapezoid::Depth));
+//! polygon). Depths are first compared in fixed point ([`Depth`](crate::visible::trapezoid::Depth));
 //! when two are closer than [`DEPTH_TOLERANCE`], where rounding could
-//! decide, they are compared exactly ([`Plane::cmp_at`](crate::trapezoid::Plane::cmp_at)). So every
+//! decide, they are compared exactly ([`Plane::cmp_at`](crate::visible::trapezoid::Plane::cmp_at)). So every
 //! comparison is exact.
 //!
 //! Each trapezoid covering a span covers all of it, and along a row the
@@ -118,16 +118,16 @@
 //! the same scenes on the host (time, error, and the z-buffer), and writes
 //! them as display lists with `-- --write-lists DIR`.
 //!
-//! [`Face::key`]: crate::segment::Face::key
+//! [`Face::key`]: crate::visible::store::Face::key
 
 use crate::color::ListColor;
-use crate::edge::Edge;
 use crate::fixed::ceil_px;
 use crate::port::Span;
 use crate::port::SpanTarget;
-use crate::rle::{DecodeCounts, Run, RunWriter, RunsFull};
-use crate::segment::TrapezoidStore;
-use crate::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
+use crate::raster::edge::Edge;
+use crate::visible::rle::{DecodeCounts, Run, RunWriter, RunsFull};
+use crate::visible::store::TrapezoidStore;
+use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -630,7 +630,7 @@ impl<E, F: FnMut(u16, &[Run]) -> Result<(), E>> RowOut for ToSink<'_, F> {
 }
 
 /// Runs written straight into a frame-buffer port as spans, as
-/// [`decode_row`](crate::rle::decode_row) writes a row of runs: the same
+/// [`decode_row`](crate::visible::rle::decode_row) writes a row of runs: the same
 /// spans, without the row buffer or the face lookup per run.
 struct ToTarget<'t, T: SpanTarget + ?Sized> {
     target: &'t mut T,
@@ -1055,7 +1055,7 @@ pub fn draw<T>(
     mode: Resolve,
     target: &mut T,
     background: Option<T::Color>,
-) -> Result<(VisibleStats, crate::rle::DecodeCounts), VisibleError<T::Error>>
+) -> Result<(VisibleStats, crate::visible::rle::DecodeCounts), VisibleError<T::Error>>
 where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
@@ -1079,10 +1079,10 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::clip::ClipRect;
     use crate::fixed::{Coord, Vertex3};
-    use crate::segment::{Face, Segment, StoreMemory};
-    use crate::trapezoid::EdgeSlot;
+    use crate::raster::clip::ClipRect;
+    use crate::visible::store::{Face, Segment, StoreMemory};
+    use crate::visible::trapezoid::EdgeSlot;
     use embedded_graphics_core::pixelcolor::Rgb888;
 
     const W: u16 = 48;
@@ -1108,7 +1108,7 @@ mod tests {
 
     /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {
-        crate::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
+        crate::raster::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
     }
 
     /// The winner at each pixel by brute force over the store's faces:

@@ -6,7 +6,7 @@
 //! A trapezoid is a pair of polygon edges, a left one and a right one,
 //! over a run of rows `top..end`. On row `j` it covers the pixels
 //! `c_left..c_right`, where `c = ⌈x − ½⌉` is the crossing's pixel as the
-//! exact [`Edge`] stepper computes it (the rule of [`scan`](crate::scan)).
+//! exact [`Edge`] stepper computes it (the rule of [`scan`](crate::raster::scan)).
 //! The union of a polygon's trapezoids is exactly the set of pixels that
 //! `poly` covers, each pixel once, for every polygon: convex, concave or
 //! self-intersecting. The cut works like this:
@@ -95,9 +95,9 @@
 //! fit, which is the case for ordinary polygons, else in `i128`) and two
 //! per trapezoid (its edges); nothing is divided per row.
 
-use crate::clip::ClipRect;
-use crate::edge::Edge;
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
+use crate::raster::clip::ClipRect;
+use crate::raster::edge::Edge;
 use core::cmp::Ordering;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -511,7 +511,7 @@ struct Open {
 /// Scratch storage for one edge while a polygon is cut (32 bytes, so
 /// that moving one is a few word loads and stores). The
 /// caller owns it, as the edge storage of a
-/// [`Rasterizer`](crate::scan::Rasterizer): a polygon of `n` vertices needs
+/// [`Rasterizer`](crate::raster::scan::Rasterizer): a polygon of `n` vertices needs
 /// at most `n` slots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EdgeSlot {
@@ -830,8 +830,8 @@ fn sorted_at(e: &[EdgeSlot], j: i32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::clip::ClipWindow;
     use crate::fixed::Coord;
+    use crate::raster::clip::ClipWindow;
 
     pub(crate) fn v3(x: i32, y: i32, z: i32) -> Vertex3 {
         Vertex3 {
@@ -843,7 +843,7 @@ mod tests {
 
     /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {
-        crate::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
+        crate::raster::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
     }
 
     struct Rng(u32);

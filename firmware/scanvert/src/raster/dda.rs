@@ -1,7 +1,7 @@
 //! Faster, approximate alternatives to the exact edge stepper: the classic
 //! DDA, and vertices snapped to a coarser grid.
 //!
-//! The exact [`Edge`](crate::edge::Edge) keeps an error counter so that
+//! The exact [`Edge`](crate::raster::edge::Edge) keeps an error counter so that
 //! every crossing is rounded exactly as the pixel rule asks. The classic
 //! *digital differential analyser* drops the counter: it holds `x` in fixed
 //! point and adds a rounded slope `dx/dy` once per row. That saves a
@@ -14,7 +14,7 @@
 //!
 //! | stepper | `x` held in | error after `k` rows, in px | per row |
 //! |---|---|---|---|
-//! | [`Edge`](crate::edge::Edge) | 1/16 px and an error counter | 0 | 3 adds, 1 compare |
+//! | [`Edge`](crate::raster::edge::Edge) | 1/16 px and an error counter | 0 | 3 adds, 1 compare |
 //! | [`Dda7`] | 1/128 px (7 fraction bits) | `≤ (k + 1)/256` | 1 add |
 //! | [`Dda16`] | 1/65536 px (16.16) | `≤ (k + 1)/131072` | 1 add |
 //!
@@ -31,8 +31,8 @@
 //! (1/4 px or whole pixels) before the exact stepper. The pixels are then
 //! exact for the snapped polygon, and the error is the snapping's.
 
-use crate::edge::Stepper;
 use crate::fixed::{ceil_px, Vertex, FRAC_BITS, HALF, ONE};
+use crate::raster::edge::Stepper;
 
 /// `round(n / d)` for `d > 0`, halves rounded up.
 #[inline]
@@ -159,7 +159,7 @@ pub fn snap(v: Vertex, frac_bits: u32) -> Vertex {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::edge::Edge;
+    use crate::raster::edge::Edge;
 
     fn xorshift(s: &mut u32, m: i32) -> i32 {
         *s ^= *s << 13;

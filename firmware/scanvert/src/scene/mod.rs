@@ -19,7 +19,7 @@
 //! clip mark every segment stale. [`Scene::update`] rebuilds the stale
 //! segments alone; the others keep their trapezoids and labels, so a frame
 //! where one segment changed cuts only that segment's polygons again. The
-//! store's per-segment [`Counters`](crate::segment::Counters) and
+//! store's per-segment [`Counters`](crate::visible::store::Counters) and
 //! [`Update`] count the work.
 //!
 //! [`Scene::draw`] then resolves the visible surfaces row by row into
@@ -31,7 +31,7 @@
 //! The transform stack's depth and the vertices of one polygon (at every
 //! clipping stage) are the const generics `DEPTH` and `N` of the
 //! [`Pipeline`]. Everything else is the caller's memory, given in
-//! [`SceneMemory`]: the store's pools (see [`segment`](crate::segment)),
+//! [`SceneMemory`]: the store's pools (see [`segment`](crate::visible::store)),
 //! the label slots and the label text. Running out of any of them is an
 //! error that names the pool, and leaves the segment being built empty
 //! (and still stale), never half built.
@@ -40,15 +40,15 @@
 //!
 //! ```
 //! use scanvert::fixed::{Coord, Vertex3};
-//! use scanvert::framebuffer::FrameBuffer;
+//! use scanvert::port::framebuffer::FrameBuffer;
 //! use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, Q16, View, Viewport};
-//! use scanvert::label::{Label, DEFAULT_FONT};
+//! use scanvert::scene::label::{Label, DEFAULT_FONT};
 //! use scanvert::pixelcolor::{Rgb565, Rgb888, RgbColor};
-//! use scanvert::rle::Run;
+//! use scanvert::visible::rle::Run;
 //! use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
-//! use scanvert::segment::{Face, Segment, StoreMemory};
-//! use scanvert::trapezoid::{EdgeSlot, Trapezoid};
-//! use scanvert::visible::{Active, Cover, Resolve, Workspace};
+//! use scanvert::visible::store::{Face, Segment, StoreMemory};
+//! use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+//! use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
 //!
 //! const W: u16 = 64;
 //! const H: u16 = 48;
@@ -98,7 +98,10 @@
 //! # Ok::<(), SceneError>(())
 //! ```
 
-use crate::clip::ClipRect;
+pub mod label;
+
+pub use label::{Label, LabelStore, DEFAULT_FONT};
+
 use crate::color::ListColor;
 use crate::display_list::Axis;
 use crate::fixed::Coord;
@@ -106,15 +109,16 @@ use crate::geometry::{
     Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, ProjectionError,
     TransformError, TransformStack, View, Q16,
 };
-use crate::label::{DrawCounts, Label, LabelError, LabelStore};
 use crate::port::SpanTarget;
-use crate::rle::DecodeCounts;
-use crate::segment::SegmentSink;
-use crate::segment::{StoreError, StoreMemory, TrapezoidStore};
+use crate::raster::clip::ClipRect;
+use crate::visible::rle::DecodeCounts;
+use crate::visible::store::SegmentSink;
+use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
 use crate::visible::{self, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::Rgb888;
+use label::{DrawCounts, LabelError};
 
 /// The caller's memory of a [`Scene`].
 #[derive(Debug)]
@@ -523,19 +527,21 @@ impl<const DEPTH: usize, const N: usize> Builder<'_, '_, DEPTH, N> {
     }
 
     /// A label whose first character's lower-left corner is at the model
-    /// point `at` (see [`label`](crate::label)). `Ok(false)` when the point
+    /// point `at` (see [`label`]). `Ok(false)` when the point
     /// lies before the near plane or too far off the window to show.
     pub fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<bool, SceneError> {
         let a = self.scene.pipeline.project_point(at)?;
         if !a.in_front {
             // Checked all the same, so that a bad text fails whatever the view.
-            return crate::label::check_text(text)
+            return crate::scene::label::check_text(text)
                 .map(|_| false)
                 .map_err(Into::into);
         }
-        Ok(self
-            .scene
-            .labels
-            .add(self.segment as u16, crate::label::to_pixels(a), color, text)?)
+        Ok(self.scene.labels.add(
+            self.segment as u16,
+            crate::scene::label::to_pixels(a),
+            color,
+            text,
+        )?)
     }
 }

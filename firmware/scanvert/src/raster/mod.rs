@@ -1,0 +1,16 @@
+//! Stage 2 of the 2D path: polygons into spans.
+//!
+//! A polygon's edges are set up once ([`edge`]), stepped down the rows
+//! with integer error counters and paired into spans by the even-odd rule
+//! ([`scan`]); every span is cut to the clip registers ([`clip`]) before it
+//! leaves for the port. [`dda`] holds the faster, approximate steppers,
+//! with their error measured.
+
+pub mod clip;
+pub mod dda;
+pub mod edge;
+pub mod scan;
+
+pub use clip::{ClipRect, ClipWindow};
+pub use edge::{Edge, Stepper};
+pub use scan::{FillCounts, FillError, Rasterizer};

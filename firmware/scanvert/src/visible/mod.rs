@@ -1,0 +1,19 @@
+//! Stages 3 to 5 of the 3D path: screen-space polygons into run-length
+//! rows, with no z-buffer.
+//!
+//! | stage | module | what happens |
+//! |---|---|---|
+//! | cut | [`trapezoid`] | a polygon into trapezoids with horizontal parallel sides, with its exact plane |
+//! | store | [`store`] | trapezoids and faces by segment, in caller-owned pools, indexed by top row |
+//! | resolve | [`sweep`] | active trapezoids per row, spans classified and resolved by depth |
+//! | encode, decode | [`rle`] | one run-length scan line per row, and its decoder into the port |
+
+pub mod rle;
+pub mod store;
+pub mod sweep;
+pub mod trapezoid;
+
+pub use rle::{DecodeCounts, Run, RunWriter, RunsFull};
+pub use store::{Face, Segment, StoreError, StoreMemory, TrapezoidStore};
+pub use sweep::{draw, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
+pub use trapezoid::{EdgeSlot, Trapezoid};
