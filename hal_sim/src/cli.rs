@@ -11,6 +11,10 @@
 //! number. Every error exits with a non-zero status and a message naming
 //! the file and the line (text) or byte offset (binary); no output file is
 //! written on an error.
+//!
+//! Output files are written through a new temporary file next to them,
+//! renamed into place; a destination that is not a regular file (a link, a
+//! directory, a device, a fifo) is refused (see `write_output`).
 
 use crate::dual_port::DualPortRam;
 use crate::refresh::RefreshController;
@@ -28,6 +32,7 @@ use scanvert::segment::{Face, Segment, StoreMemory};
 use scanvert::trapezoid::{EdgeSlot, Trapezoid};
 use scanvert::visible::{Active, Cover, Resolve};
 use std::fmt;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
@@ -214,13 +219,98 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     Ok(Rendered { ram, stats })
 }
 
-/// Writes `bytes` to `path` through a temporary file, so that a failed
-/// write leaves no partial output.
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".partial");
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes)
+/// Tries at most this many temporary names before giving up.
+const TEMP_TRIES: u32 = 1000;
+
+/// What a path that exists is, when it is not a regular file.
+fn special_kind(t: std::fs::FileType) -> Option<&'static str> {
+    if t.is_file() {
+        return None;
+    }
+    if t.is_symlink() {
+        return Some("a symbolic link");
+    }
+    if t.is_dir() {
+        return Some("a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+        if t.is_fifo() {
+            return Some("a fifo");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    Some("not a regular file")
+}
+
+/// Creates a new temporary file next to `path`, named
+/// `.NAME.PID.N.tmp`: `create_new` never follows a link or opens a file
+/// that is already there, so a name that is taken (by anything, a planted
+/// link too) is skipped for the next `N`.
+fn create_temp(path: &Path) -> Result<(std::fs::File, PathBuf), CliError> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| io(path, "not a file name"))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    // The name only helps to recognise a leftover: a readable part is
+    // enough, and keeps the temporary name within the system's limit.
+    let stem: String = name.to_string_lossy().chars().take(64).collect();
+    let pid = std::process::id();
+    for n in 0..TEMP_TRIES {
+        let tmp = dir.join(format!(".{stem}.{pid}.{n}.tmp"));
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(f) => return Ok((f, tmp)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(io(path, e)),
+        }
+    }
+    Err(io(
+        path,
+        format_args!("no free temporary name after {TEMP_TRIES} tries"),
+    ))
+}
+
+/// Writes `bytes` to `path`, safely: into a new temporary file next to it,
+/// then renamed over it, so that a failed write leaves no partial output
+/// and no link is ever followed. A destination that exists and is not a
+/// regular file (a symbolic link to anything, a directory, a device, a
+/// fifo) is refused and left as it is. Every failure is an [`EXIT_IO`]
+/// error naming `path`; the temporary file is removed.
+pub(crate) fn write_output(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) => {
+            if let Some(kind) = special_kind(m.file_type()) {
+                return Err(io(
+                    path,
+                    format_args!("is {kind}, not a regular file; refusing to replace it"),
+                ));
+            }
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(io(path, e)),
+    }
+    let (mut file, tmp) = create_temp(path)?;
+    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    drop(file);
+    // `rename` replaces the name `path`: were a link put there meanwhile,
+    // the link would be replaced, not followed.
+    written
         .and_then(|()| std::fs::rename(&tmp, path))
         .map_err(|e| {
             let _ = std::fs::remove_file(&tmp);
@@ -316,7 +406,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
             let mut r = render_scene(&scene)?;
             let frame = RefreshController::new(timing).read_frame(&mut r.ram);
             let png = crate::image::encode_png(&frame).map_err(|e| io(&out, e))?;
-            write_atomic(&out, &png)?;
+            write_output(&out, &png)?;
             Ok(if a.stats {
                 let s = r.stats;
                 format!(
@@ -356,7 +446,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 .clone()
                 .ok_or_else(|| usage("asm: --out LIST.scvl is required"))?;
             let scene = Scene::load(&path)?;
-            write_atomic(&out, &scene.bytes)?;
+            write_output(&out, &scene.bytes)?;
             Ok(String::new())
         }
         "disasm" => {
@@ -364,7 +454,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
             let scene = Scene::load(&path)?;
             let txt = text::disassemble(&scene.list());
             match &a.out {
-                Some(out) => write_atomic(out, txt.as_bytes()).map(|()| String::new()),
+                Some(out) => write_output(out, txt.as_bytes()).map(|()| String::new()),
                 None => Ok(txt),
             }
         }
