@@ -18,7 +18,7 @@
 
 use crate::dual_port::DualPortRam;
 use crate::refresh::RefreshController;
-use crate::text::{self, Assembled};
+use crate::text::{self, escape_for_terminal, Assembled};
 use crate::timing::VideoTiming;
 use scanvert::controller::{
     edges_3d, needs_3d, Controller, Needs3d, RenderError, Stats, Storage3d,
@@ -73,21 +73,26 @@ impl fmt::Display for CliError {
 fn usage(msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_USAGE,
-        message: format!("{msg}\n{USAGE}"),
+        message: format!("{}\n{USAGE}", escape_for_terminal(&msg.to_string())),
     }
+}
+
+/// A path as it may be shown on a terminal.
+pub(crate) fn shown(path: &Path) -> String {
+    escape_for_terminal(&path.display().to_string())
 }
 
 pub(crate) fn input(path: &Path, msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_INPUT,
-        message: format!("{}: {msg}", path.display()),
+        message: format!("{}: {msg}", shown(path)),
     }
 }
 
 pub(crate) fn io(path: &Path, e: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_IO,
-        message: format!("{}: {e}", path.display()),
+        message: format!("{}: {e}", shown(path)),
     }
 }
 
@@ -411,7 +416,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 let s = r.stats;
                 format!(
                     "{}: {}x{}, {} commands, {} polygons, {} spans, {} pixels, {} clears\n",
-                    path.display(),
+                    shown(&path),
                     list.width(),
                     list.height(),
                     s.commands,
@@ -422,7 +427,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 ) + &if s.poly3 + s.faces + s.culled + s.clipped_away + s.labels > 0 {
                     format!(
                         "{}: {} poly3, {} faces ({} culled, {} clipped away), {} labels, {} trapezoids, {} runs, {} intersecting spans\n",
-                        path.display(),
+                        shown(&path),
                         s.poly3,
                         s.faces,
                         s.culled,
@@ -472,7 +477,8 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                     .map(|s| s.to_string_lossy())
                     .unwrap_or_default();
                 s += &format!(
-                    "checksum {stem} {:08x}\n",
+                    "checksum {} {:08x}\n",
+                    escape_for_terminal(&stem),
                     scanvert::checksum::frame_checksum(r.ram.contents())
                 );
             }

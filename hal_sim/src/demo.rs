@@ -497,7 +497,7 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
             f.trapezoids,
             f.drawn.visible.runs,
             f.drawn.labels.drawn,
-            path.display()
+            crate::cli::shown(&path)
         );
     }
     if !shown.is_empty() {
