@@ -96,6 +96,43 @@ pub(crate) fn io(path: &Path, e: impl fmt::Display) -> CliError {
     }
 }
 
+/// The largest input file, in bytes: 16 MiB. A scene, in either form, is
+/// far smaller (the largest binary polygon is 256 KiB); the limit keeps a
+/// mistaken input (`/dev/zero`, a disk image) from filling the memory.
+pub const INPUT_LIMIT: u64 = 16 << 20;
+
+fn too_large(path: &Path) -> CliError {
+    input(path, "input larger than the 16 MiB limit")
+}
+
+/// The contents of the input file `path`, refused as soon as they exceed
+/// [`INPUT_LIMIT`]: a regular file by its size, before reading; anything
+/// else (a device, a pipe) after at most `INPUT_LIMIT + 1` bytes, never
+/// holding more than the limit in memory.
+pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| input(path, e))?;
+    let size = file.metadata().map_err(|e| input(path, e))?;
+    if size.is_file() && size.len() > INPUT_LIMIT {
+        return Err(too_large(path));
+    }
+    let mut reader = file.take(INPUT_LIMIT + 1);
+    let mut bytes = Vec::new();
+    let mut chunk = vec![0u8; 1 << 16];
+    loop {
+        let n = match reader.read(&mut chunk) {
+            Ok(0) => return Ok(bytes),
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(input(path, e)),
+        };
+        if (bytes.len() + n) as u64 > INPUT_LIMIT {
+            return Err(too_large(path));
+        }
+        bytes.extend_from_slice(&chunk[..n]);
+    }
+}
+
 /// A scene read from a file: the binary list, and the line table when it
 /// came from text.
 #[derive(Debug)]
@@ -106,14 +143,19 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads and checks `path`, in either form.
+    /// Reads and checks `path`, in either form, at most [`INPUT_LIMIT`]
+    /// bytes of it.
     pub fn load(path: &Path) -> Result<Scene, CliError> {
-        let raw = std::fs::read(path).map_err(|e| input(path, e))?;
+        let raw = read_input(path)?;
         Scene::from_bytes(path, raw)
     }
 
-    /// Checks `raw` (text or binary) read from `path`.
+    /// Checks `raw` (text or binary, at most [`INPUT_LIMIT`] bytes) read
+    /// from `path`.
     pub fn from_bytes(path: &Path, raw: Vec<u8>) -> Result<Scene, CliError> {
+        if raw.len() as u64 > INPUT_LIMIT {
+            return Err(too_large(path));
+        }
         let path = path.to_path_buf();
         if raw.starts_with(&MAGIC) {
             DisplayList::new_checked(&raw).map_err(|e| input(&path, e))?;
