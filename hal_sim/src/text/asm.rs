@@ -110,9 +110,15 @@ pub fn assemble(text: &str) -> Result<Assembled, TextError> {
     assemble_bytes(text.as_bytes())
 }
 
+/// The UTF-8 byte-order mark, which some editors put at the start of a
+/// text file: skipped there.
+const BOM: &[u8] = b"\xef\xbb\xbf";
+
 /// Assembles a scene given as raw bytes (a file's contents, which need not
-/// be UTF-8 outside the words that are read).
+/// be UTF-8 outside the words that are read). A UTF-8 byte-order mark at
+/// the very start is skipped.
 pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
+    let raw = raw.strip_prefix(BOM).unwrap_or(raw);
     let mut frame: Option<(u16, u16, usize)> = None;
     let mut cmds: Vec<(usize, Cmd)> = Vec::new();
     let mut last_line = 1;
