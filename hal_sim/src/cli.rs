@@ -5,10 +5,12 @@
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
+//! scanvert demo [--out DIR] [--frames N] [--no-speed]
+//! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
 //!
 //! `SCENE` is either form of the display list, told apart by the magic
-//! number. Every error exits with a non-zero status and a message naming
+//! number, in a file of at most [`INPUT_LIMIT`] bytes. Every error exits with a non-zero status and a message naming
 //! the file and the line (text) or byte offset (binary); no output file is
 //! written on an error.
 //!
@@ -42,11 +44,109 @@ usage:
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
   scanvert demo [--out DIR] [--frames N] [--no-speed]
+  scanvert help [COMMAND]
 
-SCENE is a display list in text form or binary form (told apart by its magic number).
-demo animates 3D bars over a map with labels through the simulated display
-(double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and
-prints the segments regenerated, trapezoids per frame and frames/s.";
+SCENE is a display list in text form or binary form (told apart by its magic number),
+at most 16 MiB. render draws it through the simulated display hardware into a PNG;
+--timing picks the video timing of the simulated monitor, whose visible area is the
+image (auto, the default: the frame's own size). asm and disasm convert between the
+two forms. demo animates 3D bars over a map with labels through the simulated display
+(double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and prints the
+segments regenerated, trapezoids per frame and frames/s.
+`scanvert help COMMAND` or `scanvert COMMAND --help` explains a command's options.
+Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
+
+const HELP_RENDER: &str = "\
+usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+
+Renders SCENE, a display list in text or binary form, through the simulated display
+hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
+refresh controller reads it out as a monitor would, in step with the sync signals it
+generates. The PNG is what the monitor shows.
+
+options:
+  --out, -o IMAGE.png  the image to write (required). It is written to a new file
+                       next to it and renamed; an existing regular file is replaced,
+                       anything else (a link, a directory, a device) is refused.
+  --timing MODE        the refresh timing the simulated monitor uses (pixel clock,
+                       porches, sync pulses), and with it the visible area it shows,
+                       which is the size of the image:
+                         auto       the default: a mode whose visible area is the
+                                    frame (the reference design's at 640x480, the TV
+                                    mode's at 256x256, else a custom mode at 25 MHz)
+                         reference  the reference design: 640x480 visible, 25 MHz
+                                    pixel clock, 59.98 Hz
+                         vga        standard VGA: 640x480 visible, 25.175 MHz, 60 Hz
+                         256        a TV-like raster: 256x256 visible, 5 MHz, 50 Hz
+                       Where the visible area is smaller than the frame, the image
+                       is cropped to the frame's top-left part, and a warning says
+                       so; where it is larger, the rest of the image is black.
+  --stats              print what the graphic controller did: commands, polygons,
+                       spans, pixels, clears; for 3D scenes also poly3s, faces
+                       (culled, clipped away), labels, trapezoids and runs
+  --help, -h           this help";
+
+const HELP_ASM: &str = "\
+usage: scanvert asm SCENE.dl --out LIST.scvl
+
+Assembles a display list in text form into the binary form the firmware reads (a
+binary input is checked and written unchanged). Faults are reported with their line.
+
+options:
+  --out, -o LIST.scvl  the binary list to write (required); an existing regular file
+                       is replaced, anything else is refused
+  --help, -h           this help";
+
+const HELP_DISASM: &str = "\
+usage: scanvert disasm LIST.scvl [--out SCENE.dl]
+
+Writes a display list (either form) in text form: one command a line, every value
+exact, label texts in double quotes where they need them. Assembling the text gives
+the same bytes back.
+
+options:
+  --out, -o SCENE.dl   the text file to write; without it, standard output. An
+                       existing regular file is replaced, anything else is refused
+  --help, -h           this help";
+
+const HELP_CHECKSUM: &str = "\
+usage: scanvert checksum SCENE...
+
+Renders each SCENE into the frame-buffer RAM and prints `checksum NAME XXXXXXXX`, the
+checksum of the frame that the firmware image prints for the same list (NAME is the
+file name without its extension).
+
+options:
+  --help, -h           this help";
+
+const HELP_DEMO: &str = "\
+usage: scanvert demo [--out DIR] [--frames N] [--no-speed]
+
+Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
+512x256 through the simulated display (double-buffered): first the threshold that
+highlights bars changes, so only the bars are rebuilt, then the camera moves. Prints
+per frame the segments regenerated and the trapezoids, then the frames per second on
+this host.
+
+options:
+  --out, -o DIR        where the frames go, as DIR/frame-NN.png (default: demo); each
+                       is written to a new file and renamed, and an existing frame
+                       that is not a regular file is refused
+  --frames N           how many frames, 1 to 100 (default: 8)
+  --no-speed           skip measuring the frames per second
+  --help, -h           this help";
+
+/// The help of `command`, or `None` for a command that does not exist.
+fn command_help(command: &str) -> Option<&'static str> {
+    Some(match command {
+        "render" => HELP_RENDER,
+        "asm" => HELP_ASM,
+        "disasm" => HELP_DISASM,
+        "checksum" => HELP_CHECKSUM,
+        "demo" => HELP_DEMO,
+        _ => return None,
+    })
+}
 
 /// Exit status for bad input (a scene that cannot be read or rendered).
 pub const EXIT_INPUT: u8 = 1;
@@ -372,6 +472,7 @@ struct Args {
     stats: bool,
     frames: Option<usize>,
     no_speed: bool,
+    help: bool,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -382,6 +483,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         stats: false,
         frames: None,
         no_speed: false,
+        help: false,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -405,6 +507,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 a.timing = Some(v.clone());
             }
             "--stats" => a.stats = true,
+            "--help" | "-h" => a.help = true,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(usage(format_args!("unknown option {s}")))
             }
@@ -414,8 +517,8 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
     Ok(a)
 }
 
-fn timing_for(name: Option<&str>, w: u16, h: u16) -> Result<VideoTiming, CliError> {
-    let t = match name.unwrap_or("auto") {
+fn timing_for(name: &str, w: u16, h: u16) -> Result<VideoTiming, CliError> {
+    let t = match name {
         "auto" => VideoTiming::for_frame(w, h),
         "reference" => VideoTiming::REFERENCE_640X480,
         "vga" => VideoTiming::VGA_640X480_60,
@@ -434,12 +537,33 @@ fn one_input(a: &Args, cmd: &str) -> Result<PathBuf, CliError> {
 }
 
 /// Runs the program on `args` (without the program name); returns what to
-/// print on standard output.
+/// print on standard output. Warnings go to standard error, each a line
+/// `scanvert: warning: …`.
 pub fn run(args: &[String]) -> Result<String, CliError> {
+    run_reporting(args, &mut |w| eprintln!("scanvert: {w}"))
+}
+
+/// [`run`], handing each warning (a line starting `warning: `) to `warn`
+/// instead of printing it.
+pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, CliError> {
     let Some((cmd, rest)) = args.split_first() else {
         return Err(usage("missing command"));
     };
+    if matches!(cmd.as_str(), "help" | "--help" | "-h") {
+        return match rest {
+            [] => Ok(format!("{USAGE}\n")),
+            [command] => command_help(command)
+                .map(|h| format!("{h}\n"))
+                .ok_or_else(|| usage(format_args!("help: unknown command {command}"))),
+            _ => Err(usage("help: one command expected")),
+        };
+    }
     let a = parse(rest)?;
+    if a.help {
+        if let Some(h) = command_help(cmd) {
+            return Ok(format!("{h}\n"));
+        }
+    }
     match cmd.as_str() {
         "render" => {
             let path = one_input(&a, "render")?;
@@ -449,8 +573,19 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 .ok_or_else(|| usage("render: --out IMAGE.png is required"))?;
             let scene = Scene::load(&path)?;
             let list = scene.list();
-            let timing = timing_for(a.timing.as_deref(), list.width(), list.height())?;
+            let mode = a.timing.as_deref().unwrap_or("auto");
+            let timing = timing_for(mode, list.width(), list.height())?;
             let mut r = render_scene(&scene)?;
+            // The image is the mode's visible area, read from the RAM's
+            // top-left corner (see `refresh`): a smaller area crops.
+            let (tw, th) = (timing.width(), timing.height());
+            if tw < list.width() || th < list.height() {
+                warn(&format!(
+                    "warning: timing {mode} shows {tw}×{th} of the {}×{} frame; the image is cropped",
+                    list.width(),
+                    list.height()
+                ));
+            }
             let frame = RefreshController::new(timing).read_frame(&mut r.ram);
             let png = crate::image::encode_png(&frame).map_err(|e| io(&out, e))?;
             write_output(&out, &png)?;
@@ -533,7 +668,6 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
             let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("demo"));
             crate::demo::run(&dir, a.frames.unwrap_or(8), !a.no_speed)
         }
-        "help" | "--help" | "-h" => Ok(format!("{USAGE}\n")),
         other => Err(usage(format_args!("unknown command {other}"))),
     }
 }
