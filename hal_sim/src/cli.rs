@@ -5,16 +5,22 @@
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
+//! scanvert demo [--out DIR] [--frames N] [--no-speed]
+//! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
 //!
 //! `SCENE` is either form of the display list, told apart by the magic
-//! number. Every error exits with a non-zero status and a message naming
+//! number, in a file of at most [`INPUT_LIMIT`] bytes. Every error exits with a non-zero status and a message naming
 //! the file and the line (text) or byte offset (binary); no output file is
 //! written on an error.
+//!
+//! Output files are written through a new temporary file next to them,
+//! renamed into place; a destination that is not a regular file (a link, a
+//! directory, a device, a fifo) is refused (see `write_output`).
 
 use crate::dual_port::DualPortRam;
 use crate::refresh::RefreshController;
-use crate::text::{self, Assembled};
+use crate::text::{self, escape_for_terminal, Assembled};
 use crate::timing::VideoTiming;
 use scanvert::controller::{
     edges_3d, needs_3d, Controller, Needs3d, RenderError, Stats, Storage3d,
@@ -28,6 +34,7 @@ use scanvert::visible::store::{Face, Segment, StoreMemory};
 use scanvert::visible::sweep::{Active, Cover, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use std::fmt;
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
@@ -37,11 +44,109 @@ usage:
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
   scanvert demo [--out DIR] [--frames N] [--no-speed]
+  scanvert help [COMMAND]
 
-SCENE is a display list in text form or binary form (told apart by its magic number).
-demo animates 3D bars over a map with labels through the simulated display
-(double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and
-prints the segments regenerated, trapezoids per frame and frames/s.";
+SCENE is a display list in text form or binary form (told apart by its magic number),
+at most 16 MiB. render draws it through the simulated display hardware into a PNG;
+--timing picks the video timing of the simulated monitor, whose visible area is the
+image (auto, the default: the frame's own size). asm and disasm convert between the
+two forms. demo animates 3D bars over a map with labels through the simulated display
+(double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and prints the
+segments regenerated, trapezoids per frame and frames/s.
+`scanvert help COMMAND` or `scanvert COMMAND --help` explains a command's options.
+Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
+
+const HELP_RENDER: &str = "\
+usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+
+Renders SCENE, a display list in text or binary form, through the simulated display
+hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
+refresh controller reads it out as a monitor would, in step with the sync signals it
+generates. The PNG is what the monitor shows.
+
+options:
+  --out, -o IMAGE.png  the image to write (required). It is written to a new file
+                       next to it and renamed; an existing regular file is replaced,
+                       anything else (a link, a directory, a device) is refused.
+  --timing MODE        the refresh timing the simulated monitor uses (pixel clock,
+                       porches, sync pulses), and with it the visible area it shows,
+                       which is the size of the image:
+                         auto       the default: a mode whose visible area is the
+                                    frame (the reference design's at 640x480, the TV
+                                    mode's at 256x256, else a custom mode at 25 MHz)
+                         reference  the reference design: 640x480 visible, 25 MHz
+                                    pixel clock, 59.98 Hz
+                         vga        standard VGA: 640x480 visible, 25.175 MHz, 60 Hz
+                         256        a TV-like raster: 256x256 visible, 5 MHz, 50 Hz
+                       Where the visible area is smaller than the frame, the image
+                       is cropped to the frame's top-left part, and a warning says
+                       so; where it is larger, the rest of the image is black.
+  --stats              print what the graphic controller did: commands, polygons,
+                       spans, pixels, clears; for 3D scenes also poly3s, faces
+                       (culled, clipped away), labels, trapezoids and runs
+  --help, -h           this help";
+
+const HELP_ASM: &str = "\
+usage: scanvert asm SCENE.dl --out LIST.scvl
+
+Assembles a display list in text form into the binary form the firmware reads (a
+binary input is checked and written unchanged). Faults are reported with their line.
+
+options:
+  --out, -o LIST.scvl  the binary list to write (required); an existing regular file
+                       is replaced, anything else is refused
+  --help, -h           this help";
+
+const HELP_DISASM: &str = "\
+usage: scanvert disasm LIST.scvl [--out SCENE.dl]
+
+Writes a display list (either form) in text form: one command a line, every value
+exact, label texts in double quotes where they need them. Assembling the text gives
+the same bytes back.
+
+options:
+  --out, -o SCENE.dl   the text file to write; without it, standard output. An
+                       existing regular file is replaced, anything else is refused
+  --help, -h           this help";
+
+const HELP_CHECKSUM: &str = "\
+usage: scanvert checksum SCENE...
+
+Renders each SCENE into the frame-buffer RAM and prints `checksum NAME XXXXXXXX`, the
+checksum of the frame that the firmware image prints for the same list (NAME is the
+file name without its extension).
+
+options:
+  --help, -h           this help";
+
+const HELP_DEMO: &str = "\
+usage: scanvert demo [--out DIR] [--frames N] [--no-speed]
+
+Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
+512x256 through the simulated display (double-buffered): first the threshold that
+highlights bars changes, so only the bars are rebuilt, then the camera moves. Prints
+per frame the segments regenerated and the trapezoids, then the frames per second on
+this host.
+
+options:
+  --out, -o DIR        where the frames go, as DIR/frame-NN.png (default: demo); each
+                       is written to a new file and renamed, and an existing frame
+                       that is not a regular file is refused
+  --frames N           how many frames, 1 to 100 (default: 8)
+  --no-speed           skip measuring the frames per second
+  --help, -h           this help";
+
+/// The help of `command`, or `None` for a command that does not exist.
+fn command_help(command: &str) -> Option<&'static str> {
+    Some(match command {
+        "render" => HELP_RENDER,
+        "asm" => HELP_ASM,
+        "disasm" => HELP_DISASM,
+        "checksum" => HELP_CHECKSUM,
+        "demo" => HELP_DEMO,
+        _ => return None,
+    })
+}
 
 /// Exit status for bad input (a scene that cannot be read or rendered).
 pub const EXIT_INPUT: u8 = 1;
@@ -68,21 +173,63 @@ impl fmt::Display for CliError {
 fn usage(msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_USAGE,
-        message: format!("{msg}\n{USAGE}"),
+        message: format!("{}\n{USAGE}", escape_for_terminal(&msg.to_string())),
     }
+}
+
+/// A path as it may be shown on a terminal.
+pub(crate) fn shown(path: &Path) -> String {
+    escape_for_terminal(&path.display().to_string())
 }
 
 pub(crate) fn input(path: &Path, msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_INPUT,
-        message: format!("{}: {msg}", path.display()),
+        message: format!("{}: {msg}", shown(path)),
     }
 }
 
 pub(crate) fn io(path: &Path, e: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_IO,
-        message: format!("{}: {e}", path.display()),
+        message: format!("{}: {e}", shown(path)),
+    }
+}
+
+/// The largest input file, in bytes: 16 MiB. A scene, in either form, is
+/// far smaller (the largest binary polygon is 256 KiB); the limit keeps a
+/// mistaken input (`/dev/zero`, a disk image) from filling the memory.
+pub const INPUT_LIMIT: u64 = 16 << 20;
+
+fn too_large(path: &Path) -> CliError {
+    input(path, "input larger than the 16 MiB limit")
+}
+
+/// The contents of the input file `path`, refused as soon as they exceed
+/// [`INPUT_LIMIT`]: a regular file by its size, before reading; anything
+/// else (a device, a pipe) after at most `INPUT_LIMIT + 1` bytes, never
+/// holding more than the limit in memory.
+pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| input(path, e))?;
+    let size = file.metadata().map_err(|e| input(path, e))?;
+    if size.is_file() && size.len() > INPUT_LIMIT {
+        return Err(too_large(path));
+    }
+    let mut reader = file.take(INPUT_LIMIT + 1);
+    let mut bytes = Vec::new();
+    let mut chunk = vec![0u8; 1 << 16];
+    loop {
+        let n = match reader.read(&mut chunk) {
+            Ok(0) => return Ok(bytes),
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(input(path, e)),
+        };
+        if (bytes.len() + n) as u64 > INPUT_LIMIT {
+            return Err(too_large(path));
+        }
+        bytes.extend_from_slice(&chunk[..n]);
     }
 }
 
@@ -96,14 +243,19 @@ pub struct Scene {
 }
 
 impl Scene {
-    /// Reads and checks `path`, in either form.
+    /// Reads and checks `path`, in either form, at most [`INPUT_LIMIT`]
+    /// bytes of it.
     pub fn load(path: &Path) -> Result<Scene, CliError> {
-        let raw = std::fs::read(path).map_err(|e| input(path, e))?;
+        let raw = read_input(path)?;
         Scene::from_bytes(path, raw)
     }
 
-    /// Checks `raw` (text or binary) read from `path`.
+    /// Checks `raw` (text or binary, at most [`INPUT_LIMIT`] bytes) read
+    /// from `path`.
     pub fn from_bytes(path: &Path, raw: Vec<u8>) -> Result<Scene, CliError> {
+        if raw.len() as u64 > INPUT_LIMIT {
+            return Err(too_large(path));
+        }
         let path = path.to_path_buf();
         if raw.starts_with(&MAGIC) {
             DisplayList::new_checked(&raw).map_err(|e| input(&path, e))?;
@@ -214,13 +366,98 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     Ok(Rendered { ram, stats })
 }
 
-/// Writes `bytes` to `path` through a temporary file, so that a failed
-/// write leaves no partial output.
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(".partial");
-    let tmp = PathBuf::from(tmp);
-    std::fs::write(&tmp, bytes)
+/// Tries at most this many temporary names before giving up.
+const TEMP_TRIES: u32 = 1000;
+
+/// What a path that exists is, when it is not a regular file.
+fn special_kind(t: std::fs::FileType) -> Option<&'static str> {
+    if t.is_file() {
+        return None;
+    }
+    if t.is_symlink() {
+        return Some("a symbolic link");
+    }
+    if t.is_dir() {
+        return Some("a directory");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_char_device() {
+            return Some("a character device");
+        }
+        if t.is_block_device() {
+            return Some("a block device");
+        }
+        if t.is_fifo() {
+            return Some("a fifo");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    Some("not a regular file")
+}
+
+/// Creates a new temporary file next to `path`, named
+/// `.NAME.PID.N.tmp`: `create_new` never follows a link or opens a file
+/// that is already there, so a name that is taken (by anything, a planted
+/// link too) is skipped for the next `N`.
+fn create_temp(path: &Path) -> Result<(std::fs::File, PathBuf), CliError> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| io(path, "not a file name"))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    // The name only helps to recognise a leftover: a readable part is
+    // enough, and keeps the temporary name within the system's limit.
+    let stem: String = name.to_string_lossy().chars().take(64).collect();
+    let pid = std::process::id();
+    for n in 0..TEMP_TRIES {
+        let tmp = dir.join(format!(".{stem}.{pid}.{n}.tmp"));
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(f) => return Ok((f, tmp)),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(io(path, e)),
+        }
+    }
+    Err(io(
+        path,
+        format_args!("no free temporary name after {TEMP_TRIES} tries"),
+    ))
+}
+
+/// Writes `bytes` to `path`, safely: into a new temporary file next to it,
+/// then renamed over it, so that a failed write leaves no partial output
+/// and no link is ever followed. A destination that exists and is not a
+/// regular file (a symbolic link to anything, a directory, a device, a
+/// fifo) is refused and left as it is. Every failure is an [`EXIT_IO`]
+/// error naming `path`; the temporary file is removed.
+pub(crate) fn write_output(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    match std::fs::symlink_metadata(path) {
+        Ok(m) => {
+            if let Some(kind) = special_kind(m.file_type()) {
+                return Err(io(
+                    path,
+                    format_args!("is {kind}, not a regular file; refusing to replace it"),
+                ));
+            }
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(io(path, e)),
+    }
+    let (mut file, tmp) = create_temp(path)?;
+    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    drop(file);
+    // `rename` replaces the name `path`: were a link put there meanwhile,
+    // the link would be replaced, not followed.
+    written
         .and_then(|()| std::fs::rename(&tmp, path))
         .map_err(|e| {
             let _ = std::fs::remove_file(&tmp);
@@ -235,6 +472,7 @@ struct Args {
     stats: bool,
     frames: Option<usize>,
     no_speed: bool,
+    help: bool,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -245,6 +483,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         stats: false,
         frames: None,
         no_speed: false,
+        help: false,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -268,6 +507,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 a.timing = Some(v.clone());
             }
             "--stats" => a.stats = true,
+            "--help" | "-h" => a.help = true,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(usage(format_args!("unknown option {s}")))
             }
@@ -277,8 +517,8 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
     Ok(a)
 }
 
-fn timing_for(name: Option<&str>, w: u16, h: u16) -> Result<VideoTiming, CliError> {
-    let t = match name.unwrap_or("auto") {
+fn timing_for(name: &str, w: u16, h: u16) -> Result<VideoTiming, CliError> {
+    let t = match name {
         "auto" => VideoTiming::for_frame(w, h),
         "reference" => VideoTiming::REFERENCE_640X480,
         "vga" => VideoTiming::VGA_640X480_60,
@@ -297,12 +537,33 @@ fn one_input(a: &Args, cmd: &str) -> Result<PathBuf, CliError> {
 }
 
 /// Runs the program on `args` (without the program name); returns what to
-/// print on standard output.
+/// print on standard output. Warnings go to standard error, each a line
+/// `scanvert: warning: …`.
 pub fn run(args: &[String]) -> Result<String, CliError> {
+    run_reporting(args, &mut |w| eprintln!("scanvert: {w}"))
+}
+
+/// [`run`], handing each warning (a line starting `warning: `) to `warn`
+/// instead of printing it.
+pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, CliError> {
     let Some((cmd, rest)) = args.split_first() else {
         return Err(usage("missing command"));
     };
+    if matches!(cmd.as_str(), "help" | "--help" | "-h") {
+        return match rest {
+            [] => Ok(format!("{USAGE}\n")),
+            [command] => command_help(command)
+                .map(|h| format!("{h}\n"))
+                .ok_or_else(|| usage(format_args!("help: unknown command {command}"))),
+            _ => Err(usage("help: one command expected")),
+        };
+    }
     let a = parse(rest)?;
+    if a.help {
+        if let Some(h) = command_help(cmd) {
+            return Ok(format!("{h}\n"));
+        }
+    }
     match cmd.as_str() {
         "render" => {
             let path = one_input(&a, "render")?;
@@ -312,16 +573,27 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 .ok_or_else(|| usage("render: --out IMAGE.png is required"))?;
             let scene = Scene::load(&path)?;
             let list = scene.list();
-            let timing = timing_for(a.timing.as_deref(), list.width(), list.height())?;
+            let mode = a.timing.as_deref().unwrap_or("auto");
+            let timing = timing_for(mode, list.width(), list.height())?;
             let mut r = render_scene(&scene)?;
+            // The image is the mode's visible area, read from the RAM's
+            // top-left corner (see `refresh`): a smaller area crops.
+            let (tw, th) = (timing.width(), timing.height());
+            if tw < list.width() || th < list.height() {
+                warn(&format!(
+                    "warning: timing {mode} shows {tw}×{th} of the {}×{} frame; the image is cropped",
+                    list.width(),
+                    list.height()
+                ));
+            }
             let frame = RefreshController::new(timing).read_frame(&mut r.ram);
             let png = crate::image::encode_png(&frame).map_err(|e| io(&out, e))?;
-            write_atomic(&out, &png)?;
+            write_output(&out, &png)?;
             Ok(if a.stats {
                 let s = r.stats;
                 format!(
                     "{}: {}x{}, {} commands, {} polygons, {} spans, {} pixels, {} clears\n",
-                    path.display(),
+                    shown(&path),
                     list.width(),
                     list.height(),
                     s.commands,
@@ -332,7 +604,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 ) + &if s.poly3 + s.faces + s.culled + s.clipped_away + s.labels > 0 {
                     format!(
                         "{}: {} poly3, {} faces ({} culled, {} clipped away), {} labels, {} trapezoids, {} runs, {} intersecting spans\n",
-                        path.display(),
+                        shown(&path),
                         s.poly3,
                         s.faces,
                         s.culled,
@@ -356,7 +628,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                 .clone()
                 .ok_or_else(|| usage("asm: --out LIST.scvl is required"))?;
             let scene = Scene::load(&path)?;
-            write_atomic(&out, &scene.bytes)?;
+            write_output(&out, &scene.bytes)?;
             Ok(String::new())
         }
         "disasm" => {
@@ -364,7 +636,7 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
             let scene = Scene::load(&path)?;
             let txt = text::disassemble(&scene.list());
             match &a.out {
-                Some(out) => write_atomic(out, txt.as_bytes()).map(|()| String::new()),
+                Some(out) => write_output(out, txt.as_bytes()).map(|()| String::new()),
                 None => Ok(txt),
             }
         }
@@ -382,7 +654,8 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
                     .map(|s| s.to_string_lossy())
                     .unwrap_or_default();
                 s += &format!(
-                    "checksum {stem} {:08x}\n",
+                    "checksum {} {:08x}\n",
+                    escape_for_terminal(&stem),
                     scanvert::port::checksum::frame_checksum(r.ram.contents())
                 );
             }
@@ -395,7 +668,6 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
             let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("demo"));
             crate::demo::run(&dir, a.frames.unwrap_or(8), !a.no_speed)
         }
-        "help" | "--help" | "-h" => Ok(format!("{USAGE}\n")),
         other => Err(usage(format_args!("unknown command {other}"))),
     }
 }

@@ -477,7 +477,7 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
     for (i, f) in shown.iter().enumerate() {
         let path: PathBuf = dir.join(format!("frame-{i:02}.png"));
         let png = crate::image::encode_png(&f.shown).map_err(|e| crate::cli::io(&path, e))?;
-        std::fs::write(&path, png).map_err(|e| crate::cli::io(&path, e))?;
+        crate::cli::write_output(&path, &png)?;
         let names: Vec<&str> = (0..3)
             .filter(|&s| f.rebuilt[s] != prev[s])
             .map(|s| SEGMENTS[s])
@@ -497,7 +497,7 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
             f.trapezoids,
             f.drawn.visible.runs,
             f.drawn.labels.drawn,
-            path.display()
+            crate::cli::shown(&path)
         );
     }
     if !shown.is_empty() {

@@ -3,7 +3,8 @@
 //! or binary form, must exit with a non-zero status that is not the panic
 //! status (101), name the place of the fault (`line N` for text,
 //! `byte offset N` for binary) on stderr, never print "panicked", and
-//! leave no output file behind.
+//! leave no output file behind. Input quoted in a message never reaches
+//! the terminal raw: control characters are escaped.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use scanvert::display_list::{DisplayList, Writer};
@@ -536,4 +537,126 @@ fn malformed_binary_lists_are_rejected_with_a_byte_offset() {
 fn v2(mut b: Vec<u8>) -> Vec<u8> {
     b[4] = 2;
     b
+}
+
+/// Why `stderr` could act on a terminal, if it could: a byte below 0x20
+/// other than the line ends, DEL, a C1 control or a bidi override.
+fn unsafe_for_terminal(stderr: &[u8]) -> Option<String> {
+    if let Some(b) = stderr
+        .iter()
+        .find(|&&b| (b < 0x20 && b != b'\n') || b == 0x7f)
+    {
+        return Some(format!("raw byte {b:#04x}"));
+    }
+    let text = String::from_utf8_lossy(stderr);
+    text.chars()
+        .find(|&c| ('\u{80}'..='\u{9f}').contains(&c) || ('\u{202a}'..='\u{202e}').contains(&c))
+        .map(|c| format!("raw {c:?}"))
+}
+
+/// Runs the binary with `args` and checks that stderr is a non-empty
+/// failure message with nothing raw from the input in it.
+fn check_escaped(what: &str, args: &[&std::ffi::OsStr], status: i32, failures: &mut Vec<String>) {
+    let o = Command::new(env!("CARGO_BIN_EXE_scanvert"))
+        .args(args)
+        .output()
+        .expect("run scanvert");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    if o.status.code() != Some(status) {
+        failures.push(format!("{what}: status {:?}: {stderr:?}", o.status.code()));
+    } else if !stderr.contains('\\') {
+        failures.push(format!("{what}: no escape in {stderr:?}"));
+    } else if let Some(why) = unsafe_for_terminal(&o.stderr) {
+        failures.push(format!("{what}: {why} in {stderr:?}"));
+    }
+}
+
+#[test]
+fn control_characters_from_the_input_are_escaped_in_messages() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let dir = case_dir("escapes", 0);
+    let mut failures = Vec::new();
+    let scenes: [(&str, &[u8]); 8] = [
+        ("terminal title as the first command", b"\x1b]0;pwned\x07\n"),
+        ("unknown command", b"frame 8 8\n\x1b[2J\x1b[31mred\n"),
+        ("bad number", b"frame 8 8\npoly 0 0 1\x07 1 2 2\n"),
+        ("bad colour with DEL", b"frame 8 8\ncolor #12\x7f456\n"),
+        (
+            "bad axis with a C1 CSI",
+            b"frame 8 8\nrotate \xc2\x9b31m 90\n",
+        ),
+        (
+            "bidi override in a command",
+            b"frame 8 8\n\xe2\x80\xaeylop 1 2\n",
+        ),
+        ("backspace in the frame size", b"frame 8\x08 8\n"),
+        ("NUL before the first command", b"\x00frame 8 8\n"),
+    ];
+    for (k, (what, bytes)) in scenes.iter().enumerate() {
+        let scene = dir.join(format!("scene-{k}.dl"));
+        std::fs::write(&scene, bytes).expect("write scene");
+        let out = dir.join("image.png");
+        let args = [
+            OsStr::new("render"),
+            scene.as_os_str(),
+            OsStr::new("--out"),
+            out.as_os_str(),
+        ];
+        check_escaped(what, &args, 1, &mut failures);
+    }
+    // File names, options, commands and modes of the command line.
+    let good = dir.join("good.dl");
+    std::fs::write(&good, "frame 8 8\n").expect("write scene");
+    let evil_name = dir.join(OsStr::from_bytes(b"no-such-\x1b]0;x\x07.dl"));
+    let evil_out = dir.join(OsStr::from_bytes(b"no-dir-\x1b[5m/out.png"));
+    let cases: [(&str, Vec<&OsStr>, i32); 5] = [
+        (
+            "missing input file",
+            vec![
+                OsStr::new("render"),
+                evil_name.as_os_str(),
+                OsStr::new("--out"),
+                OsStr::new("x.png"),
+            ],
+            1,
+        ),
+        (
+            "unwritable output file",
+            vec![
+                OsStr::new("render"),
+                good.as_os_str(),
+                OsStr::new("--out"),
+                evil_out.as_os_str(),
+            ],
+            3,
+        ),
+        (
+            "unknown command",
+            vec![OsStr::from_bytes(b"\x1b[31mrender")],
+            2,
+        ),
+        (
+            "unknown option",
+            vec![OsStr::new("render"), OsStr::from_bytes(b"--\x1b[31m")],
+            2,
+        ),
+        (
+            "unknown timing",
+            vec![
+                OsStr::new("render"),
+                good.as_os_str(),
+                OsStr::new("--out"),
+                OsStr::new("x.png"),
+                OsStr::new("--timing"),
+                OsStr::from_bytes(b"\x9b31m\x1b[0m"),
+            ],
+            2,
+        ),
+    ];
+    for (what, args, status) in &cases {
+        check_escaped(what, args, *status, &mut failures);
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let _ = std::fs::remove_dir_all(dir);
 }

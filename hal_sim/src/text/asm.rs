@@ -3,8 +3,9 @@
 //! The file is read a line at a time, as bytes: words are separated by
 //! spaces, tabs (and the `\r` of a CRLF line end), and a `#` starts a
 //! comment, except as the first character of the colour operand of `clear`
-//! and `color`. Bytes inside a comment are never looked at, so a comment may
-//! hold any bytes; a word that is used must be UTF-8.
+//! and `color`, and inside a `label` text in double quotes. Bytes inside
+//! a comment are never looked at, so a comment may hold any bytes; a word
+//! that is used must be UTF-8.
 //!
 //! Each line becomes at most one command, checked completely before anything
 //! is encoded; the binary list is then written with the firmware's own
@@ -110,9 +111,15 @@ pub fn assemble(text: &str) -> Result<Assembled, TextError> {
     assemble_bytes(text.as_bytes())
 }
 
+/// The UTF-8 byte-order mark, which some editors put at the start of a
+/// text file: skipped there.
+const BOM: &[u8] = b"\xef\xbb\xbf";
+
 /// Assembles a scene given as raw bytes (a file's contents, which need not
-/// be UTF-8 outside the words that are read).
+/// be UTF-8 outside the words that are read). A UTF-8 byte-order mark at
+/// the very start is skipped.
 pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
+    let raw = raw.strip_prefix(BOM).unwrap_or(raw);
     let mut frame: Option<(u16, u16, usize)> = None;
     let mut cmds: Vec<(usize, Cmd)> = Vec::new();
     let mut last_line = 1;
@@ -134,7 +141,7 @@ pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
             (_, None) if is_command(name) => {
                 return Err(err(TextErrorKind::FrameFirst(name.to_string())))
             }
-            _ => cmds.push((number, parse_command(name, operands).map_err(err)?)),
+            _ => cmds.push((number, parse_command(name, operands, line).map_err(err)?)),
         }
     }
     let Some((width, height, frame_line)) = frame else {
@@ -303,7 +310,9 @@ fn parse_frame(operands: &[&[u8]]) -> Result<(u16, u16), TextErrorKind> {
     Ok((side(operands[0])?, side(operands[1])?))
 }
 
-fn parse_command(name: &str, operands: &[&[u8]]) -> Result<Cmd, TextErrorKind> {
+/// The command `name` with its `operands`, all words of `line` (a label's
+/// text is read from the line itself).
+fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, TextErrorKind> {
     match name {
         "clear" | "color" => {
             let command = if name == "clear" { "clear" } else { "color" };
@@ -483,17 +492,105 @@ fn parse_command(name: &str, operands: &[&[u8]]) -> Result<Cmd, TextErrorKind> {
         }
         "label" => {
             operand_count("label", "X Y Z and a text", operands, operands.len() >= 4)?;
+            let text = label_text(line, operands)?;
+            Ok(Cmd::Label(point(operands)?, text))
+        }
+        other => Err(TextErrorKind::UnknownCommand(quoted(other))),
+    }
+}
+
+/// Where `word`, a sub-slice of `line`, starts in it.
+fn offset_in(line: &[u8], word: &[u8]) -> usize {
+    word.as_ptr() as usize - line.as_ptr() as usize
+}
+
+/// The text of a `label` whose operands (X Y Z, then the text's words) are
+/// `operands`, words of `line`.
+///
+/// The text is *quoted* when, from its first byte to the end of the line,
+/// it is one string in double quotes (see [`parse_quoted`]) followed by
+/// nothing but blanks and a comment. Otherwise it is *bare*, read as it
+/// always was: its words joined by single spaces, up to a `#`.
+fn label_text(line: &[u8], operands: &[&[u8]]) -> Result<String, TextErrorKind> {
+    let rest = &line[offset_in(line, operands[3])..];
+    let bytes = match parse_quoted(rest) {
+        Some(bytes) => bytes,
+        None => {
             let words = operands[3..]
                 .iter()
                 .map(|w| utf8(w))
                 .collect::<Result<Vec<_>, _>>()?;
-            let text = words.join(" ");
-            if text.len() > MAX_LABEL_LEN || !text.bytes().all(|c| (0x20..0x7f).contains(&c)) {
-                return Err(TextErrorKind::Label);
-            }
-            Ok(Cmd::Label(point(operands)?, text))
+            words.join(" ").into_bytes()
         }
-        other => Err(TextErrorKind::UnknownCommand(quoted(other))),
+    };
+    let ok = (1..=MAX_LABEL_LEN).contains(&bytes.len())
+        && bytes.iter().all(|c| (0x20..0x7f).contains(c));
+    match String::from_utf8(bytes) {
+        Ok(text) if ok => Ok(text),
+        _ => Err(TextErrorKind::Label),
+    }
+}
+
+/// A string in double quotes at the start of `rest`, decoded, when `rest`
+/// is exactly that and then blanks or a comment: between the quotes every
+/// byte is printable ASCII, `\"` stands for `"`, `\\` for `\` and `\xNN`
+/// (two hex digits) for the byte `NN`; a `#` inside is text. `None` for
+/// anything else, which is then read as bare words.
+fn parse_quoted(rest: &[u8]) -> Option<Vec<u8>> {
+    let mut bytes = rest.strip_prefix(b"\"")?.iter();
+    let mut out = Vec::new();
+    loop {
+        match *bytes.next()? {
+            b'"' => break,
+            b'\\' => match *bytes.next()? {
+                c @ (b'"' | b'\\') => out.push(c),
+                b'x' => {
+                    let hex = [*bytes.next()?, *bytes.next()?];
+                    let hex = std::str::from_utf8(&hex).ok()?;
+                    if !hex.bytes().all(|c| c.is_ascii_hexdigit()) {
+                        return None;
+                    }
+                    out.push(u8::from_str_radix(hex, 16).ok()?);
+                }
+                _ => return None,
+            },
+            c @ 0x20..=0x7e => out.push(c),
+            _ => return None,
+        }
+    }
+    let tail = bytes.as_slice();
+    let end = tail.iter().position(|&c| c == b'#').unwrap_or(tail.len());
+    tail[..end]
+        .iter()
+        .all(|c| matches!(c, b' ' | b'\t' | b'\r'))
+        .then_some(out)
+}
+
+/// `text` in double quotes, escaped as [`parse_quoted`] reads it.
+fn quote(text: &[u8]) -> String {
+    let mut s = String::from("\"");
+    for &c in text {
+        match c {
+            b'"' => s.push_str("\\\""),
+            b'\\' => s.push_str("\\\\"),
+            0x20..=0x7e => s.push(c as char),
+            _ => s.push_str(&format!("\\x{c:02x}")),
+        }
+    }
+    s.push('"');
+    s
+}
+
+/// A label's text as the text form writes it: bare when the bare form
+/// reads back as `text`, quoted otherwise (a `#`, spaces at either end or
+/// doubled, a text of blanks, or a text that is itself a quoted string).
+pub(super) fn label_text_form(text: &str) -> String {
+    let line = format!("label 0 0 0 {text}");
+    let words = words(line.as_bytes());
+    if words.len() >= 5 && label_text(line.as_bytes(), &words[1..]).as_deref() == Ok(text) {
+        text.to_string()
+    } else {
+        quote(text.as_bytes())
     }
 }
 

@@ -1,5 +1,6 @@
 //! Binary form → text form.
 
+use super::asm::label_text_form;
 use scanvert::display_list::{Axis, Command, DisplayList};
 use scanvert::fixed::Coord;
 use scanvert::geometry::{Angle, Point3, Q16};
@@ -126,7 +127,9 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
                 }
                 writeln!(s)
             }
-            Command::Label { at, text } => writeln!(s, "label {} {text}", point(at)),
+            Command::Label { at, text } => {
+                writeln!(s, "label {} {}", point(at), label_text_form(text))
+            }
         };
     }
     s

@@ -29,6 +29,30 @@ pub use number::{parse_angle, parse_coord, parse_fixed, parse_int, parse_q16, Nu
 
 use std::fmt;
 
+/// `s` as it may be shown on a terminal: every character that is not
+/// printable (C0 and C1 controls, DEL, format characters such as the bidi
+/// overrides, line separators, unassigned code points) is written as its
+/// Rust escape (`\u{1b}`, `\t`), and a backslash as `\\`, so that input
+/// quoted in a message can neither drive the terminal (title, colours,
+/// cursor) nor pass for other text. Every message that quotes input (a
+/// word, a file name, an option) goes through this.
+///
+/// ```
+/// use scanvert_sim::text::escape_for_terminal;
+/// assert_eq!(escape_for_terminal("\u{1b}]0;pwned\u{7}"), "\\u{1b}]0;pwned\\u{7}");
+/// assert_eq!(escape_for_terminal("café \"x\""), "café \"x\"");
+/// ```
+pub fn escape_for_terminal(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            ' ' | '"' | '\'' => out.push(c),
+            c => out.extend(c.escape_debug()),
+        }
+    }
+    out
+}
+
 /// What is wrong with a line of the text form.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum TextErrorKind {
@@ -85,25 +109,34 @@ impl fmt::Display for TextErrorKind {
         match self {
             TextErrorKind::Empty => f.write_str("no command: a scene starts with `frame W H`"),
             TextErrorKind::FrameFirst(c) => {
+                let c = escape_for_terminal(c);
                 write!(f, "`{c}` before `frame`: a scene starts with `frame W H`")
             }
             TextErrorKind::FrameAgain => f.write_str("a second `frame` command"),
-            TextErrorKind::UnknownCommand(c) => write!(f, "unknown command `{c}`"),
+            TextErrorKind::UnknownCommand(c) => {
+                write!(f, "unknown command `{}`", escape_for_terminal(c))
+            }
             TextErrorKind::NotUtf8 => f.write_str("the line is not valid UTF-8"),
             TextErrorKind::Operands {
                 command,
                 expected,
                 got,
             } => write!(f, "`{command}` takes {expected}, not {got} operands"),
-            TextErrorKind::Number { word, error } => write!(f, "`{word}`: {error}"),
-            TextErrorKind::Colour(w) => write!(f, "`{w}` is not a colour `#rrggbb`"),
+            TextErrorKind::Number { word, error } => {
+                write!(f, "`{}`: {error}", escape_for_terminal(word))
+            }
+            TextErrorKind::Colour(w) => {
+                write!(f, "`{}` is not a colour `#rrggbb`", escape_for_terminal(w))
+            }
             TextErrorKind::Label => write!(
                 f,
                 "a label is 1 to {} characters of printable ASCII",
                 scanvert::display_list::MAX_LABEL_LEN
             ),
             TextErrorKind::LookAt => f.write_str("`lookat`: the eye is on the target"),
-            TextErrorKind::Axis(a) => write!(f, "`{a}` is not an axis (x, y or z)"),
+            TextErrorKind::Axis(a) => {
+                write!(f, "`{}` is not an axis (x, y or z)", escape_for_terminal(a))
+            }
             TextErrorKind::TooManyVertices(n) => write!(
                 f,
                 "polygon has {n} vertices; a display list holds at most {}",
