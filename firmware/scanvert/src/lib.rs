@@ -105,3 +105,29 @@ pub mod prelude {
     pub use crate::port::{FrameBuffer, SpanTarget};
     pub use crate::raster::{ClipRect, ClipWindow, Edge, Rasterizer};
 }
+
+#[cfg(test)]
+mod tests {
+    use core::convert::Infallible;
+
+    /// `E` is an error that `?` turns into `Box<dyn Error>`.
+    fn is_error<E: core::error::Error + Send + Sync + 'static>() {}
+
+    #[test]
+    fn every_public_error_implements_error() {
+        is_error::<crate::RenderError<Infallible>>();
+        is_error::<crate::FillError<Infallible>>();
+        is_error::<crate::display_list::Error>();
+        is_error::<crate::WriteError>();
+        is_error::<crate::visible::StoreError>();
+        is_error::<crate::visible::VisibleError<Infallible>>();
+        is_error::<crate::visible::trapezoid::LoadError>();
+        is_error::<crate::visible::RunsFull>();
+        is_error::<crate::scene::label::LabelError>();
+        is_error::<crate::SceneError>();
+        is_error::<crate::scene::UpdateError>();
+        is_error::<crate::geometry::TransformError>();
+        is_error::<crate::geometry::ProjectionError>();
+        is_error::<crate::geometry::PipelineError<Infallible>>();
+    }
+}
