@@ -36,27 +36,34 @@ impl OriginDimensions for Panel {
     }
 }
 
+impl Panel {
+    fn put(&mut self, p: Point, c: Rgb565) {
+        if (0..W as i32).contains(&p.x) && (0..H as i32).contains(&p.y) {
+            self.pixels[p.y as usize * W + p.x as usize] = c;
+        }
+    }
+}
+
 impl DrawTarget for Panel {
     type Color = Rgb565;
     type Error = Infallible;
 
+    /// Pixel by pixel: what a driver must avoid.
     fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(
         &mut self,
         pixels: I,
     ) -> Result<(), Infallible> {
         for Pixel(p, c) in pixels {
             self.single_pixels += 1;
-            if (0..W as i32).contains(&p.x) && (0..H as i32).contains(&p.y) {
-                self.pixels[p.y as usize * W + p.x as usize] = c;
-            }
+            self.put(p, c);
         }
         Ok(())
     }
 
+    /// One address window, one burst.
     fn fill_solid(&mut self, area: &Rectangle, color: Rgb565) -> Result<(), Infallible> {
         self.fill_solid += 1;
-        self.draw_iter(area.points().map(|p| Pixel(p, color)))?;
-        self.single_pixels -= area.size.width * area.size.height;
+        area.points().for_each(|p| self.put(p, color));
         Ok(())
     }
 }
