@@ -105,7 +105,7 @@ impl<S: Stepper, const SNAP: u32> Contender for ScanvertFill<S, SNAP> {
             return;
         };
         if self.kind == Kind::Clear {
-            let Ok(()) = fb.clear(INK);
+            let Ok(()) = SpanTarget::clear(&mut fb, INK);
             return;
         }
         for p in &self.polys {

@@ -70,7 +70,7 @@ impl Clock {
 impl fmt::Display for Clock {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let hz = self.hz();
-        if hz % 1_000_000 == 0 {
+        if hz.is_multiple_of(1_000_000) {
             write!(f, "{} MHz", hz / 1_000_000)
         } else {
             write!(f, "{} Hz", hz)

@@ -9,3 +9,8 @@ pub mod harness3d;
 pub mod reference;
 pub mod reference3d;
 pub mod scenes3d;
+
+/// The repository README's examples, compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../../README.md")]
+pub struct ReadmeDoctests;

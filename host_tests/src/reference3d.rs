@@ -136,7 +136,7 @@ pub fn resolve(polys: &[Poly3], width: u32, height: u32) -> Vec<Option<usize>> {
                 }
                 let z = plane.depth(i, j);
                 // Strictly nearer only: at equal depth the earlier stays.
-                if best.map_or(true, |(_, bz)| cmp_frac(z, bz).is_lt()) {
+                if best.is_none_or(|(_, bz)| cmp_frac(z, bz).is_lt()) {
                     best = Some((k, z));
                 }
             }

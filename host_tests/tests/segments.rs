@@ -93,7 +93,7 @@ fn picture(store: &TrapezoidStore<'_>) -> Vec<Option<Rgb888>> {
         .resolve(store, Resolve::default(), |_, runs| {
             for r in runs {
                 let c = (!r.is_background()).then(|| store.face(r.ink()).unwrap().color());
-                out.extend(std::iter::repeat(c).take(r.len() as usize));
+                out.extend(std::iter::repeat_n(c, r.len() as usize));
             }
             Ok::<(), ()>(())
         })

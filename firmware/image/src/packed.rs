@@ -29,7 +29,7 @@ impl<'a> PackedFrame<'a> {
     /// few words.
     pub fn new(words: &'a mut [u32], width: u16, height: u16) -> Option<Self> {
         let n = width as usize / 2 * height as usize;
-        let ok = width % 2 == 0 && width > 0 && height > 0 && words.len() >= n;
+        let ok = width.is_multiple_of(2) && width > 0 && height > 0 && words.len() >= n;
         ok.then_some(PackedFrame {
             words,
             width,

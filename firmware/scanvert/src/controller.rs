@@ -96,6 +96,7 @@ pub const DEFAULT_COLOR: Rgb888 = Rgb888::WHITE;
 /// Why a display list could not be rendered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum RenderError<E> {
     /// A polygon has more vertices than the edge storage has slots.
     /// Found before anything is drawn.
@@ -179,9 +180,12 @@ impl<E: fmt::Debug> fmt::Display for RenderError<E> {
     }
 }
 
+impl<E: fmt::Debug> core::error::Error for RenderError<E> {}
+
 /// A pool of the 3D storage, in a [`RenderError::Capacity3d`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Resource {
     /// Trapezoid slots.
     Trapezoids,
@@ -590,7 +594,7 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 /// use scanvert::{
 ///     controller::{Controller, Storage3d}, display_list::{DisplayList, Writer}, raster::edge::Edge,
 ///     fixed::{Coord, Vertex3}, port::framebuffer::FrameBuffer, visible::rle::Run, raster::scan::Rasterizer,
-///     segment::{Face, Segment, StoreMemory}, visible::trapezoid::{EdgeSlot, Trapezoid},
+///     visible::store::{Face, Segment, StoreMemory}, visible::trapezoid::{EdgeSlot, Trapezoid},
 ///     visible::{Active, Cover, Resolve},
 /// };
 ///

@@ -84,11 +84,37 @@ pub struct Vertex {
 }
 
 impl Vertex {
-    /// A vertex from raw sixteenths of a pixel.
+    /// A vertex from its two coordinates.
+    pub const fn new(x: Coord, y: Coord) -> Self {
+        Vertex { x, y }
+    }
+
+    /// A vertex from raw sixteenths of a pixel: every pair of `i16` is a
+    /// vertex (from −2048 to 2047.9375 px on each axis).
     pub const fn from_bits(x: i16, y: i16) -> Self {
         Vertex {
             x: Coord(x),
             y: Coord(y),
+        }
+    }
+
+    /// A vertex at whole pixels, or `None` when either coordinate lies
+    /// outside −2048..=2047, the whole pixels of Q12.4.
+    ///
+    /// Out-of-range values are refused rather than clamped: a clamped
+    /// vertex would draw a different polygon from the one asked for.
+    ///
+    /// ```
+    /// use scanvert::fixed::Vertex;
+    /// assert_eq!(Vertex::from_px(3, -2), Some(Vertex::from_bits(48, -32)));
+    /// assert_eq!(Vertex::from_px(2047, -2048), Some(Vertex::from_bits(2047 * 16, i16::MIN)));
+    /// assert_eq!(Vertex::from_px(2048, 0), None);
+    /// assert_eq!(Vertex::from_px(0, -2049), None);
+    /// ```
+    pub const fn from_px(x: i16, y: i16) -> Option<Self> {
+        match (Coord::from_int(x as i32), Coord::from_int(y as i32)) {
+            (Some(x), Some(y)) => Some(Vertex { x, y }),
+            _ => None,
         }
     }
 }
@@ -104,6 +130,49 @@ pub struct Vertex3 {
     pub y: Coord,
     /// Depth; larger is farther.
     pub z: Coord,
+}
+
+impl Vertex3 {
+    /// A vertex from its three coordinates.
+    pub const fn new(x: Coord, y: Coord, z: Coord) -> Self {
+        Vertex3 { x, y, z }
+    }
+
+    /// A vertex from raw sixteenths of a pixel (of depth, for `z`).
+    pub const fn from_bits(x: i16, y: i16, z: i16) -> Self {
+        Vertex3 {
+            x: Coord(x),
+            y: Coord(y),
+            z: Coord(z),
+        }
+    }
+
+    /// A vertex at whole pixels (whole depth units for `z`), or `None` when
+    /// any coordinate lies outside −2048..=2047, as [`Vertex::from_px`].
+    ///
+    /// ```
+    /// use scanvert::fixed::Vertex3;
+    /// assert_eq!(Vertex3::from_px(1, 2, 3), Some(Vertex3::from_bits(16, 32, 48)));
+    /// assert_eq!(Vertex3::from_px(1, 2, 2048), None);
+    /// ```
+    pub const fn from_px(x: i16, y: i16, z: i16) -> Option<Self> {
+        match (
+            Coord::from_int(x as i32),
+            Coord::from_int(y as i32),
+            Coord::from_int(z as i32),
+        ) {
+            (Some(x), Some(y), Some(z)) => Some(Vertex3 { x, y, z }),
+            _ => None,
+        }
+    }
+
+    /// The vertex without its depth.
+    pub const fn xy(self) -> Vertex {
+        Vertex {
+            x: self.x,
+            y: self.y,
+        }
+    }
 }
 
 /// `ceil(n / d)` for `d > 0`, exact for every `n`.
@@ -183,5 +252,24 @@ mod tests {
         assert_eq!(Coord::from_int(2048), None);
         assert_eq!(Coord::from_int(-2048), Some(Coord::MIN));
         assert_eq!(Coord::from_int(-2049), None);
+    }
+
+    #[test]
+    fn from_px_is_from_int_on_every_i16() {
+        for p in i16::MIN..=i16::MAX {
+            let c = Coord::from_int(p as i32);
+            assert_eq!(c.is_some(), (-2048..=2047).contains(&p), "p = {p}");
+            if let Some(c) = c {
+                assert_eq!(c.units(), p as i32 * 16);
+            }
+            let v = Vertex::from_px(p, 0);
+            assert_eq!(v.map(|v| v.x), c);
+            assert_eq!(Vertex::from_px(0, p).map(|v| v.y), c);
+            assert_eq!(Vertex3::from_px(0, 0, p).map(|v| v.z), c);
+            assert_eq!(
+                Vertex3::from_px(p, 1, 2).map(Vertex3::xy),
+                v.map(|v| Vertex { y: Coord(16), ..v })
+            );
+        }
     }
 }

@@ -1,12 +1,4 @@
-//! Integer scan conversion of display lists, for microcontrollers and FPGA
-//! soft-cores.
-//!
-//! `scanvert` is the graphic controller of a scan-conversion unit in
-//! software: it reads a *display list* of polygons, steps each polygon's
-//! edges with integer error counters, clips every horizontal span against
-//! four *clip registers*, and writes the spans into a frame-buffer port.
-//! There is no floating point, no allocation and no `unsafe`; all memory is
-//! the caller's.
+#![doc = include_str!("../README.md")]
 //!
 //! # The pipeline, display list to pixel
 //!
@@ -25,38 +17,30 @@
 //! Beside them: [`fixed`] (Q12.4 vertices and the widths of every
 //! intermediate) and [`color`] (list colours to the port's pixel format).
 //!
-//! # Example
+//! # Where the names are
 //!
-//! ```
-//! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-//! use scanvert::{
-//!     controller::Controller, display_list::{DisplayList, Writer}, raster::edge::Edge,
-//!     fixed::Vertex, port::framebuffer::FrameBuffer, raster::scan::Rasterizer,
-//! };
+//! The types an application names are re-exported at the root
+//! (`scanvert::Rasterizer`, `scanvert::Scene`, …), and the [`prelude`]
+//! holds those of the 2D path with the traits and colours they need, so
+//! that one `use scanvert::prelude::*;` draws a polygon. The modules keep
+//! everything else: the parts of each stage, their counters and their
+//! less common errors.
 //!
-//! // Assemble a list: a red triangle on a black frame of 32 × 16.
-//! let mut bytes = [0u8; 64];
-//! let mut w = Writer::new(&mut bytes, 32, 16)?;
-//! w.clear(Rgb888::BLACK)?;
-//! w.color(Rgb888::RED)?;
-//! let px = |x: i16, y: i16| Vertex::from_bits(x * 16, y * 16);
-//! w.poly([px(2, 2), px(30, 8), px(4, 14)])?;
-//! let list = DisplayList::new_checked(w.finish()).unwrap();
+//! # Features
 //!
-//! let mut pixels = [Rgb565::BLACK; 32 * 16];
-//! let mut fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
-//! let mut edges = [Edge::EMPTY; 16];
-//! let stats = Controller::new(Rasterizer::new(&mut edges)).render(&list, &mut fb).unwrap();
-//! assert_eq!(fb.pixel(10, 8), Some(Rgb565::RED));
-//! assert_eq!(stats.polygons, 1);
-//! # Ok::<(), scanvert::display_list::WriteError>(())
-//! ```
+//! - `defmt`: `defmt::Format` on the public types. Without it there is no
+//!   logging code at all.
+//!
+//! The embedded-graphics port ([`port::draw_target`]) is always there: it
+//! needs only `embedded-graphics-core`, a dependency in any case.
+//!
 #![no_std]
 #![deny(missing_docs)]
 #![deny(missing_debug_implementations)]
 #![deny(unsafe_code)]
 #![deny(rustdoc::broken_intra_doc_links)]
 #![deny(clippy::float_arithmetic)]
+#![cfg_attr(docsrs, feature(doc_cfg))]
 
 pub mod color;
 pub mod controller;
@@ -69,3 +53,81 @@ pub mod scene;
 pub mod visible;
 
 pub use embedded_graphics_core::pixelcolor;
+
+// The 2D path: polygons into a span target.
+pub use crate::fixed::{Coord, Vertex, Vertex3};
+pub use crate::port::draw_target::DrawTargetPort;
+pub use crate::port::{Checksum, FrameBuffer, Span, SpanTarget};
+pub use crate::raster::{ClipRect, ClipWindow, Edge, FillCounts, FillError, Rasterizer};
+
+// Display lists and the controller that runs them.
+pub use crate::controller::{Controller, RenderError};
+pub use crate::display_list::{Command, DisplayList, WriteError, Writer};
+
+// The retained 3D scene and the memory it is given.
+pub use crate::geometry::{
+    Angle, Light, Orthographic, Perspective, Pipeline, Point3, Projection, View, Viewport, Q16,
+};
+pub use crate::scene::{Builder, Label, Procedure, Scene, SceneError, SceneMemory};
+pub use crate::visible::{
+    Active, Cover, EdgeSlot, Face, Resolve, Run, Segment, StoreMemory, Trapezoid, Workspace,
+};
+
+// Colours.
+pub use crate::color::{ListColor, ToRgb888};
+
+/// One `use scanvert::prelude::*;` for the 2D path: the types that draw a
+/// polygon, directly or through a display list, with the traits whose
+/// methods they need and the common colours.
+///
+/// ```
+/// use scanvert::prelude::*;
+///
+/// let mut pixels = [Rgb565::BLACK; 16 * 8];
+/// let mut fb = FrameBuffer::new(&mut pixels, 16, 8).unwrap();
+/// let mut edges = [Edge::EMPTY; 4];
+/// let triangle = [(1, 1), (15, 4), (2, 7)].map(|(x, y)| Vertex::from_px(x, y).unwrap());
+/// Rasterizer::new(&mut edges)
+///     .fill(triangle, &ClipRect::full(16, 8), Rgb565::RED, &mut fb)
+///     .unwrap();
+/// assert_eq!(fb.pixel(5, 4), Some(Rgb565::RED));
+/// ```
+///
+/// [`SpanTarget`] and embedded-graphics' `DrawTarget` both have `clear`
+/// and `size`; where both are in scope, name the one meant:
+/// `SpanTarget::clear(&mut fb, c)`.
+pub mod prelude {
+    pub use crate::color::{ListColor, ToRgb888};
+    pub use crate::controller::Controller;
+    pub use crate::display_list::{DisplayList, Writer};
+    pub use crate::fixed::{Coord, Vertex};
+    pub use crate::pixelcolor::{Rgb565, Rgb888, RgbColor};
+    pub use crate::port::{FrameBuffer, SpanTarget};
+    pub use crate::raster::{ClipRect, ClipWindow, Edge, Rasterizer};
+}
+
+#[cfg(test)]
+mod tests {
+    use core::convert::Infallible;
+
+    /// `E` is an error that `?` turns into `Box<dyn Error>`.
+    fn is_error<E: core::error::Error + Send + Sync + 'static>() {}
+
+    #[test]
+    fn every_public_error_implements_error() {
+        is_error::<crate::RenderError<Infallible>>();
+        is_error::<crate::FillError<Infallible>>();
+        is_error::<crate::display_list::Error>();
+        is_error::<crate::WriteError>();
+        is_error::<crate::visible::StoreError>();
+        is_error::<crate::visible::VisibleError<Infallible>>();
+        is_error::<crate::visible::trapezoid::LoadError>();
+        is_error::<crate::visible::RunsFull>();
+        is_error::<crate::scene::label::LabelError>();
+        is_error::<crate::SceneError>();
+        is_error::<crate::scene::UpdateError>();
+        is_error::<crate::geometry::TransformError>();
+        is_error::<crate::geometry::ProjectionError>();
+        is_error::<crate::geometry::PipelineError<Infallible>>();
+    }
+}

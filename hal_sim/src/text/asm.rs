@@ -343,7 +343,7 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                 "poly",
                 "an even number ≥ 6 (X Y …)",
                 operands,
-                n >= 6 && n % 2 == 0,
+                n >= 6 && n.is_multiple_of(2),
             )?;
             vertex_limit(n / 2)?;
             let c = operands
@@ -362,7 +362,7 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                 "poly3",
                 "a multiple of 3, ≥ 9 (X Y Z …)",
                 operands,
-                n >= 9 && n % 3 == 0,
+                n >= 9 && n.is_multiple_of(3),
             )?;
             vertex_limit(n / 3)?;
             let c = operands
@@ -481,7 +481,7 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                 "face",
                 "a multiple of 3, ≥ 3 (X Y Z …)",
                 operands,
-                n >= 3 && n % 3 == 0,
+                n >= 3 && n.is_multiple_of(3),
             )?;
             vertex_limit(n / 3)?;
             let points = operands

@@ -74,6 +74,7 @@ pub const MAX_VERTICES: usize = u16::MAX as usize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[repr(u8)]
+#[non_exhaustive]
 pub enum Opcode {
     /// Fill the whole frame.
     Clear = 0x01,
@@ -152,6 +153,7 @@ impl Opcode {
 /// What is wrong with a display list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum ErrorKind {
     /// The list ends inside the header or inside a command.
     Truncated,

@@ -178,6 +178,7 @@ impl<'a> DisplayList<'a> {
 
 /// One command of a checked display list.
 #[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
 pub enum Command<'a> {
     /// Fill every pixel of the frame (the clip registers do not apply).
     Clear(Rgb888),

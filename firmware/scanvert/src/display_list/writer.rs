@@ -10,6 +10,7 @@ use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 /// Why a [`Writer`] refused a command.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum WriteError {
     /// The buffer is full; nothing of the command was written.
     BufferFull,

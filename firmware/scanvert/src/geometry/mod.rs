@@ -137,6 +137,7 @@ pub trait PolygonSink {
 /// Why a polygon was not delivered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum PipelineError<E> {
     /// A vertex left view space's range (−16384, 16384) under the current
     /// transform. Nothing of the polygon was drawn.
@@ -168,6 +169,7 @@ impl<E: fmt::Debug> core::error::Error for PipelineError<E> {}
 /// What became of one polygon.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Outcome {
     /// Delivered to the sink.
     Emitted,

@@ -86,6 +86,7 @@ pub const WINDOW_MAX: u16 = 2047;
 /// Why projection parameters were refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum ProjectionError {
     /// The near plane is outside its range.
     Near,

@@ -158,6 +158,7 @@ impl Point3 {
 /// Why a transform could not be applied.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum TransformError {
     /// `push` on a full stack.
     StackOverflow {

@@ -1,4 +1,4 @@
-//! The port to embedded-graphics, both ways (feature `embedded-graphics`).
+//! The port to embedded-graphics, both ways.
 //!
 //! - [`DrawTargetPort`] lets the controller render into any
 //!   embedded-graphics [`DrawTarget`], such as a display driver. Every span
@@ -13,30 +13,26 @@
 //!   scene.
 //!
 //! ```
-//! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
-//! use embedded_graphics_core::prelude::*;
+//! use embedded_graphics_core::draw_target::DrawTarget;
+//! use embedded_graphics_core::geometry::{Point, Size};
 //! use embedded_graphics_core::primitives::Rectangle;
-//! use scanvert::{
-//!     controller::Controller, display_list::{DisplayList, Writer}, port::draw_target::DrawTargetPort,
-//!     edge::Edge, fixed::Vertex, port::framebuffer::FrameBuffer, raster::scan::Rasterizer,
-//! };
+//! use scanvert::prelude::*;
+//! use scanvert::DrawTargetPort;
 //!
 //! let mut bytes = [0u8; 64];
 //! let mut w = Writer::new(&mut bytes, 32, 16)?;
 //! w.color(Rgb888::RED)?;
-//! let px = |x: i16, y: i16| Vertex::from_bits(x * 16, y * 16);
-//! w.poly([px(2, 2), px(30, 8), px(4, 14)])?;
+//! w.poly([(2, 2), (30, 8), (4, 14)].map(|(x, y)| Vertex::from_px(x, y).unwrap()))?;
 //! let list = DisplayList::new_checked(w.finish()).unwrap();
 //! let mut edges = [Edge::EMPTY; 8];
 //!
 //! // Any DrawTarget will do; here it is scanvert's own frame buffer.
 //! let mut pixels = [Rgb565::BLACK; 32 * 16];
-//! let fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
-//! let mut port = DrawTargetPort::new(fb);
+//! let mut fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
+//! let mut port = DrawTargetPort::new(&mut fb);
 //! Controller::new(Rasterizer::new(&mut edges)).render(&list, &mut port).unwrap();
 //!
 //! // And embedded-graphics draws into the same frame.
-//! let mut fb = port.into_inner();
 //! fb.fill_solid(&Rectangle::new(Point::new(0, 0), Size::new(4, 4)), Rgb565::GREEN).unwrap();
 //! assert_eq!(fb.pixel(10, 8), Some(Rgb565::RED));
 //! assert_eq!(fb.pixel(1, 1), Some(Rgb565::GREEN));
@@ -59,8 +55,12 @@ use embedded_graphics_core::pixelcolor::PixelColor;
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Pixel;
 
-/// A [`SpanTarget`] over any embedded-graphics [`DrawTarget`]: spans
-/// become [`fill_solid`](DrawTarget::fill_solid) calls.
+/// A [`SpanTarget`] over any embedded-graphics [`DrawTarget`], borrowed:
+/// spans become [`fill_solid`](DrawTarget::fill_solid) calls.
+///
+/// The port borrows the target (`DrawTargetPort::new(&mut display)`), so
+/// the display stays the caller's and can be drawn into directly again
+/// once the port is dropped.
 ///
 /// Frame pixel `(x, y)` is the target's point `(x, y)`. The frame is the
 /// target's bounding box extended to the origin: from `(0, 0)` to the
@@ -69,28 +69,28 @@ use embedded_graphics_core::Pixel;
 /// as every `DrawTarget` must.
 #[derive(Debug)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct DrawTargetPort<D> {
-    target: D,
+pub struct DrawTargetPort<'d, D: ?Sized> {
+    target: &'d mut D,
 }
 
-impl<D: DrawTarget> DrawTargetPort<D> {
-    /// Wraps `target`.
-    pub fn new(target: D) -> Self {
+impl<'d, D: DrawTarget + ?Sized> DrawTargetPort<'d, D> {
+    /// A port into `target`.
+    pub fn new(target: &'d mut D) -> Self {
         DrawTargetPort { target }
     }
 
     /// The target.
     pub fn get_ref(&self) -> &D {
-        &self.target
+        self.target
     }
 
     /// The target, for drawing into it directly.
     pub fn get_mut(&mut self) -> &mut D {
-        &mut self.target
+        self.target
     }
 
-    /// Unwraps the target.
-    pub fn into_inner(self) -> D {
+    /// The borrow of the target, for the rest of its lifetime.
+    pub fn into_inner(self) -> &'d mut D {
         self.target
     }
 
@@ -102,7 +102,7 @@ impl<D: DrawTarget> DrawTargetPort<D> {
         I: IntoIterator<Item = (u16, D::Color)>,
         I::IntoIter: Clone,
     {
-        fill_run_row(&mut self.target, y, x0, runs)
+        fill_run_row(self.target, y, x0, runs)
     }
 }
 
@@ -114,7 +114,7 @@ fn side(origin: i32, extent: u32) -> u16 {
     end as u16
 }
 
-impl<D: DrawTarget> SpanTarget for DrawTargetPort<D> {
+impl<D: DrawTarget + ?Sized> SpanTarget for DrawTargetPort<'_, D> {
     type Color = D::Color;
     type Error = D::Error;
 
@@ -170,7 +170,7 @@ where
         return Ok(());
     }
     let area = Rectangle::new(Point::new(x0 as i32, y as i32), Size::new(total, 1));
-    let colors = runs.flat_map(|(len, color)| core::iter::repeat(color).take(len as usize));
+    let colors = runs.flat_map(|(len, color)| core::iter::repeat_n(color, len as usize));
     target.fill_contiguous(&area, colors)
 }
 
@@ -442,11 +442,11 @@ mod tests {
         let list = DisplayList::new_checked(scene(&mut buf)).unwrap();
         let mut edges = [Edge::EMPTY; 8];
 
-        let mut port = DrawTargetPort::new(Counting::new());
+        let mut driver = Counting::new();
+        let mut port = DrawTargetPort::new(&mut driver);
         let stats = Controller::new(Rasterizer::new(&mut edges))
             .render(&list, &mut port)
             .unwrap();
-        let driver = port.into_inner();
         assert!(stats.spans > 50);
         assert_eq!(driver.fill_solid, stats.spans);
         assert_eq!(driver.clear, stats.clears);
@@ -463,8 +463,8 @@ mod tests {
 
     #[test]
     fn the_port_frame_reaches_from_the_origin_to_the_box_corner() {
-        let mock: MockDisplay<BinaryColor> = MockDisplay::new();
-        assert_eq!(DrawTargetPort::new(mock).size(), (64, 64));
+        let mut mock: MockDisplay<BinaryColor> = MockDisplay::new();
+        assert_eq!(DrawTargetPort::new(&mut mock).size(), (64, 64));
         assert_eq!(side(-10, 5), 0);
         assert_eq!(side(i32::MAX, u32::MAX), MAX_SIDE);
         assert_eq!(side(100, 28), 128);
@@ -484,9 +484,10 @@ mod tests {
         );
 
         // Through the port, and off the right edge: the driver discards.
-        let mut port = DrawTargetPort::new(Counting::new());
-        port.fill_run_row(0, 62, [(1, r), (5, g)]).unwrap();
-        let d = port.into_inner();
+        let mut d = Counting::new();
+        DrawTargetPort::new(&mut d)
+            .fill_run_row(0, 62, [(1, r), (5, g)])
+            .unwrap();
         assert_eq!(d.fill_contiguous, 1);
         assert_eq!(&d.pixels[62..64], &[r, g]);
     }
@@ -556,7 +557,7 @@ mod tests {
             Rectangle::new(Point::new(-5, -5), Size::new(0, 10)),
         ];
         for area in far {
-            fb.fill_contiguous(&area, core::iter::repeat(Rgb565::RED).take(3))
+            fb.fill_contiguous(&area, core::iter::repeat_n(Rgb565::RED, 3))
                 .unwrap();
             fb.fill_solid(&area, Rgb565::RED).unwrap();
         }

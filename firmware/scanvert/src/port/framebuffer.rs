@@ -94,7 +94,7 @@ fn fill_run<C: Copy>(run: &mut [C], color: C) {
         for c in run.chunks_exact_mut(8) {
             c.copy_from_slice(&splat);
         }
-        if n % 8 != 0 {
+        if !n.is_multiple_of(8) {
             run[n - 8..].copy_from_slice(&splat);
         }
     } else {

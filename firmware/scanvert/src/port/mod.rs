@@ -7,7 +7,6 @@
 //! dual-port RAM is another.
 
 pub mod checksum;
-#[cfg(feature = "embedded-graphics")]
 pub mod draw_target;
 pub mod framebuffer;
 

@@ -29,6 +29,7 @@ use core::fmt;
 /// Why a polygon could not be drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum FillError<E> {
     /// The polygon has more edges inside the clip rows than the edge
     /// storage holds. Nothing of it was drawn.
@@ -53,6 +54,8 @@ impl<E: fmt::Debug> fmt::Display for FillError<E> {
         }
     }
 }
+
+impl<E: fmt::Debug> core::error::Error for FillError<E> {}
 
 /// What one fill wrote.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -95,6 +95,7 @@ impl Label {
 /// What ran out, or what was refused.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum LabelError {
     /// Every label slot is taken.
     Labels {

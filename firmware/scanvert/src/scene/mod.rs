@@ -136,6 +136,7 @@ pub struct SceneMemory<'a> {
 /// Why a segment could not be built, or a scene made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum SceneError {
     /// A pool of the trapezoid store ran out, or there is no such segment.
     Store(StoreError),

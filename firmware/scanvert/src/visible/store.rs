@@ -159,6 +159,7 @@ impl Segment {
 /// What ran out, or what was asked that does not exist.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum StoreError {
     /// The trapezoid pool is full.
     Trapezoids {

@@ -134,6 +134,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 /// How an intersecting span is subdivided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum Resolve {
     /// Half-interval bisection: split in the middle, classify both
     /// halves, until every part has the same nearest trapezoid at both
@@ -293,6 +294,7 @@ impl Active {
 /// Why a frame could not be resolved.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum VisibleError<E> {
     /// More trapezoids overlap a row than the active list holds.
     Active {

@@ -541,6 +541,7 @@ impl EdgeSlot {
 /// Why a polygon could not be loaded.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
 pub enum LoadError {
     /// More edges cross the clip rows than there are [`EdgeSlot`]s.
     Edges {
