@@ -12,6 +12,7 @@
 
 mod contenders;
 mod heap;
+mod numbers;
 mod plot;
 mod reference;
 mod reference3d;

@@ -1,6 +1,7 @@
 //! `docs/performance.md`, generated; the on-target section written by the
 //! QEMU script is carried over verbatim.
 
+use crate::numbers::thousands;
 use crate::scenes3d::{Version, DEPTH_COMPLEXITY, H, VIEWS, W};
 use crate::visible3d::{Row3, CROSSING, Z16, Z32};
 use crate::Row;
@@ -60,20 +61,6 @@ pub fn on_target_section(old: &str) -> String {
     format!(
         "{ON_TARGET_BEGIN}\n_Not measured yet: the QEMU script writes its figures here._\n{ON_TARGET_END}"
     )
-}
-
-/// `1234567.8` as `1,234,568`.
-pub fn thousands(v: f64) -> String {
-    let s = format!("{:.0}", v);
-    let (sign, digits) = s.strip_prefix('-').map_or(("", s.as_str()), |d| ("-", d));
-    let mut out = String::new();
-    for (k, ch) in digits.chars().enumerate() {
-        if k > 0 && (digits.len() - k) % 3 == 0 {
-            out.push(',');
-        }
-        out.push(ch);
-    }
-    format!("{sign}{out}")
 }
 
 /// Three significant digits.

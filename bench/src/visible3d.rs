@@ -6,8 +6,8 @@
 //! frame (one `slice::fill`); scanvert then draws with no background fill
 //! (`visible::draw(…, None)`), so that every contender does the same clear.
 
+use crate::numbers::thousands;
 use crate::reference3d;
-use crate::report::thousands;
 use crate::scenes3d::{Scene, Version, H, VIEWS, W};
 use crate::time_fns;
 use core::mem::size_of;

@@ -13,6 +13,8 @@
 //! written on an error.
 
 use crate::dual_port::DualPortRam;
+use crate::error::{input, io};
+pub use crate::error::{CliError, EXIT_INPUT, EXIT_IO, EXIT_USAGE};
 use crate::refresh::RefreshController;
 use crate::text::{self, Assembled};
 use crate::timing::VideoTiming;
@@ -43,46 +45,10 @@ demo animates 3D bars over a map with labels through the simulated display
 (double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and
 prints the segments regenerated, trapezoids per frame and frames/s.";
 
-/// Exit status for bad input (a scene that cannot be read or rendered).
-pub const EXIT_INPUT: u8 = 1;
-/// Exit status for a bad command line.
-pub const EXIT_USAGE: u8 = 2;
-/// Exit status for a failure to write the output.
-pub const EXIT_IO: u8 = 3;
-
-/// A failure of the program, with its exit status.
-#[derive(Debug)]
-pub struct CliError {
-    /// Exit status.
-    pub status: u8,
-    /// What to tell the user.
-    pub message: String,
-}
-
-impl fmt::Display for CliError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
 fn usage(msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_USAGE,
         message: format!("{msg}\n{USAGE}"),
-    }
-}
-
-pub(crate) fn input(path: &Path, msg: impl fmt::Display) -> CliError {
-    CliError {
-        status: EXIT_INPUT,
-        message: format!("{}: {msg}", path.display()),
-    }
-}
-
-pub(crate) fn io(path: &Path, e: impl fmt::Display) -> CliError {
-    CliError {
-        status: EXIT_IO,
-        message: format!("{}: {e}", path.display()),
     }
 }
 

@@ -51,6 +51,7 @@
 pub mod cli;
 pub mod demo;
 pub mod dual_port;
+pub mod error;
 pub mod image;
 pub mod refresh;
 pub mod text;
