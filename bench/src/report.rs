@@ -364,7 +364,7 @@ pub fn markdown(run: &Run, old: &str) -> String {
            separately: 256×256 RGB565 is 131,072 B, 512×256 is 262,144 B;\n\
            tiny-skia's RGBA8888 pixmap is twice that. scanvert: the edge slots a\n\
            polygon needs (`size_of` of the stepper) plus the `Rasterizer`,\n\
-           `ClipRect` and `FillCounts` structs; it allocates nothing.\n\
+           `ClipRect` and `Counts` structs; it allocates nothing.\n\
            tiny-skia: the peak of heap bytes live during `fill_path` above those\n\
            live before it, from a counting global allocator, worst polygon, plus\n\
            the `Path` (its struct, 8 B a point, 1 B a verb). embedded-graphics:\n\

@@ -122,10 +122,11 @@
 
 use crate::color::ListColor;
 use crate::fixed::ceil_px;
+use crate::port::Counts;
 use crate::port::Span;
 use crate::port::SpanTarget;
 use crate::raster::edge::Edge;
-use crate::visible::rle::{DecodeCounts, Run, RunWriter, RunsFull};
+use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
 use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
@@ -639,7 +640,7 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     y: u16,
     x: u32,
     runs: u32,
-    counts: DecodeCounts,
+    counts: Counts,
     error: Option<T::Error>,
 }
 
@@ -1055,7 +1056,7 @@ pub fn draw<T>(
     mode: Resolve,
     target: &mut T,
     background: Option<T::Color>,
-) -> Result<(VisibleStats, crate::visible::rle::DecodeCounts), VisibleError<T::Error>>
+) -> Result<(VisibleStats, Counts), VisibleError<T::Error>>
 where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
@@ -1069,7 +1070,7 @@ where
         y: 0,
         x: 0,
         runs: 0,
-        counts: DecodeCounts::default(),
+        counts: Counts::default(),
         error: None,
     };
     let (stats, out) = resolve_into(workspace.active, workspace.cover, store, mode, out)?;
