@@ -2,7 +2,6 @@
 //! peers, and the memory-bandwidth limit, each behind one small trait.
 
 use crate::heap;
-use crate::workloads::{Kind, Workload};
 use core::convert::Infallible;
 use core::mem::size_of;
 use embedded_graphics::{
@@ -21,6 +20,7 @@ use scanvert::{
     raster::edge::{Edge, Stepper},
     raster::scan::Rasterizer,
 };
+use testkit::workloads::{Kind, Workload};
 
 /// The colour everything draws in (on black or transparent).
 const INK: Rgb565 = Rgb565::RED;
