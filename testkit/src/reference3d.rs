@@ -247,6 +247,60 @@ mod tests {
         assert_eq!(Bary::of(&edge_on).map(|b| b.den), None);
     }
 
+    /// Every pixel against every polygon, in list order: what [`resolve`]
+    /// must give, whatever boxes it visits.
+    fn pixel_by_pixel(polys: &[Poly3], w: u32, h: u32) -> Vec<Option<usize>> {
+        let full = Window::full(w as u16, h as u16);
+        let mut out = Vec::new();
+        for j in 0..h as i32 {
+            for i in 0..w as i32 {
+                let mut best: Option<(usize, (i128, i128))> = None;
+                for (k, p) in polys.iter().enumerate() {
+                    let flat: Vec<(i32, i32)> = p.poly.iter().map(|v| (v.0, v.1)).collect();
+                    if !drawn(&p.poly)
+                        || !p.clip.unwrap_or(full).contains(i, j)
+                        || !covers(&flat, i, j)
+                    {
+                        continue;
+                    }
+                    let Some(b) = Bary::of(&p.poly) else { continue };
+                    let z = b.depth(16 * i as i128 + 8, 16 * j as i128 + 8);
+                    if best.map_or(true, |(_, bz)| z.0 * bz.1 < bz.0 * z.1) {
+                        best = Some((k, z));
+                    }
+                }
+                out.push(best.map(|b| b.0));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn boxes_miss_no_pixel_on_a_clipped_scene() {
+        use crate::rng::Rng;
+        use crate::scenes3d::{scene, Version, H, W};
+        let s = scene(Version::Tilted, 10);
+        let mut rng = Rng(0x7e57_c11b);
+        let mut polys: Vec<Poly3> = s.views[2].iter().map(|f| Poly3::from_vertices(f)).collect();
+        for (k, p) in polys.iter_mut().enumerate() {
+            if k % 3 == 1 {
+                let (x0, y0) = (rng.range(-20, 300) as i16, rng.range(-20, 200) as i16);
+                p.clip = Some(Window {
+                    x0,
+                    y0,
+                    x1: x0 + rng.range(-5, 400) as i16,
+                    y1: y0 + rng.range(-5, 200) as i16,
+                });
+            }
+        }
+        // Two copies of one face: the earlier keeps every pixel.
+        polys.push(polys[0].clone());
+        let got = resolve(&polys, W as u32, H as u32);
+        assert!(got.iter().filter(|c| c.is_some()).count() > 10_000);
+        assert!(!got.contains(&Some(polys.len() - 1)));
+        assert_eq!(got, pixel_by_pixel(&polys, W as u32, H as u32));
+    }
+
     #[test]
     #[should_panic(expected = "off the plane")]
     fn non_planar_polygons_are_refused() {
