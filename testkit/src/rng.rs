@@ -16,8 +16,8 @@ impl Rng {
     }
 
     /// A number in `0..n` (`0 < n ≤ 2³¹`), by remainder.
-    pub fn below(&mut self, n: u64) -> i32 {
-        (self.next_u64() % n) as i32
+    pub fn below(&mut self, n: u32) -> i32 {
+        (self.next_u64() % n as u64) as i32
     }
 
     /// A number in `lo..hi` (`lo < hi`), by remainder.

@@ -1097,15 +1097,7 @@ mod tests {
         }
     }
 
-    struct Rng(u32);
-    impl Rng {
-        fn below(&mut self, m: u32) -> i32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            (self.0 % m) as i32
-        }
-    }
+    use testkit::rng::Rng;
 
     /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {
