@@ -1,7 +1,7 @@
 //! The host-only kit that `host_tests` and `bench` share, so that each
 //! piece exists once:
 //!
-//! * [`reference`]: the exact 2D reference, the pixel rule decided pixel
+//! * [`reference`](mod@reference): the exact 2D reference, the pixel rule decided pixel
 //!   by pixel in `i128` (no stepper, no active-edge list, no division),
 //!   with the bitmap type the tests compare with.
 //! * [`reference3d`]: the exact 3D reference: culling, coverage by the
