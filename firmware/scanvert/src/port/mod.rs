@@ -51,8 +51,8 @@ impl Span {
 /// with it.
 ///
 /// # Limits
-/// Both counts are `u32`, enough for 1,000 frames of 4096 × 4096; the
-/// additions saturate rather than wrap or panic.
+/// Both counts are `u32`, enough for 256 whole frames of 4096 × 4096; the
+/// [`Counts::span`], `+` and `+=` saturate rather than wrap or panic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Counts {
