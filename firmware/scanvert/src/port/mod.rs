@@ -51,7 +51,7 @@ impl Span {
 /// with it.
 ///
 /// # Limits
-/// Both counts are `u32`, enough for 256 whole frames of 4096 × 4096; the
+/// Both counts are `u32`, enough for 256 whole frames of 4096 × 4096;
 /// [`Counts::span`], `+` and `+=` saturate rather than wrap or panic.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
