@@ -2,7 +2,6 @@
 //! peers, and the memory-bandwidth limit, each behind one small trait.
 
 use crate::heap;
-use crate::workloads::{Kind, Workload};
 use core::convert::Infallible;
 use core::mem::size_of;
 use embedded_graphics::{
@@ -15,12 +14,13 @@ use scanvert::{
     fixed::Vertex,
     pixelcolor::{Rgb565, Rgb888, RgbColor},
     port::framebuffer::FrameBuffer,
-    port::{Span, SpanTarget},
+    port::{Counts, Span, SpanTarget},
     raster::clip::ClipRect,
     raster::dda::{self, Dda16, Dda7},
     raster::edge::{Edge, Stepper},
-    raster::scan::{FillCounts, Rasterizer},
+    raster::scan::Rasterizer,
 };
+use testkit::workloads::{Kind, Workload};
 
 /// The colour everything draws in (on black or transparent).
 const INK: Rgb565 = Rgb565::RED;
@@ -136,8 +136,7 @@ impl<S: Stepper, const SNAP: u32> Contender for ScanvertFill<S, SNAP> {
             );
         }
         let slots = self.polys.iter().map(Vec::len).max().unwrap_or(0);
-        let structs =
-            size_of::<Rasterizer<'_, S>>() + size_of::<ClipRect>() + size_of::<FillCounts>();
+        let structs = size_of::<Rasterizer<'_, S>>() + size_of::<ClipRect>() + size_of::<Counts>();
         (
             slots * size_of::<S>() + structs,
             format!(

@@ -12,18 +12,17 @@
 
 mod contenders;
 mod heap;
+mod numbers;
 mod plot;
-mod reference;
-mod reference3d;
 mod report;
-mod scenes3d;
 mod visible3d;
-mod workloads;
 
 use std::hint::black_box;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use workloads::{Kind, Workload};
+use testkit::reference;
+use testkit::scenes3d;
+use testkit::workloads::{self, Kind, Workload};
 
 #[global_allocator]
 static ALLOC: heap::Counting = heap::Counting;
@@ -87,6 +86,7 @@ fn reference_masks(wl: &Workload) -> Masks {
     wl.polys
         .iter()
         .map(|p| {
+            let p = &reference::units(p);
             let b = reference::pixel_box(p, 3, wl.width, wl.height);
             let mut m = Vec::with_capacity(((b.2 - b.0) * (b.3 - b.1)) as usize);
             for y in b.1..b.3 {

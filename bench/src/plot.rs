@@ -187,8 +187,8 @@ struct Series {
 /// Renders time per frame against trapezoids per frame for the 3D scenes
 /// (both log scales) and returns `(width, height, rgb bytes)`.
 pub fn render_3d(rows: &[crate::visible3d::Row3]) -> (u32, u32, Vec<u8>) {
-    use crate::scenes3d::Version;
     use crate::visible3d::CROSSING;
+    use testkit::scenes3d::Version;
     let mut series: Vec<Series> = Vec::new();
     let mut names: Vec<String> = Vec::new();
     let mut push = |name: String, layered: bool, p: (f64, f64)| {

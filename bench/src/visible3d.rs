@@ -6,9 +6,7 @@
 //! frame (one `slice::fill`); scanvert then draws with no background fill
 //! (`visible::draw(…, None)`), so that every contender does the same clear.
 
-use crate::reference3d;
-use crate::report::thousands;
-use crate::scenes3d::{Scene, Version, H, VIEWS, W};
+use crate::numbers::thousands;
 use crate::time_fns;
 use core::mem::size_of;
 use scanvert::{
@@ -27,6 +25,9 @@ use scanvert::{
 use std::convert::Infallible;
 use std::hint::black_box;
 use std::time::Duration;
+use testkit::reference::{covers, pixel_box};
+use testkit::reference3d;
+use testkit::scenes3d::{Scene, Version, H, VIEWS, W};
 
 /// Each timed run repeats a pass (all views) for at least this long.
 const MIN_RUN: Duration = Duration::from_millis(30);
@@ -399,7 +400,7 @@ fn inks_565(scene: &Scene) -> Vec<Rgb565> {
 /// `bisect-alone` (resolve + decode), `cut` (the cut alone), `z16` or
 /// `z32`.
 pub fn profile(mode: &str, passes: u32) {
-    let scene = crate::scenes3d::scene(Version::Tilted, 170);
+    let scene = testkit::scenes3d::scene(Version::Tilted, 170);
     let clip = ClipRect::full(W, H);
     let inks = inks_565(&scene);
     let cap = 8 * scene.faces + 64;
@@ -471,12 +472,12 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
         .iter()
         .flatten()
         .map(|f| {
-            let flat: Vec<Vertex> = f.iter().map(|v| Vertex { x: v.x, y: v.y }).collect();
-            let (x0, y0, x1, y1) = crate::reference::pixel_box(&flat, 1, W, H);
+            let flat: Vec<(i32, i32)> = f.iter().map(|v| (v.x.units(), v.y.units())).collect();
+            let (x0, y0, x1, y1) = pixel_box(&flat, 1, W, H);
             let mut k = 0u64;
             for j in y0..y1 {
                 for i in x0..x1 {
-                    k += crate::reference::covers(&flat, i, j) as u64;
+                    k += covers(&flat, i, j) as u64;
                 }
             }
             k
@@ -650,7 +651,7 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenes3d::scene;
+    use testkit::scenes3d::scene;
 
     #[test]
     fn scanvert_and_the_z_buffers_match_the_reference_on_a_small_scene() {

@@ -171,7 +171,7 @@ EOF
 #### The 3D layer, stage by stage
 
 The `poly3-*` lists are the 3D layer alone on a 512 × 256 frame
-(`host_tests::scenes3d`): 170 `poly3`s, one colour each, parallel to
+(`testkit::poly3_scenes`): 170 `poly3`s, one colour each, parallel to
 the screen at depths of their own (*layered*), or tilted and through
 each other (*tilted*). The image renders each twice: once stage by stage
 (counted below), then through `Controller::render` (the table above,

@@ -19,6 +19,9 @@
 //! directory, a device, a fifo) is refused (see `write_output`).
 
 use crate::dual_port::DualPortRam;
+use crate::error::{input, io, shown};
+pub use crate::error::{CliError, EXIT_INPUT, EXIT_IO, EXIT_USAGE};
+use crate::output::write_output;
 use crate::refresh::RefreshController;
 use crate::text::{self, escape_for_terminal, Assembled};
 use crate::timing::VideoTiming;
@@ -34,7 +37,6 @@ use scanvert::visible::store::{Face, Segment, StoreMemory};
 use scanvert::visible::sweep::{Active, Cover, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use std::fmt;
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
@@ -148,51 +150,10 @@ fn command_help(command: &str) -> Option<&'static str> {
     })
 }
 
-/// Exit status for bad input (a scene that cannot be read or rendered).
-pub const EXIT_INPUT: u8 = 1;
-/// Exit status for a bad command line.
-pub const EXIT_USAGE: u8 = 2;
-/// Exit status for a failure to write the output.
-pub const EXIT_IO: u8 = 3;
-
-/// A failure of the program, with its exit status.
-#[derive(Debug)]
-pub struct CliError {
-    /// Exit status.
-    pub status: u8,
-    /// What to tell the user.
-    pub message: String,
-}
-
-impl fmt::Display for CliError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
 fn usage(msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_USAGE,
         message: format!("{}\n{USAGE}", escape_for_terminal(&msg.to_string())),
-    }
-}
-
-/// A path as it may be shown on a terminal.
-pub(crate) fn shown(path: &Path) -> String {
-    escape_for_terminal(&path.display().to_string())
-}
-
-pub(crate) fn input(path: &Path, msg: impl fmt::Display) -> CliError {
-    CliError {
-        status: EXIT_INPUT,
-        message: format!("{}: {msg}", shown(path)),
-    }
-}
-
-pub(crate) fn io(path: &Path, e: impl fmt::Display) -> CliError {
-    CliError {
-        status: EXIT_IO,
-        message: format!("{}: {e}", shown(path)),
     }
 }
 
@@ -364,105 +325,6 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
         .render(&list, &mut ram.write_port())
         .map_err(|e| scene.render_error(e))?;
     Ok(Rendered { ram, stats })
-}
-
-/// Tries at most this many temporary names before giving up.
-const TEMP_TRIES: u32 = 1000;
-
-/// What a path that exists is, when it is not a regular file.
-fn special_kind(t: std::fs::FileType) -> Option<&'static str> {
-    if t.is_file() {
-        return None;
-    }
-    if t.is_symlink() {
-        return Some("a symbolic link");
-    }
-    if t.is_dir() {
-        return Some("a directory");
-    }
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        if t.is_char_device() {
-            return Some("a character device");
-        }
-        if t.is_block_device() {
-            return Some("a block device");
-        }
-        if t.is_fifo() {
-            return Some("a fifo");
-        }
-        if t.is_socket() {
-            return Some("a socket");
-        }
-    }
-    Some("not a regular file")
-}
-
-/// Creates a new temporary file next to `path`, named
-/// `.NAME.PID.N.tmp`: `create_new` never follows a link or opens a file
-/// that is already there, so a name that is taken (by anything, a planted
-/// link too) is skipped for the next `N`.
-fn create_temp(path: &Path) -> Result<(std::fs::File, PathBuf), CliError> {
-    let name = path
-        .file_name()
-        .ok_or_else(|| io(path, "not a file name"))?;
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    // The name only helps to recognise a leftover: a readable part is
-    // enough, and keeps the temporary name within the system's limit.
-    let stem: String = name.to_string_lossy().chars().take(64).collect();
-    let pid = std::process::id();
-    for n in 0..TEMP_TRIES {
-        let tmp = dir.join(format!(".{stem}.{pid}.{n}.tmp"));
-        match std::fs::OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&tmp)
-        {
-            Ok(f) => return Ok((f, tmp)),
-            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-            Err(e) => return Err(io(path, e)),
-        }
-    }
-    Err(io(
-        path,
-        format_args!("no free temporary name after {TEMP_TRIES} tries"),
-    ))
-}
-
-/// Writes `bytes` to `path`, safely: into a new temporary file next to it,
-/// then renamed over it, so that a failed write leaves no partial output
-/// and no link is ever followed. A destination that exists and is not a
-/// regular file (a symbolic link to anything, a directory, a device, a
-/// fifo) is refused and left as it is. Every failure is an [`EXIT_IO`]
-/// error naming `path`; the temporary file is removed.
-pub(crate) fn write_output(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    match std::fs::symlink_metadata(path) {
-        Ok(m) => {
-            if let Some(kind) = special_kind(m.file_type()) {
-                return Err(io(
-                    path,
-                    format_args!("is {kind}, not a regular file; refusing to replace it"),
-                ));
-            }
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-        Err(e) => return Err(io(path, e)),
-    }
-    let (mut file, tmp) = create_temp(path)?;
-    let written = file.write_all(bytes).and_then(|()| file.sync_all());
-    drop(file);
-    // `rename` replaces the name `path`: were a link put there meanwhile,
-    // the link would be replaced, not followed.
-    written
-        .and_then(|()| std::fs::rename(&tmp, path))
-        .map_err(|e| {
-            let _ = std::fs::remove_file(&tmp);
-            io(path, e)
-        })
 }
 
 struct Args {

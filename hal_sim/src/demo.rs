@@ -21,8 +21,8 @@
 //! the simulation's, not the renderer's): the same frames drawn into a
 //! plain [`FrameBuffer`], best of several timed runs.
 
-use crate::cli::CliError;
 use crate::dual_port::DualPortRam;
+use crate::error::{self, CliError};
 use crate::refresh::{CoSimulation, Frame, RefreshController};
 use crate::timing::VideoTiming;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
@@ -281,7 +281,7 @@ impl Memory {
 /// Rebuilds what `step` changed since `last` and returns what the update
 /// did.
 fn advance(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<Update, CliError> {
-    let fail = |e: &dyn std::fmt::Display| crate::cli::input(Path::new("demo"), e);
+    let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
     if last.map(|l| l.orbit) != Some(step.orbit) {
         scene.set_view(&view(step.orbit)).map_err(|e| fail(&e))?;
     }
@@ -461,7 +461,7 @@ pub fn speeds() -> Result<(f64, f64, f64), CliError> {
 
 /// `scanvert demo`: writes `frames` PNGs into `dir` and returns the report.
 pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError> {
-    std::fs::create_dir_all(dir).map_err(|e| crate::cli::io(dir, e))?;
+    std::fs::create_dir_all(dir).map_err(|e| error::io(dir, e))?;
     let shown = animate(frames)?;
     let mut s = String::new();
     let _ = writeln!(
@@ -476,8 +476,8 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
     let mut trapezoids = 0;
     for (i, f) in shown.iter().enumerate() {
         let path: PathBuf = dir.join(format!("frame-{i:02}.png"));
-        let png = crate::image::encode_png(&f.shown).map_err(|e| crate::cli::io(&path, e))?;
-        crate::cli::write_output(&path, &png)?;
+        let png = crate::image::encode_png(&f.shown).map_err(|e| error::io(&path, e))?;
+        crate::output::write_output(&path, &png)?;
         let names: Vec<&str> = (0..3)
             .filter(|&s| f.rebuilt[s] != prev[s])
             .map(|s| SEGMENTS[s])
@@ -497,7 +497,7 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
             f.trapezoids,
             f.drawn.visible.runs,
             f.drawn.labels.drawn,
-            crate::cli::shown(&path)
+            crate::error::shown(&path)
         );
     }
     if !shown.is_empty() {

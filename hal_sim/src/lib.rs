@@ -51,7 +51,9 @@
 pub mod cli;
 pub mod demo;
 pub mod dual_port;
+pub mod error;
 pub mod image;
+mod output;
 pub mod refresh;
 pub mod text;
 pub mod timing;

@@ -14,6 +14,7 @@ use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::image;
 use scanvert_sim::refresh::RefreshController;
 use scanvert_sim::timing::VideoTiming;
+use testkit::rng::Rng;
 
 /// A mode and the figures it must have.
 struct Figures {
@@ -105,32 +106,20 @@ fn one_frame_has_its_sync_pulses_reads_and_clocks() {
     }
 }
 
-/// Deterministic pseudo-random numbers (xorshift32).
-struct Rng(u32);
-
-impl Rng {
-    fn next(&mut self) -> u32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 17;
-        self.0 ^= self.0 << 5;
-        self.0
-    }
-
-    /// A coordinate in sixteenths, up to a quarter of `side` outside it.
-    fn coord(&mut self, side: u16) -> i16 {
-        let span = side as i32 * 16 * 3 / 2;
-        (self.next() % span as u32) as i16 - (side as i32 * 4) as i16
-    }
+/// A coordinate in sixteenths, up to a quarter of `side` outside it.
+fn coord(rng: &mut Rng, side: u16) -> i16 {
+    let span = side as i32 * 16 * 3 / 2;
+    rng.below(span as u32) as i16 - (side as i32 * 4) as i16
 }
 
 /// A list for a `w × h` frame: a clear, random polygons of 3 to 8
 /// vertices (many reaching outside the frame), a clip window.
 fn scene(buf: &mut [u8], w: u16, h: u16, seed: u32) -> &[u8] {
-    let mut rng = Rng(seed);
+    let mut rng = Rng(seed as u64);
     let mut list = Writer::new(buf, w, h).unwrap();
     list.clear(Rgb888::new(0x20, 0x40, 0x80)).unwrap();
     for i in 0..40 {
-        let c = rng.next();
+        let c = rng.next_u64() as u32;
         list.color(Rgb888::new(c as u8, (c >> 8) as u8, (c >> 16) as u8))
             .unwrap();
         if i == 20 {
@@ -142,9 +131,9 @@ fn scene(buf: &mut [u8], w: u16, h: u16, seed: u32) -> &[u8] {
             };
             list.clip(clip).unwrap();
         }
-        let n = 3 + rng.next() as usize % 6;
+        let n = 3 + rng.below(6) as usize;
         let vs: Vec<Vertex> = (0..n)
-            .map(|_| Vertex::from_bits(rng.coord(w), rng.coord(h)))
+            .map(|_| Vertex::from_bits(coord(&mut rng, w), coord(&mut rng, h)))
             .collect();
         list.poly(vs).unwrap();
     }

@@ -17,8 +17,6 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use host_tests::harness3d::{build_list3, color_of, index_of, vertex3};
-use host_tests::reference3d::{drawn, resolve, Poly3};
-use host_tests::scenes3d::{self, H, W};
 use scanvert::fixed::Vertex;
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::port::{Span, SpanTarget};
@@ -32,6 +30,8 @@ use scanvert::visible::{self, Active, Cover, Resolve, Workspace};
 use std::convert::Infallible;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
+use testkit::poly3_scenes::{self as scenes3d, H, W};
+use testkit::reference3d::{drawn, resolve, Poly3};
 
 /// A plain z-buffer at the same depth precision: every face's pixels by
 /// the exact rasteriser, each tested against a 32-bit depth per pixel

@@ -2,7 +2,6 @@
 //! with [`Writer`], checked, and executed by [`Controller::render`] into a
 //! target that counts every pixel write.
 
-use crate::reference::{Coverage, Window};
 use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
 use scanvert::controller::{Controller, RenderError, Stats};
@@ -13,6 +12,7 @@ use scanvert::port::{Span, SpanTarget};
 use scanvert::raster::edge::{Edge, Stepper};
 use scanvert::raster::scan::Rasterizer;
 use std::cell::Cell;
+use testkit::reference::{Coverage, Window};
 
 /// Edge slots the harness gives the rasteriser unless told otherwise.
 pub const DEFAULT_CAPACITY: usize = 64;

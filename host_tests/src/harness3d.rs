@@ -3,10 +3,8 @@
 //! 3D storage sized by `needs_3d`, into an `Rgb888` frame buffer. Each
 //! `poly3` gets a colour of its own, so the picture tells which one won
 //! each pixel, and [`compare`] counts the pixels that differ from
-//! [`reference3d`](crate::reference3d).
+//! [`testkit::reference3d`].
 
-use crate::reference::Window;
-use crate::reference3d::{resolve, Poly3};
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
 use scanvert::display_list::{DisplayList, Writer};
@@ -18,6 +16,8 @@ use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreMemory};
 use scanvert::visible::sweep::{Active, Cover, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use testkit::reference::Window;
+use testkit::reference3d::{resolve, Poly3};
 
 /// The colour of the `k`-th `poly3` (never the black background).
 pub fn color_of(k: usize) -> Rgb888 {

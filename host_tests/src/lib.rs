@@ -1,14 +1,10 @@
-//! Shared helpers of the `host-tests` suites: the exact reference
-//! rasterisers ([`reference`] for `poly`, [`reference3d`] for `poly3`) and
-//! the harnesses that run scenes through the library's real path
-//! ([`harness`], [`harness3d`]), and the measured `poly3` scenes
-//! ([`scenes3d`]).
+//! Shared helpers of the `host-tests` suites: the harnesses that run
+//! scenes through the library's real path ([`harness`] for `poly`,
+//! [`harness3d`] for `poly3`). The exact references and the scene
+//! generators they are checked against are in the `testkit` crate.
 
 pub mod harness;
 pub mod harness3d;
-pub mod reference;
-pub mod reference3d;
-pub mod scenes3d;
 
 /// The repository README's examples, compiled and run as doctests.
 #[cfg(doctest)]

@@ -5,11 +5,11 @@ use embedded_graphics_core::pixelcolor::BinaryColor;
 use host_tests::harness::{
     assert_same, render_counting, render_poly, CountingEdge, CountingTarget, Draw,
 };
-use host_tests::reference::{assert_pattern, rasterize, Window};
 use scanvert::controller::RenderError;
 use scanvert::raster::clip::{ClipRect, ClipWindow};
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::{FillError, Rasterizer};
+use testkit::reference::{assert_pattern, rasterize, Window};
 
 const W: u16 = 64;
 const H: u16 = 48;

@@ -14,22 +14,16 @@
 //! ```
 //!
 //! The lists: `demo` is `scenes/demo.dl` assembled to binary; `w1` to `w5`
-//! are the 2D benchmark workloads of `bench/src/workloads.rs`, each pass
+//! are the 2D benchmark workloads of `testkit/src/workloads.rs`, each pass
 //! of a workload as one frame: `color #ff0000` and its polygons, or one
 //! `clear #ff0000` (W2), on a frame that starts black. `poly3-layered` and
 //! `poly3-tilted` are the 3D layer alone: the `flat` and `tilted` scenes of
-//! `host_tests::scenes3d` (170 `poly3`s on 512 × 256, parallel to the
+//! `testkit::poly3_scenes` (170 `poly3`s on 512 × 256, parallel to the
 //! screen in layers, or tilted and through each other), each `poly3`
 //! after a `color` of its own that no other has in RGB565.
 
-#[allow(dead_code)]
-#[path = "../../bench/src/workloads.rs"]
-mod workloads;
-
 use embedded_graphics_core::pixelcolor::Rgb888;
 use host_tests::harness3d::vertex3;
-use host_tests::reference3d::Poly3;
-use host_tests::scenes3d;
 use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::port::checksum::frame_checksum;
@@ -42,7 +36,9 @@ use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use scanvert_sim::dual_port::DualPortRam;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use workloads::{Kind, Workload};
+use testkit::poly3_scenes as scenes3d;
+use testkit::reference3d::Poly3;
+use testkit::workloads::{self, Kind, Workload};
 
 /// Largest frame the image holds: 512 × 256 RGB565.
 const IMAGE_FRAME_PIXELS: usize = 512 * 256;

@@ -1,4 +1,4 @@
-//! `poly3` against the exact reference (`host_tests::reference3d`), pixel
+//! `poly3` against the exact reference (`testkit::reference3d`), pixel
 //! for pixel, through the whole path (`Writer` → `DisplayList` →
 //! `Controller::render` with 3D storage → frame buffer), in both ways of
 //! resolving intersecting spans.
@@ -17,12 +17,12 @@
 //! must be at most 2.
 
 use host_tests::harness3d::{compare, Mismatch};
-use host_tests::reference::Window;
-use host_tests::reference3d::Poly3;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestRunner};
 use scanvert::visible::sweep::Resolve;
+use testkit::reference::Window;
+use testkit::reference3d::Poly3;
 
 const W: u16 = 64;
 const H: u16 = 48;

@@ -4,10 +4,10 @@
 //! edge-on faces, concave and self-intersecting polygons.
 
 use host_tests::harness3d::{compare, render3};
-use host_tests::reference::{rasterize, Window};
-use host_tests::reference3d::Poly3;
 use proptest::prelude::*;
 use scanvert::visible::sweep::Resolve;
+use testkit::reference::{rasterize, Window};
+use testkit::reference3d::Poly3;
 
 const MODES: [Resolve; 2] = [Resolve::Bisect, Resolve::Crossing];
 
@@ -230,7 +230,7 @@ fn concave_and_self_intersecting_polygons() {
     // wound so that its shoelace sum is negative.
     let star = [(256, 16), (115, 450), (484, 182), (28, 182), (397, 450)];
     let mut pentagram: Vec<V3> = star.iter().map(|&(x, y)| z(x, y, 0)).collect();
-    if !host_tests::reference3d::drawn(&pentagram) {
+    if !testkit::reference3d::drawn(&pentagram) {
         pentagram.reverse();
     }
     // An L shape and a comb, in a plane crossing the pentagram's.
@@ -263,7 +263,7 @@ fn concave_and_self_intersecting_polygons() {
     for s in scenes {
         let mut s = s;
         for p in s.iter_mut() {
-            if !host_tests::reference3d::drawn(&p.poly) {
+            if !testkit::reference3d::drawn(&p.poly) {
                 p.poly.reverse();
             }
         }

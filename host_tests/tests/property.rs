@@ -10,8 +10,8 @@
 use host_tests::harness::{
     assert_same, render_counting, render_framebuffer, render_poly, Draw, DEFAULT_CAPACITY,
 };
-use host_tests::reference::{rasterize, Window};
 use proptest::prelude::*;
+use testkit::reference::{rasterize, Window};
 
 const W: u16 = 64;
 const H: u16 = 48;

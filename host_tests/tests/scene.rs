@@ -1,7 +1,7 @@
 //! The whole 3D path end to end: model polygons through `Scene` (the
 //! geometry stage, the trapezoid store, the visible-surface pass, the
 //! decoder, labels) into a frame buffer, checked against the exact
-//! nearest-plane reference (`host_tests::reference3d`) of the polygons
+//! nearest-plane reference (`testkit::reference3d`) of the polygons
 //! the geometry stage delivered.
 //!
 //! The geometry stage's own arithmetic is tested in `geometry.rs`; here
@@ -12,7 +12,6 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tests::harness3d::{color_of, index_of};
-use host_tests::reference3d::{drawn, resolve, Poly3};
 use scanvert::fixed::Vertex3;
 use scanvert::geometry::{
     Angle, Matrix, Orthographic, Outcome, Perspective, Pipeline, Point3, PolygonSink, Projection,
@@ -25,6 +24,7 @@ use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
 use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use testkit::reference3d::{drawn, resolve, Poly3};
 
 const W: u16 = 160;
 const H: u16 = 120;

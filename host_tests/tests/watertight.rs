@@ -9,8 +9,8 @@
 //! pixel never.
 
 use host_tests::harness::{render_counting, Draw, DEFAULT_CAPACITY};
-use host_tests::reference::{rasterize, Window};
 use proptest::prelude::*;
+use testkit::reference::{rasterize, Window};
 
 const W: u16 = 64;
 const H: u16 = 48;

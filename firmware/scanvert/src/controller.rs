@@ -872,8 +872,8 @@ where
                 error,
             })?;
         stats.labels = c.drawn;
-        stats.spans += c.spans;
-        stats.pixels += c.pixels as u64;
+        stats.spans += c.written.spans;
+        stats.pixels += c.written.pixels as u64;
     }
     Ok(())
 }

@@ -57,8 +57,8 @@ pub use embedded_graphics_core::pixelcolor;
 // The 2D path: polygons into a span target.
 pub use crate::fixed::{Coord, Vertex, Vertex3};
 pub use crate::port::draw_target::DrawTargetPort;
-pub use crate::port::{Checksum, FrameBuffer, Span, SpanTarget};
-pub use crate::raster::{ClipRect, ClipWindow, Edge, FillCounts, FillError, Rasterizer};
+pub use crate::port::{Checksum, Counts, FrameBuffer, Span, SpanTarget};
+pub use crate::raster::{ClipRect, ClipWindow, Edge, FillError, Rasterizer};
 
 // Display lists and the controller that runs them.
 pub use crate::controller::{Controller, RenderError};

@@ -32,7 +32,7 @@ use super::project::Projection;
 /// `(v₁ − v₀) × (v₂ − v₀)` of view-space vertices (each below 2³⁰, so the
 /// differences fit `i32` and the products are 32 × 32 bits).
 #[inline]
-pub(crate) fn normal(v0: [i64; 3], v1: [i64; 3], v2: [i64; 3]) -> [i64; 3] {
+pub(super) fn normal(v0: [i64; 3], v1: [i64; 3], v2: [i64; 3]) -> [i64; 3] {
     let d = |p: [i64; 3], k: usize| (p[k] - v0[k]) as i32 as i64;
     let a = [d(v1, 0), d(v1, 1), d(v1, 2)];
     let b = [d(v2, 0), d(v2, 1), d(v2, 2)];
@@ -50,7 +50,7 @@ pub(crate) fn normal(v0: [i64; 3], v1: [i64; 3], v2: [i64; 3]) -> [i64; 3] {
 /// with `|v₀ · ρ| < 2ᵏ Σ|v₀|`, so `v₀ · n'` (`i64`) decides unless it is
 /// within `Σ|v₀|` of zero; then the exact `i128` product does.
 #[inline]
-pub(crate) fn is_front(projection: &Projection, v0: [i64; 3], n: [i64; 3]) -> bool {
+pub(super) fn is_front(projection: &Projection, v0: [i64; 3], n: [i64; 3]) -> bool {
     match projection {
         Projection::Perspective(_) => {
             let m = n.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);

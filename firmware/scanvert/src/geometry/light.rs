@@ -86,7 +86,7 @@ impl Light {
 /// `v` scaled by a power of two so that its largest component has 15
 /// bits; `None` for the zero vector. Components are `i64` below 2⁶³.
 #[inline]
-pub(crate) fn scale15(v: [i64; 3]) -> Option<[i32; 3]> {
+pub(super) fn scale15(v: [i64; 3]) -> Option<[i32; 3]> {
     let m = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
     if m == 0 {
         return None;
@@ -105,13 +105,13 @@ pub(crate) fn scale15(v: [i64; 3]) -> Option<[i32; 3]> {
 
 /// The length of a vector from [`scale15`]: at least 2¹⁴.
 #[inline]
-pub(crate) fn length15(s: [i32; 3]) -> u32 {
+pub(super) fn length15(s: [i32; 3]) -> u32 {
     let sq = s.iter().map(|&c| (c as i64 * c as i64) as u32).sum::<u32>();
     isqrt(sq) as u32
 }
 
 /// `v` as a unit vector in Q16.16, or `None` for zero.
-pub(crate) fn unit(v: [i64; 3]) -> Option<[i32; 3]> {
+pub(super) fn unit(v: [i64; 3]) -> Option<[i32; 3]> {
     let s = scale15(v)?;
     let len = length15(s) as i64;
     // |s| ≤ len, so each component is at most 2¹⁶.
@@ -120,7 +120,7 @@ pub(crate) fn unit(v: [i64; 3]) -> Option<[i32; 3]> {
 
 /// The colour of a face with view-space normal `n` (non-zero) under the
 /// light from view-space unit direction `toward`, `percent` of it directed.
-pub(crate) fn shade(color: Rgb888, n: [i64; 3], toward: [i32; 3], percent: u8) -> Rgb888 {
+pub(super) fn shade(color: Rgb888, n: [i64; 3], toward: [i32; 3], percent: u8) -> Rgb888 {
     if percent == 0 {
         return color;
     }

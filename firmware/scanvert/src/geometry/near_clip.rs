@@ -23,7 +23,7 @@ use super::window_clip::{Full, Work};
 
 /// Clips the current view-space polygon of `work`, whose depths span
 /// `lo..=hi`, to `near ≤ z ≤ far`; empty when nothing is left.
-pub(crate) fn clip_depth<const N: usize>(
+pub(super) fn clip_depth<const N: usize>(
     work: &mut Work<N>,
     near: i32,
     far: i32,

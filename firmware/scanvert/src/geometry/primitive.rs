@@ -23,7 +23,7 @@ use super::light::{length15, scale15};
 
 /// The square of half-side `half` (1/256 px) around `p`.
 #[inline]
-pub(crate) fn point_quad(p: [i64; 3], half: i64) -> [[i64; 3]; 4] {
+pub(super) fn point_quad(p: [i64; 3], half: i64) -> [[i64; 3]; 4] {
     let [x, y, z] = p;
     [
         [x - half, y - half, z],
@@ -35,7 +35,7 @@ pub(crate) fn point_quad(p: [i64; 3], half: i64) -> [[i64; 3]; 4] {
 
 /// The quad of half-width `half` (1/256 px) along `a`–`b`.
 #[inline]
-pub(crate) fn line_quad(a: [i64; 3], b: [i64; 3], half: i64) -> [[i64; 3]; 4] {
+pub(super) fn line_quad(a: [i64; 3], b: [i64; 3], half: i64) -> [[i64; 3]; 4] {
     let Some(s) = scale15([b[0] - a[0], b[1] - a[1], 0]) else {
         let nearer = if a[2] <= b[2] { a } else { b };
         return point_quad(nearer, half);

@@ -75,7 +75,7 @@ pub const Z_NEAR: Coord = Coord::MIN;
 pub const Z_FAR: Coord = Coord::MAX;
 
 /// Screen depth of the near plane in 1/4096 units.
-pub(crate) const Z_NEAR_FINE: i64 = (Z_NEAR.units() as i64) << 8;
+pub(super) const Z_NEAR_FINE: i64 = (Z_NEAR.units() as i64) << 8;
 /// The depth span in 1/4096 units: 65535 · 256 < 2²⁴.
 const Z_SPAN_FINE: i64 = ((Z_FAR.units() - Z_NEAR.units()) as i64) << 8;
 /// Smallest perspective near plane, raw Q16.16: 1/256 unit.
@@ -172,12 +172,12 @@ impl Viewport {
     }
 
     /// The window's right edge, in 1/256 px.
-    pub(crate) const fn right_fine(&self) -> i64 {
+    pub(super) const fn right_fine(&self) -> i64 {
         (self.width as i64) << 8
     }
 
     /// The window's bottom edge, in 1/256 px.
-    pub(crate) const fn bottom_fine(&self) -> i64 {
+    pub(super) const fn bottom_fine(&self) -> i64 {
         (self.height as i64) << 8
     }
 }
@@ -442,7 +442,7 @@ impl From<Orthographic> for Projection {
 
 impl Projection {
     /// The near plane (raw Q16.16).
-    pub(crate) fn near_raw(&self) -> i32 {
+    pub(super) fn near_raw(&self) -> i32 {
         match self {
             Projection::Perspective(p) => p.near,
             Projection::Orthographic(p) => p.near,
@@ -450,7 +450,7 @@ impl Projection {
     }
 
     /// The far plane (raw Q16.16).
-    pub(crate) fn far_raw(&self) -> i32 {
+    pub(super) fn far_raw(&self) -> i32 {
         match self {
             Projection::Perspective(p) => p.far,
             Projection::Orthographic(p) => p.far,
@@ -461,7 +461,7 @@ impl Projection {
     /// window clip: x, y in 1/256 px, z in 1/4096 (clamped to the far
     /// plane's beyond it).
     #[inline]
-    pub(crate) fn project(&self, v: [i64; 3], window: &Viewport) -> [i64; 3] {
+    pub(super) fn project(&self, v: [i64; 3], window: &Viewport) -> [i64; 3] {
         let [x, y, z] = match self {
             Projection::Perspective(p) => p.project(v),
             Projection::Orthographic(p) => p.project(v),
@@ -483,7 +483,7 @@ impl Projection {
 /// three are then below 2²⁴ in magnitude and the arithmetic is `i32`.
 /// Anything else still gives a valid [`Coord`] (clamped), never a panic.
 #[inline]
-pub(crate) fn to_vertex3(v: [i64; 3]) -> Vertex3 {
+pub(super) fn to_vertex3(v: [i64; 3]) -> Vertex3 {
     let c = |u: i64, shift: u32| {
         let r = (u as i32).wrapping_add(1 << (shift - 1)) >> shift;
         Coord::from_bits(r.clamp(i16::MIN as i32, i16::MAX as i32) as i16)
@@ -517,7 +517,7 @@ pub struct Anchor {
 }
 
 /// The anchor of a view-space point (|coordinates| < 2³⁰).
-pub(crate) fn anchor(projection: &Projection, window: &Viewport, v: [i64; 3]) -> Anchor {
+pub(super) fn anchor(projection: &Projection, window: &Viewport, v: [i64; 3]) -> Anchor {
     let near = projection.near_raw() as i64;
     if v[2] < near {
         return Anchor::default();
@@ -542,7 +542,7 @@ pub(crate) fn anchor(projection: &Projection, window: &Viewport, v: [i64; 3]) ->
 /// returns.
 ///
 /// [`Pipeline::project_point`]: super::Pipeline::project_point
-pub(crate) fn anchor_of(
+pub(super) fn anchor_of(
     m: &super::transform::Matrix,
     projection: &Projection,
     window: &Viewport,

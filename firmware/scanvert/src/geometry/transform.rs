@@ -311,7 +311,7 @@ impl Matrix {
 
     /// [`Matrix::transform`] in raw form.
     #[inline]
-    pub(crate) fn apply(&self, p: Point3) -> Result<[i32; 3], TransformError> {
+    pub(super) fn apply(&self, p: Point3) -> Result<[i32; 3], TransformError> {
         let p = p.to_bits();
         let mut out = [0i32; 3];
         for (o, row) in out.iter_mut().zip(&self.rows) {
@@ -331,7 +331,7 @@ impl Matrix {
 
     /// The linear part applied to a direction `v` whose components are at
     /// most 2¹⁷ in magnitude (`i64`; no translation, no range check needed).
-    pub(crate) fn rotate_vector(&self, v: [i32; 3]) -> [i32; 3] {
+    pub(super) fn rotate_vector(&self, v: [i32; 3]) -> [i32; 3] {
         let mut out = [0i32; 3];
         for (o, row) in out.iter_mut().zip(&self.rows) {
             let s = row[0] as i64 * v[0] as i64

@@ -38,18 +38,18 @@
 use super::project::Viewport;
 
 /// A polygon under clipping: up to `N` vertices of three `i64`.
-pub(crate) type Poly<const N: usize> = heapless::Vec<[i64; 3], N>;
+pub(super) type Poly<const N: usize> = heapless::Vec<[i64; 3], N>;
 
 /// A clip pass ran out of vertex capacity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Full;
+pub(super) struct Full;
 
 const SMALL: i64 = 1 << 30;
 
 /// `a + round((b − a) · num / den)` for `0 ≤ num ≤ den`, `den > 0`; the
 /// result lies between `a` and `b`.
 #[inline]
-pub(crate) fn lerp(a: i64, b: i64, num: i64, den: i64) -> i64 {
+pub(super) fn lerp(a: i64, b: i64, num: i64, den: i64) -> i64 {
     let d = b - a;
     if d.abs() <= SMALL && num <= SMALL {
         // |d · num| ≤ 2⁶⁰.
@@ -91,7 +91,7 @@ fn push_new<const N: usize>(dst: &mut Poly<N>, v: [i64; 3]) -> Result<(), Full> 
 
 /// One pass: the part of `src` where `v[axis] ≥ bound` (`keep_above`) or
 /// `v[axis] ≤ bound`, into `dst`. Repeated points are dropped.
-pub(crate) fn clip_plane<const N: usize>(
+pub(super) fn clip_plane<const N: usize>(
     src: &Poly<N>,
     dst: &mut Poly<N>,
     axis: usize,
@@ -129,13 +129,13 @@ pub(crate) fn clip_plane<const N: usize>(
 /// Two polygon buffers that clip passes alternate between: one holds the
 /// current polygon, the other receives the next pass.
 #[derive(Debug)]
-pub(crate) struct Work<const N: usize> {
+pub(super) struct Work<const N: usize> {
     buf: [Poly<N>; 2],
     cur: usize,
 }
 
 impl<const N: usize> Work<N> {
-    pub(crate) const fn new() -> Self {
+    pub(super) const fn new() -> Self {
         Work {
             buf: [Poly::new(), Poly::new()],
             cur: 0,
@@ -143,17 +143,17 @@ impl<const N: usize> Work<N> {
     }
 
     /// The current polygon.
-    pub(crate) fn current(&self) -> &Poly<N> {
+    pub(super) fn current(&self) -> &Poly<N> {
         &self.buf[self.cur & 1]
     }
 
     /// The current polygon, to fill or change in place.
-    pub(crate) fn current_mut(&mut self) -> &mut Poly<N> {
+    pub(super) fn current_mut(&mut self) -> &mut Poly<N> {
         &mut self.buf[self.cur & 1]
     }
 
     /// Clips the current polygon against one plane (see [`clip_plane`]).
-    pub(crate) fn pass(&mut self, axis: usize, bound: i64, keep_above: bool) -> Result<(), Full> {
+    pub(super) fn pass(&mut self, axis: usize, bound: i64, keep_above: bool) -> Result<(), Full> {
         let [first, second] = &mut self.buf;
         let (src, dst) = if self.cur & 1 == 0 {
             (&*first, second)
@@ -169,7 +169,7 @@ impl<const N: usize> Work<N> {
 /// Which sides of the window a polygon's vertices lie beyond (Cohen and
 /// Sutherland's outcodes): bit 0 left, 1 right, 2 above, 3 below.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Outcodes {
+pub(super) struct Outcodes {
     /// Sides some vertex is beyond: the planes to clip against.
     any: u8,
     /// Sides every vertex is beyond: non-zero means nothing is inside.
@@ -178,11 +178,11 @@ pub(crate) struct Outcodes {
 
 impl Outcodes {
     /// The codes of no vertices.
-    pub(crate) const EMPTY: Outcodes = Outcodes { any: 0, all: 0xF };
+    pub(super) const EMPTY: Outcodes = Outcodes { any: 0, all: 0xF };
 
     /// Takes in the vertex `v` for the window `window`.
     #[inline]
-    pub(crate) fn add(&mut self, v: &[i64; 3], window: &Viewport) {
+    pub(super) fn add(&mut self, v: &[i64; 3], window: &Viewport) {
         let code = (v[0] < 0) as u8
             | ((v[0] > window.right_fine()) as u8) << 1
             | ((v[1] < 0) as u8) << 2
@@ -194,7 +194,7 @@ impl Outcodes {
 
 /// Clips the current polygon of `work`, whose vertices have the codes
 /// `codes`, to the window; empty when nothing is left.
-pub(crate) fn clip_window<const N: usize>(
+pub(super) fn clip_window<const N: usize>(
     work: &mut Work<N>,
     window: &Viewport,
     codes: Outcodes,

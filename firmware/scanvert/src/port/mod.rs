@@ -45,6 +45,49 @@ impl Span {
     }
 }
 
+/// What a stage wrote into a [`SpanTarget`]: spans, and the pixels in
+/// them. The rasteriser's fills, the run decoder and the labels all count
+/// with it.
+///
+/// # Limits
+/// Both counts are `u32`, enough for 256 whole frames of 4096 × 4096;
+/// [`Counts::span`], `+` and `+=` saturate rather than wrap or panic.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Counts {
+    /// Spans handed to the target.
+    pub spans: u32,
+    /// Pixels in those spans.
+    pub pixels: u32,
+}
+
+impl Counts {
+    /// Counts one span of `pixels` pixels.
+    #[inline]
+    pub fn span(&mut self, pixels: u32) {
+        self.spans = self.spans.saturating_add(1);
+        self.pixels = self.pixels.saturating_add(pixels);
+    }
+}
+
+impl core::ops::Add for Counts {
+    type Output = Counts;
+    #[inline]
+    fn add(self, other: Counts) -> Counts {
+        Counts {
+            spans: self.spans.saturating_add(other.spans),
+            pixels: self.pixels.saturating_add(other.pixels),
+        }
+    }
+}
+
+impl core::ops::AddAssign for Counts {
+    #[inline]
+    fn add_assign(&mut self, other: Counts) {
+        *self = *self + other;
+    }
+}
+
 /// A frame buffer that takes horizontal spans.
 ///
 /// Implementations may rely on the [`Span`] guarantees for spans that
@@ -91,5 +134,46 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     #[inline]
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
         (**self).clear(color)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Counts;
+
+    #[test]
+    fn counts_add_up_and_saturate() {
+        let mut c = Counts::default();
+        c.span(5);
+        c.span(0);
+        assert_eq!(
+            c,
+            Counts {
+                spans: 2,
+                pixels: 5
+            }
+        );
+        c += Counts {
+            spans: 1,
+            pixels: 3,
+        };
+        assert_eq!(
+            c,
+            Counts {
+                spans: 3,
+                pixels: 8
+            }
+        );
+        let top = Counts {
+            spans: u32::MAX,
+            pixels: u32::MAX - 1,
+        };
+        assert_eq!(
+            c + top,
+            Counts {
+                spans: u32::MAX,
+                pixels: u32::MAX
+            }
+        );
     }
 }

@@ -160,13 +160,7 @@ pub fn snap(v: Vertex, frac_bits: u32) -> Vertex {
 mod tests {
     use super::*;
     use crate::raster::edge::Edge;
-
-    fn xorshift(s: &mut u32, m: i32) -> i32 {
-        *s ^= *s << 13;
-        *s ^= *s >> 17;
-        *s ^= *s << 5;
-        (*s % (2 * m as u32)) as i32 - m
-    }
+    use testkit::rng::Rng;
 
     /// Walks a DDA edge beside the exact one: same rows, and the pixel is
     /// within the documented bound of the exact crossing.
@@ -202,10 +196,11 @@ mod tests {
 
     #[test]
     fn dda_stays_within_its_error_bound() {
-        let mut s = 0x9e37_79b9u32;
+        let mut rng = Rng(0x9e37_79b9);
+        let mut v =
+            || Vertex::from_bits(rng.range(-8000, 8000) as i16, rng.range(-8000, 8000) as i16);
         for _ in 0..3000 {
-            let a = Vertex::from_bits(xorshift(&mut s, 8000) as i16, xorshift(&mut s, 8000) as i16);
-            let b = Vertex::from_bits(xorshift(&mut s, 8000) as i16, xorshift(&mut s, 8000) as i16);
+            let (a, b) = (v(), v());
             within_bound::<7>(a, b);
             within_bound::<16>(a, b);
         }

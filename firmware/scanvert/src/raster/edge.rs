@@ -71,12 +71,12 @@ pub struct Edge {
     /// Height in units, `> 0`.
     dy: i32,
     /// First row sampled (inside the clip rows).
-    pub(crate) top: i32,
+    pub(super) top: i32,
     /// One past the last row sampled.
-    pub(crate) end: i32,
+    pub(super) end: i32,
     /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
     /// [`Edge::load_pixel`].
-    pub(crate) px: i32,
+    pub(super) px: i32,
 }
 
 impl Edge {

@@ -13,4 +13,4 @@ pub mod scan;
 
 pub use clip::{ClipRect, ClipWindow};
 pub use edge::{Edge, Stepper};
-pub use scan::{FillCounts, FillError, Rasterizer};
+pub use scan::{FillError, Rasterizer};

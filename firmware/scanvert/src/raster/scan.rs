@@ -21,7 +21,7 @@
 //! left of its centre, and that count only depends on the integers.
 
 use crate::fixed::{ceil_px, Vertex, HALF};
-use crate::port::{Span, SpanTarget};
+use crate::port::{Counts, Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::{Edge, Stepper};
 use core::fmt;
@@ -56,16 +56,6 @@ impl<E: fmt::Debug> fmt::Display for FillError<E> {
 }
 
 impl<E: fmt::Debug> core::error::Error for FillError<E> {}
-
-/// What one fill wrote.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct FillCounts {
-    /// Spans handed to the target.
-    pub spans: u32,
-    /// Pixels in those spans.
-    pub pixels: u32,
-}
 
 /// The polygon scan converter over caller-owned edge storage.
 ///
@@ -117,12 +107,12 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         clip: &ClipRect,
         color: T::Color,
         target: &mut T,
-    ) -> Result<FillCounts, FillError<T::Error>>
+    ) -> Result<Counts, FillError<T::Error>>
     where
         I: IntoIterator<Item = Vertex>,
         T: SpanTarget + ?Sized,
     {
-        let mut counts = FillCounts::default();
+        let mut counts = Counts::default();
         if clip.is_empty() {
             return Ok(counts);
         }
@@ -275,7 +265,7 @@ fn emit<T: SpanTarget + ?Sized>(
     cx: (i32, i32),
     color: T::Color,
     target: &mut T,
-    counts: &mut FillCounts,
+    counts: &mut Counts,
 ) -> Result<(), FillError<T::Error>> {
     let (x0, x1) = (l.max(cx.0), r.min(cx.1));
     if x0 < x1 {
@@ -286,8 +276,7 @@ fn emit<T: SpanTarget + ?Sized>(
             x1: x1 as u16,
         };
         target.fill_span(span, color).map_err(FillError::Target)?;
-        counts.spans += 1;
-        counts.pixels += (x1 - x0) as u32;
+        counts.span((x1 - x0) as u32);
     }
     Ok(())
 }

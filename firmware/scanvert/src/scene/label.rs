@@ -29,7 +29,7 @@
 
 use crate::color::ListColor;
 use crate::geometry::Anchor;
-use crate::port::{Span, SpanTarget};
+use crate::port::{Counts, Span, SpanTarget};
 use core::fmt;
 use embedded_graphics::mono_font::{MonoFont, MonoTextStyle};
 use embedded_graphics::text::{Baseline, Text};
@@ -289,12 +289,12 @@ impl<'a> LabelStore<'a> {
 
     /// Draws every label into `target` with `font`, clipped to the
     /// target's frame, and returns the spans written.
-    pub fn draw<T>(&self, font: &MonoFont<'_>, target: &mut T) -> Result<DrawCounts, T::Error>
+    pub fn draw<T>(&self, font: &MonoFont<'_>, target: &mut T) -> Result<LabelCounts, T::Error>
     where
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        let mut counts = DrawCounts::default();
+        let mut counts = LabelCounts::default();
         let (w, h) = target.size();
         let pitch = (font.character_size.width + font.character_spacing) as i32;
         let (cw, ch) = (
@@ -314,8 +314,7 @@ impl<'a> LabelStore<'a> {
                 target: &mut *target,
                 size: (w, h),
                 run: None,
-                spans: 0,
-                pixels: 0,
+                written: Counts::default(),
                 error: None,
             };
             let style = MonoTextStyle::new(font, T::Color::from_rgb888(l.color));
@@ -323,8 +322,7 @@ impl<'a> LabelStore<'a> {
             let at = Point::new(l.x, l.y - 1);
             let _ = Text::with_baseline(text, at, style, Baseline::Bottom).draw(&mut adapter);
             adapter.flush();
-            counts.spans += adapter.spans;
-            counts.pixels += adapter.pixels;
+            counts.written += adapter.written;
             if let Some(e) = adapter.error {
                 return Err(e);
             }
@@ -337,15 +335,13 @@ impl<'a> LabelStore<'a> {
 /// What [`LabelStore::draw`] did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct DrawCounts {
+pub struct LabelCounts {
     /// Labels drawn (at least partly on the frame).
     pub drawn: u32,
     /// Labels wholly off the frame, skipped.
     pub off_frame: u32,
-    /// Spans written.
-    pub spans: u32,
-    /// Pixels written.
-    pub pixels: u32,
+    /// Spans and pixels written.
+    pub written: Counts,
 }
 
 /// A [`DrawTarget`] over a [`SpanTarget`]: pixels that follow each other
@@ -355,8 +351,7 @@ struct Spans<'t, T: SpanTarget + ?Sized> {
     size: (u16, u16),
     /// The open run: row, first column, one past the last, colour.
     run: Option<(u16, u16, u16, T::Color)>,
-    spans: u32,
-    pixels: u32,
+    written: Counts,
     error: Option<T::Error>,
 }
 
@@ -366,8 +361,7 @@ impl<T: SpanTarget + ?Sized> Spans<'_, T> {
             if self.error.is_none() {
                 match self.target.fill_span(Span { y, x0, x1 }, c) {
                     Ok(()) => {
-                        self.spans += 1;
-                        self.pixels += (x1 - x0) as u32;
+                        self.written.span((x1 - x0) as u32);
                     }
                     Err(e) => self.error = Some(e),
                 }
@@ -494,7 +488,7 @@ mod tests {
             x0 >= 10 && x1 < 22 && y0 >= 10 && y1 < 20,
             "{x0} {x1} {y0} {y1}"
         );
-        assert!(c.pixels > 0 && c.spans < c.pixels);
+        assert!(c.written.pixels > 0 && c.written.spans < c.written.pixels);
     }
 
     #[test]
@@ -511,6 +505,6 @@ mod tests {
         let mut fb = FrameBuffer::new(&mut px, 40, 20).unwrap();
         let c = s.draw(DEFAULT_FONT, &mut fb).unwrap();
         assert_eq!((c.drawn, c.off_frame), (2, 4));
-        assert!(c.pixels > 0);
+        assert!(c.written.pixels > 0);
     }
 }

@@ -109,16 +109,15 @@ use crate::geometry::{
     Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, ProjectionError,
     TransformError, TransformStack, View, Q16,
 };
-use crate::port::SpanTarget;
+use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
-use crate::visible::rle::DecodeCounts;
 use crate::visible::store::SegmentSink;
 use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
 use crate::visible::{self, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::Rgb888;
-use label::{DrawCounts, LabelError};
+use label::{LabelCounts, LabelError};
 
 /// The caller's memory of a [`Scene`].
 #[derive(Debug)]
@@ -270,9 +269,9 @@ pub struct Frame {
     /// The visible-surface pass.
     pub visible: VisibleStats,
     /// The decoder's spans and pixels.
-    pub decoded: DecodeCounts,
+    pub decoded: Counts,
     /// The labels.
-    pub labels: DrawCounts,
+    pub labels: LabelCounts,
 }
 
 /// Segments of polygons and labels, kept in screen space between frames

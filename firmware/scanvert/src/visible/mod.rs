@@ -13,7 +13,7 @@ pub mod store;
 pub mod sweep;
 pub mod trapezoid;
 
-pub use rle::{DecodeCounts, Run, RunWriter, RunsFull};
+pub use rle::{Run, RunWriter, RunsFull};
 pub use store::{Face, Segment, StoreError, StoreMemory, TrapezoidStore};
 pub use sweep::{draw, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
 pub use trapezoid::{EdgeSlot, Trapezoid};

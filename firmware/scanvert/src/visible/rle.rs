@@ -26,7 +26,7 @@
 //!
 //! [`Face::color`]: crate::visible::store::Face::color
 
-use crate::port::{Span, SpanTarget};
+use crate::port::{Counts, Span, SpanTarget};
 use core::fmt;
 
 /// One run of a run-length scan line. See the [module](self) docs.
@@ -171,16 +171,6 @@ impl<'r> RunWriter<'r> {
     }
 }
 
-/// What decoding wrote.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct DecodeCounts {
-    /// Spans handed to the target.
-    pub spans: u32,
-    /// Pixels in those spans.
-    pub pixels: u32,
-}
-
 /// Writes the runs of row `y` into `target` as spans, from column 0:
 /// `ink(face)` gives each face's colour, and the background is filled with
 /// `background` or skipped when it is `None`. Pixels beyond the target's
@@ -191,12 +181,12 @@ pub fn decode_row<T, F>(
     runs: &[Run],
     mut ink: F,
     background: Option<T::Color>,
-) -> Result<DecodeCounts, T::Error>
+) -> Result<Counts, T::Error>
 where
     T: SpanTarget + ?Sized,
     F: FnMut(u16) -> T::Color,
 {
-    let mut counts = DecodeCounts::default();
+    let mut counts = Counts::default();
     let (w, h) = target.size();
     if y >= h {
         return Ok(counts);
@@ -226,8 +216,7 @@ where
             x1: x1 as u16,
         };
         target.fill_span(span, color)?;
-        counts.spans += 1;
-        counts.pixels += x1 - x0;
+        counts.span(x1 - x0);
     }
     Ok(counts)
 }
@@ -272,7 +261,7 @@ mod tests {
         let c = decode_row(&mut fb, 1, &runs, ink, None).unwrap();
         assert_eq!(
             c,
-            DecodeCounts {
+            Counts {
                 spans: 2,
                 pixels: 5
             }

@@ -122,10 +122,11 @@
 
 use crate::color::ListColor;
 use crate::fixed::ceil_px;
+use crate::port::Counts;
 use crate::port::Span;
 use crate::port::SpanTarget;
 use crate::raster::edge::Edge;
-use crate::visible::rle::{DecodeCounts, Run, RunWriter, RunsFull};
+use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
 use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
@@ -641,7 +642,7 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     y: u16,
     x: u32,
     runs: u32,
-    counts: DecodeCounts,
+    counts: Counts,
     error: Option<T::Error>,
 }
 
@@ -1057,7 +1058,7 @@ pub fn draw<T>(
     mode: Resolve,
     target: &mut T,
     background: Option<T::Color>,
-) -> Result<(VisibleStats, crate::visible::rle::DecodeCounts), VisibleError<T::Error>>
+) -> Result<(VisibleStats, Counts), VisibleError<T::Error>>
 where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
@@ -1071,7 +1072,7 @@ where
         y: 0,
         x: 0,
         runs: 0,
-        counts: DecodeCounts::default(),
+        counts: Counts::default(),
         error: None,
     };
     let (stats, out) = resolve_into(workspace.active, workspace.cover, store, mode, out)?;
@@ -1098,15 +1099,7 @@ mod tests {
         }
     }
 
-    struct Rng(u32);
-    impl Rng {
-        fn below(&mut self, m: u32) -> i32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            (self.0 % m) as i32
-        }
-    }
+    use testkit::rng::Rng;
 
     /// The pixel rule for one pixel, from its definition.
     fn covers(poly: &[Vertex3], i: i32, j: i32) -> bool {

@@ -847,15 +847,7 @@ mod tests {
         crate::raster::scan::rule_covers(poly, |v| (v.x.units(), v.y.units()), i, j)
     }
 
-    struct Rng(u32);
-    impl Rng {
-        fn below(&mut self, m: u32) -> u32 {
-            self.0 ^= self.0 << 13;
-            self.0 ^= self.0 >> 17;
-            self.0 ^= self.0 << 5;
-            self.0 % m
-        }
-    }
+    use testkit::rng::Rng;
 
     const W: i32 = 40;
     const H: i32 = 32;
@@ -895,8 +887,8 @@ mod tests {
             // crossings on row centres likely.
             let grid = [1, 4, 8, 16][case % 4];
             for v in poly.iter_mut().take(n) {
-                let x = (rng.below(((W + 8) * 16 / grid) as u32) as i32) * grid - 64;
-                let y = (rng.below(((H + 8) * 16 / grid) as u32) as i32) * grid - 64;
+                let x = rng.below(((W + 8) * 16 / grid) as u32) * grid - 64;
+                let y = rng.below(((H + 8) * 16 / grid) as u32) * grid - 64;
                 *v = v3(x, y, 0);
             }
             let poly = &poly[..n];
@@ -1012,7 +1004,7 @@ mod tests {
     fn fixed_point_depth_error_is_bounded() {
         let mut rng = Rng(0x1234_5677);
         for _ in 0..2000 {
-            let mut r = |m: u32| rng.below(2 * m) as i32 - m as i32;
+            let mut r = |m: u32| rng.below(2 * m) - m as i32;
             let tri = [
                 v3(r(32767), r(32767), r(32767)),
                 v3(r(32767), r(32767), r(32767)),

@@ -1,10 +1,12 @@
-//! An exact reference rasteriser, written from the pixel rule of
-//! `shared/specs/text-form.md` and nothing else.
+//! The exact 2D reference rasteriser, written from the pixel rule of the
+//! display list (`docs/display-list.md`) and nothing else.
 //!
-//! It shares no code with `scanvert::raster::scan` or `scanvert::raster::edge`: no stepper,
-//! no active-edge list, no sort, no division. Every pixel is decided on its
-//! own, with `i128` products of the vertex coordinates (in units of 1/16 px),
-//! so it is exact for any `i32` input.
+//! It shares no code with `scanvert::raster::scan` or `scanvert::raster::edge`,
+//! nor even their vertex type: no stepper, no active-edge list, no sort, no
+//! division. Every pixel is decided on its own, with `i128` products of the
+//! vertex coordinates (in units of 1/16 px, as plain `(x, y)` pairs), so it
+//! is exact for any `i32` input. [`units`] turns the library's vertices
+//! into such pairs.
 //!
 //! # The rule, as evaluated here
 //!
@@ -36,6 +38,13 @@
 //! afterwards, pixel by pixel.
 
 use core::fmt;
+use scanvert::fixed::Vertex;
+
+/// The vertices as `(x, y)` in units of 1/16 px, the form every function
+/// here takes.
+pub fn units(poly: &[Vertex]) -> Vec<(i32, i32)> {
+    poly.iter().map(|v| (v.x.units(), v.y.units())).collect()
+}
 
 /// The clip registers as loaded by a `clip` command: inclusive pixel
 /// bounds, any `i16` values (empty when inverted, cut to the frame).
@@ -242,6 +251,24 @@ pub fn covers(poly: &[(i32, i32)], i: i32, j: i32) -> bool {
     crossings_at_or_left % 2 == 1
 }
 
+/// Pixels that may be covered (by the rule, or by a contender that is
+/// off by up to `margin` pixels): the polygon's box in whole pixels,
+/// widened by `margin` and cut to the `w × h` frame, as `(x0, y0, x1, y1)`
+/// with exclusive ends. Every pixel the rule covers is inside it for any
+/// `margin ≥ 0`.
+pub fn pixel_box(poly: &[(i32, i32)], margin: i32, w: u16, h: u16) -> (i32, i32, i32, i32) {
+    let xs = poly.iter().map(|p| p.0);
+    let ys = poly.iter().map(|p| p.1);
+    let (lx, hx) = (xs.clone().min().unwrap_or(0), xs.max().unwrap_or(0));
+    let (ly, hy) = (ys.clone().min().unwrap_or(0), ys.max().unwrap_or(0));
+    (
+        ((lx >> 4) - margin).clamp(0, w as i32),
+        ((ly >> 4) - margin).clamp(0, h as i32),
+        ((hx >> 4) + 1 + margin).clamp(0, w as i32),
+        ((hy >> 4) + 1 + margin).clamp(0, h as i32),
+    )
+}
+
 /// The pixels of a `width × height` frame that the polygon `poly` (units
 /// of 1/16 px) covers by the pixel rule, inside the clip registers
 /// `window` (cut to the frame).
@@ -333,5 +360,20 @@ mod tests {
             y1: 1,
         };
         assert_eq!(rasterize(&big, inverted, 4, 2).count(), 0);
+    }
+
+    #[test]
+    fn pixel_box_holds_every_covered_pixel() {
+        let tri = [(-37, 5), (300, 90), (41, 250)];
+        let (x0, y0, x1, y1) = pixel_box(&tri, 0, 32, 32);
+        for j in -2..34 {
+            for i in -2..34 {
+                if covers(&tri, i, j) && (0..32).contains(&i) && (0..32).contains(&j) {
+                    assert!(x0 <= i && i < x1 && y0 <= j && j < y1, "({i}, {j})");
+                }
+            }
+        }
+        let v = |x: i16, y: i16| Vertex::from_bits(x, y);
+        assert_eq!(units(&[v(-3, 7), v(16, 0)]), vec![(-3, 7), (16, 0)]);
     }
 }

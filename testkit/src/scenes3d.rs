@@ -1,4 +1,4 @@
-//! The 3D scenes of issue 5, generated deterministically: `n` faces at
+//! The benchmark's 3D scenes, generated deterministically: `n` faces at
 //! 512 × 256, seen from a few views, in two versions that share the
 //! screen-space shapes and differ only in depth.
 //!
@@ -15,6 +15,8 @@
 //! fraction of a pixel and a few pixels, as when the eye moves: every face
 //! changes, and every face is cut again.
 
+use crate::reference3d::shoelace;
+use crate::rng::Rng;
 use scanvert::fixed::{Coord, Vertex3};
 
 /// Frame width.
@@ -73,25 +75,11 @@ impl Scene {
     }
 }
 
-/// A 64-bit xorshift, seeded per scene.
-struct Rng(u64);
+/// A point or vector in units of 1/16: `(x, y, z)`.
+pub(crate) type V3 = (i32, i32, i32);
 
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    /// Uniform in `lo..hi` (`lo < hi`).
-    fn range(&mut self, lo: i32, hi: i32) -> i32 {
-        lo + (self.next() % (hi - lo) as u64) as i32
-    }
-}
-
-type V3 = (i32, i32, i32);
-
-fn add(a: V3, b: V3) -> V3 {
+/// `a + b`.
+pub(crate) fn add(a: V3, b: V3) -> V3 {
     (a.0 + b.0, a.1 + b.1, a.2 + b.2)
 }
 
@@ -105,17 +93,6 @@ fn isqrt(v: u64) -> i32 {
         r += 1;
     }
     r as i32
-}
-
-/// Twice the signed area in screen space (units²); negative is drawn
-/// (front-facing) by the spec's culling rule.
-fn shoelace(p: &[V3]) -> i64 {
-    (0..p.len())
-        .map(|k| {
-            let (a, b) = (p[k], p[(k + 1) % p.len()]);
-            a.0 as i64 * b.1 as i64 - b.0 as i64 * a.1 as i64
-        })
-        .sum()
 }
 
 /// One outline in screen space: origin and two edge vectors, in units,

@@ -1,5 +1,7 @@
-//! The 2D workloads of issue 5, generated deterministically.
+//! The 2D workloads W1–W5 of the benchmark (and of the firmware image's
+//! scenes `w1` … `w5`), generated deterministically.
 
+use crate::rng::Rng;
 use scanvert::fixed::Vertex;
 
 /// What one operation of a workload is.
@@ -57,21 +59,6 @@ fn at(x: f64, y: f64) -> Vertex {
     Vertex::from_bits((x * 16.0).round() as i16, (y * 16.0).round() as i16)
 }
 
-/// A 64-bit xorshift: the same triangles on every run.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: u64) -> i32 {
-        (self.next() % n) as i32
-    }
-}
-
 /// W1: a 30 × 30 square, each copy one pixel down and right of the last,
 /// wrapping around inside 256 × 256 (226 positions).
 pub fn w1() -> Workload {
@@ -109,7 +96,8 @@ pub fn w2() -> Workload {
 }
 
 /// W3: 10,000 random triangles, each inside a 40 × 40 px box, in
-/// 512 × 256; vertices on the 1/16 px grid; no zero-area triangle.
+/// 512 × 256; vertices on the 1/16 px grid; no zero-area triangle. The
+/// same triangles on every run ([`Rng`]).
 pub fn w3() -> Workload {
     let mut rng = Rng(0x05ca_1ab1_e0dd_c0de);
     let mut polys = Vec::with_capacity(10_000);

@@ -1,38 +1,20 @@
 //! The 512 × 256 `poly3` scenes of about 170 faces that the
 //! visible-surface stages are measured on, on the host
-//! (`examples/visible_modes`) and on target (the firmware image's
-//! `poly3-layered` and `poly3-tilted`, from `tests/on_target_scenes.rs`).
+//! (`host_tests/examples/visible_modes.rs`) and on target (the firmware
+//! image's `poly3-layered` and `poly3-tilted`, from
+//! `host_tests/tests/on_target_scenes.rs`).
 //!
 //! Each generator draws from the same [`Rng`]; [`all`] makes them in the
 //! order the measurements use, so the scenes are the same everywhere.
 
 use crate::reference3d::{drawn, Poly3};
+use crate::rng::Rng;
+use crate::scenes3d::{add, V3};
 
 /// Frame width of the scenes.
 pub const W: u16 = 512;
 /// Frame height of the scenes.
 pub const H: u16 = 256;
-
-/// The scenes' random numbers (xorshift64).
-pub struct Rng(pub u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    /// A number in `lo..hi`.
-    pub fn range(&mut self, lo: i32, hi: i32) -> i32 {
-        lo + (self.next() % (hi - lo) as u64) as i32
-    }
-}
-
-type V3 = (i32, i32, i32);
-
-fn add(a: V3, b: V3) -> V3 {
-    (a.0 + b.0, a.1 + b.1, a.2 + b.2)
-}
 
 fn scale(a: V3, k: i32) -> V3 {
     (a.0 * k, a.1 * k, a.2 * k)

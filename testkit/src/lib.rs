@@ -1,0 +1,28 @@
+//! The host-only kit that `host_tests` and `bench` share, so that each
+//! piece exists once:
+//!
+//! * [`reference`](mod@reference): the exact 2D reference, the pixel rule decided pixel
+//!   by pixel in `i128` (no stepper, no active-edge list, no division),
+//!   with the bitmap type the tests compare with.
+//! * [`reference3d`]: the exact 3D reference: culling, coverage by the
+//!   pixel rule, and the nearest plane at each pixel centre by exact
+//!   barycentric depth, ties to the earlier polygon.
+//! * [`workloads`]: the 2D workloads W1–W5.
+//! * [`scenes3d`]: the 3D scenes at several sizes, in a layered and a
+//!   tilted version, seen from a few views (the benchmark's).
+//! * [`poly3_scenes`]: the four 512 × 256 `poly3` scenes of about 170
+//!   faces (`flat`, `tilted`, `bars`, `dense`) measured on the host and on
+//!   target.
+//! * [`rng`]: the one random-number generator all of them draw from.
+//!
+//! Nothing here calls scanvert's rasteriser, stepper or visible-surface
+//! code: only its vertex types are used, to hand scenes over.
+
+#![deny(missing_docs)]
+
+pub mod poly3_scenes;
+pub mod reference;
+pub mod reference3d;
+pub mod rng;
+pub mod scenes3d;
+pub mod workloads;
