@@ -265,7 +265,7 @@ mod tests {
                     }
                     let Some(b) = Bary::of(&p.poly) else { continue };
                     let z = b.depth(16 * i as i128 + 8, 16 * j as i128 + 8);
-                    if best.map_or(true, |(_, bz)| z.0 * bz.1 < bz.0 * z.1) {
+                    if best.is_none_or(|(_, bz)| z.0 * bz.1 < bz.0 * z.1) {
                         best = Some((k, z));
                     }
                 }
