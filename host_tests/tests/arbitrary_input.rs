@@ -18,7 +18,7 @@
 
 use proptest::prelude::*;
 use scanvert::controller::{edges_3d, needs_3d};
-use scanvert::display_list::{DisplayList, HEADER_LEN, MAGIC};
+use scanvert::display_list::{DisplayList, MAGIC};
 use scanvert::visible::trapezoid::EdgeSlot;
 use scanvert_sim::cli::{render_scene, Scene};
 use scanvert_sim::text::{self, format_fixed};
@@ -41,7 +41,7 @@ fn check_binary(bytes: &[u8]) -> Result<(), TestCaseError> {
         Ok(list) => list,
         Err(e) => {
             prop_assert!(
-                e.offset <= bytes.len().max(HEADER_LEN),
+                e.offset <= bytes.len(),
                 "{e}: outside the {} bytes",
                 bytes.len()
             );
