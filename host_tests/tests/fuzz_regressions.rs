@@ -74,12 +74,11 @@ fn a_failing_scene_command_is_reported_as_itself() {
     );
 }
 
-/// The binary form takes any printable ASCII in a label, but in the text
-/// form a `#` starts a comment and words are joined by single spaces:
-/// the disassembly of these lists does not assemble (`#a`: a label with no
-/// text) or assembles to other bytes (`a#b`, ` a  b `).
+/// The binary form takes any printable ASCII in a label; in the text form
+/// a `#` starts a comment and words are joined by single spaces, so these
+/// labels (`#a`, `a#b`, ` a  b `) are disassembled as quoted strings and
+/// assemble back to the same bytes.
 #[test]
-#[ignore = "known fault: labels with `#` or runs of spaces do not survive disassembly"]
 fn every_binary_label_survives_disassembly() {
     for name in [
         "label-starting-with-hash.scvl",
