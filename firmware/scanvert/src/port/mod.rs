@@ -76,6 +76,13 @@ pub trait SpanTarget {
         }
         Ok(())
     }
+
+    /// A polygon begins: [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
+    /// calls it once per polygon, before its spans. Memory ignores it (the
+    /// default); a port with a set-up cost per polygon, such as the
+    /// simulator's write port, counts it here.
+    #[inline(always)]
+    fn begin_polygon(&mut self) {}
 }
 
 impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
@@ -92,5 +99,9 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     #[inline]
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
         (**self).clear(color)
+    }
+    #[inline(always)]
+    fn begin_polygon(&mut self) {
+        (**self).begin_polygon()
     }
 }

@@ -107,7 +107,9 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     }
 
     /// Fills the polygon through `vertices` (closed implicitly) with the
-    /// even-odd rule, writing only pixels inside `clip`.
+    /// even-odd rule, writing only pixels inside `clip`. The target is told
+    /// of the polygon first ([`SpanTarget::begin_polygon`]), whether or not
+    /// any of it is drawn.
     pub fn fill<I, T>(
         &mut self,
         vertices: I,
@@ -120,6 +122,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         T: SpanTarget + ?Sized,
     {
         let mut counts = FillCounts::default();
+        target.begin_polygon();
         if clip.is_empty() {
             return Ok(counts);
         }
