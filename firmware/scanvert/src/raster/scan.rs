@@ -157,7 +157,8 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
                 // The slot at `active` is free (a finished edge, or the
                 // edge itself): a copy, not a swap.
                 if active != next {
-                    edges[active] = edges[next];
+                    let e = edges[next];
+                    edges[active] = e;
                 }
                 active += 1;
                 next += 1;
@@ -235,7 +236,8 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
                 if edges[i].end() <= y {
                     active -= 1;
                     if i != active {
-                        edges[i] = edges[active];
+                        let e = edges[active];
+                        edges[i] = e;
                     }
                 } else {
                     edges[i].step();
@@ -327,16 +329,15 @@ fn emit_rows<T: SpanTarget + ?Sized>(
     let (x0, x1) = (l.max(cx.0), r.min(cx.1));
     if x0 < x1 && y < stop {
         // In 0..=4096 by the clip guarantee.
-        let (x0, x1) = (x0 as u16, x1 as u16);
-        for row in y..stop {
-            let span = Span {
-                y: row as u16,
-                x0,
-                x1,
-            };
-            target.fill_span(span, color).map_err(FillError::Target)?;
-        }
+        let span = Span {
+            y: y as u16,
+            x0: x0 as u16,
+            x1: x1 as u16,
+        };
         let rows = (stop - y) as u32;
+        target
+            .fill_rect(span, rows as u16, color)
+            .map_err(FillError::Target)?;
         counts.spans += rows;
         counts.pixels += rows * (x1 - x0) as u32;
     }
