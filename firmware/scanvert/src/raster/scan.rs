@@ -157,8 +157,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
                 // The slot at `active` is free (a finished edge, or the
                 // edge itself): a copy, not a swap.
                 if active != next {
-                    let e = edges[next];
-                    edges[active] = e;
+                    copy_down(edges, next, active);
                 }
                 active += 1;
                 next += 1;
@@ -236,8 +235,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
                 if edges[i].end() <= y {
                     active -= 1;
                     if i != active {
-                        let e = edges[active];
-                        edges[i] = e;
+                        copy_down(edges, active, i);
                     }
                 } else {
                     edges[i].step();
@@ -283,6 +281,18 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
             return Some(0);
         }
         Some(n)
+    }
+}
+
+/// Copies slot `from` into slot `to < from`. Through two disjoint borrows
+/// the copy is a few loads and stores; `edges[to] = edges[from]` was a
+/// call to `memmove` (the slots might overlap, as far as the compiler
+/// knows), about 100 instructions on a Cortex-M4.
+#[inline(always)]
+fn copy_down<S: Copy>(edges: &mut [S], from: usize, to: usize) {
+    let (low, high) = edges.split_at_mut(from);
+    if let (Some(dst), Some(src)) = (low.get_mut(to), high.first()) {
+        *dst = *src;
     }
 }
 
