@@ -212,6 +212,9 @@ where
         Ok(())
     }
 
+    // Not inlined: called once a rectangle, and kept out of the scan
+    // converter's loops, whose registers it would crowd.
+    #[inline(never)]
     fn fill_rect(&mut self, span: Span, height: u16, color: C) -> Result<(), Infallible> {
         let y1 = (span.y as usize + height as usize).min(self.height as usize);
         let x1 = span.x1.min(self.width);
@@ -243,18 +246,25 @@ where
         let Some(region) = self.words.get_mut(first..last) else {
             return Ok(());
         };
-        for row in region.chunks_mut(stride) {
-            let Some(row) = row.get_mut(..touched) else {
-                break;
-            };
-            let (h, rest) = row.split_at_mut(head);
-            if let Some(h) = h.first_mut() {
+        // Column by column: the first words, the whole words, the last
+        // words, each loop with few values live.
+        if head == 1 {
+            for h in region.iter_mut().step_by(stride) {
                 *h = (*h & 0x0000_ffff) | (v & 0xffff_0000);
             }
-            let (words, t) = rest.split_at_mut(body);
-            fill_words(words, v);
-            if let Some(t) = t.first_mut() {
-                *t = (*t & 0xffff_0000) | (v & 0x0000_ffff);
+        }
+        if let Some(body_region) = region.get_mut(head..) {
+            for row in body_region.chunks_mut(stride) {
+                if let Some(words) = row.get_mut(..body) {
+                    fill_words(words, v);
+                }
+            }
+        }
+        if tail == 1 {
+            if let Some(tails) = region.get_mut(head + body..) {
+                for t in tails.iter_mut().step_by(stride) {
+                    *t = (*t & 0xffff_0000) | (v & 0x0000_ffff);
+                }
             }
         }
         Ok(())
