@@ -61,7 +61,7 @@ build() { # NAME TARGET [cargo args...]: builds and copies the ELF to $out/NAME.
 echo "== building the image variants" >&2
 build arm-defmt "$arm_target" --features defmt
 build arm-discard "$arm_target" --features discard
-build arm-packed "$arm_target" --features packed
+build arm-halfword "$arm_target" --features halfword
 if [ "$(uname -m)" != riscv32 ]; then
   build riscv "$rv_target"
 fi
@@ -87,8 +87,9 @@ run arm qemu_arm
 run arm-defmt qemu_arm
 # Spans discarded: the count of everything but the pixel writes.
 run arm-discard qemu_arm
-# The frame packed two pixels to a word: a measured proposal.
-run arm-packed qemu_arm
+# The frame as FrameBuffer<Rgb565>, a half-word store a pixel: the
+# comparison for the default PackedFrameBuffer.
+run arm-halfword qemu_arm
 have_rv=no
 if command -v qemu-system-riscv32 >/dev/null; then
   run riscv qemu_rv
@@ -100,7 +101,7 @@ fi
 echo "== checksums: target against host" >&2
 (cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/*.scvl) \
   | sort >"$out/host.sums"
-for name in arm arm-packed $( [ "$have_rv" = yes ] && echo riscv ); do
+for name in arm arm-halfword $( [ "$have_rv" = yes ] && echo riscv ); do
   grep '^checksum ' "$out/$name.log" | sort >"$out/$name.sums"
   if ! diff -u "$out/host.sums" "$out/$name.sums" >&2; then
     echo "$name: checksums differ from the host's" >&2
@@ -190,18 +191,19 @@ EOF
   stages_table "$out/arm.log"
   cat <<'EOF'
 
-#### Proposal: two pixels to a word
+#### Two pixels to a word
 
-`FrameBuffer` writes one `strh` a pixel. The image built with
-`--features packed` renders into a frame of RGB565 pixels packed two to
-a `u32` (`firmware/image/src/packed.rs`): a span is a half-word at an
-odd start or end and words in between, stored four at a time. Its
-checksums equal the host's too.
+The image renders into `PackedFrameBuffer` (`port/packed.rs`): RGB565
+pixels packed two to a `u32`, a span stored as a half-word at an odd
+start or end and words in between, four at a time, and a rectangle (two
+vertical edges) with its addresses worked out once. Built with
+`--features halfword` it renders into `FrameBuffer<Rgb565>` instead, one
+`strh` a pixel; its checksums equal the host's too.
 
-| scene | `FrameBuffer` | packed | packed per pixel | `FrameBuffer` ÷ packed |
+| scene | `FrameBuffer` | `PackedFrameBuffer` | packed per pixel | `FrameBuffer` ÷ packed |
 |---|--:|--:|--:|--:|
 EOF
-  packed_table "$out/arm.log" "$out/arm-packed.log"
+  packed_table "$out/arm-halfword.log" "$out/arm.log"
   if [ "$have_rv" = yes ]; then
     cat <<'EOF'
 
@@ -301,7 +303,7 @@ stages_table() { # ARM-LOG
   done
 }
 
-packed_table() { # ARM-LOG PACKED-LOG
+packed_table() { # HALFWORD-LOG PACKED-LOG
   frames "$2" | while read -r name w h polys clears spans pixels instr; do
     written=$((pixels + clears * w * h))
     base=$(instructions_of "$name" "$1")

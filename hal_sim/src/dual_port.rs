@@ -14,10 +14,27 @@
 //! # Cycle model
 //! The write port stores one pixel per cycle of its clock: a span of `n`
 //! pixels (after clipping) takes `n` cycles, a clear takes `width × height`.
-//! The reference design's write port runs at 50 MHz (50 Mpixel/s,
-//! [`WRITE_PORT_CLOCK`]). The read port delivers one pixel per cycle of its
-//! clock, which the refresh controller drives at the pixel clock and also
-//! ticks, without an access, through the blanking intervals.
+//! Each polygon costs [`POLYGON_SETUP_CYCLES`] (10) more, charged when the
+//! rasteriser begins it ([`SpanTarget::begin_polygon`]), whether or not any
+//! of it is drawn. The reference design's write port runs at 50 MHz
+//! (50 Mpixel/s, [`WRITE_PORT_CLOCK`]). The read port delivers one pixel per
+//! cycle of its clock, which the refresh controller drives at the pixel
+//! clock and also ticks, without an access, through the blanking intervals.
+//!
+//! The model is the reference unit's own figures, and reproduces them
+//! (`hal_sim/tests/fpga_figures.rs`):
+//!
+//! | reference figure | cycles | model |
+//! |---|--:|---|
+//! | 20 ns a pixel | 1 | one cycle a pixel at 50 MHz |
+//! | 54,945 polygons/s of 30 × 30 px | 910 = 50 MHz ÷ 54,945 | 900 pixel writes + 10 of set-up |
+//! | 763 clears/s of 256 × 256 | 65,536 = 50 MHz ÷ 763 | one cycle a pixel |
+//!
+//! The set-up of 10 cycles is what the second figure leaves over the pixel
+//! writes: 50,000,000 ÷ 54,945 = 910.0 cycles a polygon. The rates
+//! ([`WriteCounters::polygons_per_second`] and the others) divide each
+//! count by the simulated time of the cycles it took: polygons by all busy
+//! cycles but the clears', clears by the clears' own.
 //!
 //! # Double buffering
 //! A RAM made with [`DualPortRam::double_buffered`] has two banks. The
@@ -46,6 +63,11 @@ pub const WRITE_PORT_CLOCK: Clock = match Clock::from_hz(50_000_000) {
     None => panic!(),
 };
 
+/// Write-port cycles of a polygon's set-up, beyond its pixel writes: the
+/// reference unit's 54,945 polygons/s of 900 pixels at 50 MHz are 910
+/// cycles a polygon (see the module docs).
+pub const POLYGON_SETUP_CYCLES: u64 = 10;
+
 /// The read port's clock until the refresh controller sets it: the
 /// reference design's 25 MHz pixel clock.
 pub const READ_PORT_CLOCK: Clock = match Clock::from_hz(25_000_000) {
@@ -66,10 +88,15 @@ pub struct WriteCounters {
     pub discarded_spans: u64,
     /// Whole-RAM clears.
     pub clears: u64,
+    /// Polygons begun, each charged [`POLYGON_SETUP_CYCLES`].
+    pub polygons: u64,
     /// Pixels stored.
     pub pixels_written: u64,
-    /// Clock cycles the port was busy.
+    /// Clock cycles the port was busy: pixel writes, clears and polygon
+    /// set-ups.
     pub cycles: u64,
+    /// The part of `cycles` spent on clears.
+    pub clear_cycles: u64,
 }
 
 impl WriteCounters {
@@ -81,14 +108,40 @@ impl WriteCounters {
             clipped_spans: 0,
             discarded_spans: 0,
             clears: 0,
+            polygons: 0,
             pixels_written: 0,
             cycles: 0,
+            clear_cycles: 0,
         }
     }
 
     /// Simulated time of the busy cycles, in picoseconds.
     pub const fn time_ps(&self) -> u64 {
         self.clock.time_ps(self.cycles)
+    }
+
+    /// `count` events in `cycles` of the port's clock, per second; `None`
+    /// when no cycle passed.
+    fn rate(&self, count: u64, cycles: u64) -> Option<f64> {
+        (cycles > 0).then(|| count as f64 * f64::from(self.clock.hz()) / cycles as f64)
+    }
+
+    /// Pixels stored per second of busy time (clears included).
+    pub fn pixels_per_second(&self) -> Option<f64> {
+        self.rate(self.pixels_written, self.cycles)
+    }
+
+    /// Polygons per second of the busy time outside clears (set-ups and
+    /// every span written); `None` when there was none.
+    pub fn polygons_per_second(&self) -> Option<f64> {
+        self.rate(self.polygons, self.cycles - self.clear_cycles)
+            .filter(|_| self.polygons > 0)
+    }
+
+    /// Clears per second of the time spent clearing; `None` without a
+    /// clear.
+    pub fn clears_per_second(&self) -> Option<f64> {
+        self.rate(self.clears, self.clear_cycles)
     }
 }
 
@@ -335,7 +388,14 @@ impl SpanTarget for WritePort<'_> {
         ram.write.clears += 1;
         ram.write.pixels_written += area as u64;
         ram.write.cycles += area as u64;
+        ram.write.clear_cycles += area as u64;
         Ok(())
+    }
+
+    fn begin_polygon(&mut self) {
+        let w = &mut self.ram.write;
+        w.polygons += 1;
+        w.cycles += POLYGON_SETUP_CYCLES;
     }
 }
 
@@ -462,6 +522,32 @@ mod tests {
         assert!(ram.contents().iter().all(|&p| p == c));
         let w = ram.write_counters();
         assert_eq!((w.clears, w.pixels_written, w.cycles), (1, 10, 10));
+        assert_eq!(w.clear_cycles, 10);
+        // 10 cycles at 50 MHz: 5 million clears a second.
+        assert_eq!(w.clears_per_second(), Some(5e6));
+        assert_eq!(w.polygons_per_second(), None);
+    }
+
+    #[test]
+    fn a_polygon_costs_its_set_up_and_its_pixels() {
+        let mut ram = DualPortRam::new(8, 4);
+        let c = Rgb565::new(0, 0, 31);
+        let mut port = ram.write_port();
+        port.clear(c).unwrap();
+        port.begin_polygon();
+        for y in 0..3 {
+            port.fill_span(Span { y, x0: 1, x1: 6 }, c).unwrap();
+        }
+        let w = port.counters();
+        assert_eq!((w.polygons, w.pixels_written), (1, 32 + 15));
+        assert_eq!((w.cycles, w.clear_cycles), (32 + 15 + 10, 32));
+        // One polygon in 25 cycles of 20 ns: 2 million a second.
+        assert_eq!(w.polygons_per_second(), Some(2e6));
+        assert_eq!(w.pixels_per_second(), Some(47.0 * 50e6 / 57.0));
+        assert_eq!(
+            WriteCounters::new(WRITE_PORT_CLOCK).pixels_per_second(),
+            None
+        );
     }
 
     #[test]

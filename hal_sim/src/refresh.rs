@@ -370,6 +370,10 @@ impl SpanTarget for CoSimulation<'_> {
     fn clear(&mut self, color: Rgb565) -> Result<(), Infallible> {
         self.write(|port| port.clear(color))
     }
+
+    fn begin_polygon(&mut self) {
+        self.write(|port| port.begin_polygon())
+    }
 }
 
 #[cfg(test)]

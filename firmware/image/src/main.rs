@@ -19,8 +19,10 @@
 //! Features: `defmt` (Cortex-M only) logs everything through defmt over
 //! semihosting instead of plain text (decode it with `defmt-print -e
 //! IMAGE`); `discard` renders into a port that writes nothing, to count
-//! everything but the pixel writes; `packed` renders into a frame of two
-//! pixels per word (`src/packed.rs`), a measured proposal.
+//! everything but the pixel writes; `halfword` renders into
+//! `FrameBuffer<Rgb565>`, one half-word store a pixel, instead of the
+//! default `PackedFrameBuffer` (two pixels to a word, written a word at a
+//! time), to compare the two.
 #![no_std]
 #![no_main]
 #![deny(missing_docs)]
@@ -40,10 +42,12 @@ use core::convert::Infallible;
 use scanvert::controller::{front_facing, Controller, Storage3d, DEFAULT_COLOR};
 use scanvert::display_list::{Command, DisplayList};
 use scanvert::pixelcolor::{Rgb565, RgbColor};
-#[cfg(not(any(feature = "discard", feature = "packed")))]
+#[cfg(all(feature = "halfword", not(feature = "discard")))]
 use scanvert::port::checksum::frame_checksum;
-#[cfg(not(any(feature = "discard", feature = "packed")))]
+#[cfg(all(feature = "halfword", not(feature = "discard")))]
 use scanvert::port::framebuffer::FrameBuffer;
+#[cfg(not(any(feature = "discard", feature = "halfword")))]
+use scanvert::port::PackedFrameBuffer;
 use scanvert::port::SpanTarget;
 use scanvert::raster::clip::ClipRect;
 use scanvert::raster::edge::Edge;
@@ -55,8 +59,6 @@ use scanvert::visible::{self, Active, Cover, Resolve, VisibleStats, Workspace};
 
 #[cfg(feature = "discard")]
 mod discard;
-#[cfg(feature = "packed")]
-mod packed;
 
 #[cfg(feature = "defmt")]
 use defmt_semihosting as _;
@@ -68,21 +70,21 @@ pub const BLACK: Pixel = Rgb565::BLACK;
 /// Largest frame: 512 × 256 pixels (256 KiB of RGB565).
 pub const FRAME_PIXELS: usize = 512 * 256;
 
-/// What the frame memory is made of: pixels, or (feature `packed`) words
-/// of two pixels.
-#[cfg(not(feature = "packed"))]
-pub type Cell = Pixel;
-/// What the frame memory is made of.
-#[cfg(feature = "packed")]
+/// What the frame memory is made of: words of two pixels, or (feature
+/// `halfword`) pixels.
+#[cfg(not(feature = "halfword"))]
 pub type Cell = u32;
+/// What the frame memory is made of.
+#[cfg(feature = "halfword")]
+pub type Cell = Pixel;
 /// Cells in the frame memory.
 pub const CELLS: usize =
     FRAME_PIXELS * core::mem::size_of::<Pixel>() / core::mem::size_of::<Cell>();
 /// A black cell.
-#[cfg(not(feature = "packed"))]
+#[cfg(feature = "halfword")]
 pub const BLACK_CELL: Cell = BLACK;
 /// A black cell.
-#[cfg(feature = "packed")]
+#[cfg(not(feature = "halfword"))]
 pub const BLACK_CELL: Cell = 0;
 
 /// One embedded display list and the checksum of the host's render of it.
@@ -303,14 +305,14 @@ impl Checked for discard::Discard {
     }
 }
 
-#[cfg(all(feature = "packed", not(feature = "discard")))]
-impl Checked for packed::PackedFrame<'_> {
+#[cfg(not(any(feature = "discard", feature = "halfword")))]
+impl Checked for PackedFrameBuffer<'_, Pixel> {
     fn checksum(&self) -> Option<u32> {
-        Some(packed::PackedFrame::checksum(self))
+        Some(PackedFrameBuffer::checksum(self))
     }
 }
 
-#[cfg(not(any(feature = "discard", feature = "packed")))]
+#[cfg(all(feature = "halfword", not(feature = "discard")))]
 impl Checked for FrameBuffer<'_, Pixel> {
     fn checksum(&self) -> Option<u32> {
         Some(frame_checksum(self.pixels()))
@@ -400,23 +402,22 @@ fn frame(
         render_and_check(scene, &list, edges, mem, &mut target, counter)
     }
 
-    #[cfg(all(feature = "packed", not(feature = "discard")))]
+    #[cfg(not(any(feature = "discard", feature = "halfword")))]
     {
-        let words = pixels;
-        let n = w as usize / 2 * h as usize;
-        let Some(px) = words.get_mut(..n) else {
+        let n = PackedFrameBuffer::<Pixel>::words_len(w, h);
+        let Some(words) = pixels.get_mut(..n) else {
             log::too_big(scene.name, w, h);
             return false;
         };
-        px.fill(0);
-        let Some(mut frame) = packed::PackedFrame::new(px, w, h) else {
+        words.fill(BLACK_CELL);
+        let Some(mut frame) = PackedFrameBuffer::new(words, w, h) else {
             log::too_big(scene.name, w, h);
             return false;
         };
         render_and_check(scene, &list, edges, mem, &mut frame, counter)
     }
 
-    #[cfg(not(any(feature = "discard", feature = "packed")))]
+    #[cfg(all(feature = "halfword", not(feature = "discard")))]
     {
         let Some(px) = pixels.get_mut(..FrameBuffer::<Pixel>::buffer_len(w, h)) else {
             log::too_big(scene.name, w, h);

@@ -129,6 +129,26 @@ impl<C: PixelColor> SpanTarget for FrameBuffer<'_, C> {
         Ok(())
     }
 
+    fn fill_rect(&mut self, span: Span, height: u16, color: C) -> Result<(), Infallible> {
+        let y1 = (span.y as usize + height as usize).min(self.height as usize);
+        let x1 = span.x1.min(self.width);
+        if (span.y as usize) < y1 && span.x0 < x1 {
+            let w = self.width as usize;
+            let (a, b) = (span.x0 as usize, x1 as usize);
+            // Rows y..y1, the last one cut after x1: in bounds by the
+            // guarantee on `pixels.len()`.
+            let region = self.pixels.get_mut(span.y as usize * w..(y1 - 1) * w + b);
+            if let Some(region) = region {
+                for row in region.chunks_mut(w) {
+                    if let Some(run) = row.get_mut(a..b) {
+                        fill_run(run, color);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     fn clear(&mut self, color: C) -> Result<(), Infallible> {
         let n = Self::buffer_len(self.width, self.height);
         self.pixels[..n].fill(color);

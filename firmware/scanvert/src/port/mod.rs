@@ -3,15 +3,18 @@
 //! The unit of work is the horizontal span, as on the write port of the
 //! dual-port frame-buffer RAM that the graphic controller drives. A target
 //! implements two methods; a plain in-memory implementation is
-//! [`FrameBuffer`], and the simulator's
+//! [`FrameBuffer`], one of 16-bit pixels written a word (two pixels) at a
+//! time is [`PackedFrameBuffer`], and the simulator's
 //! dual-port RAM is another.
 
 pub mod checksum;
 pub mod draw_target;
 pub mod framebuffer;
+pub mod packed;
 
 pub use checksum::Checksum;
 pub use framebuffer::FrameBuffer;
+pub use packed::PackedFrameBuffer;
 
 use embedded_graphics_core::pixelcolor::PixelColor;
 
@@ -118,6 +121,29 @@ pub trait SpanTarget {
         }
         Ok(())
     }
+
+    /// Writes `color` to the span `span.x0..span.x1` of the `height` rows
+    /// from `span.y` down: a rectangle, as the scan converter finds between
+    /// two vertical edges. The default writes it a span a row; frame
+    /// buffers override it to work out the addresses once.
+    fn fill_rect(
+        &mut self,
+        span: Span,
+        height: u16,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        for y in span.y..span.y.saturating_add(height) {
+            self.fill_span(Span { y, ..span }, color)?;
+        }
+        Ok(())
+    }
+
+    /// A polygon begins: [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
+    /// calls it once per polygon, before its spans. Memory ignores it (the
+    /// default); a port with a set-up cost per polygon, such as the
+    /// simulator's write port, counts it here.
+    #[inline(always)]
+    fn begin_polygon(&mut self) {}
 }
 
 impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
@@ -134,6 +160,19 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     #[inline]
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
         (**self).clear(color)
+    }
+    #[inline]
+    fn fill_rect(
+        &mut self,
+        span: Span,
+        height: u16,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        (**self).fill_rect(span, height, color)
+    }
+    #[inline(always)]
+    fn begin_polygon(&mut self) {
+        (**self).begin_polygon()
     }
 }
 

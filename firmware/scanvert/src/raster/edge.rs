@@ -51,6 +51,13 @@ pub trait Stepper: Copy {
     fn pixel(&self) -> i32;
     /// Moves to the next row.
     fn step(&mut self);
+    /// `true` when [`step`](Stepper::step) never moves the crossing (a
+    /// vertical edge): the scan converter then repeats one span down a run
+    /// of rows without stepping. `false` (the default) is always correct.
+    #[inline(always)]
+    fn is_vertical(&self) -> bool {
+        false
+    }
 }
 
 /// One polygon edge being stepped down the rows, in the form of the
@@ -205,6 +212,11 @@ impl Stepper for Edge {
     #[inline(always)]
     fn step(&mut self) {
         Edge::step(self)
+    }
+    #[inline(always)]
+    fn is_vertical(&self) -> bool {
+        // x += 0 and err −= 0 every row.
+        self.step == 0 && self.rem == 0
     }
 }
 
