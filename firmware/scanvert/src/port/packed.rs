@@ -148,7 +148,7 @@ fn fill_words(run: &mut [u32], v: u32) {
         for q in run.chunks_exact_mut(4) {
             q.copy_from_slice(&quad);
         }
-        if n % 4 != 0 {
+        if !n.is_multiple_of(4) {
             run[n - 4..].copy_from_slice(&quad);
         }
     } else {
