@@ -7,6 +7,7 @@
 //! * [`reference3d`]: the exact 3D reference: culling, coverage by the
 //!   pixel rule, and the nearest plane at each pixel centre by exact
 //!   barycentric depth, ties to the earlier polygon.
+//! * [`line_reference`]: the exact line rule, pixel by pixel in `i128`.
 //! * [`workloads`]: the 2D workloads W1–W5.
 //! * [`scenes3d`]: the 3D scenes at several sizes, in a layered and a
 //!   tilted version, seen from a few views (the benchmark's).
@@ -20,6 +21,7 @@
 
 #![deny(missing_docs)]
 
+pub mod line_reference;
 pub mod poly3_scenes;
 pub mod reference;
 pub mod reference3d;

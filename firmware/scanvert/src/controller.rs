@@ -68,6 +68,7 @@ use crate::geometry::{
 };
 use crate::port::SpanTarget;
 use crate::raster::clip::ClipRect;
+use crate::raster::line;
 use crate::raster::scan::{FillError, Rasterizer};
 use crate::scene::label::{self, Label, LabelError, LabelStore};
 use crate::scene::SceneError;
@@ -366,14 +367,7 @@ pub fn edges_3d(list: &DisplayList<'_>) -> usize {
 
 /// `true` for the commands of the 3D scene (version 2).
 fn is_scene_command(cmd: &Command<'_>) -> bool {
-    !matches!(
-        cmd,
-        Command::Clear(_)
-            | Command::Clip(_)
-            | Command::Color(_)
-            | Command::Poly(_)
-            | Command::Poly3(_)
-    )
+    cmd.is_scene()
 }
 
 /// Where the 3D layer goes: the store and the labels of a render, or
@@ -454,7 +448,7 @@ fn run_layer<L: Layer3d>(
                     n.culled += 1;
                 }
             }
-            (Command::Clear(_) | Command::Poly(_), _) | (_, None) => {}
+            (Command::Clear(_) | Command::Poly(_) | Command::Line(..), _) | (_, None) => {}
             (Command::Segment(_), Some(p)) => p.reset_stack(),
             (Command::Perspective { fov, near, far }, Some(p)) => p.set_projection(
                 Perspective::from_fov(fov, w, near, far).map_err(|e| err(e.into()))?,
@@ -571,7 +565,7 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
     for (_, cmd) in list.commands() {
         match cmd {
             Command::Poly3(_) => need.poly3 += 1,
-            Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
+            _ if !cmd.is_3d() => {}
             _ => need.scene += 1,
         }
         need.edges = need.edges.max(edge_bound(&cmd));
@@ -678,7 +672,7 @@ impl<'e> Controller<'e> {
                         capacity,
                     })
                 }
-                Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_) => {}
+                _ if !cmd.is_3d() => {}
                 _ => {
                     let Some(t) = &self.three else {
                         return Err(RenderError::Unsupported {
@@ -748,12 +742,7 @@ impl<'e> Controller<'e> {
         let layer = match three.as_mut() {
             // Without 3D storage, `check` has refused the 3D layer.
             None => None,
-            Some(t) => match list.commands().find(|(_, c)| {
-                !matches!(
-                    c,
-                    Command::Clear(_) | Command::Clip(_) | Command::Color(_) | Command::Poly(_)
-                )
-            }) {
+            Some(t) => match list.commands().find(|(_, c)| c.is_3d()) {
                 Some((first, _)) => Some(
                     build_layer(t, labels.as_mut(), list, (w, h), first, &mut stats)
                         .map_err(widen)?,
@@ -787,6 +776,12 @@ impl<'e> Controller<'e> {
                                 },
                             })?;
                     stats.polygons += 1;
+                    stats.spans += counts.spans;
+                    stats.pixels += counts.pixels as u64;
+                }
+                Command::Line(a, b) => {
+                    let counts = line::draw_line(a, b, &clip, color, target)
+                        .map_err(|error| RenderError::Target { offset, error })?;
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;
                 }

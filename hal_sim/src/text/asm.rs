@@ -13,7 +13,7 @@
 
 use super::number::{parse_angle, parse_coord, parse_int, parse_q16};
 use super::{TextError, TextErrorKind};
-use scanvert::display_list::{Axis, Writer, HEADER_LEN, MAX_LABEL_LEN, MAX_VERTICES};
+use scanvert::display_list::{Axis, Opcode, Writer, HEADER_LEN, MAX_LABEL_LEN, MAX_VERTICES};
 use scanvert::fixed::{Coord, Vertex, Vertex3};
 use scanvert::geometry::{Angle, Point3, View, Q16};
 use scanvert::pixelcolor::Rgb888;
@@ -48,6 +48,7 @@ enum Cmd {
     Color(Rgb888),
     Poly(Vec<Vertex>),
     Poly3(Vec<Vertex3>),
+    Line(Vertex, Vertex),
     Segment(u16),
     Perspective(Angle, Q16, Q16),
     Ortho(Q16, Q16, Q16),
@@ -64,22 +65,42 @@ enum Cmd {
 }
 
 impl Cmd {
-    /// Its size in the binary form (see `scanvert::display_list`).
-    fn size(&self) -> usize {
+    /// Its opcode.
+    fn opcode(&self) -> Opcode {
         match self {
-            Cmd::Push | Cmd::Pop => 1,
-            Cmd::Segment(_) | Cmd::Thickness(_) => 3,
-            Cmd::Clear(_) | Cmd::Color(_) | Cmd::Rotate(..) => 4,
-            Cmd::Clip(_) => 9,
-            Cmd::Perspective(..) => 11,
-            Cmd::Ortho(..) | Cmd::Translate(_) | Cmd::Scale(_) => 13,
-            Cmd::Light(..) => 14,
-            Cmd::View(_) => 17,
-            Cmd::Poly(v) => 3 + 4 * v.len(),
-            Cmd::Poly3(v) => 3 + 6 * v.len(),
-            Cmd::Face(v) => 3 + 12 * v.len(),
-            Cmd::Label(_, t) => 14 + t.len(),
+            Cmd::Clear(_) => Opcode::Clear,
+            Cmd::Clip(_) => Opcode::Clip,
+            Cmd::Color(_) => Opcode::Color,
+            Cmd::Poly(_) => Opcode::Poly,
+            Cmd::Poly3(_) => Opcode::Poly3,
+            Cmd::Line(..) => Opcode::Line,
+            Cmd::Segment(_) => Opcode::Segment,
+            Cmd::Perspective(..) => Opcode::Perspective,
+            Cmd::Ortho(..) => Opcode::Ortho,
+            Cmd::View(_) => Opcode::View,
+            Cmd::Light(..) => Opcode::Light,
+            Cmd::Thickness(_) => Opcode::Thickness,
+            Cmd::Push => Opcode::Push,
+            Cmd::Pop => Opcode::Pop,
+            Cmd::Translate(_) => Opcode::Translate,
+            Cmd::Rotate(..) => Opcode::Rotate,
+            Cmd::Scale(_) => Opcode::Scale,
+            Cmd::Face(_) => Opcode::Face,
+            Cmd::Label(..) => Opcode::Label,
         }
+    }
+
+    /// Its size in the binary form, by the format's layout table
+    /// (`scanvert::display_list::layout`).
+    fn size(&self) -> usize {
+        let items = match self {
+            Cmd::Poly(v) => v.len(),
+            Cmd::Poly3(v) => v.len(),
+            Cmd::Face(v) => v.len(),
+            Cmd::Label(_, t) => t.len(),
+            _ => 0,
+        };
+        self.opcode().layout().size(items)
     }
 
     fn write(&self, w: &mut Writer<'_>) -> Result<(), scanvert::display_list::WriteError> {
@@ -89,6 +110,7 @@ impl Cmd {
             Cmd::Color(c) => w.color(*c),
             Cmd::Poly(v) => w.poly(v.iter().copied()),
             Cmd::Poly3(v) => w.poly3(v.iter().copied()),
+            Cmd::Line(from, to) => w.line(*from, *to),
             Cmd::Segment(id) => w.segment(*id),
             Cmd::Perspective(fov, near, far) => w.perspective(*fov, *near, *far),
             Cmd::Ortho(scale, near, far) => w.ortho(*scale, *near, *far),
@@ -178,28 +200,7 @@ fn internal(line: usize, e: scanvert::display_list::WriteError) -> TextError {
 }
 
 fn is_command(name: &str) -> bool {
-    matches!(
-        name,
-        "clear"
-            | "clip"
-            | "color"
-            | "poly"
-            | "poly3"
-            | "segment"
-            | "perspective"
-            | "ortho"
-            | "view"
-            | "lookat"
-            | "light"
-            | "thickness"
-            | "push"
-            | "pop"
-            | "translate"
-            | "rotate"
-            | "scale"
-            | "face"
-            | "label"
-    )
+    Opcode::from_name(name).is_some() || name == "lookat"
 }
 
 /// The words of a line, comments removed.
@@ -377,6 +378,17 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                         z: p[2],
                     })
                     .collect(),
+            ))
+        }
+        "line" => {
+            operand_count("line", "4 (X0 Y0 X1 Y1)", operands, operands.len() == 4)?;
+            let c = operands
+                .iter()
+                .map(|w| coord(w))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(Cmd::Line(
+                Vertex { x: c[0], y: c[1] },
+                Vertex { x: c[2], y: c[3] },
             ))
         }
         "segment" => {

@@ -56,85 +56,87 @@ fn hex(c: Rgb888) -> String {
 pub fn disassemble(list: &DisplayList<'_>) -> String {
     let mut s = format!("frame {} {}\n", list.width(), list.height());
     for (_, cmd) in list.commands() {
-        // Writing into a String cannot fail.
+        // The name from the format's table, then the operands. Writing
+        // into a String cannot fail.
+        s.push_str(cmd.opcode().name());
         let _ = match cmd {
-            Command::Clear(c) => writeln!(s, "clear {}", hex(c)),
-            Command::Color(c) => writeln!(s, "color {}", hex(c)),
-            Command::Clip(w) => writeln!(s, "clip {} {} {} {}", w.x0, w.y0, w.x1, w.y1),
+            Command::Clear(c) | Command::Color(c) => write!(s, " {}", hex(c)),
+            Command::Clip(w) => write!(s, " {} {} {} {}", w.x0, w.y0, w.x1, w.y1),
             Command::Poly(v) => {
-                s.push_str("poly");
                 for p in v.iter() {
                     s.push(' ');
                     s.push_str(&format_coord(p.x));
                     s.push(' ');
                     s.push_str(&format_coord(p.y));
                 }
-                writeln!(s)
+                Ok(())
             }
             Command::Poly3(v) => {
-                s.push_str("poly3");
                 for p in v.iter() {
                     for c in [p.x, p.y, p.z] {
                         s.push(' ');
                         s.push_str(&format_coord(c));
                     }
                 }
-                writeln!(s)
+                Ok(())
             }
-            Command::Segment(id) => writeln!(s, "segment {id}"),
-            Command::Perspective { fov, near, far } => writeln!(
+            Command::Line(a, b) => {
+                for c in [a.x, a.y, b.x, b.y] {
+                    s.push(' ');
+                    s.push_str(&format_coord(c));
+                }
+                Ok(())
+            }
+            Command::Segment(id) => write!(s, " {id}"),
+            Command::Perspective { fov, near, far } => write!(
                 s,
-                "perspective {} {} {}",
+                " {} {} {}",
                 format_angle(fov),
                 format_q16(near),
                 format_q16(far)
             ),
-            Command::Ortho { scale, near, far } => writeln!(
+            Command::Ortho { scale, near, far } => write!(
                 s,
-                "ortho {} {} {}",
+                " {} {} {}",
                 format_q16(scale),
                 format_q16(near),
                 format_q16(far)
             ),
-            Command::View { eye, yaw, pitch } => writeln!(
+            Command::View { eye, yaw, pitch } => write!(
                 s,
-                "view {} {} {}",
+                " {} {} {}",
                 point(eye),
                 format_angle(yaw),
                 format_angle(pitch)
             ),
-            Command::Light { toward, percent } => {
-                writeln!(s, "light {} {percent}", point(toward))
-            }
-            Command::Thickness(t) => writeln!(s, "thickness {}", format_coord(t)),
-            Command::Push => writeln!(s, "push"),
-            Command::Pop => writeln!(s, "pop"),
-            Command::Translate(p) => writeln!(s, "translate {}", point(p)),
+            Command::Light { toward, percent } => write!(s, " {} {percent}", point(toward)),
+            Command::Thickness(t) => write!(s, " {}", format_coord(t)),
+            Command::Push | Command::Pop => Ok(()),
+            Command::Translate(p) | Command::Scale(p) => write!(s, " {}", point(p)),
             Command::Rotate(axis, a) => {
                 let axis = match axis {
                     Axis::X => "x",
                     Axis::Y => "y",
                     Axis::Z => "z",
                 };
-                writeln!(s, "rotate {axis} {}", format_angle(a))
+                write!(s, " {axis} {}", format_angle(a))
             }
-            Command::Scale(p) => writeln!(s, "scale {}", point(p)),
             Command::Face(v) => {
-                s.push_str("face");
                 for p in v.iter() {
                     s.push(' ');
                     s.push_str(&point(p));
                 }
-                writeln!(s)
+                Ok(())
             }
             Command::Label { at, text } => {
-                writeln!(s, "label {} {}", point(at), label_text_form(text))
+                write!(s, " {} {}", point(at), label_text_form(text))
             }
             // A command added to the library after this disassembler: a
             // line that names it and that the assembler refuses, rather
             // than a silent gap.
             other => writeln!(s, "unsupported {other:?}"),
         };
+        s.push('\n');
     }
     s
 }

@@ -20,8 +20,10 @@
 //! | `0x03` | `color` | `r g b` | 4 |
 //! | `0x10` | `poly`  | `n: u16` (≥ 3), then `n × (x, y)`: `i16` Q12.4 | 3 + 4n |
 //! | `0x11` | `poly3` | `n: u16` (≥ 3), then `n × (x, y, z)`: `i16` Q12.4 | 3 + 6n |
+//! | `0x12` | `line`  | `x0 y0 x1 y1`: `i16` Q12.4 (version 2) | 9 |
 //!
-//! Version 2 adds the 3D scene (world values are `i32` Q16.16, angles `u16`
+//! Version 2 adds `line` (drawn by [`raster::line`](crate::raster::line),
+//! in painter's order with `poly`) and the 3D scene (world values are `i32` Q16.16, angles `u16`
 //! binary angles, 65536 to the turn; see [`crate::geometry`]):
 //!
 //! | opcode | command | operands | size |
@@ -41,7 +43,15 @@
 //! | `0x31` | `label` | `x y z`: Q16.16, `len: u8` (≥ 1), `len` bytes of printable ASCII | 14 + len |
 //!
 //! A version-1 list may hold only version-1 opcodes. [`Writer`] stamps the
-//! lowest version that holds what was written, so a 2D list stays version 1.
+//! lowest version that holds what was written, so a list of only the
+//! version-1 commands stays version 1, byte for byte as before `line`
+//! existed. A reader older than `line` rejects a list holding one with
+//! [`ErrorKind::UnknownOpcode`]`(0x12)` at the command's byte offset; it
+//! never misreads it.
+//!
+//! Every size and offset above is in [`layout`], the one table the
+//! reader, the writer and the host's text tools use; which commands belong
+//! to the 3D layer is [`Opcode::is_3d`].
 //!
 //! Reading is done in two steps, after smoltcp's `wire` module:
 //! [`DisplayList::new_checked`] walks the whole list once and returns a
@@ -49,10 +59,13 @@
 //! [`Commands`] iterator and every accessor cannot fail and cannot panic.
 //! [`Writer`] emits the same format into a caller-owned buffer.
 
+pub mod layout;
 mod reader;
 mod writer;
 
-pub use reader::{Axis, Command, Commands, DisplayList, Points, Vertices, Vertices3};
+pub use reader::{
+    Axis, Command, Commands, DisplayList, FromBytes, Packed, Points, Vertices, Vertices3,
+};
 pub use writer::{WriteError, Writer};
 
 use core::fmt;
@@ -66,7 +79,7 @@ pub const VERSION_2D: u16 = 1;
 /// Most bytes of a label's text.
 pub const MAX_LABEL_LEN: usize = u8::MAX as usize;
 /// Size of the header in bytes.
-pub const HEADER_LEN: usize = 16;
+pub const HEADER_LEN: usize = layout::header::LEN;
 /// Most vertices one polygon can have (the count is a `u16`).
 pub const MAX_VERTICES: usize = u16::MAX as usize;
 
@@ -86,6 +99,8 @@ pub enum Opcode {
     Poly = 0x10,
     /// A screen-space polygon with depth.
     Poly3 = 0x11,
+    /// A 2D line one pixel wide, in painter's order (version 2).
+    Line = 0x12,
     /// Start (or return to) a segment of the 3D scene.
     Segment = 0x20,
     /// Perspective projection.
@@ -123,6 +138,7 @@ impl Opcode {
             0x03 => Opcode::Color,
             0x10 => Opcode::Poly,
             0x11 => Opcode::Poly3,
+            0x12 => Opcode::Line,
             0x20 => Opcode::Segment,
             0x21 => Opcode::Perspective,
             0x22 => Opcode::Ortho,
@@ -142,11 +158,61 @@ impl Opcode {
 
     /// The first format version that has this opcode.
     pub const fn version(self) -> u16 {
-        if (self as u8) < 0x20 {
-            VERSION_2D
-        } else {
-            VERSION
+        match self {
+            Opcode::Clear | Opcode::Clip | Opcode::Color | Opcode::Poly | Opcode::Poly3 => {
+                VERSION_2D
+            }
+            _ => VERSION,
         }
+    }
+
+    /// `true` for the commands of the 3D layer: `poly3` and the 3D
+    /// scene's. The others (`clear`, `clip`, `color`, `poly`, `line`) are
+    /// the 2D commands, executed in painter's order; `clip` and `color`
+    /// also set the registers the 3D layer takes.
+    pub const fn is_3d(self) -> bool {
+        !matches!(
+            self,
+            Opcode::Clear | Opcode::Clip | Opcode::Color | Opcode::Poly | Opcode::Line
+        )
+    }
+
+    /// `true` for the 3D scene's commands: the 3D layer but `poly3`.
+    pub const fn is_scene(self) -> bool {
+        self.is_3d() && !matches!(self, Opcode::Poly3)
+    }
+
+    /// The command's name in the text form.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Opcode::Clear => "clear",
+            Opcode::Clip => "clip",
+            Opcode::Color => "color",
+            Opcode::Poly => "poly",
+            Opcode::Poly3 => "poly3",
+            Opcode::Line => "line",
+            Opcode::Segment => "segment",
+            Opcode::Perspective => "perspective",
+            Opcode::Ortho => "ortho",
+            Opcode::View => "view",
+            Opcode::Light => "light",
+            Opcode::Thickness => "thickness",
+            Opcode::Push => "push",
+            Opcode::Pop => "pop",
+            Opcode::Translate => "translate",
+            Opcode::Rotate => "rotate",
+            Opcode::Scale => "scale",
+            Opcode::Face => "face",
+            Opcode::Label => "label",
+        }
+    }
+
+    /// The opcode of a text-form name (`lookat`, which the text form
+    /// turns into a `view`, is not one).
+    pub fn from_name(name: &str) -> Option<Self> {
+        (0..=u8::MAX)
+            .filter_map(Opcode::from_byte)
+            .find(|op| op.name() == name)
     }
 }
 

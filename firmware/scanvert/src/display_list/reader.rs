@@ -1,9 +1,11 @@
 //! The checked, zero-copy reader.
 
+use super::layout::{self, header, Field, Layout, Tail};
 use super::{Error, ErrorKind, Opcode, HEADER_LEN, MAGIC, VERSION, VERSION_2D};
 use crate::fixed::{Coord, Vertex, Vertex3};
 use crate::geometry::{Angle, Point3, Q16};
 use crate::raster::clip::ClipWindow;
+use core::marker::PhantomData;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// A display list that has passed [`DisplayList::new_checked`].
@@ -23,71 +25,72 @@ pub struct DisplayList<'a> {
 }
 
 #[inline(always)]
-fn u16_at(b: &[u8], at: usize) -> u16 {
-    u16::from_le_bytes([b[at], b[at + 1]])
+fn u16_at(b: &[u8], f: Field) -> u16 {
+    u16::from_le_bytes([b[f.start], b[f.start + 1]])
 }
 
 #[inline(always)]
-fn i16_at(b: &[u8], at: usize) -> i16 {
-    i16::from_le_bytes([b[at], b[at + 1]])
+fn i16_at(b: &[u8], f: Field) -> i16 {
+    i16::from_le_bytes([b[f.start], b[f.start + 1]])
 }
 
 #[inline(always)]
-fn i32_at(b: &[u8], at: usize) -> i32 {
+fn i32_at(b: &[u8], f: Field) -> i32 {
+    let at = f.start;
     i32::from_le_bytes([b[at], b[at + 1], b[at + 2], b[at + 3]])
 }
 
 #[inline(always)]
-fn point_at(b: &[u8], at: usize) -> Point3 {
-    Point3::from_bits(i32_at(b, at), i32_at(b, at + 4), i32_at(b, at + 8))
+fn point_at(b: &[u8], f: Field) -> Point3 {
+    let p = &b[f];
+    Point3::from_bits(
+        i32_at(p, layout::point3::X),
+        i32_at(p, layout::point3::Y),
+        i32_at(p, layout::point3::Z),
+    )
+}
+
+#[inline(always)]
+fn vertex_at(b: &[u8], x: Field, y: Field) -> Vertex {
+    Vertex {
+        x: Coord::from_bits(i16_at(b, x)),
+        y: Coord::from_bits(i16_at(b, y)),
+    }
 }
 
 /// Size of the command starting at `at` in a list of `version`, or an
-/// error. Reads only inside `body`.
+/// error, by the command's [`layout`](Opcode::layout). Reads only inside
+/// `body`.
 fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), ErrorKind> {
     let byte = body[at];
     let op = Opcode::from_byte(byte)
         .filter(|op| op.version() <= version)
         .ok_or(ErrorKind::UnknownOpcode(byte))?;
-    let rest = body.len() - at;
-    let fixed = match op {
-        Opcode::Push | Opcode::Pop => 1,
-        Opcode::Poly | Opcode::Poly3 | Opcode::Face | Opcode::Segment | Opcode::Thickness => 3,
-        Opcode::Clear | Opcode::Color | Opcode::Rotate => 4,
-        Opcode::Clip => 9,
-        Opcode::Perspective => 11,
-        Opcode::Ortho | Opcode::Translate | Opcode::Scale => 13,
-        Opcode::Light | Opcode::Label => 14,
-        Opcode::View => 17,
-    };
-    if rest < fixed {
+    let rest = &body[at..];
+    let layout = op.layout();
+    if rest.len() < layout.fixed {
         return Err(ErrorKind::Truncated);
     }
-    let len = match op {
-        Opcode::Poly | Opcode::Poly3 | Opcode::Face => {
-            let n = u16_at(body, at + 1);
-            let (least, per) = match op {
-                Opcode::Poly => (3, 4),
-                Opcode::Poly3 => (3, 6),
-                _ => (1, 12),
-            };
+    let len = match layout.tail {
+        Tail::None => layout.fixed,
+        Tail::Packed { least, .. } => {
+            let n = u16_at(rest, Layout::COUNT);
             if n < least {
                 return Err(ErrorKind::TooFewVertices(n));
             }
-            3 + per * n as usize
+            layout.size(n as usize)
         }
-        Opcode::Label => fixed + body[at + 13] as usize,
-        _ => fixed,
+        Tail::Text { len_at } => layout.size(rest[len_at] as usize),
     };
-    if rest < len {
+    if rest.len() < len {
         return Err(ErrorKind::Truncated);
     }
     let bad = match op {
-        Opcode::Rotate => body[at + 1] > 2,
-        Opcode::Light => body[at + 13] > 100,
-        Opcode::Thickness => i16_at(body, at + 1) < 0,
+        Opcode::Rotate => rest[layout::rotate::AXIS] > 2,
+        Opcode::Light => rest[layout::light::PERCENT] > 100,
+        Opcode::Thickness => i16_at(rest, layout::thickness::T) < 0,
         Opcode::Label => {
-            let text = &body[at + fixed..at + len];
+            let text = &rest[layout.fixed..len];
             text.is_empty() || !text.iter().all(|c| (0x20..0x7f).contains(c))
         }
         _ => false,
@@ -105,30 +108,39 @@ impl<'a> DisplayList<'a> {
     /// infallible; on failure the error names the byte offset of the fault.
     pub fn new_checked(bytes: &'a [u8]) -> Result<Self, Error> {
         let err = |offset, kind| Error { offset, kind };
-        if bytes.len() < 4 {
+        if bytes.len() < header::MAGIC.end {
             return Err(err(bytes.len(), ErrorKind::Truncated));
         }
-        if bytes[..4] != MAGIC {
+        if bytes[header::MAGIC] != MAGIC {
             return Err(err(0, ErrorKind::BadMagic));
         }
         if bytes.len() < HEADER_LEN {
             return Err(err(bytes.len(), ErrorKind::Truncated));
         }
-        let version = u16_at(bytes, 4);
+        let version = u16_at(bytes, header::VERSION);
         if version != VERSION && version != VERSION_2D {
-            return Err(err(4, ErrorKind::UnsupportedVersion(version)));
+            return Err(err(
+                header::VERSION.start,
+                ErrorKind::UnsupportedVersion(version),
+            ));
         }
-        let (width, height) = (u16_at(bytes, 6), u16_at(bytes, 8));
+        let (width, height) = (u16_at(bytes, header::WIDTH), u16_at(bytes, header::HEIGHT));
         if !(1..=4096).contains(&width) || !(1..=4096).contains(&height) {
-            return Err(err(6, ErrorKind::BadFrameSize { width, height }));
+            return Err(err(
+                header::WIDTH.start,
+                ErrorKind::BadFrameSize { width, height },
+            ));
         }
-        if u16_at(bytes, 10) != 0 {
-            return Err(err(10, ErrorKind::ReservedNotZero));
+        if u16_at(bytes, header::RESERVED) != 0 {
+            return Err(err(header::RESERVED.start, ErrorKind::ReservedNotZero));
         }
-        let declared = u32::from_le_bytes([bytes[12], bytes[13], bytes[14], bytes[15]]);
+        let declared = i32_at(bytes, header::BODY_LEN) as u32;
         let actual = bytes.len() - HEADER_LEN;
         if declared as usize != actual {
-            return Err(err(12, ErrorKind::LengthMismatch { declared, actual }));
+            return Err(err(
+                header::BODY_LEN.start,
+                ErrorKind::LengthMismatch { declared, actual },
+            ));
         }
         let body = &bytes[HEADER_LEN..];
         let mut at = 0;
@@ -190,6 +202,10 @@ pub enum Command<'a> {
     Poly(Vertices<'a>),
     /// A screen-space polygon with depth.
     Poly3(Vertices3<'a>),
+    /// A 2D line one pixel wide from the first end to the second, in the
+    /// current colour, in painter's order (see
+    /// [`raster::line`](crate::raster::line)).
+    Line(Vertex, Vertex),
     /// The 3D commands that follow build this segment.
     Segment(u16),
     /// Perspective projection: horizontal field of view, near and far
@@ -253,6 +269,43 @@ pub enum Command<'a> {
     },
 }
 
+impl Command<'_> {
+    /// The command's opcode.
+    pub const fn opcode(&self) -> Opcode {
+        match self {
+            Command::Clear(_) => Opcode::Clear,
+            Command::Clip(_) => Opcode::Clip,
+            Command::Color(_) => Opcode::Color,
+            Command::Poly(_) => Opcode::Poly,
+            Command::Poly3(_) => Opcode::Poly3,
+            Command::Line(..) => Opcode::Line,
+            Command::Segment(_) => Opcode::Segment,
+            Command::Perspective { .. } => Opcode::Perspective,
+            Command::Ortho { .. } => Opcode::Ortho,
+            Command::View { .. } => Opcode::View,
+            Command::Light { .. } => Opcode::Light,
+            Command::Thickness(_) => Opcode::Thickness,
+            Command::Push => Opcode::Push,
+            Command::Pop => Opcode::Pop,
+            Command::Translate(_) => Opcode::Translate,
+            Command::Rotate(..) => Opcode::Rotate,
+            Command::Scale(_) => Opcode::Scale,
+            Command::Face(_) => Opcode::Face,
+            Command::Label { .. } => Opcode::Label,
+        }
+    }
+
+    /// `true` for the commands of the 3D layer (see [`Opcode::is_3d`]).
+    pub const fn is_3d(&self) -> bool {
+        self.opcode().is_3d()
+    }
+
+    /// `true` for the 3D scene's commands (see [`Opcode::is_scene`]).
+    pub const fn is_scene(&self) -> bool {
+        self.opcode().is_scene()
+    }
+}
+
 /// An axis of rotation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -300,129 +353,154 @@ impl<'a> Iterator for Commands<'a> {
         let b = self.body.get(self.at..self.at + len)?;
         let offset = HEADER_LEN + self.at;
         self.at += len;
-        let rgb = || Rgb888::new(b[1], b[2], b[3]);
+        let rgb = || {
+            use layout::rgb::{B, G, R};
+            Rgb888::new(b[R], b[G], b[B])
+        };
         let cmd = match op {
             Opcode::Clear => Command::Clear(rgb()),
             Opcode::Color => Command::Color(rgb()),
-            Opcode::Clip => Command::Clip(ClipWindow {
-                x0: i16_at(b, 1),
-                y0: i16_at(b, 3),
-                x1: i16_at(b, 5),
-                y1: i16_at(b, 7),
-            }),
-            Opcode::Poly => Command::Poly(Vertices { bytes: &b[3..] }),
-            Opcode::Poly3 => Command::Poly3(Vertices3 { bytes: &b[3..] }),
-            Opcode::Segment => Command::Segment(u16_at(b, 1)),
-            Opcode::Perspective => Command::Perspective {
-                fov: Angle::from_bits(u16_at(b, 1)),
-                near: Q16::from_bits(i32_at(b, 3)),
-                far: Q16::from_bits(i32_at(b, 7)),
-            },
-            Opcode::Ortho => Command::Ortho {
-                scale: Q16::from_bits(i32_at(b, 1)),
-                near: Q16::from_bits(i32_at(b, 5)),
-                far: Q16::from_bits(i32_at(b, 9)),
-            },
-            Opcode::View => Command::View {
-                eye: point_at(b, 1),
-                yaw: Angle::from_bits(u16_at(b, 13)),
-                pitch: Angle::from_bits(u16_at(b, 15)),
-            },
+            Opcode::Clip => {
+                use layout::clip::{X0, X1, Y0, Y1};
+                Command::Clip(ClipWindow {
+                    x0: i16_at(b, X0),
+                    y0: i16_at(b, Y0),
+                    x1: i16_at(b, X1),
+                    y1: i16_at(b, Y1),
+                })
+            }
+            Opcode::Line => {
+                use layout::line::{X0, X1, Y0, Y1};
+                Command::Line(vertex_at(b, X0, Y0), vertex_at(b, X1, Y1))
+            }
+            Opcode::Poly => Command::Poly(Packed::new(&b[layout::poly::VERTICES..])),
+            Opcode::Poly3 => Command::Poly3(Packed::new(&b[layout::poly3::VERTICES..])),
+            Opcode::Segment => Command::Segment(u16_at(b, layout::segment::ID)),
+            Opcode::Perspective => {
+                use layout::perspective::{FAR, FOV, NEAR};
+                Command::Perspective {
+                    fov: Angle::from_bits(u16_at(b, FOV)),
+                    near: Q16::from_bits(i32_at(b, NEAR)),
+                    far: Q16::from_bits(i32_at(b, FAR)),
+                }
+            }
+            Opcode::Ortho => {
+                use layout::ortho::{FAR, NEAR, SCALE};
+                Command::Ortho {
+                    scale: Q16::from_bits(i32_at(b, SCALE)),
+                    near: Q16::from_bits(i32_at(b, NEAR)),
+                    far: Q16::from_bits(i32_at(b, FAR)),
+                }
+            }
+            Opcode::View => {
+                use layout::view::{EYE, PITCH, YAW};
+                Command::View {
+                    eye: point_at(b, EYE),
+                    yaw: Angle::from_bits(u16_at(b, YAW)),
+                    pitch: Angle::from_bits(u16_at(b, PITCH)),
+                }
+            }
             Opcode::Light => Command::Light {
-                toward: point_at(b, 1),
-                percent: b[13],
+                toward: point_at(b, layout::light::TOWARD),
+                percent: b[layout::light::PERCENT],
             },
-            Opcode::Thickness => Command::Thickness(Coord::from_bits(i16_at(b, 1))),
+            Opcode::Thickness => {
+                Command::Thickness(Coord::from_bits(i16_at(b, layout::thickness::T)))
+            }
             Opcode::Push => Command::Push,
             Opcode::Pop => Command::Pop,
-            Opcode::Translate => Command::Translate(point_at(b, 1)),
-            Opcode::Rotate => {
-                Command::Rotate(Axis::from_byte(b[1])?, Angle::from_bits(u16_at(b, 2)))
-            }
-            Opcode::Scale => Command::Scale(point_at(b, 1)),
-            Opcode::Face => Command::Face(Points { bytes: &b[3..] }),
+            Opcode::Translate => Command::Translate(point_at(b, layout::point::P)),
+            Opcode::Rotate => Command::Rotate(
+                Axis::from_byte(b[layout::rotate::AXIS])?,
+                Angle::from_bits(u16_at(b, layout::rotate::ANGLE)),
+            ),
+            Opcode::Scale => Command::Scale(point_at(b, layout::point::P)),
+            Opcode::Face => Command::Face(Packed::new(&b[layout::face::VERTICES..])),
             Opcode::Label => Command::Label {
-                at: point_at(b, 1),
+                at: point_at(b, layout::label::AT),
                 // Printable ASCII, checked by `new_checked`.
-                text: core::str::from_utf8(&b[14..]).unwrap_or(""),
+                text: core::str::from_utf8(&b[layout::label::TEXT..]).unwrap_or(""),
             },
         };
         Some((offset, cmd))
     }
 }
 
-/// The vertices of a `poly`: at least 3, each `(x, y)` in Q12.4.
-#[derive(Clone, Copy, Debug)]
-pub struct Vertices<'a> {
-    bytes: &'a [u8],
+/// An item of a packed list in a command (a vertex of `poly`, `poly3`
+/// or `face`), read from [`SIZE`](Self::SIZE) little-endian bytes; the
+/// size is the command's stride in [`layout`].
+pub trait FromBytes: Sized {
+    /// Bytes per item.
+    const SIZE: usize;
+    /// The item in `bytes`, which holds exactly [`SIZE`](Self::SIZE)
+    /// bytes (a [`Packed`] view only ever passes such a slice).
+    fn from_bytes(bytes: &[u8]) -> Self;
 }
 
-impl<'a> Vertices<'a> {
-    /// Number of vertices (3..=65535 for a checked list).
-    pub fn len(&self) -> usize {
-        self.bytes.len() / 4
+impl FromBytes for Vertex {
+    const SIZE: usize = layout::poly::STRIDE;
+    fn from_bytes(c: &[u8]) -> Self {
+        vertex_at(c, layout::poly::X, layout::poly::Y)
+    }
+}
+
+impl FromBytes for Vertex3 {
+    const SIZE: usize = layout::poly3::STRIDE;
+    fn from_bytes(c: &[u8]) -> Self {
+        use layout::poly3::{X, Y, Z};
+        Vertex3 {
+            x: Coord::from_bits(i16_at(c, X)),
+            y: Coord::from_bits(i16_at(c, Y)),
+            z: Coord::from_bits(i16_at(c, Z)),
+        }
+    }
+}
+
+impl FromBytes for Point3 {
+    const SIZE: usize = layout::face::STRIDE;
+    fn from_bytes(c: &[u8]) -> Self {
+        point_at(c, 0..layout::point3::LEN)
+    }
+}
+
+/// A packed list of `V`s inside a checked display list, read in place.
+#[derive(Clone, Copy, Debug)]
+pub struct Packed<'a, V> {
+    bytes: &'a [u8],
+    item: PhantomData<fn() -> V>,
+}
+
+impl<'a, V: FromBytes + 'a> Packed<'a, V> {
+    /// The items in `bytes` (a trailing part item is never read).
+    fn new(bytes: &'a [u8]) -> Self {
+        Packed {
+            bytes,
+            item: PhantomData,
+        }
     }
 
-    /// `true` when there is no vertex (never for a checked list).
+    /// Number of items (for a checked list: 3..=65535 for `poly` and
+    /// `poly3`, 1..=65535 for `face`).
+    pub fn len(&self) -> usize {
+        self.bytes.len() / V::SIZE
+    }
+
+    /// `true` when there is no item (never for a checked list).
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
-    /// Iterates the vertices.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = Vertex> + Clone + 'a {
-        self.bytes.chunks_exact(4).map(|c| Vertex {
-            x: Coord::from_bits(i16::from_le_bytes([c[0], c[1]])),
-            y: Coord::from_bits(i16::from_le_bytes([c[2], c[3]])),
-        })
+    /// Iterates the items.
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = V> + Clone + 'a {
+        self.bytes.chunks_exact(V::SIZE).map(V::from_bytes)
     }
 }
+
+/// The vertices of a `poly`: at least 3, each `(x, y)` in Q12.4.
+pub type Vertices<'a> = Packed<'a, Vertex>;
 
 /// The vertices of a `poly3`: at least 3, each `(x, y, z)` in Q12.4.
-#[derive(Clone, Copy, Debug)]
-pub struct Vertices3<'a> {
-    bytes: &'a [u8],
-}
-
-impl<'a> Vertices3<'a> {
-    /// Number of vertices (3..=65535 for a checked list).
-    pub fn len(&self) -> usize {
-        self.bytes.len() / 6
-    }
-
-    /// `true` when there is no vertex (never for a checked list).
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Iterates the vertices.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = Vertex3> + Clone + 'a {
-        self.bytes.chunks_exact(6).map(|c| Vertex3 {
-            x: Coord::from_bits(i16::from_le_bytes([c[0], c[1]])),
-            y: Coord::from_bits(i16::from_le_bytes([c[2], c[3]])),
-            z: Coord::from_bits(i16::from_le_bytes([c[4], c[5]])),
-        })
-    }
-}
+pub type Vertices3<'a> = Packed<'a, Vertex3>;
 
 /// The vertices of a `face`: at least 1, each `(x, y, z)` in Q16.16.
-#[derive(Clone, Copy, Debug)]
-pub struct Points<'a> {
-    bytes: &'a [u8],
-}
-
-impl<'a> Points<'a> {
-    /// Number of vertices (1..=65535 for a checked list).
-    pub fn len(&self) -> usize {
-        self.bytes.len() / 12
-    }
-
-    /// `true` when there is no vertex (never for a checked list).
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
-    /// Iterates the vertices.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = Point3> + Clone + 'a {
-        self.bytes.chunks_exact(12).map(|c| point_at(c, 0))
-    }
-}
+pub type Points<'a> = Packed<'a, Point3>;

@@ -1,5 +1,6 @@
 //! Emitting a display list into a caller-owned buffer.
 
+use super::layout::{self, header, Field, Tail};
 use super::{Axis, Opcode, HEADER_LEN, MAGIC, MAX_LABEL_LEN, MAX_VERTICES, VERSION_2D};
 use crate::fixed::{Coord, Vertex, Vertex3};
 use crate::geometry::{Angle, Point3, Q16};
@@ -65,9 +66,9 @@ impl<'b> Writer<'b> {
             version: VERSION_2D,
         };
         let mut h = [0u8; HEADER_LEN];
-        h[..4].copy_from_slice(&MAGIC);
-        h[6..8].copy_from_slice(&width.to_le_bytes());
-        h[8..10].copy_from_slice(&height.to_le_bytes());
+        h[header::MAGIC].copy_from_slice(&MAGIC);
+        h[header::WIDTH].copy_from_slice(&width.to_le_bytes());
+        h[header::HEIGHT].copy_from_slice(&height.to_le_bytes());
         w.put(&h)?;
         Ok(w)
     }
@@ -92,7 +93,12 @@ impl<'b> Writer<'b> {
     }
 
     fn rgb(&mut self, op: Opcode, c: Rgb888) -> Result<(), WriteError> {
-        self.put(&[op as u8, c.r(), c.g(), c.b()])
+        let mut b = [0u8; layout::rgb::LEN];
+        b[layout::OPCODE] = op as u8;
+        b[layout::rgb::R] = c.r();
+        b[layout::rgb::G] = c.g();
+        b[layout::rgb::B] = c.b();
+        self.whole(b)
     }
 
     /// `clear`: fill the frame.
@@ -107,27 +113,62 @@ impl<'b> Writer<'b> {
 
     /// `clip`: load the clip registers.
     pub fn clip(&mut self, w: ClipWindow) -> Result<(), WriteError> {
-        let mut b = [0u8; 9];
-        b[0] = Opcode::Clip as u8;
-        for (i, v) in [w.x0, w.y0, w.x1, w.y1].into_iter().enumerate() {
-            b[1 + 2 * i..3 + 2 * i].copy_from_slice(&v.to_le_bytes());
+        use layout::clip::{LEN, X0, X1, Y0, Y1};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Clip as u8;
+        for (f, v) in [(X0, w.x0), (Y0, w.y0), (X1, w.x1), (Y1, w.y1)] {
+            b[f].copy_from_slice(&v.to_le_bytes());
         }
-        self.put(&b)
+        self.whole(b)
     }
 
-    fn poly_head(&mut self, op: Opcode, n: usize, per: usize) -> Result<(), WriteError> {
-        let least = if op == Opcode::Face { 1 } else { 3 };
+    /// `line`: a 2D line one pixel wide from `from` to `to` (version 2;
+    /// see [`raster::line`](crate::raster::line)).
+    pub fn line(&mut self, from: Vertex, to: Vertex) -> Result<(), WriteError> {
+        use layout::line::{LEN, X0, X1, Y0, Y1};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Line as u8;
+        for (f, v) in [(X0, from.x), (Y0, from.y), (X1, to.x), (Y1, to.y)] {
+            b[f].copy_from_slice(&v.to_bits().to_le_bytes());
+        }
+        self.whole(b)
+    }
+
+    /// The stride and fewest items of a packed command.
+    fn packed(op: Opcode) -> (usize, usize) {
+        match op.layout().tail {
+            Tail::Packed { stride, least } => (stride, least as usize),
+            _ => (0, usize::MAX),
+        }
+    }
+
+    fn poly_head(&mut self, op: Opcode, n: usize) -> Result<(), WriteError> {
+        let (_, least) = Self::packed(op);
         if !(least..=MAX_VERTICES).contains(&n) {
             return Err(WriteError::VertexCount(n));
         }
-        self.reserve(3 + per * n)?;
-        let c = (n as u16).to_le_bytes();
+        self.reserve(op.layout().size(n))?;
+        let mut b = [0u8; layout::poly::VERTICES];
+        b[layout::OPCODE] = op as u8;
+        b[layout::Layout::COUNT].copy_from_slice(&(n as u16).to_le_bytes());
         self.version = self.version.max(op.version());
-        self.put(&[op as u8, c[0], c[1]])
+        self.put(&b)
     }
 
-    /// Writes a whole fixed-size command, or nothing.
+    /// Writes a whole fixed-size command (opcode byte included), or
+    /// nothing.
+    fn whole<const N: usize>(&mut self, bytes: [u8; N]) -> Result<(), WriteError> {
+        let op = Opcode::from_byte(bytes[layout::OPCODE]).ok_or(WriteError::BadOperand)?;
+        debug_assert_eq!(op.layout().fixed, N);
+        self.reserve(N)?;
+        self.version = self.version.max(op.version());
+        self.put(&bytes)
+    }
+
+    /// Writes a whole fixed-size command from its operands (the bytes
+    /// after the opcode), or nothing.
     fn command<const N: usize>(&mut self, op: Opcode, operands: [u8; N]) -> Result<(), WriteError> {
+        debug_assert_eq!(op.layout().fixed, 1 + N);
         self.reserve(1 + N)?;
         self.version = self.version.max(op.version());
         self.put(&[op as u8])?;
@@ -135,11 +176,13 @@ impl<'b> Writer<'b> {
     }
 
     /// Undoes a polygon whose iterator yielded fewer items than its `len`.
-    fn check_count(&mut self, start: usize, per: usize, n: usize) -> Result<(), WriteError> {
-        if self.len - start == 3 + per * n {
+    fn check_count(&mut self, start: usize, op: Opcode, n: usize) -> Result<(), WriteError> {
+        let layout = op.layout();
+        if self.len - start == layout.size(n) {
             Ok(())
         } else {
-            let n = (self.len - start).saturating_sub(3) / per;
+            let (per, _) = Self::packed(op);
+            let n = (self.len - start).saturating_sub(layout.fixed) / per.max(1);
             self.len = start;
             Err(WriteError::VertexCount(n))
         }
@@ -153,12 +196,12 @@ impl<'b> Writer<'b> {
     {
         let it = vertices.into_iter();
         let (n, start) = (it.len(), self.len);
-        self.poly_head(Opcode::Poly, n, 4)?;
+        self.poly_head(Opcode::Poly, n)?;
         for v in it.take(n) {
-            let (x, y) = (v.x.to_bits().to_le_bytes(), v.y.to_bits().to_le_bytes());
-            self.put(&[x[0], x[1], y[0], y[1]])?;
+            use layout::poly::{STRIDE, X, Y};
+            self.put(&packed::<STRIDE, 2>([(X, v.x), (Y, v.y)]))?;
         }
-        self.check_count(start, 4, n)
+        self.check_count(start, Opcode::Poly, n)
     }
 
     /// `poly3`: a screen-space polygon with depth, 3..=65535 vertices.
@@ -169,16 +212,12 @@ impl<'b> Writer<'b> {
     {
         let it = vertices.into_iter();
         let (n, start) = (it.len(), self.len);
-        self.poly_head(Opcode::Poly3, n, 6)?;
+        self.poly_head(Opcode::Poly3, n)?;
         for v in it.take(n) {
-            let (x, y, z) = (
-                v.x.to_bits().to_le_bytes(),
-                v.y.to_bits().to_le_bytes(),
-                v.z.to_bits().to_le_bytes(),
-            );
-            self.put(&[x[0], x[1], y[0], y[1], z[0], z[1]])?;
+            use layout::poly3::{STRIDE, X, Y, Z};
+            self.put(&packed::<STRIDE, 3>([(X, v.x), (Y, v.y), (Z, v.z)]))?;
         }
-        self.check_count(start, 6, n)
+        self.check_count(start, Opcode::Poly3, n)
     }
 
     /// `segment`: the 3D commands that follow build segment `id`.
@@ -188,36 +227,48 @@ impl<'b> Writer<'b> {
 
     /// `perspective`: horizontal field of view, near and far planes.
     pub fn perspective(&mut self, fov: Angle, near: Q16, far: Q16) -> Result<(), WriteError> {
-        let mut b = [0u8; 10];
-        b[..2].copy_from_slice(&fov.to_bits().to_le_bytes());
-        b[2..6].copy_from_slice(&near.to_bits().to_le_bytes());
-        b[6..].copy_from_slice(&far.to_bits().to_le_bytes());
-        self.command(Opcode::Perspective, b)
+        use layout::perspective::{FAR, FOV, LEN, NEAR};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Perspective as u8;
+        b[FOV].copy_from_slice(&fov.to_bits().to_le_bytes());
+        b[NEAR].copy_from_slice(&near.to_bits().to_le_bytes());
+        b[FAR].copy_from_slice(&far.to_bits().to_le_bytes());
+        self.whole(b)
     }
 
     /// `ortho`: pixels per world unit, near and far planes.
     pub fn ortho(&mut self, scale: Q16, near: Q16, far: Q16) -> Result<(), WriteError> {
-        self.command(Opcode::Ortho, q16s([scale, near, far]))
+        use layout::ortho::{FAR, LEN, NEAR, SCALE};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Ortho as u8;
+        b[SCALE].copy_from_slice(&scale.to_bits().to_le_bytes());
+        b[NEAR].copy_from_slice(&near.to_bits().to_le_bytes());
+        b[FAR].copy_from_slice(&far.to_bits().to_le_bytes());
+        self.whole(b)
     }
 
     /// `view`: the camera's eye, yaw and pitch.
     pub fn view(&mut self, eye: Point3, yaw: Angle, pitch: Angle) -> Result<(), WriteError> {
-        let mut b = [0u8; 16];
-        b[..12].copy_from_slice(&point(eye));
-        b[12..14].copy_from_slice(&yaw.to_bits().to_le_bytes());
-        b[14..].copy_from_slice(&pitch.to_bits().to_le_bytes());
-        self.command(Opcode::View, b)
+        use layout::view::{EYE, LEN, PITCH, YAW};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::View as u8;
+        b[EYE].copy_from_slice(&point(eye));
+        b[YAW].copy_from_slice(&yaw.to_bits().to_le_bytes());
+        b[PITCH].copy_from_slice(&pitch.to_bits().to_le_bytes());
+        self.whole(b)
     }
 
     /// `light`: the direction toward the light, and its share (0..=100 %).
     pub fn light(&mut self, toward: Point3, percent: u8) -> Result<(), WriteError> {
+        use layout::light::{LEN, PERCENT, TOWARD};
         if percent > 100 {
             return Err(WriteError::BadOperand);
         }
-        let mut b = [0u8; 13];
-        b[..12].copy_from_slice(&point(toward));
-        b[12] = percent;
-        self.command(Opcode::Light, b)
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Light as u8;
+        b[TOWARD].copy_from_slice(&point(toward));
+        b[PERCENT] = percent;
+        self.whole(b)
     }
 
     /// `thickness`: of points and lines, in pixels (≥ 0).
@@ -245,8 +296,12 @@ impl<'b> Writer<'b> {
 
     /// `rotate` about `axis`.
     pub fn rotate(&mut self, axis: Axis, angle: Angle) -> Result<(), WriteError> {
-        let a = angle.to_bits().to_le_bytes();
-        self.command(Opcode::Rotate, [axis as u8, a[0], a[1]])
+        use layout::rotate::{ANGLE, AXIS, LEN};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Rotate as u8;
+        b[AXIS] = axis as u8;
+        b[ANGLE].copy_from_slice(&angle.to_bits().to_le_bytes());
+        self.whole(b)
     }
 
     /// `scale`, per axis.
@@ -262,11 +317,11 @@ impl<'b> Writer<'b> {
     {
         let it = vertices.into_iter();
         let (n, start) = (it.len(), self.len);
-        self.poly_head(Opcode::Face, n, 12)?;
+        self.poly_head(Opcode::Face, n)?;
         for p in it.take(n) {
             self.put(&point(p))?;
         }
-        self.check_count(start, 12, n)
+        self.check_count(start, Opcode::Face, n)
     }
 
     /// `label`: `text` (1..=255 bytes of printable ASCII) at a 3D point.
@@ -275,32 +330,41 @@ impl<'b> Writer<'b> {
         if t.is_empty() || t.len() > MAX_LABEL_LEN || !t.iter().all(|c| (0x20..0x7f).contains(c)) {
             return Err(WriteError::BadOperand);
         }
-        self.reserve(14 + t.len())?;
-        let mut head = [0u8; 13];
-        head[..12].copy_from_slice(&point(at));
-        head[12] = t.len() as u8;
-        self.command(Opcode::Label, head)?;
+        use layout::label::{AT, TEXT, TEXT_LEN};
+        self.reserve(Opcode::Label.layout().size(t.len()))?;
+        let mut head = [0u8; TEXT];
+        head[layout::OPCODE] = Opcode::Label as u8;
+        head[AT].copy_from_slice(&point(at));
+        head[TEXT_LEN] = t.len() as u8;
+        self.whole(head)?;
         self.put(t)
     }
 
     /// Stamps the version and the body length and returns the finished
     /// list's bytes.
     pub fn finish(self) -> &'b [u8] {
-        self.buf[4..6].copy_from_slice(&self.version.to_le_bytes());
+        self.buf[header::VERSION].copy_from_slice(&self.version.to_le_bytes());
         let body = (self.len - HEADER_LEN) as u32;
-        self.buf[12..16].copy_from_slice(&body.to_le_bytes());
+        self.buf[header::BODY_LEN].copy_from_slice(&body.to_le_bytes());
         &self.buf[..self.len]
     }
 }
 
-fn q16s(v: [Q16; 3]) -> [u8; 12] {
-    let mut b = [0u8; 12];
-    for (chunk, q) in b.chunks_exact_mut(4).zip(v) {
-        chunk.copy_from_slice(&q.to_bits().to_le_bytes());
+/// A packed item of `N` bytes: `K` coordinates at their fields.
+fn packed<const N: usize, const K: usize>(fields: [(Field, Coord); K]) -> [u8; N] {
+    let mut b = [0u8; N];
+    for (f, c) in fields {
+        b[f].copy_from_slice(&c.to_bits().to_le_bytes());
     }
     b
 }
 
-fn point(p: Point3) -> [u8; 12] {
-    q16s([p.x, p.y, p.z])
+/// A packed world point.
+fn point(p: Point3) -> [u8; layout::point3::LEN] {
+    use layout::point3::{LEN, X, Y, Z};
+    let mut b = [0u8; LEN];
+    for (f, q) in [(X, p.x), (Y, p.y), (Z, p.z)] {
+        b[f].copy_from_slice(&q.to_bits().to_le_bytes());
+    }
+    b
 }
