@@ -48,24 +48,64 @@
 //! ```
 //!
 //! `c` is the shoelace sum, twice the signed area. For planar vertices
-//! (the contract of `poly3`) this is the polygon's plane exactly. For
-//! vertices that are not quite planar (rounded), Newell's normal is the
-//! usual best fit of the orientation, and the plane is the one with that
-//! normal through the first vertex. (Through the vertex mean would be a
-//! better fit, but the mean is not on the plane of a planar polygon once
-//! rounded, and unrounded it would need `n` times wider numbers.) A
+//! (the contract of `poly3`) this is the polygon's plane exactly; for a
+//! triangle it always is. For vertices that are not planar, see below. A
 //! polygon with `c = 0` is
 //! edge-on: it has no plane in screen space and gets no trapezoid (a planar
 //! one covers no pixel anyway).
 //!
-//! | quantity | bound | type |
-//! |---|---|---|
-//! | a vertex coordinate | \[−2¹⁵, 2¹⁵) | `i16` |
-//! | one Newell term | < 2³² | `i64` |
-//! | `a`, `b`, `c` (≤ 65535 vertices) | < 2⁴⁸ | `i64` |
-//! | `d` | < 2⁶⁵ | `i128` |
-//! | `e = d − a·px − b·py` at a pixel centre | < 2⁶⁷ | `i128` |
-//! | `e₁·c₂` (exact comparison) | < 2¹¹⁵ | `i128` |
+//! # Non-planar polygons
+//!
+//! Newell's normal is the usual best fit of a non-planar polygon's
+//! orientation, and the plane with it through the first vertex is a fair
+//! depth for one that is nearly planar. But when the polygon has little
+//! area for its depths (nearly edge-on, or a bow tie whose halves nearly
+//! cancel), `c` is small and that plane can be thousands of pixels deep at
+//! pixels the polygon covers, while its vertices are inside the format:
+//! outside the range the fixed-point depth and the visible-surface stage
+//! are exact in, so it would be drawn in front of faces it is behind, and
+//! differently by the two ways of resolving a span. A face of the
+//! geometry stage is such a polygon when it is seen nearly edge-on: the
+//! near clip and the projection round its vertices. So [`Polygon::load`]
+//! keeps every polygon's depth inside its vertices' depth range
+//! `[z_min, z_max]`:
+//!
+//! * the plane is Newell's when its depth lies in `[z_min, z_max]` at both
+//!   ends of every edge set up (the edges that cross a row centre inside
+//!   the clip rows). Every covered pixel centre lies on a row between two
+//!   of those edges' crossings, so in their ends' convex hull, where the
+//!   plane's depth is between its values at the ends: inside
+//!   `[z_min, z_max]` too. Every planar polygon passes (its plane is its
+//!   vertices' depth there), unchanged;
+//! * otherwise the plane is *flattened*: its slopes are scaled by
+//!   `k / 2¹⁶` (`a` and `b` times `k / 2¹⁶`, rounded toward zero; `c` and
+//!   the first vertex kept) with `k` found by bisection so that the depth
+//!   is in `[z_min, z_max]` at those ends and would not be at `k + 1`. At
+//!   `k = 0` the plane is the constant depth `z₀`, which is. So a polygon
+//!   that rounding moved a little off its plane keeps nearly all of its
+//!   slope. It costs 17 more passes over the edges, only for such
+//!   polygons.
+//!
+//! So a non-planar `poly3` (or face) is drawn with the pixel rule's
+//! coverage, as every polygon is, and the depth of one plane through its
+//! first vertex, between its vertices' depths: Newell's, or Newell's
+//! flattened when that leaves them. That plane is compared exactly, in
+//! both ways of resolving, so both draw the same pixels.
+//!
+//! # Depth ranges
+//!
+//! Every plane a polygon is loaded with has, at every pixel centre the
+//! polygon covers, an exact depth between its vertices' depths, inside
+//! the Q12.4 range \[−2¹⁵, 2¹⁵) units. Scaled by 2¹⁴ (below) that is
+//! \[−2²⁹, 2²⁹), and the fixed-point value `Z̃` is within 2¹² of it, so
+//! `|Z̃| < 2²⁹ + 2¹²` at every covered pixel, and the difference of two
+//! faces' `Z̃` at a pixel both cover is below `2³⁰ + 2¹³ < 2³¹`: the
+//! visible-surface stage's `i32` depth differences never wrap, and its
+//! `i64` crossing-point products (a difference times a run of at most
+//! 2¹² pixels) stay below 2⁴³. Both ways of resolving a span therefore
+//! compare the same planes exactly and draw the same pixels, planar or
+//! not. `host_tests/tests/depth_range.rs` tests the corners of the range
+//! and random non-planar polygons with overflow checks on.
 //!
 //! # Depth in fixed point
 //!
@@ -87,9 +127,9 @@
 //! closer ones are compared exactly with [`Plane::cmp_at`]. The value is
 //! exact modulo 2³², so huge slopes (faces nearly edge-on) wrap but still
 //! give the right depth wherever the true depth is in range: inside a
-//! planar polygon it lies between its vertices' depths, in
-//! \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it. Tiny slopes
-//! round to zero within the same error bound.
+//! polygon it lies between its vertices' depths (see *Depth ranges*
+//! above), in \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it.
+//! Tiny slopes round to zero within the same error bound.
 //!
 //! Each set-up costs three divisions per polygon (in `i64` when the numbers
 //! fit, which is the case for ordinary polygons, else in `i128`) and two
@@ -132,6 +172,8 @@ struct PlaneSums {
     c: i64,
     first: Vertex3,
     n: i64,
+    /// The vertices' least and greatest depth, in units.
+    z: (i32, i32),
 }
 
 impl PlaneSums {
@@ -146,7 +188,9 @@ impl PlaneSums {
         self.c += (px - qx) * (py + qy);
         if self.n == 0 {
             self.first = p;
+            self.z = (p.z.units(), p.z.units());
         }
+        self.z = (self.z.0.min(q.z.units()), self.z.1.max(q.z.units()));
         self.n += 1;
     }
 
@@ -196,6 +240,48 @@ impl Plane {
         }
         sums.edge(prev, first);
         sums.finish()
+    }
+
+    /// `true` when `v` lies on the plane exactly: always for the vertices
+    /// of a triangle, for all vertices of a planar polygon.
+    pub fn contains(&self, v: Vertex3) -> bool {
+        let (x, y, z) = (
+            v.x.units() as i128,
+            v.y.units() as i128,
+            v.z.units() as i128,
+        );
+        // Each product below 2⁶³, the sum below 2⁶⁵.
+        self.a as i128 * x + self.b as i128 * y + self.c as i128 * z == self.d
+    }
+
+    /// `true` when the plane's depth at the point `(x, y)` (units, each
+    /// within `i16`) lies in `lo..=hi` (units, each within `i16`).
+    pub fn depth_within(&self, x: i32, y: i32, (lo, hi): (i32, i32)) -> bool {
+        // e < 2⁶⁷ (the table above), lo·c and hi·c below 2⁶³.
+        let e = self.d - self.a as i128 * x as i128 - self.b as i128 * y as i128;
+        let c = self.c as i128;
+        e >= lo as i128 * c && e <= hi as i128 * c
+    }
+
+    /// The plane through the same first vertex with the slopes scaled by
+    /// `k / 2¹⁶` (`0 ≤ k ≤ 2¹⁶`), rounded toward zero: `(a·k / 2¹⁶,
+    /// b·k / 2¹⁶, c)`. With `k = 0`, the plane of constant depth `z₀`.
+    fn flattened(&self, k: i64) -> Plane {
+        // |a|·k < 2⁶⁴ in `i128`; the quotient is below |a|.
+        let scale = |v: i64| (v as i128 * k as i128 / (1 << 16)) as i64;
+        let (a, b, c) = (scale(self.a), scale(self.b), self.c);
+        let (x, y, z) = (
+            self.origin.0 as i128,
+            self.origin.1 as i128,
+            self.origin.2 as i128,
+        );
+        Plane {
+            a,
+            b,
+            c,
+            d: a as i128 * x + b as i128 * y + c as i128 * z,
+            origin: self.origin,
+        }
     }
 
     /// The normal `(a, b, c)`, `c > 0`.
@@ -579,7 +665,9 @@ pub struct Polygon<'s> {
 impl<'s> Polygon<'s> {
     /// Sets up the edges of the polygon through `vertices` (closed
     /// implicitly) that cross a row centre inside `clip`, and its plane,
-    /// in one pass over the vertices.
+    /// in one pass over the vertices, then one over the edges (a few for a
+    /// plane that leaves its vertices' depth range: see *Non-planar polygons* in the
+    /// [module](self) docs).
     ///
     /// Only edges inside the clip rows take a slot. A polygon whose box
     /// misses the clip columns loads no edge.
@@ -620,12 +708,41 @@ impl<'s> Polygon<'s> {
         }
         sums.edge(prev, first);
         poly.push(prev, first, rows)?;
-        poly.plane = sums.finish();
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
             poly.edges = 0;
         }
+        poly.plane = sums.finish().map(|p| poly.bounded(p, sums.z));
         Ok(poly)
+    }
+
+    /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
+    /// an end of an edge set up, a flattened plane whose depth does not
+    /// (see *Non-planar polygons* in the [module](self) docs).
+    fn bounded(&self, plane: Plane, z: (i32, i32)) -> Plane {
+        let holds = |p: &Plane| {
+            self.slots[..self.edges].iter().all(|e| {
+                let e = &e.ends;
+                p.depth_within(e.x0 as i32, e.y0 as i32, z)
+                    && p.depth_within(e.x1 as i32, e.y1 as i32, z)
+            })
+        };
+        if holds(&plane) {
+            return plane;
+        }
+        // The plane scaled by k/2¹⁶ holds at k = 0 (the depth z₀ of a
+        // vertex) and not at k = 2¹⁶: bisect for a k that holds with
+        // k + 1 failing, 16 more checks.
+        let (mut lo, mut hi) = (0i64, 1i64 << 16);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if holds(&plane.flattened(mid)) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        plane.flattened(lo)
     }
 
     fn push(&mut self, p: Vertex3, q: Vertex3, rows: (i32, i32)) -> Result<(), LoadError> {
@@ -661,7 +778,8 @@ impl<'s> Polygon<'s> {
         Ok(())
     }
 
-    /// The polygon's plane, `None` when it is edge-on.
+    /// The polygon's plane, `None` when it is edge-on: Newell's, or
+    /// flattened into its vertices' depth range when that leaves it.
     pub fn plane(&self) -> Option<&Plane> {
         self.plane.as_ref()
     }
@@ -1035,11 +1153,81 @@ mod tests {
         }
     }
 
+    /// The plane a polygon is loaded with: Newell's for planar polygons;
+    /// for others, between the vertices' depths at every covered pixel,
+    /// and Newell's itself whenever that is.
+    #[test]
+    fn loaded_planes_stay_between_the_vertices_depths() {
+        let mut rng = Rng(0x0bad_5eed);
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 8];
+        let mut flattened = 0;
+        for case in 0..3000 {
+            let n = 3 + rng.below(5) as usize;
+            let mut poly = [Vertex3::default(); 8];
+            let wide = case % 2 == 0;
+            for v in poly.iter_mut().take(n) {
+                let x = rng.below(16 * W as u32) as i32;
+                let y = rng.below(16 * H as u32) as i32;
+                let z = if wide {
+                    rng.below(65536) as i32 - 32768
+                } else {
+                    rng.below(64) as i32
+                };
+                *v = v3(x, y, z);
+            }
+            let poly = &poly[..n];
+            let (zmin, zmax) = poly.iter().fold((i32::MAX, i32::MIN), |(a, b), v| {
+                (a.min(v.z.units()), b.max(v.z.units()))
+            });
+            let newell = Plane::of(poly.iter().copied());
+            let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+            let got = p.plane().copied();
+            assert_eq!(got.is_some(), newell.is_some());
+            let (Some(got), Some(newell)) = (got, newell) else {
+                continue;
+            };
+            let inside = |pl: &Plane| {
+                (0..H).all(|j| {
+                    (0..W).all(|i| {
+                        !covers(poly, i, j) || {
+                            let (e, c) = pl.depth_at(i, j);
+                            zmin as i128 * c as i128 <= e && e <= zmax as i128 * c as i128
+                        }
+                    })
+                })
+            };
+            assert!(inside(&got), "{poly:?}");
+            if got != newell {
+                flattened += 1;
+                assert!(!inside(&newell) || !poly.iter().all(|&v| newell.contains(v)));
+            }
+            if poly.iter().all(|&v| newell.contains(v)) {
+                assert_eq!(got, newell);
+            }
+        }
+        assert!(flattened > 100, "{flattened}");
+    }
+
+    #[test]
+    fn triangles_are_never_flattened() {
+        let mut rng = Rng(0x7777_1234);
+        let clip = ClipRect::full(4096, 4096);
+        let mut slots = [EdgeSlot::EMPTY; 3];
+        for _ in 0..3000 {
+            let mut r = || rng.below(65536) as i32 - 32768;
+            let tri = [v3(r(), r(), r()), v3(r(), r(), r()), v3(r(), r(), r())];
+            let p = Polygon::load(&mut slots, tri, &clip).unwrap();
+            assert_eq!(p.plane().copied(), Plane::of(tri));
+        }
+    }
+
     #[test]
     fn extreme_coordinates_do_not_overflow() {
         let m = [i16::MIN as i32, -1, 0, 1, i16::MAX as i32];
         let clip = ClipRect::full(4096, 4096);
         let mut slots = [EdgeSlot::EMPTY; 3];
+        let mut wide = [EdgeSlot::EMPTY; 4];
         for &x in &m {
             for &y in &m {
                 for &z in &m {
@@ -1056,6 +1244,14 @@ mod tests {
                     }
                     let poly = Polygon::load(&mut slots, tri, &clip).unwrap();
                     let _ = poly.cut(|_, _| Ok::<(), ()>(()));
+                    // A bow tie through the same corners, far from planar.
+                    let bow = [tri[0], tri[1], v3(neg(y), x, z), tri[2]];
+                    let poly = Polygon::load(&mut wide, bow, &clip).unwrap();
+                    if let Some(p) = poly.plane() {
+                        let d = p.depth();
+                        let _ = d.at(4095, 4095);
+                        let _ = p.cmp_at(p, 4096, 4096);
+                    }
                 }
             }
         }
