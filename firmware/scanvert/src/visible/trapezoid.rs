@@ -720,14 +720,32 @@ impl<'s> Polygon<'s> {
     /// an end of an edge set up, a flattened plane whose depth does not
     /// (see *Non-planar polygons* in the [module](self) docs).
     fn bounded(&self, plane: Plane, z: (i32, i32)) -> Plane {
+        let slots = &self.slots[..self.edges];
         let holds = |p: &Plane| {
-            self.slots[..self.edges].iter().all(|e| {
+            slots.iter().all(|e| {
                 let e = &e.ends;
                 p.depth_within(e.x0 as i32, e.y0 as i32, z)
                     && p.depth_within(e.x1 as i32, e.y1 as i32, z)
             })
         };
-        if holds(&plane) {
+        // The usual case, in `i64`: with |a|, |b|, |c| < 2³¹, d is below
+        // 2⁴⁸, e = d − a·x − b·y below 2⁴⁹, z·c below 2⁴⁶.
+        let (a, b, c) = plane.normal();
+        let small = |v: i64| v.unsigned_abs() < 1 << 31;
+        if small(a) && small(b) && small(c) {
+            let d = plane.offset() as i64;
+            let (lo, hi) = (z.0 as i64 * c, z.1 as i64 * c);
+            let within = |x: i16, y: i16| {
+                let e = d - a * x as i64 - b * y as i64;
+                lo <= e && e <= hi
+            };
+            if slots
+                .iter()
+                .all(|s| within(s.ends.x0, s.ends.y0) && within(s.ends.x1, s.ends.y1))
+            {
+                return plane;
+            }
+        } else if holds(&plane) {
             return plane;
         }
         // The plane scaled by k/2¹⁶ holds at k = 0 (the depth z₀ of a
