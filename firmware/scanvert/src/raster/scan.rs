@@ -5,7 +5,8 @@
 //! window's rows) and sorted by first row. Row by row, edges whose first
 //! row has come join the active list, every active edge yields the pixel
 //! `⌈x − ½⌉` of its crossing, an insertion sort (nearly free, since the
-//! order rarely changes from one row to the next) orders them, and
+//! order rarely changes from one row to the next; with a budget, past
+//! which an `O(n log n)` sort takes over) orders them, and
 //! crossings are paired 1st–2nd, 3rd–4th, …: each pair is the span
 //! `c₁..c₂`, cut to the clip window's columns. Rows where nothing is active
 //! are jumped over.
@@ -290,11 +291,25 @@ fn emit<T: SpanTarget + ?Sized>(
 }
 
 /// Sorts by crossing pixel; linear when the order is the last row's.
+///
+/// An insertion sort costs one step per inversion: nothing on a row whose
+/// order is the last row's, but `n²/2` when many edges join in another
+/// order (a zigzag of `n` edges that all start on one row, listed right
+/// to left) or cross on one row. So it has a budget of `4n` swaps, and
+/// past it the library's unstable sort (`O(n log n)`, no allocation)
+/// finishes the job. Equal pixels may come in any order: the spans are
+/// the same.
 #[inline]
 fn insertion_sort<S: Stepper>(e: &mut [S]) {
+    let mut budget = 4 * e.len();
     for i in 1..e.len() {
         let mut j = i;
         while j > 0 && e[j - 1].pixel() > e[j].pixel() {
+            if budget == 0 {
+                e.sort_unstable_by_key(|s| s.pixel());
+                return;
+            }
+            budget -= 1;
             e.swap(j - 1, j);
             j -= 1;
         }
@@ -392,6 +407,52 @@ mod tests {
                 }
             }
             assert_eq!(counts.pixels, covered);
+        }
+    }
+
+    /// Zigzags of many edges that all start on one row, listed right to
+    /// left (the insertion sort's worst order, past its budget), and
+    /// random many-edged polygons whose edges cross on many rows: every
+    /// pixel is the rule's.
+    #[test]
+    fn many_edges_out_of_order_match_the_pixel_rule() {
+        let mut s = 0x1357_9bdfu32;
+        let mut rnd = |m: u32| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            s % m
+        };
+        let mut px = [BinaryColor::Off; W as usize * H as usize];
+        let mut slots = [Edge::EMPTY; 200];
+        let clip = ClipRect::full(W, H);
+        for case in 0..60 {
+            let n = 40 + rnd(160) as usize;
+            let mut poly = [Vertex::default(); 200];
+            for (k, v) in poly.iter_mut().take(n).enumerate() {
+                *v = if case % 2 == 0 {
+                    // Right to left, top and bottom in turn.
+                    let x = (W as i32 * 16 - 1) * (n - 1 - k) as i32 / (n - 1) as i32;
+                    let y = if k % 2 == 0 { 3 } else { H as i32 * 16 - 5 };
+                    Vertex::from_bits(x as i16, y as i16)
+                } else {
+                    let x = rnd(W as u32 * 16) as i16;
+                    let y = rnd(H as u32 * 16) as i16;
+                    Vertex::from_bits(x, y)
+                };
+            }
+            let poly = &poly[..n];
+            px.fill(BinaryColor::Off);
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            Rasterizer::new(&mut slots)
+                .fill(poly.iter().copied(), &clip, BinaryColor::On, &mut fb)
+                .unwrap();
+            for j in 0..H as i32 {
+                for i in 0..W as i32 {
+                    let got = fb.pixel(i as u16, j as u16) == Some(BinaryColor::On);
+                    assert_eq!(got, covers(poly, i, j), "case {case} pixel ({i}, {j})");
+                }
+            }
         }
     }
 }

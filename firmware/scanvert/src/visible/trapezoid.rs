@@ -943,15 +943,23 @@ fn cmp_x(a: &EdgeSlot, b: &EdgeSlot, j: i32) -> Ordering {
     (na * db).cmp(&(nb * da))
 }
 
-/// Insertion sort by the crossing on row `y`, ties by row `last`.
+/// Insertion sort by the crossing on row `y`, ties by row `last`: one
+/// step per inversion, so linear when the order is the last band's. With
+/// a budget of `4n` swaps, past which the library's unstable sort
+/// (`O(n log n)`, no allocation) finishes, so that many edges joining in
+/// another order, or crossing in one band, cost `O(n log n)`, not `n²/2`.
+/// The order is total (exact crossings compared lexicographically).
 fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
+    let cmp = |a: &EdgeSlot, b: &EdgeSlot| cmp_x(a, b, y).then_with(|| cmp_x(a, b, last));
+    let mut budget = 4 * e.len();
     for i in 1..e.len() {
         let mut j = i;
-        while j > 0
-            && cmp_x(&e[j - 1], &e[j], y)
-                .then_with(|| cmp_x(&e[j - 1], &e[j], last))
-                .is_gt()
-        {
+        while j > 0 && cmp(&e[j - 1], &e[j]).is_gt() {
+            if budget == 0 {
+                e.sort_unstable_by(cmp);
+                return;
+            }
+            budget -= 1;
             swap(e, j - 1, j);
             j -= 1;
         }
@@ -1095,6 +1103,41 @@ mod tests {
         for j in 0..H {
             for i in 0..W {
                 assert_eq!(hit[(j * W + i) as usize], covers(&bow, i, j) as u8);
+            }
+        }
+    }
+
+    /// Zigzags of many edges that all start on one row, listed right to
+    /// left (past the insertion sort's budget), and random many-edged
+    /// polygons: the trapezoids still cover the pixel rule once.
+    #[test]
+    fn many_edges_out_of_order_cover_the_pixel_rule_once() {
+        let mut rng = Rng(0x2468_ace1);
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 160];
+        for case in 0..40 {
+            let n = 40 + rng.below(120) as usize;
+            let mut poly = [Vertex3::default(); 160];
+            for (k, v) in poly.iter_mut().take(n).enumerate() {
+                *v = if case % 2 == 0 {
+                    let x = (W * 16 - 1) * (n - 1 - k) as i32 / (n - 1) as i32;
+                    let y = if k % 2 == 0 { 3 } else { H * 16 - 5 };
+                    v3(x, y, 0)
+                } else {
+                    v3(
+                        rng.below(W as u32 * 16) as i32,
+                        rng.below(H as u32 * 16) as i32,
+                        0,
+                    )
+                };
+            }
+            let poly = &poly[..n];
+            let (hit, _) = hits(poly, &clip, &mut slots);
+            for j in 0..H {
+                for i in 0..W {
+                    let want = covers(poly, i, j) as u8;
+                    assert_eq!(hit[(j * W + i) as usize], want, "case {case} ({i}, {j})");
+                }
             }
         }
     }
