@@ -296,9 +296,8 @@ fn emit<T: SpanTarget + ?Sized>(
 /// order is the last row's, but `n²/2` when many edges join in another
 /// order (a zigzag of `n` edges that all start on one row, listed right
 /// to left) or cross on one row. So it has a budget of `4n` swaps, and
-/// past it the library's unstable sort (`O(n log n)`, no allocation)
-/// finishes the job. Equal pixels may come in any order: the spans are
-/// the same.
+/// past it a heap sort ([`heap_sort`], `O(n log n)`, in place) finishes
+/// the job. Equal pixels may come in any order: the spans are the same.
 #[inline]
 fn insertion_sort<S: Stepper>(e: &mut [S]) {
     let mut budget = 4 * e.len();
@@ -306,13 +305,44 @@ fn insertion_sort<S: Stepper>(e: &mut [S]) {
         let mut j = i;
         while j > 0 && e[j - 1].pixel() > e[j].pixel() {
             if budget == 0 {
-                e.sort_unstable_by_key(|s| s.pixel());
+                heap_sort(e, |a, b| a.pixel() < b.pixel());
                 return;
             }
             budget -= 1;
             e.swap(j - 1, j);
             j -= 1;
         }
+    }
+}
+
+/// Sorts `v` by `less` (a strict weak order) with a heap sort: in place,
+/// `O(n log n)` compares whatever the order, and a few hundred bytes of
+/// code (the core library's sort is tens of kilobytes per element type,
+/// too much on a microcontroller for a fallback).
+#[inline(never)]
+pub(crate) fn heap_sort<T>(v: &mut [T], less: impl Fn(&T, &T) -> bool) {
+    // Moves v[root] down the heap of v[..end].
+    let sift = |v: &mut [T], mut root: usize, end: usize| loop {
+        let mut child = 2 * root + 1;
+        if child >= end {
+            return;
+        }
+        if child + 1 < end && less(&v[child], &v[child + 1]) {
+            child += 1;
+        }
+        if !less(&v[root], &v[child]) {
+            return;
+        }
+        v.swap(root, child);
+        root = child;
+    };
+    let n = v.len();
+    for root in (0..n / 2).rev() {
+        sift(v, root, n);
+    }
+    for end in (1..n).rev() {
+        v.swap(0, end);
+        sift(v, 0, end);
     }
 }
 
@@ -453,6 +483,24 @@ mod tests {
                     assert_eq!(got, covers(poly, i, j), "case {case} pixel ({i}, {j})");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn heap_sort_sorts() {
+        let mut s = 0x9e37_79b9u32;
+        for n in 0..70 {
+            let mut v = [0u32; 70];
+            for x in v.iter_mut().take(n) {
+                s ^= s << 13;
+                s ^= s >> 17;
+                s ^= s << 5;
+                *x = s % (1 + n as u32 / 2);
+            }
+            let mut want = v;
+            want[..n].sort_unstable();
+            heap_sort(&mut v[..n], |a, b| a < b);
+            assert_eq!(v[..n], want[..n]);
         }
     }
 }

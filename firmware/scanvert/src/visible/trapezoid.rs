@@ -138,6 +138,7 @@
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::Edge;
+use crate::raster::scan::heap_sort;
 use core::cmp::Ordering;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -945,8 +946,8 @@ fn cmp_x(a: &EdgeSlot, b: &EdgeSlot, j: i32) -> Ordering {
 
 /// Insertion sort by the crossing on row `y`, ties by row `last`: one
 /// step per inversion, so linear when the order is the last band's. With
-/// a budget of `4n` swaps, past which the library's unstable sort
-/// (`O(n log n)`, no allocation) finishes, so that many edges joining in
+/// a budget of `4n` swaps, past which a heap sort
+/// ([`heap_sort`], `O(n log n)`, in place) finishes, so that many edges joining in
 /// another order, or crossing in one band, cost `O(n log n)`, not `n²/2`.
 /// The order is total (exact crossings compared lexicographically).
 fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
@@ -956,7 +957,7 @@ fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
         let mut j = i;
         while j > 0 && cmp(&e[j - 1], &e[j]).is_gt() {
             if budget == 0 {
-                e.sort_unstable_by(cmp);
+                heap_sort(e, |a, b| cmp(a, b).is_lt());
                 return;
             }
             budget -= 1;
