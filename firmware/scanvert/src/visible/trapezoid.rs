@@ -713,7 +713,12 @@ impl<'s> Polygon<'s> {
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
             poly.edges = 0;
         }
-        poly.plane = sums.finish().map(|p| poly.bounded(p, sums.z));
+        // A triangle's plane passes through its three vertices: nothing to
+        // check.
+        poly.plane = match count {
+            ..=3 => sums.finish(),
+            _ => sums.finish().map(|p| poly.bounded(p, sums.z)),
+        };
         Ok(poly)
     }
 
@@ -730,14 +735,14 @@ impl<'s> Polygon<'s> {
             })
         };
         // The usual case, in `i64`: with |a|, |b|, |c| < 2³¹, d is below
-        // 2⁴⁸, e = d − a·x − b·y below 2⁴⁹, z·c below 2⁴⁶.
+        // 2⁴⁸, e = d − a·x − b·y below 2⁴⁹, z·c below 2⁴⁶, and each
+        // product is one 32 × 32 → 64-bit multiply.
         let (a, b, c) = plane.normal();
-        let small = |v: i64| v.unsigned_abs() < 1 << 31;
-        if small(a) && small(b) && small(c) {
+        if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
             let d = plane.offset() as i64;
             let (lo, hi) = (z.0 as i64 * c, z.1 as i64 * c);
             let within = |x: i16, y: i16| {
-                let e = d - a * x as i64 - b * y as i64;
+                let e = d - a as i64 * x as i64 - b as i64 * y as i64;
                 lo <= e && e <= hi
             };
             if slots
