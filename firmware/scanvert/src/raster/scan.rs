@@ -5,7 +5,8 @@
 //! window's rows) and sorted by first row. Row by row, edges whose first
 //! row has come join the active list, every active edge yields the pixel
 //! `⌈x − ½⌉` of its crossing, an insertion sort (nearly free, since the
-//! order rarely changes from one row to the next) orders them, and
+//! order rarely changes from one row to the next; with a budget, past
+//! which an `O(n log n)` sort takes over) orders them, and
 //! crossings are paired 1st–2nd, 3rd–4th, …: each pair is the span
 //! `c₁..c₂`, cut to the clip window's columns. Rows where nothing is active
 //! are jumped over.
@@ -347,14 +348,58 @@ fn emit_rows<T: SpanTarget + ?Sized>(
 }
 
 /// Sorts by crossing pixel; linear when the order is the last row's.
+///
+/// An insertion sort costs one step per inversion: nothing on a row whose
+/// order is the last row's, but `n²/2` when many edges join in another
+/// order (a zigzag of `n` edges that all start on one row, listed right
+/// to left) or cross on one row. So it has a budget of `4n` swaps, and
+/// past it a heap sort ([`heap_sort`], `O(n log n)`, in place) finishes
+/// the job. Equal pixels may come in any order: the spans are the same.
 #[inline]
 fn insertion_sort<S: Stepper>(e: &mut [S]) {
+    let mut budget = 4 * e.len();
     for i in 1..e.len() {
         let mut j = i;
         while j > 0 && e[j - 1].pixel() > e[j].pixel() {
+            if budget == 0 {
+                heap_sort(e, |a, b| a.pixel() < b.pixel());
+                return;
+            }
+            budget -= 1;
             e.swap(j - 1, j);
             j -= 1;
         }
+    }
+}
+
+/// Sorts `v` by `less` (a strict weak order) with a heap sort: in place,
+/// `O(n log n)` compares whatever the order, and a few hundred bytes of
+/// code (the core library's sort is tens of kilobytes per element type,
+/// too much on a microcontroller for a fallback).
+#[inline(never)]
+pub(crate) fn heap_sort<T>(v: &mut [T], less: impl Fn(&T, &T) -> bool) {
+    // Moves v[root] down the heap of v[..end].
+    let sift = |v: &mut [T], mut root: usize, end: usize| loop {
+        let mut child = 2 * root + 1;
+        if child >= end {
+            return;
+        }
+        if child + 1 < end && less(&v[child], &v[child + 1]) {
+            child += 1;
+        }
+        if !less(&v[root], &v[child]) {
+            return;
+        }
+        v.swap(root, child);
+        root = child;
+    };
+    let n = v.len();
+    for root in (0..n / 2).rev() {
+        sift(v, root, n);
+    }
+    for end in (1..n).rev() {
+        v.swap(0, end);
+        sift(v, 0, end);
     }
 }
 
@@ -449,6 +494,70 @@ mod tests {
                 }
             }
             assert_eq!(counts.pixels, covered);
+        }
+    }
+
+    /// Zigzags of many edges that all start on one row, listed right to
+    /// left (the insertion sort's worst order, past its budget), and
+    /// random many-edged polygons whose edges cross on many rows: every
+    /// pixel is the rule's.
+    #[test]
+    fn many_edges_out_of_order_match_the_pixel_rule() {
+        let mut s = 0x1357_9bdfu32;
+        let mut rnd = |m: u32| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            s % m
+        };
+        let mut px = [BinaryColor::Off; W as usize * H as usize];
+        let mut slots = [Edge::EMPTY; 200];
+        let clip = ClipRect::full(W, H);
+        for case in 0..60 {
+            let n = 40 + rnd(160) as usize;
+            let mut poly = [Vertex::default(); 200];
+            for (k, v) in poly.iter_mut().take(n).enumerate() {
+                *v = if case % 2 == 0 {
+                    // Right to left, top and bottom in turn.
+                    let x = (W as i32 * 16 - 1) * (n - 1 - k) as i32 / (n - 1) as i32;
+                    let y = if k % 2 == 0 { 3 } else { H as i32 * 16 - 5 };
+                    Vertex::from_bits(x as i16, y as i16)
+                } else {
+                    let x = rnd(W as u32 * 16) as i16;
+                    let y = rnd(H as u32 * 16) as i16;
+                    Vertex::from_bits(x, y)
+                };
+            }
+            let poly = &poly[..n];
+            px.fill(BinaryColor::Off);
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            Rasterizer::new(&mut slots)
+                .fill(poly.iter().copied(), &clip, BinaryColor::On, &mut fb)
+                .unwrap();
+            for j in 0..H as i32 {
+                for i in 0..W as i32 {
+                    let got = fb.pixel(i as u16, j as u16) == Some(BinaryColor::On);
+                    assert_eq!(got, covers(poly, i, j), "case {case} pixel ({i}, {j})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn heap_sort_sorts() {
+        let mut s = 0x9e37_79b9u32;
+        for n in 0..70 {
+            let mut v = [0u32; 70];
+            for x in v.iter_mut().take(n) {
+                s ^= s << 13;
+                s ^= s >> 17;
+                s ^= s << 5;
+                *x = s % (1 + n as u32 / 2);
+            }
+            let mut want = v;
+            want[..n].sort_unstable();
+            heap_sort(&mut v[..n], |a, b| a < b);
+            assert_eq!(v[..n], want[..n]);
         }
     }
 }

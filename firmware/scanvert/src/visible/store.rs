@@ -14,9 +14,9 @@
 //!
 //! | pool | slot (32-bit targets) | holds | limit |
 //! |---|---|---|---|
-//! | trapezoids | [`Trapezoid`], 96 bytes | edges, depth, colour, face, segment, links | 65535 |
-//! | faces | [`Face`], 64 bytes | exact plane, colour, tie key | 65535 |
-//! | segments | [`Segment`], 28 bytes | chains and counters | 65535 |
+//! | trapezoids | [`Trapezoid`], 96 bytes | edges, depth, colour, face, segment, links | [`MAX_POOL`] |
+//! | faces | [`Face`], 64 bytes | exact plane, colour, tie key | [`MAX_POOL`] |
+//! | segments | [`Segment`], 28 bytes | chains and counters | [`MAX_POOL`] |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
 //! | edge slots | [`EdgeSlot`], 32 bytes | scratch while a polygon is cut | its vertex count |
 //!
@@ -24,6 +24,14 @@
 //! list, threaded through the trapezoids, of the trapezoids whose top row
 //! it is. Everything else grows with the scene. Adding a trapezoid and
 //! removing one are O(1).
+//!
+//! Links and the indices of trapezoids, faces and segments are `u16`, and
+//! `0xffff` is "none". So a pool addresses at most [`MAX_POOL`] = 65535
+//! slots: [`TrapezoidStore::new`] takes any slice and uses its first
+//! 65535 slots when it is longer (the rest is left alone), which
+//! [`TrapezoidStore::capacity`] and the errors report. A scene that needs
+//! more gets [`StoreError::Trapezoids`] or [`StoreError::Faces`], never a
+//! wrong link.
 //!
 //! # Errors
 //!
@@ -237,8 +245,8 @@ impl From<LoadError> for StoreError {
 }
 
 /// The caller's memory for a [`TrapezoidStore`]. Every slice may have any
-/// length; pools use at most 65535 slots, the index at least the frame's
-/// height.
+/// length; the pools (trapezoids, faces, segments) use at most their first
+/// [`MAX_POOL`] slots, the index needs at least the frame's height.
 #[derive(Debug)]
 pub struct StoreMemory<'a> {
     /// The trapezoid pool.
@@ -292,14 +300,21 @@ pub struct TrapezoidStore<'a> {
     live_faces: u32,
 }
 
-/// Usable slots of a pool: `NONE` is reserved.
-fn pool_len(len: usize) -> u16 {
-    len.min(NONE as usize) as u16
+/// Most slots a pool of the store uses: its indices are `u16`, and
+/// `0xffff` is the "none" link, so slot 65535 cannot be addressed.
+pub const MAX_POOL: usize = NONE as usize;
+
+/// The part of a pool the store uses: at most [`MAX_POOL`] slots, so that
+/// no slot's index is `NONE`.
+fn pool<T>(p: &mut [T]) -> &mut [T] {
+    let n = p.len().min(MAX_POOL);
+    &mut p[..n]
 }
 
 impl<'a> TrapezoidStore<'a> {
     /// An empty store for a `width × height` frame (each side at most
-    /// 4096). Fails when the index has fewer rows than the frame.
+    /// 4096). Fails when the index has fewer rows than the frame. Of a pool
+    /// longer than [`MAX_POOL`], the first [`MAX_POOL`] slots are used.
     pub fn new(mem: StoreMemory<'a>, width: u16, height: u16) -> Result<Self, StoreError> {
         let height = height.min(4096);
         let capacity = mem.rows.len();
@@ -308,13 +323,14 @@ impl<'a> TrapezoidStore<'a> {
             .get_mut(..height as usize)
             .ok_or(StoreError::Rows { height, capacity })?;
         rows.fill(NONE);
-        for s in mem.segments.iter_mut() {
+        let segments = pool(mem.segments);
+        for s in segments.iter_mut() {
             *s = Segment::EMPTY;
         }
         Ok(TrapezoidStore {
-            traps: mem.trapezoids,
-            faces: mem.faces,
-            segments: mem.segments,
+            traps: pool(mem.trapezoids),
+            faces: pool(mem.faces),
+            segments,
             rows,
             edges: mem.edges,
             width: width.min(4096),
@@ -353,9 +369,14 @@ impl<'a> TrapezoidStore<'a> {
         self.live_faces as usize
     }
 
-    /// Trapezoid slots.
+    /// Trapezoid slots (at most [`MAX_POOL`]).
     pub fn capacity(&self) -> usize {
-        pool_len(self.traps.len()) as usize
+        self.traps.len()
+    }
+
+    /// Face slots (at most [`MAX_POOL`]).
+    pub fn face_capacity(&self) -> usize {
+        self.faces.len()
     }
 
     /// Segment `s`.
@@ -547,11 +568,8 @@ impl<'a> TrapezoidStore<'a> {
                 Some(f) => f,
                 None => {
                     let cap = faces.len();
-                    let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next).ok_or(
-                        StoreError::Faces {
-                            capacity: pool_len(cap) as usize,
-                        },
-                    )?;
+                    let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next)
+                        .ok_or(StoreError::Faces { capacity: cap })?;
                     faces[f as usize] = Face {
                         plane,
                         color,
@@ -567,11 +585,8 @@ impl<'a> TrapezoidStore<'a> {
                 }
             };
             let cap = traps.len();
-            let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg).ok_or(
-                StoreError::Trapezoids {
-                    capacity: pool_len(cap) as usize,
-                },
-            )?;
+            let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
+                .ok_or(StoreError::Trapezoids { capacity: cap })?;
             let mut tr = Trapezoid::new(l, r, &depth, f, color, &clip);
             tr.segment = s as u16;
             // Rows are inside the frame: the edges were cut to the clip.
@@ -634,7 +649,6 @@ impl crate::geometry::PolygonSink for SegmentSink<'_, '_> {
     }
 }
 
-/// Takes a slot from a pool: the free list first, then never-used slots.
 /// Segment `s` of `segments`, or the error that names it.
 fn segment_at(segments: &mut [Segment], s: usize) -> Result<&mut Segment, StoreError> {
     let capacity = segments.len();
@@ -644,12 +658,14 @@ fn segment_at(segments: &mut [Segment], s: usize) -> Result<&mut Segment, StoreE
     })
 }
 
+/// Takes a slot from a pool: the free list first, then never-used slots.
+/// `len` is at most [`MAX_POOL`], so a slot taken is never `NONE`.
 fn alloc(free: &mut u16, unused: &mut u16, len: usize, next: impl Fn(u16) -> u16) -> Option<u16> {
     if *free != NONE {
         let t = *free;
         *free = next(t);
         Some(t)
-    } else if *unused < pool_len(len) {
+    } else if (*unused as usize) < len {
         let t = *unused;
         *unused += 1;
         Some(t)

@@ -48,24 +48,64 @@
 //! ```
 //!
 //! `c` is the shoelace sum, twice the signed area. For planar vertices
-//! (the contract of `poly3`) this is the polygon's plane exactly. For
-//! vertices that are not quite planar (rounded), Newell's normal is the
-//! usual best fit of the orientation, and the plane is the one with that
-//! normal through the first vertex. (Through the vertex mean would be a
-//! better fit, but the mean is not on the plane of a planar polygon once
-//! rounded, and unrounded it would need `n` times wider numbers.) A
+//! (the contract of `poly3`) this is the polygon's plane exactly; for a
+//! triangle it always is. For vertices that are not planar, see below. A
 //! polygon with `c = 0` is
 //! edge-on: it has no plane in screen space and gets no trapezoid (a planar
 //! one covers no pixel anyway).
 //!
-//! | quantity | bound | type |
-//! |---|---|---|
-//! | a vertex coordinate | \[−2¹⁵, 2¹⁵) | `i16` |
-//! | one Newell term | < 2³² | `i64` |
-//! | `a`, `b`, `c` (≤ 65535 vertices) | < 2⁴⁸ | `i64` |
-//! | `d` | < 2⁶⁵ | `i128` |
-//! | `e = d − a·px − b·py` at a pixel centre | < 2⁶⁷ | `i128` |
-//! | `e₁·c₂` (exact comparison) | < 2¹¹⁵ | `i128` |
+//! # Non-planar polygons
+//!
+//! Newell's normal is the usual best fit of a non-planar polygon's
+//! orientation, and the plane with it through the first vertex is a fair
+//! depth for one that is nearly planar. But when the polygon has little
+//! area for its depths (nearly edge-on, or a bow tie whose halves nearly
+//! cancel), `c` is small and that plane can be thousands of pixels deep at
+//! pixels the polygon covers, while its vertices are inside the format:
+//! outside the range the fixed-point depth and the visible-surface stage
+//! are exact in, so it would be drawn in front of faces it is behind, and
+//! differently by the two ways of resolving a span. A face of the
+//! geometry stage is such a polygon when it is seen nearly edge-on: the
+//! near clip and the projection round its vertices. So [`Polygon::load`]
+//! keeps every polygon's depth inside its vertices' depth range
+//! `[z_min, z_max]`:
+//!
+//! * the plane is Newell's when its depth lies in `[z_min, z_max]` at both
+//!   ends of every edge set up (the edges that cross a row centre inside
+//!   the clip rows). Every covered pixel centre lies on a row between two
+//!   of those edges' crossings, so in their ends' convex hull, where the
+//!   plane's depth is between its values at the ends: inside
+//!   `[z_min, z_max]` too. Every planar polygon passes (its plane is its
+//!   vertices' depth there), unchanged;
+//! * otherwise the plane is *flattened*: its slopes are scaled by
+//!   `k / 2¹⁶` (`a` and `b` times `k / 2¹⁶`, rounded toward zero; `c` and
+//!   the first vertex kept) with `k` found by bisection so that the depth
+//!   is in `[z_min, z_max]` at those ends and would not be at `k + 1`. At
+//!   `k = 0` the plane is the constant depth `z₀`, which is. So a polygon
+//!   that rounding moved a little off its plane keeps nearly all of its
+//!   slope. It costs 17 more passes over the edges, only for such
+//!   polygons.
+//!
+//! So a non-planar `poly3` (or face) is drawn with the pixel rule's
+//! coverage, as every polygon is, and the depth of one plane through its
+//! first vertex, between its vertices' depths: Newell's, or Newell's
+//! flattened when that leaves them. That plane is compared exactly, in
+//! both ways of resolving, so both draw the same pixels.
+//!
+//! # Depth ranges
+//!
+//! Every plane a polygon is loaded with has, at every pixel centre the
+//! polygon covers, an exact depth between its vertices' depths, inside
+//! the Q12.4 range \[−2¹⁵, 2¹⁵) units. Scaled by 2¹⁴ (below) that is
+//! \[−2²⁹, 2²⁹), and the fixed-point value `Z̃` is within 2¹² of it, so
+//! `|Z̃| < 2²⁹ + 2¹²` at every covered pixel, and the difference of two
+//! faces' `Z̃` at a pixel both cover is below `2³⁰ + 2¹³ < 2³¹`: the
+//! visible-surface stage's `i32` depth differences never wrap, and its
+//! `i64` crossing-point products (a difference times a run of at most
+//! 2¹² pixels) stay below 2⁴³. Both ways of resolving a span therefore
+//! compare the same planes exactly and draw the same pixels, planar or
+//! not. `host_tests/tests/depth_range.rs` tests the corners of the range
+//! and random non-planar polygons with overflow checks on.
 //!
 //! # Depth in fixed point
 //!
@@ -87,9 +127,9 @@
 //! closer ones are compared exactly with [`Plane::cmp_at`]. The value is
 //! exact modulo 2³², so huge slopes (faces nearly edge-on) wrap but still
 //! give the right depth wherever the true depth is in range: inside a
-//! planar polygon it lies between its vertices' depths, in
-//! \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it. Tiny slopes
-//! round to zero within the same error bound.
+//! polygon it lies between its vertices' depths (see *Depth ranges*
+//! above), in \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it.
+//! Tiny slopes round to zero within the same error bound.
 //!
 //! Each set-up costs three divisions per polygon (in `i64` when the numbers
 //! fit, which is the case for ordinary polygons, else in `i128`) and two
@@ -98,6 +138,7 @@
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::Edge;
+use crate::raster::scan::heap_sort;
 use core::cmp::Ordering;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
@@ -132,6 +173,8 @@ struct PlaneSums {
     c: i64,
     first: Vertex3,
     n: i64,
+    /// The vertices' least and greatest depth, in units.
+    z: (i32, i32),
 }
 
 impl PlaneSums {
@@ -146,7 +189,9 @@ impl PlaneSums {
         self.c += (px - qx) * (py + qy);
         if self.n == 0 {
             self.first = p;
+            self.z = (p.z.units(), p.z.units());
         }
+        self.z = (self.z.0.min(q.z.units()), self.z.1.max(q.z.units()));
         self.n += 1;
     }
 
@@ -196,6 +241,48 @@ impl Plane {
         }
         sums.edge(prev, first);
         sums.finish()
+    }
+
+    /// `true` when `v` lies on the plane exactly: always for the vertices
+    /// of a triangle, for all vertices of a planar polygon.
+    pub fn contains(&self, v: Vertex3) -> bool {
+        let (x, y, z) = (
+            v.x.units() as i128,
+            v.y.units() as i128,
+            v.z.units() as i128,
+        );
+        // Each product below 2⁶³, the sum below 2⁶⁵.
+        self.a as i128 * x + self.b as i128 * y + self.c as i128 * z == self.d
+    }
+
+    /// `true` when the plane's depth at the point `(x, y)` (units, each
+    /// within `i16`) lies in `lo..=hi` (units, each within `i16`).
+    pub fn depth_within(&self, x: i32, y: i32, (lo, hi): (i32, i32)) -> bool {
+        // e < 2⁶⁷ (the table above), lo·c and hi·c below 2⁶³.
+        let e = self.d - self.a as i128 * x as i128 - self.b as i128 * y as i128;
+        let c = self.c as i128;
+        e >= lo as i128 * c && e <= hi as i128 * c
+    }
+
+    /// The plane through the same first vertex with the slopes scaled by
+    /// `k / 2¹⁶` (`0 ≤ k ≤ 2¹⁶`), rounded toward zero: `(a·k / 2¹⁶,
+    /// b·k / 2¹⁶, c)`. With `k = 0`, the plane of constant depth `z₀`.
+    fn flattened(&self, k: i64) -> Plane {
+        // |a|·k < 2⁶⁴ in `i128`; the quotient is below |a|.
+        let scale = |v: i64| (v as i128 * k as i128 / (1 << 16)) as i64;
+        let (a, b, c) = (scale(self.a), scale(self.b), self.c);
+        let (x, y, z) = (
+            self.origin.0 as i128,
+            self.origin.1 as i128,
+            self.origin.2 as i128,
+        );
+        Plane {
+            a,
+            b,
+            c,
+            d: a as i128 * x + b as i128 * y + c as i128 * z,
+            origin: self.origin,
+        }
     }
 
     /// The normal `(a, b, c)`, `c > 0`.
@@ -580,7 +667,9 @@ pub struct Polygon<'s> {
 impl<'s> Polygon<'s> {
     /// Sets up the edges of the polygon through `vertices` (closed
     /// implicitly) that cross a row centre inside `clip`, and its plane,
-    /// in one pass over the vertices.
+    /// in one pass over the vertices, then one over the edges (a few for a
+    /// plane that leaves its vertices' depth range: see *Non-planar polygons* in the
+    /// [module](self) docs).
     ///
     /// Only edges inside the clip rows take a slot. A polygon whose box
     /// misses the clip columns loads no edge.
@@ -621,12 +710,64 @@ impl<'s> Polygon<'s> {
         }
         sums.edge(prev, first);
         poly.push(prev, first, rows)?;
-        poly.plane = sums.finish();
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
             poly.edges = 0;
         }
+        // A triangle's plane passes through its three vertices: nothing to
+        // check.
+        poly.plane = match count {
+            ..=3 => sums.finish(),
+            _ => sums.finish().map(|p| poly.bounded(p, sums.z)),
+        };
         Ok(poly)
+    }
+
+    /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
+    /// an end of an edge set up, a flattened plane whose depth does not
+    /// (see *Non-planar polygons* in the [module](self) docs).
+    fn bounded(&self, plane: Plane, z: (i32, i32)) -> Plane {
+        let slots = &self.slots[..self.edges];
+        let holds = |p: &Plane| {
+            slots.iter().all(|e| {
+                let e = &e.ends;
+                p.depth_within(e.x0 as i32, e.y0 as i32, z)
+                    && p.depth_within(e.x1 as i32, e.y1 as i32, z)
+            })
+        };
+        // The usual case, in `i64`: with |a|, |b|, |c| < 2³¹, d is below
+        // 2⁴⁸, e = d − a·x − b·y below 2⁴⁹, z·c below 2⁴⁶, and each
+        // product is one 32 × 32 → 64-bit multiply.
+        let (a, b, c) = plane.normal();
+        if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
+            let d = plane.offset() as i64;
+            let (lo, hi) = (z.0 as i64 * c, z.1 as i64 * c);
+            let within = |x: i16, y: i16| {
+                let e = d - a as i64 * x as i64 - b as i64 * y as i64;
+                lo <= e && e <= hi
+            };
+            if slots
+                .iter()
+                .all(|s| within(s.ends.x0, s.ends.y0) && within(s.ends.x1, s.ends.y1))
+            {
+                return plane;
+            }
+        } else if holds(&plane) {
+            return plane;
+        }
+        // The plane scaled by k/2¹⁶ holds at k = 0 (the depth z₀ of a
+        // vertex) and not at k = 2¹⁶: bisect for a k that holds with
+        // k + 1 failing, 16 more checks.
+        let (mut lo, mut hi) = (0i64, 1i64 << 16);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if holds(&plane.flattened(mid)) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        plane.flattened(lo)
     }
 
     fn push(&mut self, p: Vertex3, q: Vertex3, rows: (i32, i32)) -> Result<(), LoadError> {
@@ -662,7 +803,8 @@ impl<'s> Polygon<'s> {
         Ok(())
     }
 
-    /// The polygon's plane, `None` when it is edge-on.
+    /// The polygon's plane, `None` when it is edge-on: Newell's, or
+    /// flattened into its vertices' depth range when that leaves it.
     pub fn plane(&self) -> Option<&Plane> {
         self.plane.as_ref()
     }
@@ -808,15 +950,23 @@ fn cmp_x(a: &EdgeSlot, b: &EdgeSlot, j: i32) -> Ordering {
     (na * db).cmp(&(nb * da))
 }
 
-/// Insertion sort by the crossing on row `y`, ties by row `last`.
+/// Insertion sort by the crossing on row `y`, ties by row `last`: one
+/// step per inversion, so linear when the order is the last band's. With
+/// a budget of `4n` swaps, past which a heap sort
+/// ([`heap_sort`], `O(n log n)`, in place) finishes, so that many edges joining in
+/// another order, or crossing in one band, cost `O(n log n)`, not `n²/2`.
+/// The order is total (exact crossings compared lexicographically).
 fn sort_at(e: &mut [EdgeSlot], y: i32, last: i32) {
+    let cmp = |a: &EdgeSlot, b: &EdgeSlot| cmp_x(a, b, y).then_with(|| cmp_x(a, b, last));
+    let mut budget = 4 * e.len();
     for i in 1..e.len() {
         let mut j = i;
-        while j > 0
-            && cmp_x(&e[j - 1], &e[j], y)
-                .then_with(|| cmp_x(&e[j - 1], &e[j], last))
-                .is_gt()
-        {
+        while j > 0 && cmp(&e[j - 1], &e[j]).is_gt() {
+            if budget == 0 {
+                heap_sort(e, |a, b| cmp(a, b).is_lt());
+                return;
+            }
+            budget -= 1;
             swap(e, j - 1, j);
             j -= 1;
         }
@@ -956,6 +1106,41 @@ mod tests {
         }
     }
 
+    /// Zigzags of many edges that all start on one row, listed right to
+    /// left (past the insertion sort's budget), and random many-edged
+    /// polygons: the trapezoids still cover the pixel rule once.
+    #[test]
+    fn many_edges_out_of_order_cover_the_pixel_rule_once() {
+        let mut rng = Rng(0x2468_ace1);
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 160];
+        for case in 0..40 {
+            let n = 40 + rng.below(120) as usize;
+            let mut poly = [Vertex3::default(); 160];
+            for (k, v) in poly.iter_mut().take(n).enumerate() {
+                *v = if case % 2 == 0 {
+                    let x = (W * 16 - 1) * (n - 1 - k) as i32 / (n - 1) as i32;
+                    let y = if k % 2 == 0 { 3 } else { H * 16 - 5 };
+                    v3(x, y, 0)
+                } else {
+                    v3(
+                        rng.below(W as u32 * 16) as i32,
+                        rng.below(H as u32 * 16) as i32,
+                        0,
+                    )
+                };
+            }
+            let poly = &poly[..n];
+            let (hit, _) = hits(poly, &clip, &mut slots);
+            for j in 0..H {
+                for i in 0..W {
+                    let want = covers(poly, i, j) as u8;
+                    assert_eq!(hit[(j * W + i) as usize], want, "case {case} ({i}, {j})");
+                }
+            }
+        }
+    }
+
     #[test]
     fn an_edge_slot_is_32_bytes() {
         assert_eq!(core::mem::size_of::<EdgeSlot>(), 32);
@@ -1028,11 +1213,81 @@ mod tests {
         }
     }
 
+    /// The plane a polygon is loaded with: Newell's for planar polygons;
+    /// for others, between the vertices' depths at every covered pixel,
+    /// and Newell's itself whenever that is.
+    #[test]
+    fn loaded_planes_stay_between_the_vertices_depths() {
+        let mut rng = Rng(0x0bad_5eed);
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 8];
+        let mut flattened = 0;
+        for case in 0..3000 {
+            let n = 3 + rng.below(5) as usize;
+            let mut poly = [Vertex3::default(); 8];
+            let wide = case % 2 == 0;
+            for v in poly.iter_mut().take(n) {
+                let x = rng.below(16 * W as u32) as i32;
+                let y = rng.below(16 * H as u32) as i32;
+                let z = if wide {
+                    rng.below(65536) as i32 - 32768
+                } else {
+                    rng.below(64) as i32
+                };
+                *v = v3(x, y, z);
+            }
+            let poly = &poly[..n];
+            let (zmin, zmax) = poly.iter().fold((i32::MAX, i32::MIN), |(a, b), v| {
+                (a.min(v.z.units()), b.max(v.z.units()))
+            });
+            let newell = Plane::of(poly.iter().copied());
+            let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+            let got = p.plane().copied();
+            assert_eq!(got.is_some(), newell.is_some());
+            let (Some(got), Some(newell)) = (got, newell) else {
+                continue;
+            };
+            let inside = |pl: &Plane| {
+                (0..H).all(|j| {
+                    (0..W).all(|i| {
+                        !covers(poly, i, j) || {
+                            let (e, c) = pl.depth_at(i, j);
+                            zmin as i128 * c as i128 <= e && e <= zmax as i128 * c as i128
+                        }
+                    })
+                })
+            };
+            assert!(inside(&got), "{poly:?}");
+            if got != newell {
+                flattened += 1;
+                assert!(!inside(&newell) || !poly.iter().all(|&v| newell.contains(v)));
+            }
+            if poly.iter().all(|&v| newell.contains(v)) {
+                assert_eq!(got, newell);
+            }
+        }
+        assert!(flattened > 100, "{flattened}");
+    }
+
+    #[test]
+    fn triangles_are_never_flattened() {
+        let mut rng = Rng(0x7777_1234);
+        let clip = ClipRect::full(4096, 4096);
+        let mut slots = [EdgeSlot::EMPTY; 3];
+        for _ in 0..3000 {
+            let mut r = || rng.below(65536) as i32 - 32768;
+            let tri = [v3(r(), r(), r()), v3(r(), r(), r()), v3(r(), r(), r())];
+            let p = Polygon::load(&mut slots, tri, &clip).unwrap();
+            assert_eq!(p.plane().copied(), Plane::of(tri));
+        }
+    }
+
     #[test]
     fn extreme_coordinates_do_not_overflow() {
         let m = [i16::MIN as i32, -1, 0, 1, i16::MAX as i32];
         let clip = ClipRect::full(4096, 4096);
         let mut slots = [EdgeSlot::EMPTY; 3];
+        let mut wide = [EdgeSlot::EMPTY; 4];
         for &x in &m {
             for &y in &m {
                 for &z in &m {
@@ -1049,6 +1304,14 @@ mod tests {
                     }
                     let poly = Polygon::load(&mut slots, tri, &clip).unwrap();
                     let _ = poly.cut(|_, _| Ok::<(), ()>(()));
+                    // A bow tie through the same corners, far from planar.
+                    let bow = [tri[0], tri[1], v3(neg(y), x, z), tri[2]];
+                    let poly = Polygon::load(&mut wide, bow, &clip).unwrap();
+                    if let Some(p) = poly.plane() {
+                        let d = p.depth();
+                        let _ = d.at(4095, 4095);
+                        let _ = p.cmp_at(p, 4096, 4096);
+                    }
                 }
             }
         }
