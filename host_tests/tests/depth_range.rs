@@ -7,8 +7,6 @@
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tests::harness3d::{compare, render3};
-use host_tests::reference::covers;
-use host_tests::reference3d::Poly3;
 use proptest::prelude::*;
 use scanvert::fixed::Vertex3;
 use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, PolygonSink, View, Viewport, Q16};
@@ -16,6 +14,8 @@ use scanvert::raster::clip::ClipRect;
 use scanvert::visible::sweep::Resolve;
 use scanvert::visible::trapezoid::{EdgeSlot, Plane, Polygon};
 use std::path::PathBuf;
+use testkit::reference::covers;
+use testkit::reference3d::Poly3;
 
 const MODES: [Resolve; 2] = [Resolve::Bisect, Resolve::Crossing];
 
@@ -35,7 +35,7 @@ fn poly(v: &[(i32, i32, i32)]) -> Poly3 {
 /// left a sliver wound the other way; the plane is the same either way.
 fn drawn(v: &[(i32, i32, i32)]) -> Poly3 {
     let mut v = v.to_vec();
-    if !host_tests::reference3d::drawn(&v) {
+    if !testkit::reference3d::drawn(&v) {
         v.reverse();
     }
     poly(&v)
@@ -309,7 +309,7 @@ fn bow_tie() -> Vec<(i32, i32, i32)> {
 #[test]
 fn a_non_planar_poly3_15000_px_deep_stays_behind_a_face_at_depth_10() {
     let tie = bow_tie();
-    assert!(host_tests::reference3d::drawn(&tie));
+    assert!(testkit::reference3d::drawn(&tie));
     let v: Vec<Vertex3> = tie
         .iter()
         .map(|&p| host_tests::harness3d::vertex3(p))
