@@ -43,7 +43,7 @@ fn drawn(v: &[(i32, i32, i32)]) -> Poly3 {
 
 /// `true` when the vertices lie on one plane exactly (or have none).
 fn is_planar(v: &[Vertex3]) -> bool {
-    Plane::of(v.iter().copied()).map_or(true, |p| v.iter().all(|&q| p.contains(q)))
+    Plane::of(v.iter().copied()).is_none_or(|p| v.iter().all(|&q| p.contains(q)))
 }
 
 fn units(v: &Vertex3) -> (i32, i32, i32) {
