@@ -1123,11 +1123,7 @@ mod tests {
                     let y = if k % 2 == 0 { 3 } else { H * 16 - 5 };
                     v3(x, y, 0)
                 } else {
-                    v3(
-                        rng.below(W as u32 * 16) as i32,
-                        rng.below(H as u32 * 16) as i32,
-                        0,
-                    )
+                    v3(rng.below(W as u32 * 16), rng.below(H as u32 * 16), 0)
                 };
             }
             let poly = &poly[..n];
@@ -1227,12 +1223,12 @@ mod tests {
             let mut poly = [Vertex3::default(); 8];
             let wide = case % 2 == 0;
             for v in poly.iter_mut().take(n) {
-                let x = rng.below(16 * W as u32) as i32;
-                let y = rng.below(16 * H as u32) as i32;
+                let x = rng.below(16 * W as u32);
+                let y = rng.below(16 * H as u32);
                 let z = if wide {
-                    rng.below(65536) as i32 - 32768
+                    rng.below(65536) - 32768
                 } else {
-                    rng.below(64) as i32
+                    rng.below(64)
                 };
                 *v = v3(x, y, z);
             }
@@ -1275,7 +1271,7 @@ mod tests {
         let clip = ClipRect::full(4096, 4096);
         let mut slots = [EdgeSlot::EMPTY; 3];
         for _ in 0..3000 {
-            let mut r = || rng.below(65536) as i32 - 32768;
+            let mut r = || rng.below(65536) - 32768;
             let tri = [v3(r(), r(), r()), v3(r(), r(), r()), v3(r(), r(), r())];
             let p = Polygon::load(&mut slots, tri, &clip).unwrap();
             assert_eq!(p.plane().copied(), Plane::of(tri));
