@@ -143,6 +143,8 @@ const BOM: &[u8] = b"\xef\xbb\xbf";
 pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
     let raw = raw.strip_prefix(BOM).unwrap_or(raw);
     let mut frame: Option<(u16, u16, usize)> = None;
+    // `version N`: the header's version, at least (see the docs).
+    let mut version: Option<(u16, usize)> = None;
     let mut cmds: Vec<(usize, Cmd)> = Vec::new();
     let mut last_line = 1;
     for (k, line) in raw.split(|&b| b == b'\n').enumerate() {
@@ -160,6 +162,20 @@ pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
                 frame = Some((w, h, number));
             }
             ("frame", Some(_)) => return Err(err(TextErrorKind::FrameAgain)),
+            ("version", Some(_)) => {
+                let v = match operands {
+                    [b"1"] => 1,
+                    [b"2"] => 2,
+                    _ => {
+                        return Err(err(TextErrorKind::Operands {
+                            command: "version",
+                            expected: "1 (1 or 2)",
+                            got: operands.len(),
+                        }))
+                    }
+                };
+                version = Some((v, number));
+            }
             (_, None) if is_command(name) => {
                 return Err(err(TextErrorKind::FrameFirst(name.to_string())))
             }
@@ -178,6 +194,9 @@ pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
     let mut lines = Vec::with_capacity(cmds.len() + 1);
     lines.push((0, frame_line));
     let mut w = Writer::new(&mut bytes, width, height).map_err(|e| internal(frame_line, e))?;
+    if let Some((v, line)) = version {
+        w.require_version(v).map_err(|e| internal(line, e))?;
+    }
     let mut at = HEADER_LEN;
     for (line, cmd) in &cmds {
         lines.push((at, *line));
@@ -200,7 +219,7 @@ fn internal(line: usize, e: scanvert::display_list::WriteError) -> TextError {
 }
 
 fn is_command(name: &str) -> bool {
-    Opcode::from_name(name).is_some() || name == "lookat"
+    Opcode::from_name(name).is_some() || name == "lookat" || name == "version"
 }
 
 /// The words of a line, comments removed.

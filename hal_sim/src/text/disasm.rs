@@ -1,7 +1,7 @@
 //! Binary form → text form.
 
 use super::asm::label_text_form;
-use scanvert::display_list::{Axis, Command, DisplayList};
+use scanvert::display_list::{Axis, Command, DisplayList, VERSION_2D};
 use scanvert::fixed::Coord;
 use scanvert::geometry::{Angle, Point3, Q16};
 use scanvert::pixelcolor::{Rgb888, RgbColor};
@@ -55,6 +55,16 @@ fn hex(c: Rgb888) -> String {
 /// The text form of a checked list: one command a line, values exact.
 pub fn disassemble(list: &DisplayList<'_>) -> String {
     let mut s = format!("frame {} {}\n", list.width(), list.height());
+    // The header's version, where the commands alone would give a lower
+    // one: without it the text would assemble to other bytes.
+    let needed = list
+        .commands()
+        .map(|(_, c)| c.opcode().version())
+        .max()
+        .unwrap_or(VERSION_2D);
+    if list.version() > needed {
+        let _ = writeln!(s, "version {}", list.version());
+    }
     for (_, cmd) in list.commands() {
         // The name from the format's table, then the operands. Writing
         // into a String cannot fail.

@@ -23,6 +23,8 @@ pub enum WriteError {
     /// An operand outside its range (light over 100 %, negative thickness,
     /// a label that is empty, longer than 255 bytes or not printable ASCII).
     BadOperand,
+    /// A version this crate does not read (it reads 1 and 2).
+    Version(u16),
 }
 
 impl fmt::Display for WriteError {
@@ -37,6 +39,7 @@ impl fmt::Display for WriteError {
                 )
             }
             WriteError::BadOperand => f.write_str("operand out of range"),
+            WriteError::Version(v) => write!(f, "display-list version {v} is not 1 or 2"),
         }
     }
 }
@@ -338,6 +341,18 @@ impl<'b> Writer<'b> {
         head[TEXT_LEN] = t.len() as u8;
         self.whole(head)?;
         self.put(t)
+    }
+
+    /// Stamps at least `version` in the header, whatever the commands
+    /// written need (a list may say it is version 2 with only version-1
+    /// commands in it). Versions other than the ones this crate reads are
+    /// refused, and so nothing written can fail to read.
+    pub fn require_version(&mut self, version: u16) -> Result<(), WriteError> {
+        if version != VERSION_2D && version != super::VERSION {
+            return Err(WriteError::Version(version));
+        }
+        self.version = self.version.max(version);
+        Ok(())
     }
 
     /// Stamps the version and the body length and returns the finished
