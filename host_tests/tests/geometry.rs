@@ -10,7 +10,8 @@ use proptest::prelude::*;
 use scanvert::fixed::{Coord, Vertex, Vertex3};
 use scanvert::geometry::{
     trig, Angle, Light, Matrix, Orthographic, Outcome, Perspective, Pipeline, PipelineError,
-    Point3, PolygonSink, Projection, Stats, TransformError, View, Viewport, Q16, Z_FAR, Z_NEAR,
+    PipelineStats, Point3, PolygonSink, Projection, TransformError, View, Viewport, Q16, Z_FAR,
+    Z_NEAR,
 };
 use std::convert::Infallible;
 use std::f64::consts::PI;
@@ -977,15 +978,30 @@ fn edge_on_faces_are_culled() {
         pipe.polygon(&rev.map(flip).map(pt), Rgb888::RED, &mut sink),
         Ok(Outcome::Culled)
     );
-    // Degenerate: first three vertices in a line.
+    // First three vertices in a line: the whole polygon decides, so one
+    // winding is drawn and the other culled.
     let line = [
         [0.0, 0.0, -5.0],
         [1.0, 1.0, -5.0],
         [2.0, 2.0, -5.0],
         [0.0, 3.0, -5.0],
     ];
+    let mut rev = line;
+    rev.reverse();
+    let both = [line, rev].map(|l| pipe.polygon(&l.map(pt), Rgb888::RED, &mut sink));
+    assert!(
+        both.contains(&Ok(Outcome::Culled)) && both.contains(&Ok(Outcome::Emitted)),
+        "{both:?}"
+    );
+    // All of them in a line: no area, culled.
+    let flat = [
+        [0.0, 0.0, -5.0],
+        [1.0, 1.0, -5.0],
+        [2.0, 2.0, -5.0],
+        [3.0, 3.0, -5.0],
+    ];
     assert_eq!(
-        pipe.polygon(&line.map(pt), Rgb888::RED, &mut sink),
+        pipe.polygon(&flat.map(pt), Rgb888::RED, &mut sink),
         Ok(Outcome::Culled)
     );
     // Nearly edge-on after rotation: either culled or delivered with an area.
@@ -1485,7 +1501,7 @@ proptest! {
                 prop_assert!((0..=cam.h as i32 * 16).contains(&v.y.units()), "{:?}", p);
             }
         }
-        let s: Stats = pipe.stats();
+        let s: PipelineStats = pipe.stats();
         prop_assert_eq!(s.faces_in as usize, polys.len() + framed.len());
         prop_assert_eq!(s.faces_in, s.culled + s.clipped_away + s.emitted + s.rejected);
         prop_assert_eq!(s.emitted as usize, sink.0.len());
