@@ -15,6 +15,7 @@
 //! | [`image`] | the frame as a PNG (RGB565 expanded by bit replication) |
 //! | [`text`] | the text form of the display list: assembler and disassembler |
 //! | [`cli`] | the `scanvert` program: `render`, `asm`, `disasm`, `checksum` |
+//! | [`memory`] | the graphic controller's memory for a list, sized by what it needs |
 //!
 //! ```
 //! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
@@ -52,6 +53,7 @@ pub mod cli;
 pub mod demo;
 pub mod dual_port;
 pub mod image;
+pub mod memory;
 pub mod refresh;
 pub mod text;
 pub mod timing;

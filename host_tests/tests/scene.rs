@@ -23,7 +23,7 @@ use scanvert::scene::label::{Label, DEFAULT_FONT};
 use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{Active, Cover, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 const W: u16 = 160;
@@ -82,6 +82,9 @@ struct Mem {
     edges: Vec<EdgeSlot>,
     labels: Vec<Label>,
     text: Vec<u8>,
+    active: Vec<Active>,
+    cover: Vec<Cover>,
+    runs: Vec<Run>,
 }
 
 impl Mem {
@@ -94,6 +97,10 @@ impl Mem {
             edges: vec![EdgeSlot::EMPTY; 32],
             labels: vec![Label::EMPTY; 16],
             text: vec![0; 256],
+            // Every trapezoid may overlap one row.
+            active: vec![Active::EMPTY; trapezoids],
+            cover: vec![Cover::EMPTY; trapezoids],
+            runs: vec![Run::EMPTY; W as usize],
         }
     }
 
@@ -107,6 +114,9 @@ impl Mem {
                     rows: &mut self.rows,
                     edges: &mut self.edges,
                 },
+                active: &mut self.active,
+                cover: &mut self.cover,
+                runs: &mut self.runs,
                 labels: &mut self.labels,
                 text: &mut self.text,
             },
@@ -118,19 +128,11 @@ impl Mem {
 
 /// Draws a scene into an `Rgb888` frame (black background); returns the
 /// face index at each pixel (by colour) and the labels drawn.
-fn draw(scene: &Scene<'_, 8, 32>) -> (Vec<Option<usize>>, Vec<Rgb888>, u32) {
-    let n = scene.store().len().max(1);
-    let (mut active, mut cover, mut runs) = (
-        vec![Active::EMPTY; n],
-        vec![Cover::EMPTY; n],
-        vec![Run::EMPTY; W as usize],
-    );
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+fn draw(scene: &mut Scene<'_, 8, 32>) -> (Vec<Option<usize>>, Vec<Rgb888>, u32) {
     let mut px = vec![Rgb888::WHITE; W as usize * H as usize];
     let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
     let f = scene
         .draw(
-            &mut ws,
             Resolve::default(),
             Some(Rgb888::BLACK),
             DEFAULT_FONT,
@@ -172,7 +174,7 @@ fn check(pipe: &P, faces: &[Vec<Point3>]) -> Check {
         Ok(())
     };
     scene.update(&mut [&mut build]).unwrap();
-    let (got, _, _) = draw(&scene);
+    let (got, _, _) = draw(&mut scene);
 
     // The reference culls by the spec's rule for `poly3`: every face the
     // geometry stage lets through must pass it; points and lines (two
@@ -541,7 +543,7 @@ fn labels_behind_the_eye_and_off_screen() {
     scene.update(&mut [&mut build]).unwrap();
     let behind: Vec<_> = placed.iter().filter(|p| !p.1).map(|p| p.0).collect();
     assert_eq!(behind, ["behind", "at the eye"]);
-    let (_, px, drawn) = draw(&scene);
+    let (_, px, drawn) = draw(&mut scene);
     assert_eq!(drawn, 3, "centre and the two cut at edges");
     assert!(px.contains(&Rgb888::WHITE));
     // A bad text fails even when the point is behind the eye.
@@ -621,11 +623,11 @@ fn only_the_changed_segment_is_rebuilt() {
     assert!(u.trapezoids > 0);
 
     // The picture is the one a scene built from scratch draws.
-    let (got, _, _) = draw(&scene);
+    let (got, _, _) = draw(&mut scene);
     let mut mem2 = Mem::new(3, 1024);
     let mut fresh = mem2.scene(pipe.clone());
     fresh.update(&mut [&mut a2, &mut b2, &mut c2]).unwrap();
-    let (want, _, _) = draw(&fresh);
+    let (want, _, _) = draw(&mut fresh);
     assert_eq!(got, want);
 
     // A camera move makes every segment stale.
