@@ -878,9 +878,9 @@ mod tests {
         }
     }
 
-    /// 16 trapezoids, 4 faces, 1 segment, the rows, 8 edge slots, 8 active
+    /// 16 trapezoids, 4 faces, 1 segment, the rows, 16 edge slots, 8 active
     /// entries, the runs, 2 labels of 8 bytes.
-    type Storage = SceneStorage<16, 4, 1, { H as usize }, 8, 8, { W as usize }, 2, 8>;
+    type Storage = SceneStorage<16, 4, 1, { H as usize }, 16, 8, { W as usize }, 2, 8>;
 
     struct Mem {
         edges: [Edge; 8],
@@ -1026,6 +1026,178 @@ mod tests {
         assert_eq!(
             (need.rows, need.runs, need.edges),
             (H as usize, W as usize, 0)
+        );
+    }
+
+    use crate::geometry::{Point3, Q16};
+
+    /// A square of side 2 at depth `z`, counter-clockwise seen from +z (y
+    /// up), and the same with `reverse`.
+    fn square(z: i16, reverse: bool) -> [Point3; 4] {
+        let mut sq = [(-1, -1), (1, -1), (1, 1), (-1, 1)].map(|(x, y)| Point3::from_int(x, y, z));
+        if reverse {
+            sq.reverse();
+        }
+        sq
+    }
+
+    #[test]
+    fn the_first_failing_command_is_named_with_its_own_reason() {
+        // A `poly3` that needs more than the store holds after a `pop`
+        // with nothing saved: the `pop` is named, as a transform error.
+        let mut bytes = [0u8; 1024];
+        let n = list(&mut bytes, |w| {
+            w.poly3([v(1, 1, 1), v(1, 9, 1), v(9, 5, 1)]).unwrap();
+            w.pop().unwrap();
+            for k in 0..8 {
+                w.poly3([v(k, 0, k), v(k, 16, k), v(k + 12, 8, k)]).unwrap();
+            }
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let offset_of = |l: &DisplayList<'_>, k: usize| l.commands().nth(k).unwrap().0;
+        let pop_at = offset_of(&l, 1);
+        let (r, px) = Mem::new().render(&l, true);
+        assert_eq!(
+            r,
+            Err(RenderError::Scene {
+                offset: pop_at,
+                error: SceneError::Transform(crate::geometry::TransformError::StackUnderflow)
+            })
+        );
+        assert!(px.iter().all(|&p| p == 7), "nothing drawn");
+        let mut slots = [EdgeSlot::EMPTY; 3];
+        assert_eq!(needs(&l, &mut slots).map(|_| ()), r.map(|_| ()));
+
+        // A `scale` chain that leaves the range after a `poly3`: the
+        // `scale` that does is named.
+        let n = list(&mut bytes, |w| {
+            w.poly3([v(1, 1, 1), v(1, 9, 1), v(9, 5, 1)]).unwrap();
+            let big = Point3::from_int(1000, 1000, 1000);
+            w.scale(big).unwrap();
+            w.face(square(-5, false)).unwrap();
+            w.scale(big).unwrap();
+            w.face(square(-5, false)).unwrap();
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let scale_at = offset_of(&l, 3);
+        let (r, _) = Mem::new().render(&l, true);
+        assert_eq!(
+            r,
+            Err(RenderError::Scene {
+                offset: scale_at,
+                error: SceneError::Transform(crate::geometry::TransformError::Range)
+            })
+        );
+        let mut slots = [EdgeSlot::EMPTY; 16];
+        assert_eq!(needs(&l, &mut slots).map(|_| ()), r.map(|_| ()));
+    }
+
+    #[test]
+    fn the_default_camera_looks_along_minus_z_with_y_up() {
+        let mut bytes = [0u8; 1024];
+        for (z, drawn) in [(-5, true), (5, false)] {
+            for reverse in [false, true] {
+                let n = list(&mut bytes, |w| {
+                    w.color(Rgb888::new(200, 0, 0)).unwrap();
+                    w.face(square(z, reverse)).unwrap();
+                    // y up: a point above the axis lands above the middle.
+                    w.face([Point3::from_int(0, 3, -10)]).unwrap();
+                });
+                let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+                let (r, px) = Mem::new().render(&l, true);
+                let s = r.unwrap();
+                let hit = px[8 * W as usize + 12] == 200;
+                assert_eq!(hit, drawn && !reverse, "z = {z}, reversed: {reverse}");
+                assert_eq!(s.faces, 1 + (drawn && !reverse) as u32);
+                // At y ≈ 8 − 6.2: above the square, which reaches y ≈ 4.
+                let above = (0..4).any(|y| (9..15).any(|x| px[y * W as usize + x] == 200));
+                assert!(above, "the point is above the middle");
+            }
+        }
+    }
+
+    #[test]
+    fn a_target_smaller_than_the_frame_shows_its_top_left_part() {
+        let mut bytes = [0u8; 1024];
+        let n = list(&mut bytes, |w| {
+            w.clear(Rgb888::new(1, 0, 0)).unwrap();
+            w.color(Rgb888::new(90, 0, 0)).unwrap();
+            w.poly3([v(2, 2, 3), v(4, 14, 3), v(22, 6, 9)]).unwrap();
+            w.color(Rgb888::new(150, 0, 0)).unwrap();
+            w.face(square(-4, false)).unwrap();
+            w.perspective(
+                crate::geometry::Angle::from_degrees(40),
+                Q16::ONE,
+                Q16::from_int(50),
+            )
+            .unwrap();
+            w.color(Rgb888::new(250, 0, 0)).unwrap();
+            w.face([Point3::from_int(-1, 1, -6)]).unwrap();
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let (r, full) = Mem::new().render(&l, true);
+        r.unwrap();
+        for (tw, th) in [(12, 8), (24, 5), (7, 16)] {
+            let (r, small) = Mem::new().render_in(&l, true, (tw, th));
+            r.unwrap();
+            let mut covered = 0;
+            for y in 0..th as usize {
+                for x in 0..tw as usize {
+                    let f = full[y * W as usize + x];
+                    assert_eq!(small[y * tw as usize + x], f, "({x}, {y}) of {tw}x{th}");
+                    covered += (f > 1) as usize;
+                }
+            }
+            assert!(covered > 0, "{tw}x{th}");
+        }
+    }
+
+    #[test]
+    fn needs_refuses_more_than_a_pool_can_address() {
+        // Two star polygons of 1001 vertices whose edges cross each other
+        // about half a million times, each cut into some 37,000
+        // trapezoids: together more than 65535.
+        const N: usize = 1001;
+        let mut bytes = [0u8; 64 + 2 * (6 * N + 16)];
+        let mut w = Writer::new(&mut bytes, 2048, 2048).unwrap();
+        w.color(Rgb888::new(1, 2, 3)).unwrap();
+        let star = (0..N).map(|k| {
+            // A quarter turn is 2¹⁴; vertex k at angle k · 501/1001 turn,
+            // counter-clockwise as displayed.
+            let a = crate::geometry::Angle::from_bits(((k * 501 % N) * 65536 / N) as u16);
+            let (s, c) = (
+                crate::geometry::trig::sin(a) as i64,
+                crate::geometry::trig::cos(a) as i64,
+            );
+            let px = |t: i64| Coord::from_bits((16 * 1024 + ((t * 1000 * 16) >> 16)) as i16);
+            Vertex3 {
+                x: px(c),
+                y: px(s),
+                z: Coord::from_bits(16),
+            }
+        });
+        w.poly3(star.clone()).unwrap();
+        w.poly3(star).unwrap();
+        let l = DisplayList::new_checked(w.finish()).unwrap();
+        let at = l.commands().nth(2).unwrap().0;
+        let mut slots = [EdgeSlot::EMPTY; N];
+        assert_eq!(edges_3d(&l), N);
+        assert_eq!(
+            needs(&l, &mut slots),
+            Err(RenderError::Capacity3d {
+                offset: at,
+                resource: Resource::Trapezoids,
+                capacity: POOL_LIMIT,
+            })
+        );
+        // Too little scratch is refused too, at the widest polygon.
+        assert_eq!(
+            needs(&l, &mut slots[..3]),
+            Err(RenderError::Capacity3d {
+                offset: l.commands().nth(1).unwrap().0,
+                resource: Resource::EdgeSlots,
+                capacity: 3,
+            })
         );
     }
 }
