@@ -63,27 +63,24 @@ impl ListMemory {
 
     /// The 3D layer's memory.
     pub fn memory_3d(&mut self) -> SceneMemory<'_> {
-        SceneMemory {
-            store: StoreMemory {
-                trapezoids: &mut self.trapezoids,
-                faces: &mut self.faces,
-                segments: &mut self.segments,
-                rows: &mut self.rows,
-                edges: &mut self.slots,
-            },
-            active: &mut self.active,
-            cover: &mut self.cover,
-            runs: &mut self.runs,
-            labels: &mut self.labels,
-            text: &mut self.text,
-        }
+        self.parts().1
     }
 
     /// A controller over this memory: with the 3D layer's when the list
     /// has one.
     pub fn controller(&mut self) -> Controller<'_> {
         let any = self.need.any();
-        let raster = Rasterizer::new(&mut self.edges);
+        let (edges, three) = self.parts();
+        let c = Controller::new(Rasterizer::new(edges));
+        if any {
+            c.with_3d(three)
+        } else {
+            c
+        }
+    }
+
+    /// The rasteriser's edges and the 3D layer's memory.
+    fn parts(&mut self) -> (&mut [Edge], SceneMemory<'_>) {
         let three = SceneMemory {
             store: StoreMemory {
                 trapezoids: &mut self.trapezoids,
@@ -98,11 +95,6 @@ impl ListMemory {
             labels: &mut self.labels,
             text: &mut self.text,
         };
-        let c = Controller::new(raster);
-        if any {
-            c.with_3d(three)
-        } else {
-            c
-        }
+        (&mut self.edges, three)
     }
 }

@@ -161,9 +161,7 @@ fn calibrate(counter: &platform::Counter) -> bool {
 }
 
 /// Renders `list` into `target`, counting the instructions, and logs the
-/// frame's statistics and cost; with `stages`, counts the stages of the
-/// 3D layer too, through the controller's hook, and logs them first.
-/// `None` (logged) if the render failed.
+/// frame's statistics and cost. `None` (logged) if the render failed.
 ///
 /// Never inlined, so that the code measured is compiled the same whatever
 /// the rest of the image does around it: inlined into `run`, small edits
@@ -177,7 +175,25 @@ fn render<T>(
     mut controller: Controller<'_>,
     target: &mut T,
     counter: &platform::Counter,
-    stages: bool,
+) -> Option<()>
+where
+    T: SpanTarget<Color = Pixel, Error = Infallible>,
+{
+    let t0 = counter.ticks();
+    let rendered = controller.render(list, target);
+    let ticks = counter.ticks() - t0;
+    logged(name, list, rendered, ticks)
+}
+
+/// [`render`] for a list with a 3D layer, counting its stages too, where
+/// the controller's hook reports their ends, and logging them first.
+#[inline(never)]
+fn render_stages<T>(
+    name: &str,
+    list: &DisplayList<'_>,
+    mut controller: Controller<'_>,
+    target: &mut T,
+    counter: &platform::Counter,
 ) -> Option<()>
 where
     T: SpanTarget<Color = Pixel, Error = Infallible>,
@@ -185,19 +201,25 @@ where
     // The counter's ticks at each stage, by `Stage as usize`.
     let mut at = [0u64; 6];
     let t0 = counter.ticks();
-    let rendered = if stages {
-        controller.render_with(list, target, &mut |s: Stage| {
-            at[s as usize] = counter.ticks()
-        })
-    } else {
-        controller.render(list, target)
-    };
+    let rendered = controller.render_with(list, target, &mut |s: Stage| {
+        at[s as usize] = counter.ticks()
+    });
     let ticks = counter.ticks() - t0;
+    if let Ok(stats) = &rendered {
+        log_stages(name, stats, &at);
+    }
+    logged(name, list, rendered, ticks)
+}
+
+/// Logs a render's statistics and cost, or its error (then `None`).
+fn logged(
+    name: &str,
+    list: &DisplayList<'_>,
+    rendered: Result<RenderStats, scanvert::controller::RenderError<Infallible>>,
+    ticks: u64,
+) -> Option<()> {
     match rendered {
         Ok(stats) => {
-            if stages {
-                log_stages(name, &stats, &at);
-            }
             let cost = Cost {
                 ticks,
                 instructions: ticks * platform::INSTRUCTIONS_PER_TICK,
@@ -271,10 +293,10 @@ fn render_and_check<T: Checked>(
         let controller = Controller::new(Rasterizer::new(edges))
             .with_3d(mem.as_memory())
             .with_resolve(Resolve::Crossing);
-        render(scene.name, list, controller, target, counter, true)
+        render_stages(scene.name, list, controller, target, counter)
     } else {
         let controller = Controller::new(Rasterizer::new(edges));
-        render(scene.name, list, controller, target, counter, false)
+        render(scene.name, list, controller, target, counter)
     };
     if rendered.is_none() {
         return false;

@@ -685,9 +685,13 @@ impl<'e> Controller<'e> {
         } = self;
         // The 3D layer is built first: running out of memory, or a scene
         // command that fails, is found before anything is drawn.
-        let first = list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o);
+        // Without 3D storage, `check` has refused a 3D layer; the list is
+        // not read again for it.
+        let first = match three {
+            Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
+            None => None,
+        };
         let layer = match (three.as_mut(), first) {
-            // Without 3D storage, `check` has refused the 3D layer.
             (Some(mem), Some(first)) => {
                 hook.stage(Stage::Start);
                 let mut scene =

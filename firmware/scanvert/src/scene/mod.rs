@@ -8,7 +8,8 @@
 //!   points and lines, and the modelling transform stack),
 //! * the [`TrapezoidStore`]: every segment's trapezoids and faces, in
 //!   screen space, with the scan-line index, and
-//! * the [`LabelStore`]: every segment's labels, placed on the screen.
+//! * the [`LabelStore`]: every segment's labels, placed on the screen, and
+//! * the visible-surface stage's [`Workspace`] (active list, runs).
 //!
 //! The application supplies one [`Procedure`] per segment (a closure, or
 //! any type implementing the trait) that describes the segment through a
