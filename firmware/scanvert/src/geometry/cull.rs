@@ -34,7 +34,7 @@
 //! vertices form a convex corner of a planar polygon, the two rules agree.
 //!
 //! The normal for lighting is `(v₁ − v₀) × (v₂ − v₀)` turned to the front
-//! side ([`light_normal`]), or Newell's normal where the first three
+//! side (`light_normal`), or Newell's normal where the first three
 //! vertices lie in a line; it points out of the front side, toward the
 //! eye for a visible face.
 //!
