@@ -1600,3 +1600,48 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Facing is the whole polygon's orientation as projected: for random
+    /// star-shaped faces, convex or concave (reflex corners anywhere, the
+    /// first three vertices included), tilted and in either winding, a
+    /// face is culled exactly when the f64 shoelace sum of its projection
+    /// is not negative.
+    #[test]
+    fn facing_is_the_projected_orientation_of_the_whole_polygon(
+        spokes in prop::collection::vec((0.0..1.0f64, 0.3..3.0f64), 4..12),
+        start in 0usize..12,
+        reverse in any::<bool>(),
+        (tx, ty) in (-1.2..1.2f64, -1.2..1.2f64),
+        centre in (-4.0..4.0f64, -3.0..3.0f64, 6.0..60.0f64),
+    ) {
+        // Angles spread over the turn, each in its own sector: a simple
+        // star-shaped polygon around the origin.
+        let n = spokes.len();
+        let mut face: Vec<V3> = spokes
+            .iter()
+            .enumerate()
+            .map(|(k, &(a, r))| {
+                let t = std::f64::consts::TAU * (k as f64 + 0.1 + 0.8 * a) / n as f64;
+                [r * t.cos(), r * t.sin(), 0.0]
+            })
+            .collect();
+        face.rotate_left(start % n);
+        if reverse {
+            face.reverse();
+        }
+        let m = mul(&trans([centre.0, centre.1, centre.2]), &mul(&rot_y(tx), &rot_x(ty)));
+        let view: Vec<V3> = face.iter().map(|&p| apply(&m, p)).collect();
+        let cam = cam_persp();
+        let projected: Vec<V3> = view.iter().map(|&v| cam.project(v)).collect();
+        let a = area(&projected);
+        prop_assume!(a.abs() > 1.0);
+        let mut pipe = cam.pipeline();
+        let mut sink = Collect::default();
+        let pts: Vec<Point3> = view.iter().map(|&v| pt(v)).collect();
+        let got = pipe.polygon(&pts, Rgb888::RED, &mut sink).unwrap();
+        prop_assert_eq!(got != Outcome::Culled, a < 0.0, "area {} {:?}", a, got);
+    }
+}
