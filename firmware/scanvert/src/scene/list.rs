@@ -223,7 +223,11 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
     Ok(Executed::State)
 }
 
-/// A polygon of model points through the geometry stage into `out`.
+/// A polygon of model points through the geometry stage into `out`. Out
+/// of line, so that a list's `poly3`s are executed without the geometry
+/// stage's buffers in the frame (M4, the image's cut stage: layered
+/// 501 k → 493 k instructions, tilted 717 k → 706 k).
+#[inline(never)]
 pub(crate) fn face<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
     out: &mut O,
