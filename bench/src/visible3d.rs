@@ -10,6 +10,8 @@ use crate::numbers::thousands;
 use crate::time_fns;
 use core::mem::size_of;
 use scanvert::{
+    controller::{edges_3d, needs, Needs},
+    display_list::{DisplayList, Writer},
     fixed::{Vertex, Vertex3},
     pixelcolor::{PixelColor, Rgb565, Rgb888, RgbColor},
     port::framebuffer::FrameBuffer,
@@ -120,14 +122,38 @@ struct StoreMem {
     edges: Vec<EdgeSlot>,
 }
 
+/// What a store needs for the most demanding view of `scene`: each view
+/// as a display list of `poly3`s (every face is front-facing) through
+/// `controller::needs`.
+fn needs_of(scene: &Scene) -> Needs {
+    let mut most = Needs::default();
+    for view in &scene.views {
+        let size = 64 + view.iter().map(|f| 8 + 6 * f.len()).sum::<usize>();
+        let mut buf = vec![0u8; size];
+        let mut w = Writer::new(&mut buf, W, H).expect("frame size");
+        for f in view {
+            w.poly3(f.iter().copied()).expect("sized");
+        }
+        let list = DisplayList::new_checked(w.finish()).expect("Writer output is valid");
+        let mut scratch = vec![EdgeSlot::EMPTY; edges_3d(&list)];
+        let n = needs(&list, &mut scratch).expect("within the pools' limits");
+        most.trapezoids = most.trapezoids.max(n.trapezoids);
+        most.faces = most.faces.max(n.faces);
+        most.edge_slots = most.edge_slots.max(n.edge_slots);
+        most.rows = most.rows.max(n.rows);
+    }
+    most
+}
+
 impl StoreMem {
     fn for_scene(scene: &Scene) -> StoreMem {
+        let need = needs_of(scene);
         StoreMem {
-            traps: vec![Trapezoid::EMPTY; 8 * scene.faces + 64],
-            faces: vec![Face::EMPTY; scene.faces],
+            traps: vec![Trapezoid::EMPTY; need.trapezoids],
+            faces: vec![Face::EMPTY; need.faces],
             segs: vec![Segment::EMPTY; 1],
-            rows: vec![0; H as usize],
-            edges: vec![EdgeSlot::EMPTY; scene.max_vertices()],
+            rows: vec![0; need.rows],
+            edges: vec![EdgeSlot::EMPTY; need.edge_slots],
         }
     }
 

@@ -174,16 +174,17 @@ EOF
 The `poly3-*` lists are the 3D layer alone on a 512 × 256 frame
 (`testkit::poly3_scenes`): 170 `poly3`s, one colour each, parallel to
 the screen at depths of their own (*layered*), or tilted and through
-each other (*tilted*). The image renders each twice: once stage by stage
-(counted below), then through `Controller::render` (the table above,
-and *whole render* here), both into a black frame and both with the
-host's checksum. *Spans* are those the sweep resolves (empty, single,
-multiple and intersecting; a row with no trapezoid is one). *Cut* is every drawn `poly3` into trapezoids in the
+each other (*tilted*). The image renders each once, through
+`Controller::render_with` into a black frame with the host's checksum,
+and reads the counter where the controller's hook reports the end of a
+stage (counted below; *whole render* is the table above). *Spans* are those the sweep resolves (empty, single,
+multiple and intersecting; a row with no trapezoid is one). *Cut* is the 3D commands through the one
+interpreter: the cull, and every drawn `poly3` into trapezoids in the
 store (plane, edge set-up, cut, scan-line index); *check* is
 `Workspace::check`; *resolve + decode* is `visible::draw` with
 crossing points, the background left as it is; *without pixel writes*
 is the same into the `discard` port. The whole render adds the list
-check and the cull to the stages.
+check and the 2D commands' pass to the stages.
 
 | scene | poly3 drawn | trapezoids | spans | cut | per poly3 | check | resolve + decode | per span | without pixel writes | whole render | frames/s at 168 MHz (est.) | resolve + decode only, frames/s (est.) |
 |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|

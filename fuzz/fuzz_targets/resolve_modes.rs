@@ -6,10 +6,10 @@
 
 use arbitrary::Arbitrary;
 use host_tests::harness3d::render3;
-use host_tests::reference::Window;
-use host_tests::reference3d::Poly3;
 use libfuzzer_sys::fuzz_target;
 use scanvert::visible::sweep::Resolve;
+use testkit::reference::Window;
+use testkit::reference3d::Poly3;
 
 #[derive(Arbitrary, Debug)]
 struct Triangle {

@@ -6,19 +6,11 @@
 //! each one checks and how to run them.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use scanvert::controller::{
-    edges_3d, needs_3d, Controller, RenderError, Resource, Stats, Storage3d,
-};
+use scanvert::controller::{RenderError, RenderStats, Resource};
 use scanvert::display_list::DisplayList;
 use scanvert::port::framebuffer::FrameBuffer;
-use scanvert::raster::edge::Edge;
-use scanvert::raster::scan::Rasterizer;
-use scanvert::scene::label::Label;
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert_sim::cli::edges_needed;
+use scanvert::visible::sweep::Resolve;
+use scanvert_sim::memory::ListMemory;
 
 /// The largest frame the targets draw: a list's frame is cut to this
 /// (the controller draws the part of the frame the target holds), so that
@@ -36,11 +28,12 @@ pub struct Rendered {
     /// black before the list ran.
     pub pixels: Vec<Rgb565>,
     /// The controller's result.
-    pub result: Result<Stats, RenderError<core::convert::Infallible>>,
+    pub result: Result<RenderStats, RenderError<core::convert::Infallible>>,
     /// `true` when the whole frame was drawn (not cut to `MAX_SIDE`).
     pub whole: bool,
-    /// `true` when the memory was sized by `needs_3d` (it returned
-    /// `Some`), as the program does.
+    /// `true` when the memory was sized by `controller::needs`, as the
+    /// program sizes it (always, since `needs` reports a failing command
+    /// itself).
     pub sized: bool,
 }
 
@@ -48,54 +41,35 @@ pub struct Rendered {
 /// frame buffer of at most `MAX_SIDE × MAX_SIDE`, resolving with `resolve`.
 /// `None` when the list's 3D layer would need more than `MAX_TRAPEZOIDS`.
 pub fn render_small(list: &DisplayList<'_>, resolve: Resolve) -> Option<Rendered> {
-    let mut edges = vec![Edge::EMPTY; edges_needed(list)];
-    let mut slots = vec![EdgeSlot::EMPTY; edges_3d(list)];
-    let found = needs_3d(list, &mut slots);
-    let sized = found.is_some();
-    let need = found.unwrap_or(scanvert::controller::Needs3d {
-        poly3: 1,
-        rows: list.height() as usize,
-        runs: list.width() as usize,
-        ..Default::default()
-    });
+    let (w, h) = (list.width().min(MAX_SIDE), list.height().min(MAX_SIDE));
+    let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
+    let whole = (w, h) == (list.width(), list.height());
+    let mut memory = match ListMemory::for_list(list) {
+        Ok(m) => m,
+        // What the render would report, at the same command.
+        Err(e) => {
+            return Some(Rendered {
+                pixels,
+                result: Err(e),
+                whole,
+                sized: true,
+            })
+        }
+    };
+    let need = memory.needs();
     if need.trapezoids > MAX_TRAPEZOIDS || need.faces > MAX_TRAPEZOIDS {
         return None;
     }
-    let mut labels = vec![Label::EMPTY; need.labels];
-    let mut text = vec![0u8; need.text];
-    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
-    let mut faces = vec![Face::EMPTY; need.faces];
-    let mut segments = [Segment::EMPTY; 1];
-    let mut rows = vec![0u16; need.rows];
-    let mut active = vec![Active::EMPTY; need.trapezoids];
-    let mut cover = vec![Cover::EMPTY; need.trapezoids];
-    let mut runs = vec![Run::EMPTY; need.runs];
-    let mut controller = Controller::new(Rasterizer::new(&mut edges));
-    if need.any() {
-        controller = controller.with_labels(&mut labels, &mut text);
-        controller = controller.with_3d(Storage3d {
-            store: StoreMemory {
-                trapezoids: &mut traps,
-                faces: &mut faces,
-                segments: &mut segments,
-                rows: &mut rows,
-                edges: &mut slots,
-            },
-            active: &mut active,
-            cover: &mut cover,
-            runs: &mut runs,
-            resolve,
-        });
-    }
-    let (w, h) = (list.width().min(MAX_SIDE), list.height().min(MAX_SIDE));
-    let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
     let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("1..=64 a side");
-    let result = controller.render(list, &mut fb);
+    let result = memory
+        .controller()
+        .with_resolve(resolve)
+        .render(list, &mut fb);
     Some(Rendered {
         pixels,
         result,
-        whole: (w, h) == (list.width(), list.height()),
-        sized,
+        whole,
+        sized: true,
     })
 }
 
@@ -129,7 +103,7 @@ pub fn check_rendered(list: &DisplayList<'_>, r: &Rendered) {
                         ..
                     }
             ),
-            "memory sized by needs_3d ran out: {e}"
+            "memory sized by needs ran out: {e}"
         );
     }
 }

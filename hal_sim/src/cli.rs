@@ -21,21 +21,13 @@
 use crate::dual_port::DualPortRam;
 use crate::error::{input, io, shown};
 pub use crate::error::{CliError, EXIT_INPUT, EXIT_IO, EXIT_USAGE};
+use crate::memory::ListMemory;
 use crate::output::write_output;
 use crate::refresh::RefreshController;
 use crate::text::{self, escape_for_terminal, Assembled};
 use crate::timing::VideoTiming;
-use scanvert::controller::{
-    edges_3d, needs_3d, Controller, Needs3d, RenderError, Stats, Storage3d,
-};
-use scanvert::display_list::{Command, DisplayList, MAGIC};
-use scanvert::raster::edge::Edge;
-use scanvert::raster::scan::Rasterizer;
-use scanvert::scene::label::Label;
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::controller::{RenderError, RenderStats};
+use scanvert::display_list::{DisplayList, MAGIC};
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -254,74 +246,31 @@ impl Scene {
     }
 }
 
-/// Edge slots this list needs: its largest polygon's vertex count. Memory
-/// follows the scene, not the format's worst case.
-pub fn edges_needed(list: &DisplayList<'_>) -> usize {
-    list.commands()
-        .map(|(_, c)| match c {
-            Command::Poly(v) => v.len(),
-            Command::Poly3(v) => v.len(),
-            _ => 0,
-        })
-        .max()
-        .unwrap_or(0)
-}
-
 /// The outcome of rendering a scene through the simulated hardware.
 #[derive(Debug)]
 pub struct Rendered {
     /// The RAM after the graphic controller wrote the frame.
     pub ram: DualPortRam,
     /// What the controller did.
-    pub stats: Stats,
+    pub stats: RenderStats,
 }
 
 /// Runs the graphic controller on `scene` into a fresh (black) dual-port RAM.
 ///
-/// A scene with a 3D layer (`poly3`, or the 3D scene commands) gets its
-/// memory too, sized from the scene by [`needs_3d`]: as many trapezoid
+/// The memory follows the scene, not the format's worst case
+/// ([`ListMemory::for_list`]): edge storage for its largest polygon and,
+/// with a 3D layer (`poly3`, or the 3D scene commands), as many trapezoid
 /// slots as its polygons are cut into, a face each, an active entry per
 /// trapezoid (the most that can overlap a row), a run per column, and the
-/// label slots and text its labels need.
+/// label slots and text its labels need. A scene that would need more than
+/// a pool can address is refused, naming the line, before any of it is
+/// allocated.
 pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     let list = scene.list();
-    let mut edges = vec![Edge::EMPTY; edges_needed(&list)];
-    let mut slots = vec![EdgeSlot::EMPTY; edges_3d(&list)];
-    // `None`: a scene command fails; rendering reports where.
-    let need = needs_3d(&list, &mut slots).unwrap_or(Needs3d {
-        poly3: 1,
-        rows: list.height() as usize,
-        runs: list.width() as usize,
-        ..Needs3d::default()
-    });
-    let mut labels = vec![Label::EMPTY; need.labels];
-    let mut text = vec![0u8; need.text];
-    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
-    let mut faces = vec![Face::EMPTY; need.faces];
-    let mut segments = [Segment::EMPTY; 1];
-    let mut rows = vec![0u16; need.rows];
-    let mut active = vec![Active::EMPTY; need.trapezoids];
-    let mut cover = vec![Cover::EMPTY; need.trapezoids];
-    let mut runs = vec![Run::EMPTY; need.runs];
-    let mut controller = Controller::new(Rasterizer::new(&mut edges));
-    if need.any() {
-        controller = controller.with_labels(&mut labels, &mut text);
-        controller = controller.with_3d(Storage3d {
-            store: StoreMemory {
-                trapezoids: &mut traps,
-                faces: &mut faces,
-                segments: &mut segments,
-                rows: &mut rows,
-                edges: &mut slots,
-            },
-            active: &mut active,
-            cover: &mut cover,
-            runs: &mut runs,
-            resolve: Resolve::default(),
-        });
-    }
+    let mut memory = ListMemory::for_list(&list).map_err(|e| scene.render_error(e))?;
     let mut ram = DualPortRam::new(list.width(), list.height());
-    let stats = controller
+    let stats = memory
+        .controller()
         .render(&list, &mut ram.write_port())
         .map_err(|e| scene.render_error(e))?;
     Ok(Rendered { ram, stats })

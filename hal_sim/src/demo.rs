@@ -34,7 +34,7 @@ use scanvert::scene::label::{Label, DEFAULT_FONT};
 use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory, Update};
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{Active, Cover, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -218,28 +218,11 @@ struct Memory {
     edges: Vec<EdgeSlot>,
     labels: Vec<Label>,
     text: Vec<u8>,
-}
-
-/// The visible-surface pass's memory: as many active entries as
-/// trapezoids can overlap one row, a run per column.
-struct Work {
+    /// The visible-surface pass: as many active entries as trapezoids
+    /// can overlap one row, a run per column.
     active: Vec<Active>,
     cover: Vec<Cover>,
     runs: Vec<Run>,
-}
-
-impl Work {
-    fn new() -> Work {
-        Work {
-            active: vec![Active::EMPTY; 512],
-            cover: vec![Cover::EMPTY; 512],
-            runs: vec![Run::EMPTY; WIDTH as usize],
-        }
-    }
-
-    fn workspace(&mut self) -> Workspace<'_> {
-        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
-    }
 }
 
 impl Memory {
@@ -252,6 +235,9 @@ impl Memory {
             edges: vec![EdgeSlot::EMPTY; N],
             labels: vec![Label::EMPTY; 64],
             text: vec![0; 1024],
+            active: vec![Active::EMPTY; 512],
+            cover: vec![Cover::EMPTY; 512],
+            runs: vec![Run::EMPTY; WIDTH as usize],
         }
     }
 
@@ -271,6 +257,9 @@ impl Memory {
                 rows: &mut self.rows,
                 edges: &mut self.edges,
             },
+            active: &mut self.active,
+            cover: &mut self.cover,
+            runs: &mut self.runs,
             labels: &mut self.labels,
             text: &mut self.text,
         };
@@ -295,12 +284,11 @@ fn advance(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<
     scene.update(procs).map_err(|e| fail(&e))
 }
 
-fn draw<T>(scene: &DemoScene<'_>, ws: &mut Workspace<'_>, target: &mut T) -> scanvert::scene::Frame
+fn draw<T>(scene: &mut DemoScene<'_>, target: &mut T) -> scanvert::scene::Frame
 where
     T: SpanTarget<Color = Rgb565, Error = core::convert::Infallible>,
 {
     match scene.draw(
-        ws,
         Resolve::default(),
         Some(Rgb565::from(BACKGROUND)),
         DEFAULT_FONT,
@@ -355,8 +343,7 @@ pub struct DemoFrame {
 
 /// Runs the animation of `frames` frames through the simulator.
 pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
-    let (mut mem, mut work) = (Memory::new(), Work::new());
-    let mut ws = work.workspace();
+    let mut mem = Memory::new();
     let mut scene = mem.scene();
     let mut ram = DualPortRam::double_buffered(WIDTH, HEIGHT);
     let mut refresh = RefreshController::new(VideoTiming::for_frame(WIDTH, HEIGHT));
@@ -366,7 +353,7 @@ pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
     for step in steps(frames) {
         let update = advance(&mut scene, last, step)?;
         last = Some(step);
-        let drawn = draw(&scene, &mut ws, &mut co);
+        let drawn = draw(&mut scene, &mut co);
         co.request_swap();
         co.wait_for_swap();
         // The banks swap in the retrace at the end of the frame being read
@@ -392,21 +379,19 @@ pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
 /// The frame of `step` drawn from scratch into a plain frame buffer: what
 /// the monitor must show for it.
 pub fn reference_frame(step: Step) -> Result<Vec<Rgb565>, CliError> {
-    let (mut mem, mut work) = (Memory::new(), Work::new());
-    let mut ws = work.workspace();
+    let mut mem = Memory::new();
     let mut scene = mem.scene();
     advance(&mut scene, None, step)?;
     let mut pixels = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
     let mut fb = FrameBuffer::new(&mut pixels, WIDTH, HEIGHT).expect("frame");
-    draw(&scene, &mut ws, &mut fb);
+    draw(&mut scene, &mut fb);
     Ok(pixels)
 }
 
 /// Speeds on the host, frames per second: `(camera moves, threshold
 /// changes, nothing changes)`.
 pub fn speeds() -> Result<(f64, f64, f64), CliError> {
-    let (mut mem, mut work) = (Memory::new(), Work::new());
-    let mut ws = work.workspace();
+    let mut mem = Memory::new();
     let mut scene = mem.scene();
     let mut pixels = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
     let mut fb = FrameBuffer::new(&mut pixels, WIDTH, HEIGHT).expect("frame");
@@ -417,7 +402,7 @@ pub fn speeds() -> Result<(f64, f64, f64), CliError> {
             error = Some(e);
         }
         last = Some(step);
-        draw(scene, &mut ws, fb);
+        draw(scene, fb);
     };
     let mut orbit = 0;
     let camera = rate(|| {

@@ -15,6 +15,7 @@
 //! | [`image`] | the frame as a PNG (RGB565 expanded by bit replication) |
 //! | [`text`] | the text form of the display list: assembler and disassembler |
 //! | [`cli`] | the `scanvert` program: `render`, `asm`, `disasm`, `checksum` |
+//! | [`memory`] | the graphic controller's memory for a list, sized by what it needs |
 //!
 //! ```
 //! use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
@@ -53,6 +54,7 @@ pub mod demo;
 pub mod dual_port;
 pub mod error;
 pub mod image;
+pub mod memory;
 mod output;
 pub mod refresh;
 pub mod text;

@@ -4,7 +4,7 @@
 
 use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::BinaryColor;
-use scanvert::controller::{Controller, RenderError, Stats};
+use scanvert::controller::{Controller, RenderError, RenderStats};
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::fixed::Vertex;
 use scanvert::port::framebuffer::FrameBuffer;
@@ -142,7 +142,7 @@ pub fn render_counting(
     width: u16,
     height: u16,
     capacity: usize,
-) -> (CountingTarget, Result<Stats, RenderError<Infallible>>) {
+) -> (CountingTarget, Result<RenderStats, RenderError<Infallible>>) {
     let bytes = build_list(draws, width, height);
     let list = DisplayList::new_checked(&bytes).expect("Writer output is a valid list");
     let mut edges = vec![Edge::EMPTY; capacity];
@@ -166,9 +166,13 @@ pub fn render_poly(poly: &[(i32, i32)], window: Window, width: u16, height: u16)
     let written: u64 = target.spans.iter().map(|s| s.len() as u64).sum();
     assert_eq!(
         stats.pixels, written,
-        "Stats::pixels disagrees with the spans"
+        "RenderStats::pixels disagrees with the spans"
     );
-    assert_eq!(stats.spans as usize, target.spans.len(), "Stats::spans");
+    assert_eq!(
+        stats.spans as usize,
+        target.spans.len(),
+        "RenderStats::spans"
+    );
     target
 }
 

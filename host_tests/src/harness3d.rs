@@ -1,21 +1,17 @@
 //! Running `poly3` scenes through the library's real path: a display list
 //! built with `Writer`, checked, and executed by `Controller::render` with
-//! 3D storage sized by `needs_3d`, into an `Rgb888` frame buffer. Each
+//! memory sized by `needs` (`scanvert_sim::memory::ListMemory`), into an `Rgb888` frame buffer. Each
 //! `poly3` gets a colour of its own, so the picture tells which one won
 //! each pixel, and [`compare`] counts the pixels that differ from
 //! [`testkit::reference3d`].
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
+use scanvert::controller::RenderStats;
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::fixed::{Coord, Vertex3};
 use scanvert::port::framebuffer::FrameBuffer;
-use scanvert::raster::edge::Edge;
-use scanvert::raster::scan::Rasterizer;
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::visible::sweep::Resolve;
+use scanvert_sim::memory::ListMemory;
 use testkit::reference::Window;
 use testkit::reference3d::{resolve, Poly3};
 
@@ -70,36 +66,15 @@ pub fn render3(
     width: u16,
     height: u16,
     mode: Resolve,
-) -> (Vec<Option<usize>>, Stats) {
+) -> (Vec<Option<usize>>, RenderStats) {
     let bytes = build_list3(polys, width, height);
     let list = DisplayList::new_checked(&bytes).expect("Writer output is valid");
-    let most = polys.iter().map(|p| p.poly.len()).max().unwrap_or(0);
-    let mut slots = vec![EdgeSlot::EMPTY; most];
-    let need = needs_3d(&list, &mut slots).expect("slots sized");
-    let mut edges = vec![Edge::EMPTY; 4];
-    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
-    let mut faces = vec![Face::EMPTY; need.faces];
-    let mut segs = [Segment::EMPTY; 1];
-    let mut rows = vec![0u16; need.rows];
-    let mut active = vec![Active::EMPTY; need.trapezoids];
-    let mut cover = vec![Cover::EMPTY; need.trapezoids];
-    let mut runs = vec![Run::EMPTY; need.runs];
+    let mut memory = ListMemory::for_list(&list).expect("within the pools' limits");
     let mut pixels = vec![Rgb888::WHITE; width as usize * height as usize];
     let mut fb = FrameBuffer::new(&mut pixels, width, height).expect("frame size");
-    let stats = Controller::new(Rasterizer::new(&mut edges))
-        .with_3d(Storage3d {
-            store: StoreMemory {
-                trapezoids: &mut traps,
-                faces: &mut faces,
-                segments: &mut segs,
-                rows: &mut rows,
-                edges: &mut slots,
-            },
-            active: &mut active,
-            cover: &mut cover,
-            runs: &mut runs,
-            resolve: mode,
-        })
+    let stats = memory
+        .controller()
+        .with_resolve(mode)
         .render(&list, &mut fb)
         .expect("render");
     (pixels.into_iter().map(index_of).collect(), stats)

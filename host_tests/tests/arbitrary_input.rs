@@ -17,7 +17,7 @@
 //! fuzz job's to catch (libFuzzer's `-timeout`), not a timed test's.
 
 use proptest::prelude::*;
-use scanvert::controller::{edges_3d, needs_3d};
+use scanvert::controller::{edges_3d, needs};
 use scanvert::display_list::{DisplayList, MAGIC};
 use scanvert::visible::trapezoid::EdgeSlot;
 use scanvert_sim::cli::{render_scene, Scene};
@@ -96,12 +96,10 @@ fn check_render(
             prop_assert!(at.is_some(), "{}: names no command of the list", e.message);
             // Memory sized from the scene never runs out; a face of more
             // than 58 vertices is a limit of the format's executor, not of
-            // the memory. When a scene command fails, `needs_3d` sizes
-            // nothing and the program renders with token memory, which may
-            // run out before the failing command is reached (a known
-            // fault: docs/robustness.md, "Known faults").
+            // the memory. When a scene command fails, `needs` reports it
+            // at that command, as the render does.
             let mut slots = vec![EdgeSlot::EMPTY; edges_3d(list)];
-            let sized = needs_3d(list, &mut slots).is_some();
+            let sized = needs(list, &mut slots).is_ok();
             let ran_out = sized
                 && e.message.contains("this renderer holds")
                 && !e.message.contains("vertices of a face");

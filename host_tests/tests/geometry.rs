@@ -10,7 +10,8 @@ use proptest::prelude::*;
 use scanvert::fixed::{Coord, Vertex, Vertex3};
 use scanvert::geometry::{
     trig, Angle, Light, Matrix, Orthographic, Outcome, Perspective, Pipeline, PipelineError,
-    Point3, PolygonSink, Projection, Stats, TransformError, View, Viewport, Q16, Z_FAR, Z_NEAR,
+    PipelineStats, Point3, PolygonSink, Projection, TransformError, View, Viewport, Q16, Z_FAR,
+    Z_NEAR,
 };
 use std::convert::Infallible;
 use std::f64::consts::PI;
@@ -977,15 +978,30 @@ fn edge_on_faces_are_culled() {
         pipe.polygon(&rev.map(flip).map(pt), Rgb888::RED, &mut sink),
         Ok(Outcome::Culled)
     );
-    // Degenerate: first three vertices in a line.
+    // First three vertices in a line: the whole polygon decides, so one
+    // winding is drawn and the other culled.
     let line = [
         [0.0, 0.0, -5.0],
         [1.0, 1.0, -5.0],
         [2.0, 2.0, -5.0],
         [0.0, 3.0, -5.0],
     ];
+    let mut rev = line;
+    rev.reverse();
+    let both = [line, rev].map(|l| pipe.polygon(&l.map(pt), Rgb888::RED, &mut sink));
+    assert!(
+        both.contains(&Ok(Outcome::Culled)) && both.contains(&Ok(Outcome::Emitted)),
+        "{both:?}"
+    );
+    // All of them in a line: no area, culled.
+    let flat = [
+        [0.0, 0.0, -5.0],
+        [1.0, 1.0, -5.0],
+        [2.0, 2.0, -5.0],
+        [3.0, 3.0, -5.0],
+    ];
     assert_eq!(
-        pipe.polygon(&line.map(pt), Rgb888::RED, &mut sink),
+        pipe.polygon(&flat.map(pt), Rgb888::RED, &mut sink),
         Ok(Outcome::Culled)
     );
     // Nearly edge-on after rotation: either culled or delivered with an area.
@@ -1485,7 +1501,7 @@ proptest! {
                 prop_assert!((0..=cam.h as i32 * 16).contains(&v.y.units()), "{:?}", p);
             }
         }
-        let s: Stats = pipe.stats();
+        let s: PipelineStats = pipe.stats();
         prop_assert_eq!(s.faces_in as usize, polys.len() + framed.len());
         prop_assert_eq!(s.faces_in, s.culled + s.clipped_away + s.emitted + s.rejected);
         prop_assert_eq!(s.emitted as usize, sink.0.len());
@@ -1582,5 +1598,50 @@ proptest! {
             let _ = m.transform(p(b));
             let _ = m.checked_mul(&m);
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Facing is the whole polygon's orientation as projected: for random
+    /// star-shaped faces, convex or concave (reflex corners anywhere, the
+    /// first three vertices included), tilted and in either winding, a
+    /// face is culled exactly when the f64 shoelace sum of its projection
+    /// is not negative.
+    #[test]
+    fn facing_is_the_projected_orientation_of_the_whole_polygon(
+        spokes in prop::collection::vec((0.0..1.0f64, 0.3..3.0f64), 4..12),
+        start in 0usize..12,
+        reverse in any::<bool>(),
+        (tx, ty) in (-1.2..1.2f64, -1.2..1.2f64),
+        centre in (-4.0..4.0f64, -3.0..3.0f64, 6.0..60.0f64),
+    ) {
+        // Angles spread over the turn, each in its own sector: a simple
+        // star-shaped polygon around the origin.
+        let n = spokes.len();
+        let mut face: Vec<V3> = spokes
+            .iter()
+            .enumerate()
+            .map(|(k, &(a, r))| {
+                let t = std::f64::consts::TAU * (k as f64 + 0.1 + 0.8 * a) / n as f64;
+                [r * t.cos(), r * t.sin(), 0.0]
+            })
+            .collect();
+        face.rotate_left(start % n);
+        if reverse {
+            face.reverse();
+        }
+        let m = mul(&trans([centre.0, centre.1, centre.2]), &mul(&rot_y(tx), &rot_x(ty)));
+        let view: Vec<V3> = face.iter().map(|&p| apply(&m, p)).collect();
+        let cam = cam_persp();
+        let projected: Vec<V3> = view.iter().map(|&v| cam.project(v)).collect();
+        let a = area(&projected);
+        prop_assume!(a.abs() > 1.0);
+        let mut pipe = cam.pipeline();
+        let mut sink = Collect::default();
+        let pts: Vec<Point3> = view.iter().map(|&v| pt(v)).collect();
+        let got = pipe.polygon(&pts, Rgb888::RED, &mut sink).unwrap();
+        prop_assert_eq!(got != Outcome::Culled, a < 0.0, "area {} {:?}", a, got);
     }
 }

@@ -24,16 +24,12 @@
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use host_tests::harness3d::vertex3;
-use scanvert::controller::{needs_3d, Controller, Stats, Storage3d};
+use scanvert::controller::{Needs, RenderStats};
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::port::checksum::frame_checksum;
-use scanvert::raster::edge::Edge;
-use scanvert::raster::scan::Rasterizer;
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::visible::sweep::Resolve;
 use scanvert_sim::dual_port::DualPortRam;
+use scanvert_sim::memory::ListMemory;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use testkit::poly3_scenes as scenes3d;
@@ -120,42 +116,18 @@ struct Memory3d {
 }
 
 /// The checksum of `bytes` rendered on the host, into a fresh (black)
-/// dual-port RAM, with 3D storage sized by `needs_3d` (as `scanvert
-/// checksum` does); the render's statistics.
-fn host_render(bytes: &[u8]) -> (u32, Stats) {
+/// dual-port RAM, with memory sized by `needs` (as `scanvert checksum`
+/// does); what the list needs, and the render's statistics.
+fn host_render(bytes: &[u8]) -> (u32, Needs, RenderStats) {
     let list = DisplayList::new_checked(bytes).expect("valid list");
-    let slots_needed = scanvert_sim::cli::edges_needed(&list).max(3);
-    let mut edges = vec![Edge::EMPTY; slots_needed];
-    let mut slots = vec![EdgeSlot::EMPTY; slots_needed];
-    let need = needs_3d(&list, &mut slots).expect("slots sized");
-    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
-    let mut faces = vec![Face::EMPTY; need.faces];
-    let mut segs = [Segment::EMPTY; 1];
-    let mut rows = vec![0u16; need.rows];
-    let mut active = vec![Active::EMPTY; need.trapezoids];
-    let mut cover = vec![Cover::EMPTY; need.trapezoids];
-    let mut runs = vec![Run::EMPTY; need.runs];
+    let mut memory = ListMemory::for_list(&list).expect("within the pools' limits");
     let mut ram = DualPortRam::new(list.width(), list.height());
-    let mut controller = Controller::new(Rasterizer::new(&mut edges));
-    if need.poly3 > 0 {
-        controller = controller.with_3d(Storage3d {
-            store: StoreMemory {
-                trapezoids: &mut traps,
-                faces: &mut faces,
-                segments: &mut segs,
-                rows: &mut rows,
-                edges: &mut slots,
-            },
-            active: &mut active,
-            cover: &mut cover,
-            runs: &mut runs,
-            resolve: Resolve::Crossing,
-        });
-    }
-    let stats = controller
+    let stats = memory
+        .controller()
+        .with_resolve(Resolve::Crossing)
         .render(&list, &mut ram.write_port())
         .expect("renders");
-    (frame_checksum(ram.contents()), stats)
+    (frame_checksum(ram.contents()), *memory.needs(), stats)
 }
 
 /// The table the image compiles in.
@@ -174,18 +146,19 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
     let mut m = Memory3d::default();
     for (name, bytes) in lists {
         let list = DisplayList::new_checked(bytes).expect("valid list");
-        slots = slots.max(scanvert_sim::cli::edges_needed(&list));
+        let (sum, need, stats) = host_render(bytes);
+        slots = slots.max(need.edges).max(need.edge_slots);
         assert!(
             list.width() as usize * list.height() as usize <= IMAGE_FRAME_PIXELS,
             "{name}: frame larger than the image's frame buffer"
         );
-        let (sum, stats) = host_render(bytes);
-        if stats.poly3 > 0 {
-            m.trapezoids = m.trapezoids.max(stats.trapezoids as usize);
-            m.faces = m.faces.max(stats.poly3 as usize);
+        if need.any() {
+            m.trapezoids = m.trapezoids.max(need.trapezoids);
+            m.faces = m.faces.max(need.faces);
+            // The exact number, where `needs` gives a bound.
             m.active = m.active.max(stats.visible.max_active as usize);
-            m.rows = m.rows.max(list.height() as usize);
-            m.runs = m.runs.max(list.width() as usize);
+            m.rows = m.rows.max(need.rows);
+            m.runs = m.runs.max(need.runs);
         }
         writeln!(
             rows,
@@ -201,7 +174,7 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
     writeln!(
         s,
         "/// Trapezoid slots of the 3D layer: the most of any scene.\npub const TRAPEZOID_SLOTS: usize = {};\n\n\
-         /// Face slots: the most `poly3`s drawn in any scene.\npub const FACE_SLOTS: usize = {};\n\n\
+         /// Face slots: the most of any scene (a drawn `poly3` with a trapezoid needs one).\npub const FACE_SLOTS: usize = {};\n\n\
          /// Active-list entries: the most trapezoids on one row of any scene.\npub const ACTIVE_SLOTS: usize = {};\n\n\
          /// Rows of the scan-line index: the tallest 3D scene.\npub const INDEX_ROWS: usize = {};\n\n\
          /// Runs of one row: the widest 3D scene.\npub const RUN_SLOTS: usize = {};\n",

@@ -22,7 +22,7 @@ use scanvert::scene::label::{Label, DEFAULT_FONT};
 use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{Active, Cover, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use testkit::reference3d::{drawn, resolve, Poly3};
 
@@ -82,6 +82,9 @@ struct Mem {
     edges: Vec<EdgeSlot>,
     labels: Vec<Label>,
     text: Vec<u8>,
+    active: Vec<Active>,
+    cover: Vec<Cover>,
+    runs: Vec<Run>,
 }
 
 impl Mem {
@@ -94,6 +97,10 @@ impl Mem {
             edges: vec![EdgeSlot::EMPTY; 32],
             labels: vec![Label::EMPTY; 16],
             text: vec![0; 256],
+            // Every trapezoid may overlap one row.
+            active: vec![Active::EMPTY; trapezoids],
+            cover: vec![Cover::EMPTY; trapezoids],
+            runs: vec![Run::EMPTY; W as usize],
         }
     }
 
@@ -107,6 +114,9 @@ impl Mem {
                     rows: &mut self.rows,
                     edges: &mut self.edges,
                 },
+                active: &mut self.active,
+                cover: &mut self.cover,
+                runs: &mut self.runs,
                 labels: &mut self.labels,
                 text: &mut self.text,
             },
@@ -118,19 +128,11 @@ impl Mem {
 
 /// Draws a scene into an `Rgb888` frame (black background); returns the
 /// face index at each pixel (by colour) and the labels drawn.
-fn draw(scene: &Scene<'_, 8, 32>) -> (Vec<Option<usize>>, Vec<Rgb888>, u32) {
-    let n = scene.store().len().max(1);
-    let (mut active, mut cover, mut runs) = (
-        vec![Active::EMPTY; n],
-        vec![Cover::EMPTY; n],
-        vec![Run::EMPTY; W as usize],
-    );
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+fn draw(scene: &mut Scene<'_, 8, 32>) -> (Vec<Option<usize>>, Vec<Rgb888>, u32) {
     let mut px = vec![Rgb888::WHITE; W as usize * H as usize];
     let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
     let f = scene
         .draw(
-            &mut ws,
             Resolve::default(),
             Some(Rgb888::BLACK),
             DEFAULT_FONT,
@@ -172,7 +174,7 @@ fn check(pipe: &P, faces: &[Vec<Point3>]) -> Check {
         Ok(())
     };
     scene.update(&mut [&mut build]).unwrap();
-    let (got, _, _) = draw(&scene);
+    let (got, _, _) = draw(&mut scene);
 
     // The reference culls by the spec's rule for `poly3`: every face the
     // geometry stage lets through must pass it; points and lines (two
@@ -541,7 +543,7 @@ fn labels_behind_the_eye_and_off_screen() {
     scene.update(&mut [&mut build]).unwrap();
     let behind: Vec<_> = placed.iter().filter(|p| !p.1).map(|p| p.0).collect();
     assert_eq!(behind, ["behind", "at the eye"]);
-    let (_, px, drawn) = draw(&scene);
+    let (_, px, drawn) = draw(&mut scene);
     assert_eq!(drawn, 3, "centre and the two cut at edges");
     assert!(px.contains(&Rgb888::WHITE));
     // A bad text fails even when the point is behind the eye.
@@ -621,11 +623,11 @@ fn only_the_changed_segment_is_rebuilt() {
     assert!(u.trapezoids > 0);
 
     // The picture is the one a scene built from scratch draws.
-    let (got, _, _) = draw(&scene);
+    let (got, _, _) = draw(&mut scene);
     let mut mem2 = Mem::new(3, 1024);
     let mut fresh = mem2.scene(pipe.clone());
     fresh.update(&mut [&mut a2, &mut b2, &mut c2]).unwrap();
-    let (want, _, _) = draw(&fresh);
+    let (want, _, _) = draw(&mut fresh);
     assert_eq!(got, want);
 
     // A camera move makes every segment stale.
@@ -674,4 +676,121 @@ fn a_failing_segment_is_left_empty_and_stale_alone() {
     let u = scene.update(procs).unwrap();
     assert_eq!(u.regenerated, 2);
     assert_eq!(scene.store().segment(0).unwrap().trapezoids(), held);
+}
+
+/// An arrow head pointing down (y up), counter-clockwise seen from +z,
+/// listed so that the corner of its first three vertices is the reflex
+/// one: the old rule (the first three vertices) called it a back face.
+fn arrow(z: f64) -> Vec<Point3> {
+    [(3.0, 3.0), (0.0, 1.0), (-3.0, 3.0), (0.0, -3.0)]
+        .iter()
+        .map(|&(x, y)| p(x, y, z))
+        .collect()
+}
+
+/// The list's default camera: the eye at the origin looking along −z, y
+/// up. A face in front of it (z = −5) is drawn; one behind it (z = +5)
+/// is not, in either winding.
+#[test]
+fn the_default_camera_of_a_list_looks_along_minus_z() {
+    let square = |z: f64| {
+        vec![
+            p(-1.0, -1.0, z),
+            p(1.0, -1.0, z),
+            p(1.0, 1.0, z),
+            p(-1.0, 1.0, z),
+        ]
+    };
+    for (z, shown) in [(-5.0, true), (5.0, false)] {
+        for reverse in [false, true] {
+            let mut mem = Mem::new(1, 64);
+            let mut scene = mem.scene(scanvert::scene::list_pipeline(W, H).unwrap());
+            let mut face = square(z);
+            if reverse {
+                face.reverse();
+            }
+            let mut build = |b: &mut B<'_, '_>| b.face(&face, color_of(0)).map(|_| ());
+            scene.update(&mut [&mut build]).unwrap();
+            let (got, _, _) = draw(&mut scene);
+            let n = got.iter().filter(|c| c.is_some()).count();
+            assert_eq!(n > 0, shown && !reverse, "z = {z}, reversed: {reverse}");
+            if n > 0 {
+                // Centred on the view axis.
+                assert_eq!(
+                    got[(H / 2) as usize * W as usize + (W / 2) as usize],
+                    Some(0)
+                );
+            }
+        }
+    }
+}
+
+/// Facing is decided by the whole polygon: a concave face listed from
+/// its reflex corner is drawn, exactly, and its reverse is culled; the
+/// same face given as a display-list command through `Builder::command`
+/// draws the same pixels.
+#[test]
+fn a_concave_face_from_its_reflex_corner_is_drawn() {
+    let pipe = pipeline(persp(60, 1.0, 100.0), p(0.0, 0.0, 10.0), p(0.0, 0.0, 0.0));
+    let face = arrow(0.0);
+    // The reference: the delivered polygon whole (parallel to the screen,
+    // so planar exactly), by the pixel rule.
+    let mut rec = Record::default();
+    pipe.clone().polygon(&face, color_of(0), &mut rec).unwrap();
+    assert_eq!(rec.0.len(), 1);
+    let poly: Vec<(i32, i32, i32)> = rec.0[0]
+        .0
+        .iter()
+        .map(|v| (v.x.units(), v.y.units(), v.z.units()))
+        .collect();
+    assert!(drawn(&poly));
+    let want = resolve(&[Poly3 { poly, clip: None }], W.into(), H.into());
+    let mut mem = Mem::new(1, 64);
+    let mut scene = mem.scene(pipe.clone());
+    let mut build = |b: &mut B<'_, '_>| {
+        assert_eq!(b.face(&face, color_of(0))?, Outcome::Emitted);
+        Ok(())
+    };
+    scene.update(&mut [&mut build]).unwrap();
+    let (got, _, _) = draw(&mut scene);
+    assert_eq!(got, want);
+    assert!(got.iter().filter(|c| c.is_some()).count() > 300);
+    let mut back = face.clone();
+    back.reverse();
+    let mut mem = Mem::new(1, 64);
+    let mut scene = mem.scene(pipe.clone());
+    let mut build = |b: &mut B<'_, '_>| {
+        assert_eq!(b.face(&back, color_of(0))?, Outcome::Culled);
+        Ok(())
+    };
+    scene.update(&mut [&mut build]).unwrap();
+    let (got, _, _) = draw(&mut scene);
+    assert!(got.iter().all(|c| c.is_none()));
+
+    // The same through the list interpreter.
+    let text = "frame 160 120\ncolor #000000\nface 3 3 0  0 1 0  -3 3 0  0 -3 0\n";
+    let bytes = scanvert_sim::text::assemble_bytes(text.as_bytes())
+        .unwrap()
+        .bytes;
+    let list = scanvert::display_list::DisplayList::new_checked(&bytes).unwrap();
+    let mut run = |b: &mut B<'_, '_>| {
+        let mut st = scanvert::scene::ListState::new(W, H);
+        for (_, cmd) in list.commands() {
+            b.command(cmd, &mut st)?;
+        }
+        Ok(())
+    };
+    let mut direct = |b: &mut B<'_, '_>| b.face(&face, Rgb888::BLACK).map(|_| ());
+    let mut frames = Vec::new();
+    for proc in [
+        &mut run as &mut dyn scanvert::scene::Procedure<8, 32>,
+        &mut direct,
+    ] {
+        let mut mem = Mem::new(1, 64);
+        let mut scene = mem.scene(pipe.clone());
+        scene.update(&mut [proc]).unwrap();
+        frames.push(draw(&mut scene).1);
+    }
+    assert_eq!(frames[0], frames[1]);
+    assert!(frames[0].contains(&Rgb888::BLACK));
 }

@@ -110,3 +110,112 @@ fn failing_scene_commands_name_their_line() {
         assert!(e.to_lowercase().contains(what), "{scene:?}: {e}");
     }
 }
+
+/// Red pixels of a decoded image.
+fn red(rgb: &[u8]) -> usize {
+    rgb.chunks(3).filter(|c| c == &[255, 0, 0]).count()
+}
+
+/// Without `view` or `lookat` the eye is at the origin looking along −z
+/// with y up (docs/display-list.md): a face at z = −5 is drawn, one at
+/// z = +5 (behind the eye) is not.
+#[test]
+fn the_default_camera_looks_along_minus_z_with_y_up() {
+    let face = |z: i32| {
+        format!("frame 64 48\ncolor #ff0000\nface -1 -1 {z}  1 -1 {z}  1 1 {z}  -1 1 {z}\n")
+    };
+    let (_, w, rgb) = render("ahead", &face(-5)).expect("renders");
+    assert!(red(&rgb) > 100);
+    let i = 3 * (24 * w + 32) as usize;
+    assert_eq!(&rgb[i..i + 3], [255, 0, 0], "on the view axis");
+    let (out, _, rgb) = render("behind", &face(5)).expect("renders");
+    assert_eq!(red(&rgb), 0, "{out}");
+    // y up: a point above the axis is drawn above the middle row.
+    let (_, w, rgb) = render(
+        "up",
+        "frame 64 48\ncolor #ff0000\nthickness 3\nface 0 2 -5\n",
+    )
+    .expect("renders");
+    let rows: Vec<u32> = (0..48)
+        .filter(|&y| (0..w).any(|x| rgb[3 * (y * w + x) as usize..][..3] == [255, 0, 0]))
+        .collect();
+    assert!(!rows.is_empty() && rows.iter().all(|&y| y < 24), "{rows:?}");
+}
+
+/// Facing is decided by the whole polygon: a concave face listed from its
+/// reflex corner (the corner of its first three vertices) is drawn, and
+/// the same face wound the other way is culled.
+#[test]
+fn a_concave_face_from_its_reflex_corner_is_drawn() {
+    let arrow = "3 3 -10  0 1 -10  -3 3 -10  0 -3 -10";
+    let reversed = "0 -3 -10  -3 3 -10  0 1 -10  3 3 -10";
+    let (out, _, rgb) = render(
+        "arrow",
+        &format!("frame 64 48\ncolor #ff0000\nface {arrow}\n"),
+    )
+    .expect("renders");
+    assert!(out.contains("1 faces (0 culled"), "{out}");
+    assert!(red(&rgb) > 100);
+    let (out, _, rgb) = render(
+        "arrow-back",
+        &format!("frame 64 48\ncolor #ff0000\nface {reversed}\n"),
+    )
+    .expect("renders");
+    assert!(out.contains("0 faces (1 culled"), "{out}");
+    assert_eq!(red(&rgb), 0);
+}
+
+/// The first failing command is the one named, with its own reason,
+/// whatever comes before it.
+#[test]
+fn the_first_failing_command_is_named_after_a_poly3() {
+    for (scene, line, what) in [
+        (
+            "frame 8 8\ncolor #ff0000\npoly3 1 1 1  1 6 1  6 3 1\npop\n",
+            4,
+            "pop on an empty transform stack",
+        ),
+        (
+            "frame 8 8\npoly3 1 1 1  1 6 1  6 3 1\nscale 1000 1000 1000\nscale 1000 1000 1000\n\
+             face 1 0 -30  0 1 -30  0 0 -30\n",
+            4,
+            "transform result outside the fixed-point range",
+        ),
+    ] {
+        let e = render("first", scene).expect_err(scene);
+        assert!(
+            e.contains(&format!("line {line}: {what}")),
+            "{scene:?}: {e}"
+        );
+    }
+}
+
+/// A list whose 3D layer needs more trapezoids than a pool can address
+/// (65535) is refused, naming the line that goes beyond, before anything
+/// is allocated for it (a few hundred kilobytes of self-intersecting
+/// `poly3`s once asked for gigabytes).
+#[test]
+fn a_list_needing_more_than_a_pool_holds_is_refused_with_its_line() {
+    // A star of 1001 vertices, each edge crossing about 1000 others.
+    let n = 1001;
+    let star: String = (0..n)
+        .map(|k| {
+            let a = 2.0 * std::f64::consts::PI * ((k * 501) % n) as f64 / n as f64;
+            format!(
+                " {:.2} {:.2} 1",
+                1024.0 + 1000.0 * a.cos(),
+                1024.0 + 1000.0 * a.sin()
+            )
+        })
+        .collect();
+    let scene = format!("frame 2048 2048\ncolor #ff0000\npoly3{star}\npoly3{star}\npoly3{star}\n");
+    let (src, png) = (dir().join("huge.dl"), dir().join("huge.png"));
+    std::fs::write(&src, &scene).expect("write scene");
+    let _ = std::fs::remove_file(&png);
+    let (src, out) = (src.to_str().expect("utf-8"), png.to_str().expect("utf-8"));
+    let e = run(&["render", src, "--out", out]).expect_err("refused");
+    assert_eq!(e.status, scanvert_sim::cli::EXIT_INPUT);
+    assert!(e.message.contains("line 4:"), "{}", e.message);
+    assert!(e.message.contains("65535 trapezoids"), "{}", e.message);
+    assert!(!png.exists());
+}

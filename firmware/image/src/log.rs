@@ -4,7 +4,7 @@
 
 use crate::{Cost, Stages};
 use core::convert::Infallible;
-use scanvert::controller::{RenderError, Stats};
+use scanvert::controller::{RenderError, RenderStats};
 use scanvert::display_list::Error;
 
 #[cfg(not(feature = "defmt"))]
@@ -39,7 +39,7 @@ pub fn calibration(expected: u64, ticks: u64, measured: u64, ok: bool) {
 }
 
 /// One frame's statistics and cost.
-pub fn frame(name: &str, w: u16, h: u16, s: &Stats, cost: Cost) {
+pub fn frame(name: &str, w: u16, h: u16, s: &RenderStats, cost: Cost) {
     #[cfg(not(feature = "defmt"))]
     println!(
         "frame {name} {w}x{h} commands={} polygons={} clears={} spans={} pixels={} poly3={} trapezoids={} ticks={} instructions={}",
@@ -77,27 +77,6 @@ pub fn stages(name: &str, s: &Stages) {
         s.check,
         s.resolve,
         v
-    );
-}
-
-/// A stage of a 3D layer that failed.
-pub fn stage_error(name: &str, what: &str) {
-    #[cfg(not(feature = "defmt"))]
-    println!("ERROR {name}: {what}");
-    #[cfg(feature = "defmt")]
-    defmt::error!("ERROR {=str}: {=str}", name, what);
-}
-
-/// A 3D layer rendered stage by stage whose checksum is not the host's.
-pub fn stage_mismatch(name: &str, got: u32, expected: u32) {
-    #[cfg(not(feature = "defmt"))]
-    println!("MISMATCH {name} by stages: {got:08x}, the host's is {expected:08x}");
-    #[cfg(feature = "defmt")]
-    defmt::error!(
-        "MISMATCH {=str} by stages: {=u32:08x}, the host's is {=u32:08x}",
-        name,
-        got,
-        expected
     );
 }
 

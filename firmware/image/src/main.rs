@@ -3,9 +3,10 @@
 //! Renders every display list of [`scenes::SCENES`] (embedded with
 //! `include_bytes!`) into a 512 × 256 RGB565 frame buffer, and for each
 //! frame prints its statistics, the instructions the render took, and
-//! the frame's checksum, through semihosting. A list with `poly3`s is
-//! also rendered stage by stage (cut into trapezoids, then resolved and
-//! decoded), each stage counted on its own. Each checksum is compared
+//! the frame's checksum, through semihosting. For a list with `poly3`s
+//! the stages of the 3D layer (cut into trapezoids, checked, resolved and
+//! decoded) are counted on their own too, through the controller's stage
+//! hook (`Controller::render_with`). Each checksum is compared
 //! with the host's render of the same list (the table in `scenes.rs`,
 //! which a host test keeps current). The image exits QEMU with status 0
 //! when every frame matches, 1 on a mismatch or a fault, and 101 on a
@@ -39,7 +40,7 @@ mod log;
 mod scenes;
 
 use core::convert::Infallible;
-use scanvert::controller::{front_facing, Controller, Storage3d, DEFAULT_COLOR};
+use scanvert::controller::{Controller, RenderStats};
 use scanvert::display_list::{Command, DisplayList};
 use scanvert::pixelcolor::{Rgb565, RgbColor};
 #[cfg(all(feature = "halfword", not(feature = "discard")))]
@@ -49,13 +50,10 @@ use scanvert::port::framebuffer::FrameBuffer;
 #[cfg(not(any(feature = "discard", feature = "halfword")))]
 use scanvert::port::PackedFrameBuffer;
 use scanvert::port::SpanTarget;
-use scanvert::raster::clip::ClipRect;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory, TrapezoidStore};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
-use scanvert::visible::{self, Active, Cover, Resolve, VisibleStats, Workspace};
+use scanvert::scene::{SceneStorage, Stage};
+use scanvert::visible::{Resolve, VisibleStats};
 
 #[cfg(feature = "discard")]
 mod discard;
@@ -107,44 +105,23 @@ pub struct Cost {
     pub instructions: u64,
 }
 
-/// The memory of the 3D layer, sized for the scenes by `scenes.rs`:
-/// about 60 KiB, in `.bss`.
-pub struct Memory3d {
-    trapezoids: [Trapezoid; scenes::TRAPEZOID_SLOTS],
-    faces: [Face; scenes::FACE_SLOTS],
-    segments: [Segment; 1],
-    rows: [u16; scenes::INDEX_ROWS],
-    edges: [EdgeSlot; scenes::EDGE_SLOTS],
-    active: [Active; scenes::ACTIVE_SLOTS],
-    cover: [Cover; scenes::ACTIVE_SLOTS],
-    runs: [Run; scenes::RUN_SLOTS],
-}
+/// The memory of the 3D layer, sized for the scenes by `scenes.rs` (from
+/// what each list needs): about 60 KiB, in `.bss`. One segment, no
+/// labels.
+pub type Memory3d = SceneStorage<
+    { scenes::TRAPEZOID_SLOTS },
+    { scenes::FACE_SLOTS },
+    1,
+    { scenes::INDEX_ROWS },
+    { scenes::EDGE_SLOTS },
+    { scenes::ACTIVE_SLOTS },
+    { scenes::RUN_SLOTS },
+    0,
+    0,
+>;
 
-impl Memory3d {
-    /// Every slot unused.
-    pub const EMPTY: Memory3d = Memory3d {
-        trapezoids: [Trapezoid::EMPTY; scenes::TRAPEZOID_SLOTS],
-        faces: [Face::EMPTY; scenes::FACE_SLOTS],
-        segments: [Segment::EMPTY; 1],
-        rows: [0; scenes::INDEX_ROWS],
-        edges: [EdgeSlot::EMPTY; scenes::EDGE_SLOTS],
-        active: [Active::EMPTY; scenes::ACTIVE_SLOTS],
-        cover: [Cover::EMPTY; scenes::ACTIVE_SLOTS],
-        runs: [Run::EMPTY; scenes::RUN_SLOTS],
-    };
-
-    /// The store's memory, the active list, the cover array and the runs.
-    fn parts(&mut self) -> (StoreMemory<'_>, &mut [Active], &mut [Cover], &mut [Run]) {
-        let store = StoreMemory {
-            trapezoids: &mut self.trapezoids,
-            faces: &mut self.faces,
-            segments: &mut self.segments,
-            rows: &mut self.rows,
-            edges: &mut self.edges,
-        };
-        (store, &mut self.active, &mut self.cover, &mut self.runs)
-    }
-}
+/// Every slot of the 3D memory unused.
+pub const EMPTY_3D: Memory3d = Memory3d::new();
 
 /// Instructions of the stages of a 3D layer.
 #[derive(Clone, Copy, Debug)]
@@ -153,12 +130,15 @@ pub struct Stages {
     pub faces: u32,
     /// Trapezoids they were cut into.
     pub trapezoids: u32,
-    /// Cutting every drawn `poly3` into trapezoids in the store (plane,
-    /// edges, trapezoids, the scan-line index).
+    /// Executing the 3D commands: every `poly3` culled, and every drawn
+    /// one cut into trapezoids in the store (plane, edges, trapezoids, the
+    /// scan-line index): from [`Stage::Start`] to [`Stage::Cut`].
     pub cut: u64,
-    /// `Workspace::check`: the most trapezoids on a row.
+    /// `Workspace::check`, the most trapezoids on a row: to
+    /// [`Stage::Checked`].
     pub check: u64,
-    /// Resolving the rows and decoding the runs into the frame.
+    /// Resolving the rows and decoding the runs into the frame: from
+    /// [`Stage::Painted`] to [`Stage::Resolved`].
     pub resolve: u64,
     /// What the visible-surface stage did.
     pub visible: VisibleStats,
@@ -204,6 +184,42 @@ where
     let t0 = counter.ticks();
     let rendered = controller.render(list, target);
     let ticks = counter.ticks() - t0;
+    logged(name, list, rendered, ticks)
+}
+
+/// [`render`] for a list with a 3D layer, counting its stages too, where
+/// the controller's hook reports their ends, and logging them first.
+#[inline(never)]
+fn render_stages<T>(
+    name: &str,
+    list: &DisplayList<'_>,
+    mut controller: Controller<'_>,
+    target: &mut T,
+    counter: &platform::Counter,
+) -> Option<()>
+where
+    T: SpanTarget<Color = Pixel, Error = Infallible>,
+{
+    // The counter's ticks at each stage, by `Stage as usize`.
+    let mut at = [0u64; 6];
+    let t0 = counter.ticks();
+    let rendered = controller.render_with(list, target, &mut |s: Stage| {
+        at[s as usize] = counter.ticks()
+    });
+    let ticks = counter.ticks() - t0;
+    if let Ok(stats) = &rendered {
+        log_stages(name, stats, &at);
+    }
+    logged(name, list, rendered, ticks)
+}
+
+/// Logs a render's statistics and cost, or its error (then `None`).
+fn logged(
+    name: &str,
+    list: &DisplayList<'_>,
+    rendered: Result<RenderStats, scanvert::controller::RenderError<Infallible>>,
+    ticks: u64,
+) -> Option<()> {
     match rendered {
         Ok(stats) => {
             let cost = Cost {
@@ -220,77 +236,21 @@ where
     }
 }
 
-/// Renders the 3D layer of `list` into `target` stage by stage, as the
-/// controller does (`poly3`s with the colour and clip in force, culled by
-/// `front_facing`, cut into one segment of the store, then resolved by
-/// crossing points and decoded with the background left as it is),
-/// counting each stage, and logs the counts. `None` (logged) if a stage
-/// failed.
-///
-/// Never inlined, for the reason given at [`render`].
-#[inline(never)]
-fn stages<T>(
-    name: &str,
-    list: &DisplayList<'_>,
-    mem: &mut Memory3d,
-    target: &mut T,
-    counter: &platform::Counter,
-) -> Option<()>
-where
-    T: SpanTarget<Color = Pixel, Error = Infallible>,
-{
-    let (tw, th) = target.size();
-    let (w, h) = (list.width().min(tw), list.height().min(th));
-    let (store_memory, active, cover, runs) = mem.parts();
-    let t0 = counter.ticks();
-    let Ok(mut store) = TrapezoidStore::new(store_memory, w, h) else {
-        log::stage_error(name, "the 3D store does not fit the frame");
-        return None;
-    };
-    let mut clip = ClipRect::full(w, h);
-    let mut color = DEFAULT_COLOR;
-    let (mut faces, mut trapezoids) = (0u32, 0u32);
-    for (_, cmd) in list.commands() {
-        match cmd {
-            Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
-            Command::Color(c) => color = c,
-            Command::Poly3(v) if front_facing(&v) => {
-                let Ok(n) = store.add_polygon(0, v.iter(), color, &clip) else {
-                    log::stage_error(name, "the 3D store is too small");
-                    return None;
-                };
-                faces += 1;
-                trapezoids += n;
-            }
-            _ => {}
-        }
-    }
-    let t1 = counter.ticks();
-    let mut ws = Workspace::new(active, cover, runs);
-    if ws.check(&store).is_err() {
-        log::stage_error(name, "the active list is too small");
-        return None;
-    }
-    let t2 = counter.ticks();
-    let drawn = visible::draw(&store, &mut ws, Resolve::Crossing, target, None);
-    let t3 = counter.ticks();
-    let Ok((visible, _)) = drawn else {
-        log::stage_error(name, "resolving failed");
-        return None;
-    };
+/// Logs the stages of a 3D layer from the ticks at each [`Stage`].
+fn log_stages(name: &str, stats: &RenderStats, at: &[u64; 6]) {
     let per = platform::INSTRUCTIONS_PER_TICK;
+    let span = |from: Stage, to: Stage| at[to as usize].saturating_sub(at[from as usize]) * per;
     log::stages(
         name,
         &Stages {
-            faces,
-            trapezoids,
-            cut: (t1 - t0) * per,
-            check: (t2 - t1) * per,
-            resolve: (t3 - t2) * per,
-            visible,
+            faces: stats.poly3,
+            trapezoids: stats.trapezoids,
+            cut: span(Stage::Start, Stage::Cut),
+            check: span(Stage::Cut, Stage::Checked),
+            resolve: span(Stage::Painted, Stage::Resolved),
+            visible: stats.visible,
         },
     );
-    Some(())
 }
 
 /// A frame the image renders into: its checksum, when it keeps pixels.
@@ -320,9 +280,8 @@ impl Checked for FrameBuffer<'_, Pixel> {
 }
 
 /// Renders `list` into `target` (which starts black) with the
-/// controller, and logs and compares the checksum; for a list with
-/// `poly3`s, first renders it stage by stage into the same target and
-/// compares that frame's checksum too. `true` when all match.
+/// controller, for a list with `poly3`s stage by stage, and logs and
+/// compares the checksum. `true` when it matches.
 fn render_and_check<T: Checked>(
     scene: &Scene,
     list: &DisplayList<'_>,
@@ -332,29 +291,11 @@ fn render_and_check<T: Checked>(
     counter: &platform::Counter,
 ) -> bool {
     let three = list.commands().any(|(_, c)| matches!(c, Command::Poly3(_)));
-    if three {
-        if stages(scene.name, list, mem, target, counter).is_none() {
-            return false;
-        }
-        if let Some(sum) = target.checksum() {
-            if sum != scene.checksum {
-                log::stage_mismatch(scene.name, sum, scene.checksum);
-                return false;
-            }
-        }
-        let _ = target.clear(BLACK);
-    }
     let rendered = if three {
-        let (store, active, cover, runs) = mem.parts();
-        let storage = Storage3d {
-            store,
-            active,
-            cover,
-            runs,
-            resolve: Resolve::Crossing,
-        };
-        let controller = Controller::new(Rasterizer::new(edges)).with_3d(storage);
-        render(scene.name, list, controller, target, counter)
+        let controller = Controller::new(Rasterizer::new(edges))
+            .with_3d(mem.as_memory())
+            .with_resolve(Resolve::Crossing);
+        render_stages(scene.name, list, controller, target, counter)
     } else {
         let controller = Controller::new(Rasterizer::new(edges));
         render(scene.name, list, controller, target, counter)

@@ -50,5 +50,5 @@ pub fn frame_memory() -> Option<&'static mut [crate::Cell; crate::CELLS]> {
 
 /// The memory of the 3D layer, in `.bss`, handed out once.
 pub fn memory_3d() -> Option<&'static mut crate::Memory3d> {
-    riscv::singleton!(: crate::Memory3d = crate::Memory3d::EMPTY)
+    riscv::singleton!(: crate::Memory3d = crate::EMPTY_3D)
 }

@@ -13,8 +13,8 @@ pub const EDGE_SLOTS: usize = 48;
 /// Trapezoid slots of the 3D layer: the most of any scene.
 pub const TRAPEZOID_SLOTS: usize = 375;
 
-/// Face slots: the most `poly3`s drawn in any scene.
-pub const FACE_SLOTS: usize = 170;
+/// Face slots: the most of any scene (a drawn `poly3` with a trapezoid needs one).
+pub const FACE_SLOTS: usize = 169;
 
 /// Active-list entries: the most trapezoids on one row of any scene.
 pub const ACTIVE_SLOTS: usize = 40;

@@ -12,10 +12,10 @@
 
 use scanvert::port::checksum::frame_checksum;
 use scanvert::prelude::*;
+use scanvert::scene::SceneStorage;
 use scanvert::scene::DEFAULT_FONT;
-use scanvert::{Active, Angle, Builder, Cover, EdgeSlot, Face, Label, Perspective, Pipeline};
-use scanvert::{Point3, Resolve, Run, Scene, SceneError, SceneMemory, Segment, StoreMemory};
-use scanvert::{Trapezoid, View, Viewport, Workspace, Q16};
+use scanvert::{Angle, Builder, Perspective, Pipeline, Point3, Resolve, Scene, SceneError};
+use scanvert::{View, Viewport, Q16};
 
 const W: u16 = 48;
 const H: u16 = 20;
@@ -27,45 +27,28 @@ fn square(b: &mut Builder<'_, '_, 4, 16>, c: Rgb888) -> Result<(), SceneError> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    // All the scene's memory is the caller's: the pools, the index, labels.
-    let (mut traps, mut faces, mut segs) = (
-        [Trapezoid::EMPTY; 64],
-        [Face::EMPTY; 8],
-        [Segment::EMPTY; 2],
-    );
-    let (mut rows, mut slots) = ([0u16; H as usize], [EdgeSlot::EMPTY; 16]);
-    let (mut labels, mut text) = ([Label::EMPTY; 2], [0u8; 16]);
-    let store = StoreMemory {
-        trapezoids: &mut traps,
-        faces: &mut faces,
-        segments: &mut segs,
-        rows: &mut rows,
-        edges: &mut slots,
-    };
-    let mem = SceneMemory {
-        store,
-        labels: &mut labels,
-        text: &mut text,
-    };
+    // All the scene's memory in one value, its capacities as const
+    // generics: 64 trapezoids, 8 faces, 2 segments, H rows of the index,
+    // 16 edge slots, 16 active trapezoids a row, W runs a row, 2 labels and
+    // 16 bytes of label text. It could as well be a `static`.
+    let mut storage =
+        SceneStorage::<64, 8, 2, { H as usize }, 16, 16, { W as usize }, 2, 16>::new();
     let persp = Perspective::from_fov(
         Angle::from_degrees(60),
         W,
         Q16::from_int(1),
         Q16::from_int(100),
     )?;
-    let mut scene = Scene::new(mem, Pipeline::<4, 16>::new(persp, Viewport::centred(W, H)?))?;
+    let mut scene = Scene::new(
+        storage.as_memory(),
+        Pipeline::<4, 16>::new(persp, Viewport::centred(W, H)?),
+    )?;
     scene.set_view(&View {
         eye: Point3::from_int(0, 0, 10),
         yaw: Angle::ZERO,
         pitch: Angle::ZERO,
     })?;
 
-    let (mut active, mut cover, mut runs) = (
-        [Active::EMPTY; 16],
-        [Cover::EMPTY; 16],
-        [Run::EMPTY; W as usize],
-    );
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
     let mut pixels = [Rgb565::BLACK; W as usize * H as usize];
 
     // Segment 0 stands still; segment 1, a square behind it with a label,
@@ -84,7 +67,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let u = scene.update(&mut [&mut still, &mut moving])?;
         let mut fb = FrameBuffer::new(&mut pixels, W, H).ok_or("frame size")?;
         let f = scene.draw(
-            &mut ws,
             Resolve::Crossing,
             Some(Rgb565::BLACK),
             DEFAULT_FONT,

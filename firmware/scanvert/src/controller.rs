@@ -6,7 +6,7 @@
 //! `clear` and `poly` are executed in list order (painter's order). The
 //! `poly3`s are the *3D layer*: all of them are resolved together by the
 //! visible-surface stages ([`trapezoid`](crate::visible::trapezoid) →
-//! [`segment`](crate::visible::store) → [`visible`](mod@crate::visible::sweep) →
+//! [`store`](crate::visible::store) → [`sweep`](mod@crate::visible::sweep) →
 //! [`rle`](crate::visible::rle)), and the layer is drawn **after** every 2D command
 //! of the list, writing only the pixels its faces cover: where no `poly3`
 //! is, the 2D content shows through. Each `poly3` takes the colour and the
@@ -17,15 +17,18 @@
 //!
 //! # The 3D scene (version 2)
 //!
-//! The scene commands of version 2 feed the same 3D layer. They are
-//! executed in list order through a [`Pipeline`] of [`LIST_STACK`] saved
-//! transforms and polygons of up to [`LIST_VERTICES`] vertices (after
-//! clipping), starting from these defaults:
+//! The scene commands of version 2 feed the same 3D layer. The layer is a
+//! [`Scene`] of one segment, and every 3D command is executed by the
+//! scene's one interpreter ([`Builder::command`], see
+//! [`scene::list`](crate::scene::list)), in list order, through a
+//! [`Pipeline`] of [`LIST_STACK`] saved transforms and polygons of up to
+//! [`LIST_VERTICES`] vertices (after clipping), starting from these
+//! defaults ([`list_pipeline`]):
 //!
 //! | state | default | set by |
 //! |---|---|---|
 //! | projection | perspective, 60° horizontal field of view, near 1, far 1000 | `perspective`, `ortho` |
-//! | window | the frame, the view axis through its middle | (fixed) |
+//! | window | the list's frame, the view axis through its middle | (fixed) |
 //! | camera | eye at the origin, yaw 0, pitch 0: looking along −z, y up | `view` (`lookat`) |
 //! | light | ambient only: every face keeps its colour | `light` |
 //! | thickness of points and lines | 1 px | `thickness` |
@@ -38,46 +41,62 @@
 //! the new camera as the current matrix. A one-shot render draws every
 //! segment (the retained, per-segment rebuilding is [`Scene`]'s); at equal
 //! depth the face earlier in the list is in front, whatever its segment.
-//! `face`s are culled by their first three vertices (see
-//! [`geometry::cull`](crate::geometry::cull)) and lit; `label`s are drawn
-//! after the whole 3D layer, in the colour in force at their place, with
-//! the lower-left corner of their first character at the projected point
-//! (see [`scene::label`](crate::scene::label)), never hidden.
+//! `face`s are culled by the orientation of the whole polygon as
+//! displayed (see [`geometry::cull`](crate::geometry::cull)) and lit;
+//! `label`s are drawn after the whole 3D layer, in the colour in force at
+//! their place, with the lower-left corner of their first character at
+//! the projected point (see [`scene::label`](crate::scene::label)), never
+//! hidden.
+//!
+//! The 3D layer is projected for the list's frame and, like the 2D
+//! commands, cut to the target: a target smaller than the frame shows the
+//! frame's top-left part, unchanged.
 //!
 //! # Memory
 //!
-//! The 3D layer needs memory of its own ([`Storage3d`], given with
-//! [`Controller::with_3d`]), and labels need label slots and text space
-//! ([`Controller::with_labels`]). Without 3D storage a list with a `poly3`
-//! or any scene command is rejected as [`RenderError::Unsupported`];
-//! with too little of either, as [`RenderError::Capacity3d`]. A scene
+//! The 3D layer needs memory of its own: a [`SceneMemory`] (store, active
+//! list, runs, label slots and text), given with [`Controller::with_3d`];
+//! [`SceneStorage`](crate::scene::SceneStorage) owns one with const-generic
+//! capacities. Without it a list with a `poly3` or any scene command is
+//! rejected as [`RenderError::Unsupported`]; with too little, as
+//! [`RenderError::Capacity3d`] naming the command that ran out. A scene
 //! command that fails (a `pop` with nothing saved, a vertex outside view
-//! space, a projection out of range) is a [`RenderError::Scene`]. All of
-//! these are found before anything is drawn. [`needs_3d`] sizes the memory
-//! for a list.
+//! space, a projection out of range) is a [`RenderError::Scene`] naming
+//! that command. All of these are found before anything is drawn, and the
+//! first failing command in list order is the one named. [`needs`] sizes
+//! the memory for a list, and refuses a list that needs more than a pool
+//! can address ([`POOL_LIMIT`]) before anything is allocated.
+//!
+//! # Timing
+//!
+//! [`Controller::render_with`] tells a [`Hook`] when each stage of the
+//! render ends ([`Stage`]); [`render`](Controller::render) passes one that
+//! does nothing, which compiles to nothing.
 //!
 //! [`Pipeline`]: crate::geometry::Pipeline
 //! [`Scene`]: crate::scene::Scene
+//! [`Builder::command`]: crate::scene::Builder::command
 
 use crate::color::ListColor;
-use crate::display_list::{Axis, Command, DisplayList, Vertices3};
-use crate::fixed::Vertex3;
-use crate::geometry::{
-    Angle, Light, Orthographic, Perspective, Pipeline, PipelineError, Point3, PolygonSink, View,
-    Viewport, Q16,
-};
+use crate::display_list::{Command, DisplayList};
+use crate::geometry::project::WINDOW_MAX;
+use crate::geometry::{Outcome, Pipeline};
 use crate::port::SpanTarget;
 use crate::raster::clip::ClipRect;
 use crate::raster::line;
 use crate::raster::scan::{FillError, Rasterizer};
-use crate::scene::label::{self, Label, LabelError, LabelStore};
-use crate::scene::SceneError;
-use crate::visible::rle::Run;
-use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
+use crate::scene::label::{self, LabelError};
+use crate::scene::list::{execute, Out};
+use crate::scene::{
+    list_pipeline, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
+};
+use crate::visible::store::StoreError;
 use crate::visible::trapezoid::{EdgeSlot, Polygon};
-use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
+use crate::visible::{Resolve, VisibleError, VisibleStats};
 use core::fmt;
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+pub use crate::scene::list::{front_facing, DEFAULT_COLOR};
 
 /// Matrices the transform stack of a list's 3D scene saves (`push`
 /// without `pop`).
@@ -88,11 +107,16 @@ pub const LIST_STACK: usize = 16;
 /// adds at most one to a convex face).
 pub const LIST_VERTICES: usize = 64;
 
+/// The most slots of one pool that a list may need: the store's pools
+/// and the active list index their slots with `u16`, one value reserved.
+/// [`needs`] refuses a list that needs more.
+pub const POOL_LIMIT: usize = u16::MAX as usize;
+
 /// The geometry stage of a list's 3D scene.
 type ListPipeline = Pipeline<LIST_STACK, LIST_VERTICES>;
 
-/// The colour of `poly` before the first `color` command.
-pub const DEFAULT_COLOR: Rgb888 = Rgb888::WHITE;
+/// The 3D layer of a list: a scene of one segment.
+type ListScene<'t> = Scene<'t, LIST_STACK, LIST_VERTICES>;
 
 /// Why a display list could not be rendered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -117,11 +141,12 @@ pub enum RenderError<E> {
         /// The command's name in the text form.
         command: &'static str,
     },
-    /// The 3D storage is too small for the list's `poly3`s. Found before
+    /// The 3D storage is too small for the list's 3D layer, or the list
+    /// needs more than a pool can address ([`POOL_LIMIT`]). Found before
     /// anything is drawn.
     Capacity3d {
-        /// Byte offset of the `poly3` at fault (the first `poly3` when the
-        /// layer as a whole does not fit).
+        /// Byte offset of the command that ran out (the first command of
+        /// the 3D layer when the layer as a whole does not fit).
         offset: usize,
         /// What ran out.
         resource: Resource,
@@ -194,7 +219,7 @@ pub enum Resource {
     Faces,
     /// Edge slots (a `poly3` of `n` vertices needs `n`).
     EdgeSlots,
-    /// Segments (the controller uses one).
+    /// Segments (a list uses one).
     Segments,
     /// Rows of the scan-line index (the frame's height).
     Rows,
@@ -238,21 +263,30 @@ impl Resource {
             StoreError::Rows { capacity, .. } => (Resource::Rows, capacity),
         }
     }
+}
 
-    fn of_labels(e: LabelError) -> (Resource, usize) {
-        match e {
-            LabelError::Labels { capacity } => (Resource::Labels, capacity),
-            LabelError::Text { capacity } => (Resource::LabelText, capacity),
-            // The reader checked every text.
-            LabelError::Invalid => (Resource::LabelText, 0),
-        }
+/// A failure of the 3D command at `offset`, as a render error: running out
+/// of a pool is [`RenderError::Capacity3d`], the rest
+/// [`RenderError::Scene`].
+fn error_at(offset: usize, error: SceneError) -> RenderError<core::convert::Infallible> {
+    let (resource, capacity) = match error {
+        SceneError::Store(e) => Resource::of_store(e),
+        SceneError::Labels(LabelError::Labels { capacity }) => (Resource::Labels, capacity),
+        SceneError::Labels(LabelError::Text { capacity }) => (Resource::LabelText, capacity),
+        SceneError::Vertices { .. } => (Resource::FaceVertices, LIST_VERTICES - 6),
+        _ => return RenderError::Scene { offset, error },
+    };
+    RenderError::Capacity3d {
+        offset,
+        resource,
+        capacity,
     }
 }
 
 /// What a render did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Stats {
+pub struct RenderStats {
     /// Commands executed.
     pub commands: u32,
     /// Polygons scan-converted.
@@ -279,39 +313,36 @@ pub struct Stats {
     pub visible: VisibleStats,
 }
 
-/// The memory of the 3D layer: the trapezoid store (one segment is
-/// enough), the active list and one row of runs, and the way intersecting
-/// spans are resolved. [`needs_3d`] sizes it for a list.
-#[derive(Debug)]
-pub struct Storage3d<'a> {
-    /// Trapezoids, faces, segments, the scan-line index and edge slots.
-    pub store: StoreMemory<'a>,
-    /// The active list.
-    pub active: &'a mut [Active],
-    /// The cover array: as many as the active list.
-    pub cover: &'a mut [Cover],
-    /// One row of runs: the frame's width is always enough.
-    pub runs: &'a mut [Run],
-    /// How intersecting spans are resolved.
-    pub resolve: Resolve,
-}
-
-/// What the 3D layer of a list needs, from [`needs_3d`].
+/// What a display list needs to be rendered, from [`needs`]: the
+/// rasteriser's edge storage and, for a 3D layer, the capacities of its
+/// [`SceneMemory`]. Every pool is at most [`POOL_LIMIT`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Needs3d {
+pub struct Needs {
     /// `poly3` commands in the list.
     pub poly3: usize,
     /// Scene commands (version 2) in the list.
     pub scene: usize,
+    /// Edge storage of the rasteriser
+    /// ([`Edge`](crate::raster::edge::Edge)s): the most vertices of one
+    /// `poly`.
+    pub edges: usize,
+    /// Edge slots of the store ([`EdgeSlot`]s): the most vertices of one
+    /// polygon reaching the 3D layer ([`edges_3d`]).
+    pub edge_slots: usize,
     /// Trapezoid slots.
     pub trapezoids: usize,
     /// Face slots.
     pub faces: usize,
-    /// Edge slots: the most vertices of one polygon reaching the layer.
-    pub edges: usize,
+    /// Segments: one with a 3D layer.
+    pub segments: usize,
     /// Rows of the scan-line index: the frame's height.
     pub rows: usize,
+    /// Active-list (and cover) entries: at most the trapezoids (the exact
+    /// number, the most that overlap one row, is [`Scene::check`]'s).
+    ///
+    /// [`Scene::check`]: crate::scene::Scene::check
+    pub active: usize,
     /// Runs of one row: the frame's width.
     pub runs: usize,
     /// Label slots.
@@ -320,29 +351,11 @@ pub struct Needs3d {
     pub text: usize,
 }
 
-impl Needs3d {
+impl Needs {
     /// `true` when the list has a 3D layer at all.
     pub fn any(&self) -> bool {
         self.poly3 + self.scene > 0
     }
-}
-
-/// `true` when the `poly3` is drawn: the shoelace sum of its vertices is
-/// negative (counter-clockwise as displayed, y down). Each term is below
-/// 2³¹ and there are at most 65535: the sum fits in `i64`.
-pub fn front_facing(v: &Vertices3<'_>) -> bool {
-    let mut it = v.iter();
-    let Some(first) = it.next() else {
-        return false;
-    };
-    let mut s = 0i64;
-    let mut prev = first;
-    for p in it.chain(core::iter::once(first)) {
-        s +=
-            prev.x.units() as i64 * p.y.units() as i64 - p.x.units() as i64 * prev.y.units() as i64;
-        prev = p;
-    }
-    s < 0
 }
 
 /// Edge slots a polygon of the 3D layer may need, from its command alone:
@@ -356,8 +369,8 @@ fn edge_bound(cmd: &Command<'_>) -> usize {
     }
 }
 
-/// Edge slots the 3D layer of `list` needs: what [`needs_3d`] wants as
-/// scratch, and [`Storage3d`]'s store as edge slots.
+/// Edge slots the 3D layer of `list` needs: what [`needs`] wants as
+/// scratch, and the store of the [`SceneMemory`] as edge slots.
 pub fn edges_3d(list: &DisplayList<'_>) -> usize {
     list.commands()
         .map(|(_, c)| edge_bound(&c))
@@ -365,231 +378,158 @@ pub fn edges_3d(list: &DisplayList<'_>) -> usize {
         .unwrap_or(0)
 }
 
+/// `true` for the commands of the 3D layer: `poly3` and the scene's.
+fn is_3d(cmd: &Command<'_>) -> bool {
+    cmd.is_3d()
+}
+
 /// `true` for the commands of the 3D scene (version 2).
 fn is_scene_command(cmd: &Command<'_>) -> bool {
-    cmd.is_scene()
+    is_3d(cmd) && !matches!(cmd, Command::Poly3(_))
 }
 
-/// Where the 3D layer goes: the store and the labels of a render, or
-/// counters sizing them.
-trait Layer3d {
-    /// A polygon of the layer, in screen space.
-    fn polygon(
-        &mut self,
-        vertices: impl IntoIterator<Item = Vertex3>,
-        color: Rgb888,
-        clip: &ClipRect,
-    ) -> Result<(), (Resource, usize)>;
-    /// A label, placed.
-    fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str)
-        -> Result<(), (Resource, usize)>;
-}
-
-/// The geometry stage's polygons into a [`Layer3d`], under one clip.
-struct Faces<'l, L> {
-    layer: &'l mut L,
-    clip: ClipRect,
-}
-
-impl<L: Layer3d> PolygonSink for Faces<'_, L> {
-    type Error = (Resource, usize);
-    fn polygon(&mut self, v: &[Vertex3], color: Rgb888, _: bool) -> Result<(), Self::Error> {
-        self.layer.polygon(v.iter().copied(), color, &self.clip)
-    }
-}
-
-/// What [`run_layer`] counted.
-#[derive(Clone, Copy, Debug, Default)]
-struct LayerCounts {
-    poly3: u32,
-    culled: u32,
-    faces: u32,
-    clipped_away: u32,
-}
-
-/// Executes the 3D layer of `list` (its `poly3`s and its scene commands,
-/// in list order) into `layer`, on a frame of `w × h`.
-#[inline(never)]
-fn run_layer<L: Layer3d>(
+/// The geometry stage of `list`'s 3D layer ([`list_pipeline`] on the
+/// list's frame). A frame wider or taller than a window may be
+/// (2047 px) can still hold `poly3`s: the pipeline is then made on a
+/// window cut to that size, and the window's error is returned with it,
+/// for the first scene command to report.
+fn layer_pipeline(
     list: &DisplayList<'_>,
-    (w, h): (u16, u16),
-    layer: &mut L,
-) -> Result<LayerCounts, RenderError<core::convert::Infallible>> {
-    let mut n = LayerCounts::default();
-    let mut clip = ClipRect::full(w, h);
-    let mut color = DEFAULT_COLOR;
-    let mut pipe: Option<ListPipeline> = None;
-    let full = |offset, (resource, capacity)| RenderError::Capacity3d {
-        offset,
-        resource,
-        capacity,
-    };
-    let scene = |offset, error: SceneError| RenderError::Scene { offset, error };
-    for (offset, cmd) in list.commands() {
-        // The pipeline is made at the first scene command.
-        if pipe.is_none() && is_scene_command(&cmd) {
-            let window = Viewport::centred(w, h).map_err(|e| scene(offset, e.into()))?;
-            let q = Q16::from_int;
-            let persp = Perspective::from_fov(Angle::from_degrees(60), w, q(1), q(1000))
-                .map_err(|e| scene(offset, e.into()))?;
-            pipe = Some(ListPipeline::new(persp, window));
-        }
-        let err = |e: SceneError| scene(offset, e);
-        match (cmd, pipe.as_mut()) {
-            (Command::Clip(win), _) => clip = ClipRect::from_window(win, w, h),
-            (Command::Color(c), _) => color = c,
-            (Command::Poly3(v), _) => {
-                if front_facing(&v) {
-                    layer
-                        .polygon(v.iter(), color, &clip)
-                        .map_err(|e| full(offset, e))?;
-                    n.poly3 += 1;
-                } else {
-                    n.culled += 1;
-                }
-            }
-            (Command::Clear(_) | Command::Poly(_) | Command::Line(..), _) | (_, None) => {}
-            (Command::Segment(_), Some(p)) => p.reset_stack(),
-            (Command::Perspective { fov, near, far }, Some(p)) => p.set_projection(
-                Perspective::from_fov(fov, w, near, far).map_err(|e| err(e.into()))?,
-            ),
-            (Command::Ortho { scale, near, far }, Some(p)) => {
-                p.set_projection(Orthographic::new(scale, near, far).map_err(|e| err(e.into()))?)
-            }
-            (Command::View { eye, yaw, pitch }, Some(p)) => p
-                .set_view(&View { eye, yaw, pitch })
-                .map_err(|e| err(e.into()))?,
-            (Command::Light { toward, percent }, Some(p)) => {
-                p.set_light(Light::new(toward.to_bits(), percent).ok_or(err(SceneError::Light))?)
-            }
-            (Command::Thickness(t), Some(p)) => p.set_thickness(t),
-            (Command::Push, Some(p)) => p.stack_mut().push().map_err(|e| err(e.into()))?,
-            (Command::Pop, Some(p)) => p.stack_mut().pop().map_err(|e| err(e.into()))?,
-            (Command::Translate(t), Some(p)) => p
-                .stack_mut()
-                .translate(t.x, t.y, t.z)
-                .map_err(|e| err(e.into()))?,
-            (Command::Rotate(axis, a), Some(p)) => {
-                let s = p.stack_mut();
-                match axis {
-                    Axis::X => s.rotate_x(a),
-                    Axis::Y => s.rotate_y(a),
-                    Axis::Z => s.rotate_z(a),
-                }
-                .map_err(|e| err(e.into()))?
-            }
-            (Command::Scale(f), Some(p)) => p
-                .stack_mut()
-                .scale(f.x, f.y, f.z)
-                .map_err(|e| err(e.into()))?,
-            (Command::Face(points), Some(p)) => {
-                let mut v: heapless::Vec<Point3, LIST_VERTICES> = heapless::Vec::new();
-                for q in points.iter() {
-                    v.push(q)
-                        .map_err(|_| full(offset, (Resource::FaceVertices, LIST_VERTICES - 6)))?;
-                }
-                let mut sink = Faces {
-                    layer: &mut *layer,
-                    clip,
-                };
-                match p.polygon(&v, color, &mut sink) {
-                    Ok(crate::geometry::Outcome::Emitted) => n.faces += 1,
-                    Ok(crate::geometry::Outcome::Culled) => n.culled += 1,
-                    Ok(_) => n.clipped_away += 1,
-                    Err(PipelineError::Sink(e)) => return Err(full(offset, e)),
-                    Err(PipelineError::Capacity { .. }) => {
-                        return Err(full(offset, (Resource::FaceVertices, LIST_VERTICES - 6)))
-                    }
-                    Err(PipelineError::Range) => return Err(err(SceneError::Range)),
-                }
-            }
-            (Command::Label { at, text }, Some(p)) => {
-                let a = p.project_point(at).map_err(|e| err(e.into()))?;
-                if a.in_front {
-                    layer
-                        .label(label::to_pixels(a), color, text)
-                        .map_err(|e| full(offset, e))?;
-                }
-            }
-        }
+    first: usize,
+) -> Result<(ListPipeline, Option<SceneError>), RenderError<core::convert::Infallible>> {
+    let (w, h) = (list.width(), list.height());
+    match list_pipeline(w, h) {
+        Ok(p) => Ok((p, None)),
+        Err(e) => list_pipeline(w.min(WINDOW_MAX), h.min(WINDOW_MAX))
+            .map(|p| (p, Some(e)))
+            .map_err(|e| error_at(first, e)),
     }
-    Ok(n)
 }
 
 /// Counts what the 3D layer needs, cutting polygons without keeping them.
 struct Count<'e> {
     edges: &'e mut [EdgeSlot],
-    need: Needs3d,
+    need: Needs,
 }
 
-impl Layer3d for Count<'_> {
-    fn polygon(
+impl Out for Count<'_> {
+    fn polygon<I: IntoIterator<Item = crate::fixed::Vertex3>>(
         &mut self,
-        v: impl IntoIterator<Item = Vertex3>,
+        v: I,
         _: Rgb888,
         clip: &ClipRect,
-    ) -> Result<(), (Resource, usize)> {
-        let cap = self.edges.len();
-        let poly =
-            Polygon::load(&mut *self.edges, v, clip).map_err(|_| (Resource::EdgeSlots, cap))?;
-        if poly.plane().is_none() {
+    ) -> Result<(), SceneError> {
+        let poly = Polygon::load(&mut *self.edges, v, clip)
+            .map_err(|e| SceneError::Store(StoreError::from(e)))?;
+        // As the store: no plane or fewer than two edges, no trapezoid.
+        if poly.plane().is_none() || poly.edges() < 2 {
             return Ok(());
         }
-        let t = poly.cut(|_, _| Ok::<(), ()>(())).unwrap_or(0) as usize;
+        // Stopped as soon as the layer needs more than a pool can hold.
+        let room = POOL_LIMIT - self.need.trapezoids;
+        let mut t = 0usize;
+        poly.cut(|_, _| {
+            t += 1;
+            if t > room {
+                Err(())
+            } else {
+                Ok(())
+            }
+        })
+        .map_err(|()| {
+            SceneError::Store(StoreError::Trapezoids {
+                capacity: POOL_LIMIT,
+            })
+        })?;
         self.need.trapezoids += t;
         self.need.faces += (t > 0) as usize;
         Ok(())
     }
 
-    fn label(&mut self, _: (i32, i32), _: Rgb888, text: &str) -> Result<(), (Resource, usize)> {
+    fn label(&mut self, _: (i32, i32), _: Rgb888, text: &str) -> Result<bool, SceneError> {
         self.need.labels += 1;
         self.need.text += text.len();
-        Ok(())
+        Ok(true)
     }
+
+    fn changed(&mut self) {}
 }
 
-/// Sizes [`Storage3d`] and the label memory for `list` by running its 3D
-/// layer (nothing is drawn), with `edges` as scratch. Returns `None` when
-/// `edges` has fewer slots than [`Needs3d::edges`] or a scene command
-/// fails (rendering reports it). Active entries are not counted: at most
-/// [`Needs3d::trapezoids`] are needed, and [`Workspace::check`] gives the
-/// exact number once the store is built. Labels are counted when their
-/// point is in front of the eye, on the frame or not.
-pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3d> {
-    let (w, h) = (list.width(), list.height());
-    let mut need = Needs3d {
-        rows: h as usize,
-        runs: w as usize,
-        ..Needs3d::default()
-    };
-    for (_, cmd) in list.commands() {
-        match cmd {
+/// What rendering `list` needs: the rasteriser's edges and the 3D layer's
+/// memory, found by running its 3D commands through the interpreter the
+/// render uses (nothing is drawn), with `scratch` as edge slots (at least
+/// [`edges_3d`]).
+///
+/// Every pool is at most [`POOL_LIMIT`]: a list whose 3D layer would need
+/// more trapezoids is refused with [`RenderError::Capacity3d`] at the
+/// command that goes beyond, as soon as it does, so nothing need be
+/// allocated for it. A 3D command that fails is reported as the render
+/// would report it, at that command. Labels are counted when their point
+/// is in front of the eye, on the frame or not.
+pub fn needs(
+    list: &DisplayList<'_>,
+    scratch: &mut [EdgeSlot],
+) -> Result<Needs, RenderError<core::convert::Infallible>> {
+    let mut need = Needs::default();
+    let mut first = None;
+    let mut widest = (0, 0);
+    for (offset, cmd) in list.commands() {
+        match &cmd {
+            Command::Poly(v) => need.edges = need.edges.max(v.len()),
             Command::Poly3(_) => need.poly3 += 1,
             _ if !cmd.is_3d() => {}
             _ => need.scene += 1,
         }
-        need.edges = need.edges.max(edge_bound(&cmd));
+        if is_3d(&cmd) && first.is_none() {
+            first = Some(offset);
+        }
+        if edge_bound(&cmd) > widest.1 {
+            widest = (offset, edge_bound(&cmd));
+        }
     }
-    if edges.len() < need.edges {
-        return None;
+    let Some(first) = first else {
+        return Ok(need);
+    };
+    need.edge_slots = widest.1;
+    if scratch.len() < need.edge_slots {
+        return Err(RenderError::Capacity3d {
+            offset: widest.0,
+            resource: Resource::EdgeSlots,
+            capacity: scratch.len(),
+        });
     }
-    let mut count = Count { edges, need };
-    run_layer(list, (w, h), &mut count).ok()?;
-    Some(count.need)
+    let (w, h) = (list.width(), list.height());
+    need.segments = 1;
+    need.rows = h as usize;
+    need.runs = w as usize;
+    let (mut pipe, window) = layer_pipeline(list, first)?;
+    let mut st = ListState::new(w, h);
+    let mut count = Count {
+        edges: scratch,
+        need,
+    };
+    for (offset, cmd) in list.commands() {
+        if let (Some(e), true) = (window, is_scene_command(&cmd)) {
+            return Err(error_at(offset, e));
+        }
+        execute(&mut pipe, &mut count, &mut st, cmd).map_err(|e| error_at(offset, e))?;
+    }
+    let mut need = count.need;
+    need.active = need.trapezoids;
+    Ok(need)
 }
 
 /// The graphic controller.
 ///
 /// For 2D lists it needs only a [`Rasterizer`]; `poly3` and the 3D scene
-/// also need the memory of the 3D layer, and labels their own:
+/// also need the memory of the 3D layer:
 ///
 /// ```
 /// use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 /// use scanvert::{
-///     controller::{Controller, Storage3d}, display_list::{DisplayList, Writer}, raster::edge::Edge,
-///     fixed::{Coord, Vertex3}, port::framebuffer::FrameBuffer, visible::rle::Run, raster::scan::Rasterizer,
-///     visible::store::{Face, Segment, StoreMemory}, visible::trapezoid::{EdgeSlot, Trapezoid},
-///     visible::{Active, Cover, Resolve},
+///     controller::Controller, display_list::{DisplayList, Writer}, raster::edge::Edge,
+///     fixed::{Coord, Vertex3}, port::framebuffer::FrameBuffer, raster::scan::Rasterizer,
+///     scene::SceneStorage, visible::Resolve,
 /// };
 ///
 /// let v = |x: i16, y: i16, z: i16| Vertex3 { x: Coord::from_bits(x * 16), y: Coord::from_bits(y * 16), z: Coord::from_bits(z * 16) };
@@ -602,19 +542,16 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 /// let list = DisplayList::new_checked(w.finish()).unwrap();
 ///
 /// let mut edges = [Edge::EMPTY; 8];
-/// let (mut traps, mut faces, mut segs) = ([Trapezoid::EMPTY; 32], [Face::EMPTY; 8], [Segment::EMPTY; 1]);
-/// let (mut rows, mut slots) = ([0u16; 16], [EdgeSlot::EMPTY; 8]);
-/// let (mut active, mut cover, mut runs) = ([Active::EMPTY; 16], [Cover::EMPTY; 16], [Run::EMPTY; 32]);
-/// let storage = Storage3d {
-///     store: StoreMemory { trapezoids: &mut traps, faces: &mut faces, segments: &mut segs, rows: &mut rows, edges: &mut slots },
-///     active: &mut active,
-///     cover: &mut cover,
-///     runs: &mut runs,
-///     resolve: Resolve::Crossing,
-/// };
+/// // 32 trapezoids, 8 faces, 1 segment, 16 rows, 8 edge slots,
+/// // 16 active entries, 32 runs, no labels.
+/// let mut storage = SceneStorage::<32, 8, 1, 16, 8, 16, 32, 0, 0>::new();
 /// let mut pixels = [Rgb565::BLACK; 32 * 16];
 /// let mut fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
-/// let stats = Controller::new(Rasterizer::new(&mut edges)).with_3d(storage).render(&list, &mut fb).unwrap();
+/// let stats = Controller::new(Rasterizer::new(&mut edges))
+///     .with_3d(storage.as_memory())
+///     .with_resolve(Resolve::Crossing)
+///     .render(&list, &mut fb)
+///     .unwrap();
 /// assert_eq!(stats.poly3, 2);
 /// assert_eq!(fb.pixel(13, 8), Some(Rgb565::BLUE));
 /// assert_eq!(fb.pixel(19, 8), Some(Rgb565::RED));
@@ -623,8 +560,8 @@ pub fn needs_3d(list: &DisplayList<'_>, edges: &mut [EdgeSlot]) -> Option<Needs3
 #[derive(Debug)]
 pub struct Controller<'e> {
     raster: Rasterizer<'e>,
-    three: Option<Storage3d<'e>>,
-    labels: Option<(&'e mut [Label], &'e mut [u8])>,
+    three: Option<SceneMemory<'e>>,
+    resolve: Resolve,
 }
 
 impl<'e> Controller<'e> {
@@ -633,31 +570,30 @@ impl<'e> Controller<'e> {
         Controller {
             raster,
             three: None,
-            labels: None,
+            resolve: Resolve::default(),
         }
     }
 
-    /// The same controller, rendering `poly3` and the 3D scene with
-    /// `storage`.
-    pub fn with_3d(mut self, storage: Storage3d<'e>) -> Self {
-        self.three = Some(storage);
+    /// The same controller, rendering `poly3`, the 3D scene and its
+    /// labels in `memory` ([`needs`] sizes it).
+    pub fn with_3d(mut self, memory: SceneMemory<'e>) -> Self {
+        self.three = Some(memory);
         self
     }
 
-    /// The same controller, placing labels in `slots` with their text in
-    /// `text` (see [`scene::label`](crate::scene::label)).
-    pub fn with_labels(mut self, slots: &'e mut [Label], text: &'e mut [u8]) -> Self {
-        self.labels = Some((slots, text));
+    /// The same controller, resolving intersecting spans of the 3D layer
+    /// with `resolve` (the default is [`Resolve::default`]).
+    pub fn with_resolve(mut self, resolve: Resolve) -> Self {
+        self.resolve = resolve;
         self
     }
 
     /// Checks, without drawing, what can be checked before the 3D layer
     /// is built: polygon sizes against the edge storage, `poly3` and
     /// `face` sizes against the edge slots, known commands, the 3D layer
-    /// only with 3D storage and labels only with label memory.
-    /// [`render`](Self::render) checks the rest (trapezoids, faces,
-    /// labels, active entries, the scene's commands) after building the
-    /// layer, still before drawing.
+    /// only with 3D storage. [`render`](Self::render) checks the rest
+    /// (trapezoids, faces, labels, active entries, the scene's commands)
+    /// while building the layer, still before drawing.
     pub fn check(
         &self,
         list: &DisplayList<'_>,
@@ -700,13 +636,6 @@ impl<'e> Controller<'e> {
                             capacity: t.store.edges.len(),
                         });
                     }
-                    if matches!(cmd, Command::Label { .. }) && self.labels.is_none() {
-                        return Err(RenderError::Capacity3d {
-                            offset,
-                            resource: Resource::Labels,
-                            capacity: 0,
-                        });
-                    }
                 }
             }
         }
@@ -723,32 +652,72 @@ impl<'e> Controller<'e> {
         &mut self,
         list: &DisplayList<'_>,
         target: &mut T,
-    ) -> Result<Stats, RenderError<T::Error>>
+    ) -> Result<RenderStats, RenderError<T::Error>>
     where
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
+        self.render_with(list, target, &mut |_| {})
+    }
+
+    /// [`render`](Self::render), telling `hook` when each stage ends: for
+    /// a list with a 3D layer [`Stage::Start`] (checked, the layer's build
+    /// begins), [`Stage::Cut`], [`Stage::Checked`]; for every list
+    /// [`Stage::Painted`] (the 2D commands drawn); with a 3D layer then
+    /// [`Stage::Resolved`] and [`Stage::Labelled`].
+    pub fn render_with<T, H>(
+        &mut self,
+        list: &DisplayList<'_>,
+        target: &mut T,
+        hook: &mut H,
+    ) -> Result<RenderStats, RenderError<T::Error>>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+        H: Hook + ?Sized,
+    {
         self.check(list).map_err(widen)?;
         let (tw, th) = target.size();
         let (w, h) = (list.width().min(tw), list.height().min(th));
-        let mut stats = Stats::default();
+        let mut stats = RenderStats::default();
         let Controller {
             raster,
             three,
-            labels,
+            resolve,
         } = self;
         // The 3D layer is built first: running out of memory, or a scene
         // command that fails, is found before anything is drawn.
-        let layer = match three.as_mut() {
-            // Without 3D storage, `check` has refused the 3D layer.
+        // Without 3D storage, `check` has refused a 3D layer; the list is
+        // not read again for it.
+        let first = match three {
+            Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
             None => None,
-            Some(t) => match list.commands().find(|(_, c)| c.is_3d()) {
-                Some((first, _)) => Some(
-                    build_layer(t, labels.as_mut(), list, (w, h), first, &mut stats)
-                        .map_err(widen)?,
-                ),
-                None => None,
-            },
+        };
+        let layer = match (three.as_mut(), first) {
+            (Some(mem), Some(first)) => {
+                hook.stage(Stage::Start);
+                let mut scene =
+                    build_layer(mem.reborrow(), list, (w, h), first, &mut stats).map_err(widen)?;
+                hook.stage(Stage::Cut);
+                scene.check().map_err(|e| {
+                    widen(match e {
+                        VisibleError::Active { capacity } => RenderError::Capacity3d {
+                            offset: first,
+                            resource: Resource::Active,
+                            capacity,
+                        },
+                        VisibleError::Runs { capacity } => RenderError::Capacity3d {
+                            offset: first,
+                            resource: Resource::Runs,
+                            capacity,
+                        },
+                        VisibleError::Sink(e) => match e {},
+                    })
+                })?;
+                hook.stage(Stage::Checked);
+                Some((scene, first))
+            }
+            _ => None,
         };
         let mut clip = ClipRect::full(w, h);
         let mut color = T::Color::from_rgb888(DEFAULT_COLOR);
@@ -789,8 +758,9 @@ impl<'e> Controller<'e> {
                 _ => {}
             }
         }
-        if let Some(layer) = layer {
-            draw_layer(layer, target, &mut stats)?;
+        hook.stage(Stage::Painted);
+        if let Some((scene, first)) = layer {
+            draw_layer(scene, first, *resolve, target, &mut stats, hook)?;
         }
         Ok(stats)
     }
@@ -829,22 +799,27 @@ fn widen<E>(e: RenderError<core::convert::Infallible>) -> RenderError<E> {
 /// labels. Kept out of line, so that the 2D path of
 /// [`Controller::render`] compiles as it does without it.
 #[inline(never)]
-fn draw_layer<T>(
-    (store, mut ws, resolve, first, labels): Layer<'_>,
+fn draw_layer<T, H>(
+    mut scene: ListScene<'_>,
+    first: usize,
+    resolve: Resolve,
     target: &mut T,
-    stats: &mut Stats,
+    stats: &mut RenderStats,
+    hook: &mut H,
 ) -> Result<(), RenderError<T::Error>>
 where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
+    H: Hook + ?Sized,
 {
-    let (v, counts) =
-        visible::draw(&store, &mut ws, resolve, target, None).map_err(|e| match e {
+    let f = scene
+        .draw_with(resolve, None, label::DEFAULT_FONT, target, hook)
+        .map_err(|e| match e {
             VisibleError::Sink(error) => RenderError::Target {
                 offset: first,
                 error,
             },
-            // Checked by `build_layer`.
+            // Checked before drawing.
             VisibleError::Active { capacity } => RenderError::Capacity3d {
                 offset: first,
                 resource: Resource::Active,
@@ -856,115 +831,42 @@ where
                 capacity,
             },
         })?;
-    stats.visible = v;
-    stats.spans += counts.spans;
-    stats.pixels += counts.pixels as u64;
-    if let Some(labels) = labels {
-        let c = labels
-            .draw(label::DEFAULT_FONT, target)
-            .map_err(|error| RenderError::Target {
-                offset: first,
-                error,
-            })?;
-        stats.labels = c.drawn;
-        stats.spans += c.written.spans;
-        stats.pixels += c.written.pixels as u64;
-    }
+    stats.visible = f.visible;
+    stats.spans += f.decoded.spans + f.labels.written.spans;
+    stats.pixels += f.decoded.pixels as u64 + f.labels.written.pixels as u64;
+    stats.labels = f.labels.drawn;
     Ok(())
 }
 
-/// The store, workspace and labels of a built 3D layer, ready to draw.
-type Layer<'t> = (
-    TrapezoidStore<'t>,
-    Workspace<'t>,
-    Resolve,
-    usize,
-    Option<LabelStore<'t>>,
-);
-
-/// The store and labels of a render as a [`Layer3d`]; everything goes
-/// into segment 0, in list order.
-struct Keep<'s, 't> {
-    store: &'s mut TrapezoidStore<'t>,
-    labels: Option<&'s mut LabelStore<'t>>,
-    trapezoids: u32,
-}
-
-impl Layer3d for Keep<'_, '_> {
-    fn polygon(
-        &mut self,
-        v: impl IntoIterator<Item = Vertex3>,
-        color: Rgb888,
-        clip: &ClipRect,
-    ) -> Result<(), (Resource, usize)> {
-        self.trapezoids += self
-            .store
-            .add_polygon(0, v, color, clip)
-            .map_err(Resource::of_store)?;
-        Ok(())
-    }
-
-    fn label(
-        &mut self,
-        at: (i32, i32),
-        color: Rgb888,
-        text: &str,
-    ) -> Result<(), (Resource, usize)> {
-        match self.labels.as_mut() {
-            Some(l) => l
-                .add(0, at, color, text)
-                .map(|_| ())
-                .map_err(Resource::of_labels),
-            // `check` refuses labels without label memory.
-            None => Err((Resource::Labels, 0)),
-        }
-    }
-}
-
-/// Builds the 3D layer of `list` in `t` (and `labels`) and checks the
-/// active list and the run buffer against it.
+/// Builds the 3D layer of `list` in `mem`, projected for the list's frame
+/// and cut to `w × h`: one segment, every 3D command through the scene's
+/// interpreter in list order.
 #[inline(never)]
 fn build_layer<'t>(
-    t: &'t mut Storage3d<'_>,
-    labels: Option<&'t mut (&mut [Label], &mut [u8])>,
+    mem: SceneMemory<'t>,
     list: &DisplayList<'_>,
     (w, h): (u16, u16),
     first: usize,
-    stats: &mut Stats,
-) -> Result<Layer<'t>, RenderError<core::convert::Infallible>> {
-    let full = |offset: usize, (resource, capacity): (Resource, usize)| RenderError::Capacity3d {
-        offset,
-        resource,
-        capacity,
-    };
-    let mem = StoreMemory {
-        trapezoids: &mut *t.store.trapezoids,
-        faces: &mut *t.store.faces,
-        segments: &mut *t.store.segments,
-        rows: &mut *t.store.rows,
-        edges: &mut *t.store.edges,
-    };
-    let mut store =
-        TrapezoidStore::new(mem, w, h).map_err(|e| full(first, Resource::of_store(e)))?;
-    let mut labels = labels.map(|(s, x)| LabelStore::new(s, x));
-    let mut keep = Keep {
-        store: &mut store,
-        labels: labels.as_mut(),
-        trapezoids: 0,
-    };
-    let n = run_layer(list, (w, h), &mut keep)?;
-    stats.trapezoids = keep.trapezoids;
-    stats.poly3 = n.poly3;
-    stats.culled = n.culled;
-    stats.faces = n.faces;
-    stats.clipped_away = n.clipped_away;
-    let mut ws = Workspace::new(&mut *t.active, &mut *t.cover, &mut *t.runs);
-    ws.check(&store).map_err(|e| match e {
-        VisibleError::Active { capacity } => full(first, (Resource::Active, capacity)),
-        VisibleError::Runs { capacity } => full(first, (Resource::Runs, capacity)),
-        VisibleError::Sink(e) => match e {},
-    })?;
-    Ok((store, ws, t.resolve, first, labels))
+    stats: &mut RenderStats,
+) -> Result<ListScene<'t>, RenderError<core::convert::Infallible>> {
+    let (pipeline, window) = layer_pipeline(list, first)?;
+    let mut scene = Scene::with_frame(mem, pipeline, w, h).map_err(|e| error_at(first, e))?;
+    let mut st = ListState::new(list.width(), list.height());
+    let mut b = scene.open(0).map_err(|e| error_at(first, e))?;
+    for (offset, cmd) in list.commands() {
+        if let (Some(e), true) = (window, is_scene_command(&cmd)) {
+            return Err(error_at(offset, e));
+        }
+        match b.command(cmd, &mut st).map_err(|e| error_at(offset, e))? {
+            Executed::Poly3 { drawn: true } => stats.poly3 += 1,
+            Executed::Poly3 { drawn: false } | Executed::Face(Outcome::Culled) => stats.culled += 1,
+            Executed::Face(Outcome::Emitted) => stats.faces += 1,
+            Executed::Face(Outcome::ClippedAway) => stats.clipped_away += 1,
+            Executed::Face(Outcome::Empty) | Executed::State | Executed::Label { .. } => {}
+        }
+    }
+    stats.trapezoids = scene.store().counters().trapezoids;
+    Ok(scene)
 }
 
 #[cfg(test)]
@@ -974,9 +876,8 @@ mod tests {
     use crate::fixed::{Coord, Vertex, Vertex3};
     use crate::port::framebuffer::FrameBuffer;
     use crate::raster::edge::Edge;
-    use crate::visible::store::{Face, Segment};
-    use crate::visible::trapezoid::Trapezoid;
-    use embedded_graphics_core::pixelcolor::Rgb888;
+    use crate::scene::SceneStorage;
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
     const W: u16 = 24;
     const H: u16 = 16;
@@ -989,63 +890,56 @@ mod tests {
         }
     }
 
+    /// 16 trapezoids, 4 faces, 1 segment, the rows, 16 edge slots, 8 active
+    /// entries, the runs, 2 labels of 8 bytes.
+    type Storage = SceneStorage<16, 4, 1, { H as usize }, 16, 8, { W as usize }, 2, 8>;
+
     struct Mem {
         edges: [Edge; 8],
-        traps: [Trapezoid; 16],
-        faces: [Face; 4],
-        segs: [Segment; 1],
-        rows: [u16; H as usize],
-        slots: [EdgeSlot; 8],
-        active: [Active; 8],
-        cover: [Cover; 8],
-        runs: [Run; W as usize],
+        three: Storage,
     }
 
     impl Mem {
         fn new() -> Self {
             Mem {
                 edges: [Edge::EMPTY; 8],
-                traps: [Trapezoid::EMPTY; 16],
-                faces: [Face::EMPTY; 4],
-                segs: [Segment::EMPTY; 1],
-                rows: [0; H as usize],
-                slots: [EdgeSlot::EMPTY; 8],
-                active: [Active::EMPTY; 8],
-                cover: [Cover::EMPTY; 8],
-                runs: [Run::EMPTY; W as usize],
+                three: Storage::new(),
             }
         }
 
-        /// Renders `list` with 3D storage (`three`) or without; returns the
-        /// frame as the colours' red channels, row by row.
+        /// Renders `list` with 3D storage (`three`) or without into a
+        /// `w × h` target; returns the frame as the colours' red channels,
+        /// row by row.
+        fn render_in(
+            &mut self,
+            list: &DisplayList<'_>,
+            three: bool,
+            (w, h): (u16, u16),
+        ) -> (
+            Result<RenderStats, RenderError<core::convert::Infallible>>,
+            [u8; (W * H) as usize],
+        ) {
+            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
+            let mut fb = FrameBuffer::new(&mut px[..(w * h) as usize], w, h).unwrap();
+            let mut c = Controller::new(Rasterizer::new(&mut self.edges));
+            if three {
+                c = c
+                    .with_3d(self.three.as_memory())
+                    .with_resolve(Resolve::Bisect);
+            }
+            let r = c.render(list, &mut fb);
+            (r, core::array::from_fn(|i| px[i].r()))
+        }
+
         fn render(
             &mut self,
             list: &DisplayList<'_>,
             three: bool,
         ) -> (
-            Result<Stats, RenderError<core::convert::Infallible>>,
+            Result<RenderStats, RenderError<core::convert::Infallible>>,
             [u8; (W * H) as usize],
         ) {
-            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
-            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
-            let mut c = Controller::new(Rasterizer::new(&mut self.edges));
-            if three {
-                c = c.with_3d(Storage3d {
-                    store: StoreMemory {
-                        trapezoids: &mut self.traps,
-                        faces: &mut self.faces,
-                        segments: &mut self.segs,
-                        rows: &mut self.rows,
-                        edges: &mut self.slots,
-                    },
-                    active: &mut self.active,
-                    cover: &mut self.cover,
-                    runs: &mut self.runs,
-                    resolve: Resolve::Bisect,
-                });
-            }
-            let r = c.render(list, &mut fb);
-            (r, core::array::from_fn(|i| px[i].r()))
+            self.render_in(list, three, (W, H))
         }
     }
 
@@ -1138,8 +1032,184 @@ mod tests {
         ));
         assert!(px.iter().all(|&p| p == 7), "nothing drawn");
         let mut slots = [EdgeSlot::EMPTY; 3];
-        let need = needs_3d(&l, &mut slots).unwrap();
-        assert_eq!((need.poly3, need.faces, need.edges), (5, 5, 3));
-        assert_eq!(need.trapezoids, 10);
+        let need = needs(&l, &mut slots).unwrap();
+        assert_eq!((need.poly3, need.faces, need.edge_slots), (5, 5, 3));
+        assert_eq!((need.trapezoids, need.active, need.segments), (10, 10, 1));
+        assert_eq!(
+            (need.rows, need.runs, need.edges),
+            (H as usize, W as usize, 0)
+        );
+    }
+
+    use crate::geometry::{Point3, Q16};
+
+    /// A square of side 2 at depth `z`, counter-clockwise seen from +z (y
+    /// up), and the same with `reverse`.
+    fn square(z: i16, reverse: bool) -> [Point3; 4] {
+        let mut sq = [(-1, -1), (1, -1), (1, 1), (-1, 1)].map(|(x, y)| Point3::from_int(x, y, z));
+        if reverse {
+            sq.reverse();
+        }
+        sq
+    }
+
+    #[test]
+    fn the_first_failing_command_is_named_with_its_own_reason() {
+        // A `poly3` that needs more than the store holds after a `pop`
+        // with nothing saved: the `pop` is named, as a transform error.
+        let mut bytes = [0u8; 1024];
+        let n = list(&mut bytes, |w| {
+            w.poly3([v(1, 1, 1), v(1, 9, 1), v(9, 5, 1)]).unwrap();
+            w.pop().unwrap();
+            for k in 0..8 {
+                w.poly3([v(k, 0, k), v(k, 16, k), v(k + 12, 8, k)]).unwrap();
+            }
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let offset_of = |l: &DisplayList<'_>, k: usize| l.commands().nth(k).unwrap().0;
+        let pop_at = offset_of(&l, 1);
+        let (r, px) = Mem::new().render(&l, true);
+        assert_eq!(
+            r,
+            Err(RenderError::Scene {
+                offset: pop_at,
+                error: SceneError::Transform(crate::geometry::TransformError::StackUnderflow)
+            })
+        );
+        assert!(px.iter().all(|&p| p == 7), "nothing drawn");
+        let mut slots = [EdgeSlot::EMPTY; 3];
+        assert_eq!(needs(&l, &mut slots).map(|_| ()), r.map(|_| ()));
+
+        // A `scale` chain that leaves the range after a `poly3`: the
+        // `scale` that does is named.
+        let n = list(&mut bytes, |w| {
+            w.poly3([v(1, 1, 1), v(1, 9, 1), v(9, 5, 1)]).unwrap();
+            let big = Point3::from_int(1000, 1000, 1000);
+            w.scale(big).unwrap();
+            w.face(square(-5, false)).unwrap();
+            w.scale(big).unwrap();
+            w.face(square(-5, false)).unwrap();
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let scale_at = offset_of(&l, 3);
+        let (r, _) = Mem::new().render(&l, true);
+        assert_eq!(
+            r,
+            Err(RenderError::Scene {
+                offset: scale_at,
+                error: SceneError::Transform(crate::geometry::TransformError::Range)
+            })
+        );
+        let mut slots = [EdgeSlot::EMPTY; 16];
+        assert_eq!(needs(&l, &mut slots).map(|_| ()), r.map(|_| ()));
+    }
+
+    #[test]
+    fn the_default_camera_looks_along_minus_z_with_y_up() {
+        let mut bytes = [0u8; 1024];
+        for (z, drawn) in [(-5, true), (5, false)] {
+            for reverse in [false, true] {
+                let n = list(&mut bytes, |w| {
+                    w.color(Rgb888::new(200, 0, 0)).unwrap();
+                    w.face(square(z, reverse)).unwrap();
+                    // y up: a point above the axis lands above the middle.
+                    w.face([Point3::from_int(0, 3, -10)]).unwrap();
+                });
+                let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+                let (r, px) = Mem::new().render(&l, true);
+                let s = r.unwrap();
+                let hit = px[8 * W as usize + 12] == 200;
+                assert_eq!(hit, drawn && !reverse, "z = {z}, reversed: {reverse}");
+                assert_eq!(s.faces, 1 + (drawn && !reverse) as u32);
+                // At y ≈ 8 − 6.2: above the square, which reaches y ≈ 4.
+                let above = (0..4).any(|y| (9..15).any(|x| px[y * W as usize + x] == 200));
+                assert!(above, "the point is above the middle");
+            }
+        }
+    }
+
+    #[test]
+    fn a_target_smaller_than_the_frame_shows_its_top_left_part() {
+        let mut bytes = [0u8; 1024];
+        let n = list(&mut bytes, |w| {
+            w.clear(Rgb888::new(1, 0, 0)).unwrap();
+            w.color(Rgb888::new(90, 0, 0)).unwrap();
+            w.poly3([v(2, 2, 3), v(4, 14, 3), v(22, 6, 9)]).unwrap();
+            w.color(Rgb888::new(150, 0, 0)).unwrap();
+            w.face(square(-4, false)).unwrap();
+            w.perspective(
+                crate::geometry::Angle::from_degrees(40),
+                Q16::ONE,
+                Q16::from_int(50),
+            )
+            .unwrap();
+            w.color(Rgb888::new(250, 0, 0)).unwrap();
+            w.face([Point3::from_int(-1, 1, -6)]).unwrap();
+        });
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let (r, full) = Mem::new().render(&l, true);
+        r.unwrap();
+        for (tw, th) in [(12, 8), (24, 5), (7, 16)] {
+            let (r, small) = Mem::new().render_in(&l, true, (tw, th));
+            r.unwrap();
+            let mut covered = 0;
+            for y in 0..th as usize {
+                for x in 0..tw as usize {
+                    let f = full[y * W as usize + x];
+                    assert_eq!(small[y * tw as usize + x], f, "({x}, {y}) of {tw}x{th}");
+                    covered += (f > 1) as usize;
+                }
+            }
+            assert!(covered > 0, "{tw}x{th}");
+        }
+    }
+
+    #[test]
+    fn needs_refuses_more_than_a_pool_can_address() {
+        // Two star polygons of 1001 vertices whose edges cross each other
+        // about half a million times, each cut into some 37,000
+        // trapezoids: together more than 65535.
+        const N: usize = 1001;
+        let mut bytes = [0u8; 64 + 2 * (6 * N + 16)];
+        let mut w = Writer::new(&mut bytes, 2048, 2048).unwrap();
+        w.color(Rgb888::new(1, 2, 3)).unwrap();
+        let star = (0..N).map(|k| {
+            // A quarter turn is 2¹⁴; vertex k at angle k · 501/1001 turn,
+            // counter-clockwise as displayed.
+            let a = crate::geometry::Angle::from_bits(((k * 501 % N) * 65536 / N) as u16);
+            let (s, c) = (
+                crate::geometry::trig::sin(a) as i64,
+                crate::geometry::trig::cos(a) as i64,
+            );
+            let px = |t: i64| Coord::from_bits((16 * 1024 + ((t * 1000 * 16) >> 16)) as i16);
+            Vertex3 {
+                x: px(c),
+                y: px(s),
+                z: Coord::from_bits(16),
+            }
+        });
+        w.poly3(star.clone()).unwrap();
+        w.poly3(star).unwrap();
+        let l = DisplayList::new_checked(w.finish()).unwrap();
+        let at = l.commands().nth(2).unwrap().0;
+        let mut slots = [EdgeSlot::EMPTY; N];
+        assert_eq!(edges_3d(&l), N);
+        assert_eq!(
+            needs(&l, &mut slots),
+            Err(RenderError::Capacity3d {
+                offset: at,
+                resource: Resource::Trapezoids,
+                capacity: POOL_LIMIT,
+            })
+        );
+        // Too little scratch is refused too, at the widest polygon.
+        assert_eq!(
+            needs(&l, &mut slots[..3]),
+            Err(RenderError::Capacity3d {
+                offset: l.commands().nth(1).unwrap().0,
+                resource: Resource::EdgeSlots,
+                capacity: 3,
+            })
+        );
     }
 }

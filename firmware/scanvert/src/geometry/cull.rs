@@ -1,32 +1,50 @@
-//! Back-face culling: a face is drawn only from the side where its first
-//! three vertices run counter-clockwise as displayed.
+//! Back-face culling: a face is drawn only from the side where the whole
+//! polygon runs counter-clockwise as displayed.
 //!
 //! With y down, counter-clockwise as displayed means a negative shoelace
 //! sum (the rule of the text form's `poly3`). The test is made in view
-//! space, on the first three vertices as transformed, where it is exact:
+//! space, on the polygon as transformed, where it is exact. Its
+//! orientation is Newell's normal,
 //!
-//! * **perspective**: the projections `(x/z, y/z)` of three points have
-//!   the shoelace sum `det[v₀; v₁; v₂] / (z₀ z₁ z₂)`, so for points in
-//!   front of the eye its sign is that of `det[v₀; v₁; v₂] = v₀ · n`, with
-//!   `n = (v₁ − v₀) × (v₂ − v₀)`. This sign is that of the eye's side of the
+//! ```text
+//! N = Σₖ (vₖ − v₀) × (vₖ₊₁ − v₀)
+//! ```
+//!
+//! twice the vector area of the polygon: for a planar polygon it is
+//! normal to its plane, and points out of the side from which the polygon
+//! runs counter-clockwise (in a right-handed frame). Then
+//!
+//! * **perspective**: the projections `(x/z, y/z)` of a planar polygon
+//!   have a shoelace sum of the sign of `v₀ · N` (for a triangle it is
+//!   `det[v₀; v₁; v₂] / (z₀ z₁ z₂)` with `det[v₀; v₁; v₂] = v₀ · N`; a
+//!   polygon is a fan of triangles from `v₀` in its plane, whose
+//!   projected sums add up). This sign is that of the eye's side of the
 //!   face's plane, so it holds for the whole face, also when some of its
 //!   vertices lie behind the eye and the near clip replaces them;
-//! * **orthographic**: the shoelace sum is `k² · n_z`.
+//! * **orthographic**: the shoelace sum is `k² · N_z`.
 //!
 //! A face is front-facing when that value is negative, and culled
-//! otherwise. A zero value (the eye in the face's plane, or the first three
-//! vertices in a line) is an edge-on face and is culled.
+//! otherwise. A zero value (the eye in the face's plane, a polygon without
+//! area, or a self-intersecting one whose loops cancel) is an edge-on face
+//! and is culled.
 //!
-//! `n` is also the face's normal for lighting: it points out of the front
-//! side, toward the eye for a visible face.
+//! The whole polygon decides, not its first three vertices: a concave
+//! face that starts at a reflex corner has `(v₁ − v₀) × (v₂ − v₀)`
+//! pointing the other way, and would be lost. Where the first three
+//! vertices form a convex corner of a planar polygon, the two rules agree.
+//!
+//! The normal for lighting is `(v₁ − v₀) × (v₂ − v₀)` turned to the front
+//! side (`light_normal`), or Newell's normal where the first three
+//! vertices lie in a line; it points out of the front side, toward the
+//! eye for a visible face.
 //!
 //! # Widths
 //!
 //! View-space coordinates are below 2³⁰, so the differences are below 2³¹,
-//! each product of the cross product below 2⁶² and each component of `n`
-//! below 2⁶³ (`i64`). `v₀ · n` is below 3 · 2⁹³ (`i128`, three multiplies
-//! per face).
-
+//! each product of a cross product below 2⁶² and each component of one
+//! cross product below 2⁶³ (`i64`). Newell's sum of `n` of them is below
+//! `n · 2⁶³` (`i128`), and `v₀ · N` below `3 · n · 2⁹³`: exact in `i128` for
+//! polygons of fewer than 2³² vertices (a pipeline's `N` is far below).
 use super::project::Projection;
 
 /// `(v₁ − v₀) × (v₂ − v₀)` of view-space vertices (each below 2³⁰, so the
@@ -43,29 +61,61 @@ pub(super) fn normal(v0: [i64; 3], v1: [i64; 3], v2: [i64; 3]) -> [i64; 3] {
     ]
 }
 
-/// `true` when the face through `v0` with normal `n` shows its front.
-///
-/// For perspective the sign of `v₀ · n` is found from `n` shifted right to
-/// 31 bits (`n = 2ᵏ·n' + ρ`, `0 ≤ ρ < 2ᵏ`): `v₀ · n = 2ᵏ (v₀ · n') + v₀ · ρ`
-/// with `|v₀ · ρ| < 2ᵏ Σ|v₀|`, so `v₀ · n'` (`i64`) decides unless it is
-/// within `Σ|v₀|` of zero; then the exact `i128` product does.
+/// Newell's normal `Σ (vₖ − v₀) × (vₖ₊₁ − v₀)` of view-space vertices
+/// (each below 2³⁰): twice the polygon's vector area, exact.
+pub(crate) fn newell(v: &[[i64; 3]]) -> [i128; 3] {
+    let mut n = [0i128; 3];
+    let Some((&v0, rest)) = v.split_first() else {
+        return n;
+    };
+    for w in rest.windows(2) {
+        let c = normal(v0, w[0], w[1]);
+        for k in 0..3 {
+            n[k] += c[k] as i128;
+        }
+    }
+    n
+}
+
+/// `true` when the polygon through `v0` with Newell normal `n` shows its
+/// front (see the [module](self) docs): the sign of `v₀ · N` for
+/// perspective, of `N_z` for orthographic. Exact: each product is below
+/// `n · 2⁹³` (module docs).
 #[inline]
-pub(super) fn is_front(projection: &Projection, v0: [i64; 3], n: [i64; 3]) -> bool {
+pub(crate) fn is_front(projection: &Projection, v0: [i64; 3], n: [i128; 3]) -> bool {
     match projection {
         Projection::Perspective(_) => {
-            let m = n.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
-            let k = (64 - m.leading_zeros()).saturating_sub(31);
-            // |v₀| < 2³⁰, |n'| ≤ 2³¹: each product below 2⁶¹.
-            let approx: i64 = (0..3).map(|i| v0[i] * (n[i] >> k)).sum();
-            let slack: i64 = v0.iter().map(|c| c.abs()).sum();
-            if k == 0 || approx.abs() > slack {
-                approx < 0
-            } else {
-                let det: i128 = (0..3).map(|i| v0[i] as i128 * n[i] as i128).sum();
-                det < 0
-            }
+            let det: i128 = (0..3).map(|i| v0[i] as i128 * n[i]).sum();
+            det < 0
         }
         Projection::Orthographic(_) => n[2] < 0,
+    }
+}
+
+/// The normal to light a face with: `corner = (v₁ − v₀) × (v₂ − v₀)`
+/// when it points the way of Newell's `n`, negated when it points the
+/// other way (the first corner is a reflex one), and `n` shifted into
+/// `i64` when the first three vertices lie in a line. So a face whose
+/// first corner is convex is lit exactly as by its first three vertices.
+pub(crate) fn light_normal(corner: [i64; 3], n: [i128; 3]) -> [i64; 3] {
+    // `n` to below 2³⁰ a component, `corner` too: the dot product of the
+    // two is below 3 · 2⁶⁰ (i64), and for a planar face (parallel vectors) its sign is
+    // that of the exact one.
+    let shrink = |v: [i128; 3]| {
+        let m = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+        let k = (128 - m.leading_zeros()).saturating_sub(30);
+        v.map(|c| (c >> k) as i64)
+    };
+    let a = shrink(n);
+    if corner == [0; 3] {
+        return a;
+    }
+    let b = shrink(corner.map(i128::from));
+    let dot: i64 = (0..3).map(|k| a[k] * b[k]).sum();
+    if dot < 0 {
+        corner.map(|c| -c)
+    } else {
+        corner
     }
 }
 
@@ -87,34 +137,66 @@ mod tests {
             .into()
     }
 
+    /// Facing of a polygon by the module's rule.
+    fn front(p: &Projection, v: &[[i64; 3]]) -> bool {
+        is_front(p, v[0], newell(v))
+    }
+
     #[test]
     fn counter_clockwise_as_displayed_is_front() {
         // On screen (y down): (0,0) → (0,1) → (1,1) turns counter-clockwise.
         let (a, b, c) = ([0, 0, 10], [0, 1, 10], [1, 1, 10]);
-        let n = normal(a, b, c);
-        assert_eq!(n, [0, 0, -1]);
-        assert!(is_front(&persp(), a, n));
-        assert!(is_front(&ortho(), a, n));
-        let n = normal(a, c, b);
-        assert!(!is_front(&persp(), a, n));
-        assert!(!is_front(&ortho(), a, n));
+        assert_eq!(normal(a, b, c), [0, 0, -1]);
+        assert_eq!(newell(&[a, b, c]), [0, 0, -1]);
+        assert!(front(&persp(), &[a, b, c]));
+        assert!(front(&ortho(), &[a, b, c]));
+        assert!(!front(&persp(), &[a, c, b]));
+        assert!(!front(&ortho(), &[a, c, b]));
     }
 
     #[test]
     fn edge_on_and_degenerate_are_culled() {
         // The eye lies in the plane x = 0 of this face.
         let (a, b, c) = ([0, 0, 10], [0, 5, 10], [0, 0, 20]);
-        let n = normal(a, b, c);
-        assert!(!is_front(&persp(), a, n));
-        assert!(!is_front(&persp(), a, normal(a, c, b)));
-        let line = normal([0, 0, 10], [1, 1, 10], [2, 2, 10]);
-        assert_eq!(line, [0, 0, 0]);
-        assert!(!is_front(&persp(), [0, 0, 10], line) && !is_front(&ortho(), [0, 0, 10], line));
+        assert!(!front(&persp(), &[a, b, c]));
+        assert!(!front(&persp(), &[a, c, b]));
+        let line = [[0, 0, 10], [1, 1, 10], [2, 2, 10]];
+        assert_eq!(newell(&line), [0, 0, 0]);
+        assert!(!front(&persp(), &line) && !front(&ortho(), &line));
+        // A bow tie whose two loops cancel.
+        let tie = [[0, 0, 10], [2, 2, 10], [2, 0, 10], [0, 2, 10]];
+        assert_eq!(newell(&tie), [0, 0, 0]);
+        assert!(!front(&persp(), &tie));
+        assert_eq!(newell(&[]), [0; 3]);
+    }
+
+    /// An arrow head, counter-clockwise as displayed, listed so that the
+    /// corner of its first three vertices is the reflex one (at `v₁`).
+    const ARROW: [[i64; 3]; 4] = [[3, -3, 10], [0, 2, 10], [-3, -3, 10], [0, 5, 10]];
+
+    #[test]
+    fn a_concave_face_from_its_reflex_corner_is_front() {
+        let [a, b, c, _] = ARROW;
+        // The old rule: the first corner alone says back.
+        assert!(normal(a, b, c)[2] > 0);
+        assert!(newell(&ARROW)[2] < 0);
+        assert!(front(&persp(), &ARROW) && front(&ortho(), &ARROW));
+        let mut back = ARROW;
+        back.reverse();
+        assert!(!front(&persp(), &back) && !front(&ortho(), &back));
+        // Every rotation of the list, the same answer.
+        for k in 0..4 {
+            let mut r = ARROW;
+            r.rotate_left(k);
+            assert!(front(&persp(), &r), "{k}");
+        }
+        // Lit by the front side's normal.
+        let n = light_normal(normal(a, b, c), newell(&ARROW));
+        assert!(n[2] < 0);
     }
 
     #[test]
-    fn the_fast_sign_agrees_with_the_exact_one() {
-        let p = persp();
+    fn agrees_with_the_first_corner_when_it_is_convex() {
         let mut seed = 0x2545_f491_4f6c_dd1du64;
         let mut next = || {
             seed ^= seed << 13;
@@ -127,42 +209,35 @@ mod tests {
                 -v
             }
         };
-        for i in 0..40_000 {
-            let (a, b) = ([next(), next(), next()], [next(), next(), next()]);
-            // Every other face nearly holds the eye: c is close to the
-            // plane through the origin, a and b.
-            let c = if i % 2 == 0 {
-                [next(), next(), next()]
-            } else {
-                let t = next() % 7;
-                [0, 1, 2].map(|k| {
-                    ((a[k] * t + b[k] * (7 - t)) / 7 + next() % 3)
-                        .clamp(-(1 << 30) + 1, (1 << 30) - 1)
-                })
-            };
-            let n = normal(a, b, c);
-            let det: i128 = (0..3).map(|k| a[k] as i128 * n[k] as i128).sum();
-            assert_eq!(is_front(&p, a, n), det < 0, "{a:?} {b:?} {c:?}");
+        for _ in 0..20_000 {
+            // A triangle: its only corner is convex.
+            let (a, b, c) = (
+                [next(), next(), next()],
+                [next(), next(), next()],
+                [next(), next(), next()],
+            );
+            let n3 = normal(a, b, c);
+            let det: i128 = (0..3).map(|k| a[k] as i128 * n3[k] as i128).sum();
+            assert_eq!(front(&persp(), &[a, b, c]), det < 0);
+            assert_eq!(front(&ortho(), &[a, b, c]), n3[2] < 0);
+            assert_eq!(light_normal(n3, newell(&[a, b, c])), n3);
         }
-        // Exactly edge-on faces far out (the plane y = 0 holds the eye): the
-        // slow path decides, in both windings; one unit off, it flips.
+        // Exactly edge-on faces far out (the plane y = 0 holds the eye):
+        // culled in both windings; one unit off, it flips.
         let e = (1i64 << 30) - 1;
         let (a, b, c) = ([e, 0, e], [-e, 0, e], [e, 0, 1]);
-        assert!(!is_front(&p, a, normal(a, b, c)));
-        assert!(!is_front(&p, a, normal(a, c, b)));
+        assert!(!front(&persp(), &[a, b, c]));
+        assert!(!front(&persp(), &[a, c, b]));
         let b1 = [-e, 1, e];
-        assert_ne!(
-            is_front(&p, a, normal(a, b1, c)),
-            is_front(&p, a, normal(a, c, b1))
-        );
+        assert_ne!(front(&persp(), &[a, b1, c]), front(&persp(), &[a, c, b1]));
     }
 
     #[test]
     fn extremes_fit() {
         let e = (1i64 << 30) - 1;
-        let n = normal([-e, -e, -e], [e, e, -e], [e, -e, e]);
-        let _ = is_front(&persp(), [-e, -e, -e], n);
-        let n = normal([e, -e, e], [-e, e, e], [-e, -e, -e]);
-        let _ = is_front(&persp(), [e, -e, e], n);
+        let big = [[-e, -e, -e], [e, e, -e], [e, -e, e], [-e, e, e], [e, e, e]];
+        let many: [[i64; 3]; 64] = core::array::from_fn(|k| big[k % 5]);
+        let _ = front(&persp(), &many);
+        let _ = light_normal(normal(big[0], big[1], big[2]), newell(&many));
     }
 }

@@ -6,7 +6,7 @@
 //! | # | stage | file | what happens |
 //! |---|---|---|---|
 //! | 1 | transform | [`transform`] | model → view space by the current matrix of a push/pop stack (translate, rotate, scale in call order, the camera's [`View`] at the bottom: eye and yaw/pitch, or [`View::look_at`]) |
-//! | 2 | cull | [`cull`] | a face whose first three vertices do not run counter-clockwise as displayed is dropped (edge-on ones too); points and lines pass |
+//! | 2 | cull | [`cull`] | a face that does not run counter-clockwise as displayed, as a whole polygon (Newell's normal), is dropped (edge-on ones too); points and lines pass |
 //! | 3 | light | [`light`] | Lambert: ambient plus a parallel light's share times `max(0, n̂ · l̂)` scales the face's colour |
 //! | 4 | near clip | [`near_clip`] | Sutherland–Hodgman in view space to `near ≤ z ≤ far`: nothing at or behind the eye is projected |
 //! | 5 | project | [`project`] | perspective (`f·x/d`, depth `A − B/d`) or orthographic onto the window, one division per vertex |
@@ -14,9 +14,9 @@
 //! | 7 | window clip | [`window_clip`] | re-entrant polygon clipping against the window's four sides, depth interpolated |
 //! | 8 | sink | [`PolygonSink`] | the polygon, in [`Vertex3`]s inside the window, with its colour |
 //!
-//! Culling is decided in view space, on the first three vertices as
-//! transformed: there its sign is exactly that of the projected shoelace
-//! sum (see [`cull`]), it needs no projected vertex, and it is defined even
+//! Culling is decided in view space, on the whole polygon as transformed
+//! (Newell's normal, exact in `i128`): there its sign is exactly that of
+//! the projected shoelace sum (see [`cull`]), it needs no projected vertex, and it is defined even
 //! when some of them lie behind the eye. So the cull and the light come
 //! before the clips, and a back face costs no clipping and no division.
 //! [`trig`] holds the angles, the sine table, the arctangent and the
@@ -190,7 +190,7 @@ pub enum Outcome {
 /// wrap around at 2³².
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct Stats {
+pub struct PipelineStats {
     /// Polygons, lines and points given.
     pub faces_in: u32,
     /// Back faces and edge-on faces.
@@ -224,7 +224,7 @@ pub struct Pipeline<const DEPTH: usize, const N: usize> {
     /// The light's direction in view space, unit Q16.16.
     light_view: [i32; 3],
     thickness: Coord,
-    stats: Stats,
+    stats: PipelineStats,
 }
 
 impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
@@ -245,7 +245,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             light: Light::AMBIENT,
             light_view: Light::AMBIENT.direction(),
             thickness: Coord::from_bits(16),
-            stats: Stats::default(),
+            stats: PipelineStats::default(),
         }
     }
 
@@ -322,13 +322,13 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     }
 
     /// The counters since the last reset.
-    pub fn stats(&self) -> Stats {
+    pub fn stats(&self) -> PipelineStats {
         self.stats
     }
 
     /// Zeroes the counters.
     pub fn reset_stats(&mut self) {
-        self.stats = Stats::default();
+        self.stats = PipelineStats::default();
     }
 
     /// Where `p` lands on the screen under the current transform: the
@@ -341,8 +341,9 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     /// Runs one polygon (one vertex: a point; two: a line) through the
     /// stages and hands what is visible of it to `sink`.
     ///
-    /// Faces (three or more vertices) are culled by their first three
-    /// vertices and lit with the face's normal; they should be planar.
+    /// Faces (three or more vertices) are culled by the orientation of the
+    /// whole polygon as projected (see [`cull`]) and lit with the face's
+    /// normal; they should be planar.
     /// Points and lines are neither culled nor lit.
     pub fn polygon<S: PolygonSink>(
         &mut self,
@@ -392,10 +393,11 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         let two_sided = points.len() < 3;
         let mut color = color;
         if let [v0, v1, v2, ..] = *work.current().as_slice() {
-            let n = cull::normal(v0, v1, v2);
+            let n = cull::newell(work.current());
             if !cull::is_front(&self.projection, v0, n) {
                 return Ok(Outcome::Culled);
             }
+            let n = cull::light_normal(cull::normal(v0, v1, v2), n);
             color = light::shade(color, n, self.light_view, self.light.percent());
         }
 
@@ -548,7 +550,7 @@ mod tests {
         let s = p.stats();
         assert_eq!(
             s,
-            Stats {
+            PipelineStats {
                 faces_in: 4,
                 culled: 0,
                 clipped_away: 1,
@@ -557,7 +559,7 @@ mod tests {
             }
         );
         p.reset_stats();
-        assert_eq!(p.stats(), Stats::default());
+        assert_eq!(p.stats(), PipelineStats::default());
     }
 
     #[test]

@@ -8,7 +8,8 @@
 //!   points and lines, and the modelling transform stack),
 //! * the [`TrapezoidStore`]: every segment's trapezoids and faces, in
 //!   screen space, with the scan-line index, and
-//! * the [`LabelStore`]: every segment's labels, placed on the screen.
+//! * the [`LabelStore`]: every segment's labels, placed on the screen, and
+//! * the visible-surface stage's [`Workspace`] (active list, runs).
 //!
 //! The application supplies one [`Procedure`] per segment (a closure, or
 //! any type implementing the trait) that describes the segment through a
@@ -31,35 +32,36 @@
 //! The transform stack's depth and the vertices of one polygon (at every
 //! clipping stage) are the const generics `DEPTH` and `N` of the
 //! [`Pipeline`]. Everything else is the caller's memory, given in
-//! [`SceneMemory`]: the store's pools (see [`segment`](crate::visible::store)),
-//! the label slots and the label text. Running out of any of them is an
+//! [`SceneMemory`]: the store's pools (see [`store`](crate::visible::store)),
+//! the visible-surface stage's workspace, the label slots and the label
+//! text. [`SceneStorage`] owns all of it, its capacities const generics,
+//! and lends it as a [`SceneMemory`]. Running out of any of them is an
 //! error that names the pool, and leaves the segment being built empty
 //! (and still stale), never half built.
+//!
+//! # Display lists
+//!
+//! A procedure may also describe its segment with display-list commands:
+//! [`Builder::command`] is the one interpreter of the 3D commands (see
+//! [`list`]), the one the [`Controller`](crate::controller::Controller)
+//! renders a list's 3D layer with.
 //!
 //! # Example
 //!
 //! ```
-//! use scanvert::fixed::{Coord, Vertex3};
 //! use scanvert::port::framebuffer::FrameBuffer;
 //! use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, Q16, View, Viewport};
-//! use scanvert::scene::label::{Label, DEFAULT_FONT};
+//! use scanvert::scene::label::DEFAULT_FONT;
 //! use scanvert::pixelcolor::{Rgb565, Rgb888, RgbColor};
-//! use scanvert::visible::rle::Run;
-//! use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
-//! use scanvert::visible::store::{Face, Segment, StoreMemory};
-//! use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
-//! use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+//! use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneStorage};
+//! use scanvert::visible::sweep::Resolve;
 //!
 //! const W: u16 = 64;
 //! const H: u16 = 48;
-//! let (mut traps, mut faces, mut segs) = ([Trapezoid::EMPTY; 64], [Face::EMPTY; 16], [Segment::EMPTY; 2]);
-//! let (mut rows, mut edges) = ([0u16; H as usize], [EdgeSlot::EMPTY; 16]);
-//! let (mut labels, mut text) = ([Label::EMPTY; 2], [0u8; 16]);
-//! let mem = SceneMemory {
-//!     store: StoreMemory { trapezoids: &mut traps, faces: &mut faces, segments: &mut segs, rows: &mut rows, edges: &mut edges },
-//!     labels: &mut labels,
-//!     text: &mut text,
-//! };
+//! // 64 trapezoids, 16 faces, 2 segments, H rows, 16 edge slots,
+//! // 16 active entries, W runs, 2 labels, 16 bytes of text.
+//! let mut storage = SceneStorage::<64, 16, 2, { H as usize }, 16, 16, { W as usize }, 2, 16>::new();
+//! let mem = storage.as_memory();
 //! let q = Q16::from_int;
 //! let persp = Perspective::from_fov(Angle::from_degrees(60), W, q(1), q(100)).unwrap();
 //! let mut scene = Scene::new(mem, Pipeline::<4, 16>::new(persp, Viewport::centred(W, H).unwrap()))?;
@@ -83,9 +85,7 @@
 //!
 //! let mut px = [Rgb565::BLACK; W as usize * H as usize];
 //! let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
-//! let (mut active, mut cover, mut runs) = ([Active::EMPTY; 16], [Cover::EMPTY; 16], [Run::EMPTY; W as usize]);
-//! let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
-//! let f = scene.draw(&mut ws, Resolve::Crossing, Some(Rgb565::BLACK), DEFAULT_FONT, &mut fb).unwrap();
+//! let f = scene.draw(Resolve::Crossing, Some(Rgb565::BLACK), DEFAULT_FONT, &mut fb).unwrap();
 //! assert_eq!(f.labels.drawn, 1);
 //! assert_eq!(fb.pixel(W / 2, H / 2), Some(Rgb565::RED));
 //!
@@ -99,37 +99,110 @@
 //! ```
 
 pub mod label;
+pub mod list;
+pub mod storage;
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
+pub use list::{list_pipeline, Executed, ListState};
+pub use storage::SceneStorage;
 
 use crate::color::ListColor;
-use crate::display_list::Axis;
-use crate::fixed::Coord;
+use crate::display_list::{Axis, Command};
+use crate::fixed::{Coord, Vertex3};
 use crate::geometry::{
     Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, ProjectionError,
     TransformError, TransformStack, View, Q16,
 };
 use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
-use crate::visible::store::SegmentSink;
+use crate::visible::rle::Run;
 use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
-use crate::visible::{self, Resolve, VisibleError, VisibleStats, Workspace};
+use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::Rgb888;
 use label::{LabelCounts, LabelError};
 
-/// The caller's memory of a [`Scene`].
+/// The caller's memory of a [`Scene`], of any capacities: slices over
+/// the pools. [`SceneStorage`] owns one with its capacities as const
+/// generics and lends it with [`SceneStorage::as_memory`].
+///
+/// | part | what it holds | limit |
+/// |---|---|---|
+/// | `store` | trapezoids, faces, segments, the scan-line index, edge slots (see [`store`](crate::visible::store)) | pools: 65535 each; index: the frame's height |
+/// | `active`, `cover` | trapezoids overlapping one row (the shorter of the two) | 65535 |
+/// | `runs` | runs of one row | at least the frame's width |
+/// | `labels`, `text` | label slots and their text, shared by all segments | none |
 #[derive(Debug)]
 pub struct SceneMemory<'a> {
     /// The trapezoid store's pools; its `segments` slice sets how many
-    /// segments the scene has, and its `rows` must cover the window's
+    /// segments the scene has, and its `rows` must cover the frame's
     /// height.
     pub store: StoreMemory<'a>,
+    /// The active list of the visible-surface stage.
+    pub active: &'a mut [Active],
+    /// The cover array: as many as the active list.
+    pub cover: &'a mut [Cover],
+    /// One row of runs: the frame's width is always enough.
+    pub runs: &'a mut [Run],
     /// Label slots, shared by all segments.
     pub labels: &'a mut [Label],
     /// Label text, shared by all segments.
     pub text: &'a mut [u8],
+}
+
+impl SceneMemory<'_> {
+    /// The same memory, lent for a shorter time.
+    pub fn reborrow(&mut self) -> SceneMemory<'_> {
+        SceneMemory {
+            store: StoreMemory {
+                trapezoids: &mut *self.store.trapezoids,
+                faces: &mut *self.store.faces,
+                segments: &mut *self.store.segments,
+                rows: &mut *self.store.rows,
+                edges: &mut *self.store.edges,
+            },
+            active: &mut *self.active,
+            cover: &mut *self.cover,
+            runs: &mut *self.runs,
+            labels: &mut *self.labels,
+            text: &mut *self.text,
+        }
+    }
+}
+
+/// A boundary between the stages of a render, reported to a [`Hook`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum Stage {
+    /// The 3D layer's build begins (the controller, after its checks).
+    Start,
+    /// The 3D commands have been executed and their polygons cut into
+    /// trapezoids in the store.
+    Cut,
+    /// The active list has been checked against the store.
+    Checked,
+    /// The 2D commands have been drawn (the controller).
+    Painted,
+    /// The visible surfaces have been resolved and decoded into the
+    /// target.
+    Resolved,
+    /// The labels have been drawn.
+    Labelled,
+}
+
+/// Called at each [`Stage`] boundary of a render, to time the stages. Any
+/// `FnMut(Stage)` is one; a closure that does nothing costs nothing.
+pub trait Hook {
+    /// `stage` has just been reached.
+    fn stage(&mut self, stage: Stage);
+}
+
+impl<F: FnMut(Stage)> Hook for F {
+    #[inline(always)]
+    fn stage(&mut self, stage: Stage) {
+        self(stage)
+    }
 }
 
 /// Why a segment could not be built, or a scene made.
@@ -280,6 +353,7 @@ pub struct Frame {
 pub struct Scene<'a, const DEPTH: usize, const N: usize> {
     store: TrapezoidStore<'a>,
     labels: LabelStore<'a>,
+    workspace: Workspace<'a>,
     pipeline: Pipeline<DEPTH, N>,
     clip: ClipRect,
 }
@@ -289,12 +363,27 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// Fails when the store's index has fewer rows than the window.
     pub fn new(mem: SceneMemory<'a>, pipeline: Pipeline<DEPTH, N>) -> Result<Self, SceneError> {
         let (w, h) = (pipeline.viewport().width(), pipeline.viewport().height());
-        let store = TrapezoidStore::new(mem.store, w, h)?;
+        Self::with_frame(mem, pipeline, w, h)
+    }
+
+    /// An empty scene drawn into a frame of `width × height` pixels,
+    /// whatever the pipeline's window: polygons are projected onto the
+    /// window and cut to the frame (a target smaller than the window shows
+    /// its top-left part, unscaled). Every segment is stale. Fails when
+    /// the store's index has fewer rows than the frame.
+    pub fn with_frame(
+        mem: SceneMemory<'a>,
+        pipeline: Pipeline<DEPTH, N>,
+        width: u16,
+        height: u16,
+    ) -> Result<Self, SceneError> {
+        let store = TrapezoidStore::new(mem.store, width, height)?;
         let mut scene = Scene {
             store,
             labels: LabelStore::new(mem.labels, mem.text),
+            workspace: Workspace::new(mem.active, mem.cover, mem.runs),
             pipeline,
-            clip: ClipRect::full(w, h),
+            clip: ClipRect::full(width, height),
         };
         scene.invalidate_all();
         Ok(scene)
@@ -436,13 +525,19 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         let _ = self.store.set_stale(s, true);
     }
 
+    /// Finds the most trapezoids that overlap one row and checks them
+    /// against the active list, and the frame's width against the runs,
+    /// without drawing (see [`Workspace::check`]).
+    pub fn check(&mut self) -> Result<u32, VisibleError<core::convert::Infallible>> {
+        self.workspace.check(&self.store)
+    }
+
     /// Draws the scene into `target`: the visible surfaces resolved with
-    /// `resolve` through `workspace` and decoded as spans (background runs
-    /// filled with `background`, or left as they are with `None`), then
-    /// every label in `font`, over everything.
+    /// `resolve` through the scene's workspace and decoded as spans
+    /// (background runs filled with `background`, or left as they are
+    /// with `None`), then every label in `font`, over everything.
     pub fn draw<T>(
-        &self,
-        workspace: &mut Workspace<'_>,
+        &mut self,
         resolve: Resolve,
         background: Option<T::Color>,
         font: &MonoFont<'_>,
@@ -452,14 +547,74 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        let (visible, decoded) =
-            visible::draw(&self.store, workspace, resolve, target, background)?;
+        self.draw_with(resolve, background, font, target, &mut |_| {})
+    }
+
+    /// [`draw`](Self::draw), telling `hook` when the visible surfaces are
+    /// drawn ([`Stage::Resolved`]) and when the labels are
+    /// ([`Stage::Labelled`]).
+    pub fn draw_with<T, H>(
+        &mut self,
+        resolve: Resolve,
+        background: Option<T::Color>,
+        font: &MonoFont<'_>,
+        target: &mut T,
+        hook: &mut H,
+    ) -> Result<Frame, VisibleError<T::Error>>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+        H: Hook + ?Sized,
+    {
+        let (visible, decoded) = visible::draw(
+            &self.store,
+            &mut self.workspace,
+            resolve,
+            target,
+            background,
+        )?;
+        hook.stage(Stage::Resolved);
         let labels = self.labels.draw(font, target).map_err(VisibleError::Sink)?;
+        hook.stage(Stage::Labelled);
         Ok(Frame {
             visible,
             decoded,
             labels,
         })
+    }
+}
+
+/// A segment of a scene as the interpreter's [`Out`](list::Out).
+struct SegmentOut<'s, 'a> {
+    store: &'s mut TrapezoidStore<'a>,
+    labels: &'s mut LabelStore<'a>,
+    segment: usize,
+}
+
+impl list::Out for SegmentOut<'_, '_> {
+    fn polygon<I: IntoIterator<Item = Vertex3>>(
+        &mut self,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
+        self.store
+            .add_polygon(self.segment, vertices, color, clip)
+            .map(|_| ())
+            .map_err(SceneError::Store)
+    }
+
+    fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str) -> Result<bool, SceneError> {
+        self.labels
+            .add(self.segment as u16, at, color, text)
+            .map_err(SceneError::Labels)
+    }
+
+    fn changed(&mut self) {
+        // The other segments were projected with what changed.
+        for s in (0..self.store.segments().len()).filter(|&s| s != self.segment) {
+            let _ = self.store.set_stale(s, true);
+        }
     }
 }
 
@@ -471,7 +626,7 @@ pub struct Builder<'s, 'a, const DEPTH: usize, const N: usize> {
     segment: usize,
 }
 
-impl<const DEPTH: usize, const N: usize> Builder<'_, '_, DEPTH, N> {
+impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     /// The segment being built.
     pub fn segment(&self) -> usize {
         self.segment
@@ -515,33 +670,50 @@ impl<const DEPTH: usize, const N: usize> Builder<'_, '_, DEPTH, N> {
     /// A polygon in model coordinates: one point, a point; two, a line;
     /// three or more, a face, front where they run counter-clockwise.
     pub fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<Outcome, SceneError> {
-        let Scene {
-            store,
-            pipeline,
-            clip,
-            ..
-        } = &mut *self.scene;
-        let mut sink = SegmentSink::new(store, self.segment, *clip);
-        let r = pipeline.polygon(points, color, &mut sink);
-        Ok(r?)
+        let clip = self.scene.clip;
+        let (pipeline, mut out) = self.split();
+        list::face(pipeline, &mut out, points, color, clip)
     }
 
     /// A label whose first character's lower-left corner is at the model
     /// point `at` (see [`label`]). `Ok(false)` when the point
     /// lies before the near plane or too far off the window to show.
     pub fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<bool, SceneError> {
-        let a = self.scene.pipeline.project_point(at)?;
-        if !a.in_front {
-            // Checked all the same, so that a bad text fails whatever the view.
-            return crate::scene::label::check_text(text)
-                .map(|_| false)
-                .map_err(Into::into);
-        }
-        Ok(self.scene.labels.add(
-            self.segment as u16,
-            crate::scene::label::to_pixels(a),
-            color,
-            text,
-        )?)
+        let (pipeline, mut out) = self.split();
+        list::place_label(pipeline, &mut out, at, text, color)
+    }
+
+    /// Executes one command of a display list into the segment, with the
+    /// list's colour and clip registers in `state` (see [`list`]): the
+    /// one interpreter of the 3D commands, which
+    /// [`Controller`](crate::controller::Controller) renders lists with.
+    /// 2D commands are left alone. A command that changes the camera, the
+    /// projection, the light or the thickness makes every other segment
+    /// stale.
+    pub fn command(
+        &mut self,
+        cmd: Command<'_>,
+        state: &mut ListState,
+    ) -> Result<Executed, SceneError> {
+        let (pipeline, mut out) = self.split();
+        list::execute(pipeline, &mut out, state, cmd)
+    }
+
+    /// The pipeline, and the segment as the interpreter's output.
+    fn split(&mut self) -> (&mut Pipeline<DEPTH, N>, SegmentOut<'_, 'a>) {
+        let Scene {
+            store,
+            labels,
+            pipeline,
+            ..
+        } = &mut *self.scene;
+        (
+            pipeline,
+            SegmentOut {
+                store,
+                labels,
+                segment: self.segment,
+            },
+        )
     }
 }

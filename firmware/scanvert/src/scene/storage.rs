@@ -1,0 +1,221 @@
+//! All the memory of a 3D layer or scene in one owned value, its
+//! capacities const generics.
+//!
+//! [`SceneStorage`] holds the store's pools, the visible-surface stage's
+//! workspace and the labels, as arrays. It is made by a `const fn`, so it
+//! can be a `static` (in `.bss`) or a local, and lends itself as a
+//! [`SceneMemory`] — slices, the capacities erased — which is what
+//! [`Scene`](super::Scene) and
+//! [`Controller::with_3d`](crate::controller::Controller::with_3d) take.
+//! [`controller::needs`](crate::controller::needs) says what a display
+//! list needs.
+//!
+//! ```
+//! use scanvert::scene::{SceneMemory, SceneStorage};
+//!
+//! // 64 trapezoids, 16 faces, 2 segments, 48 rows, 8 edge slots,
+//! // 16 active entries, 64 runs, 4 labels, 32 bytes of text.
+//! type Storage = SceneStorage<64, 16, 2, 48, 8, 16, 64, 4, 32>;
+//! static SHARED: Storage = Storage::new(); // constant, in `.bss`
+//! const EMPTY: Storage = Storage::new();
+//!
+//! let mut storage = EMPTY;
+//! let mem: SceneMemory<'_> = storage.as_memory();
+//! assert_eq!(mem.store.trapezoids.len(), 64);
+//! assert_eq!(mem.runs.len(), 64);
+//! assert_eq!(SHARED.capacities().labels, 4);
+//! ```
+
+use super::label::Label;
+use super::SceneMemory;
+use crate::visible::rle::Run;
+use crate::visible::store::{Face, Segment, StoreMemory};
+use crate::visible::sweep::{Active, Cover};
+use crate::visible::trapezoid::{EdgeSlot, Trapezoid};
+
+/// The memory of a 3D layer or [`Scene`](super::Scene), owned, every
+/// slot unused until lent.
+///
+/// | const | pool | slot (32-bit targets) | limit, and what needs it |
+/// |---|---|---|---|
+/// | `TRAPEZOIDS` | trapezoids | 96 bytes | at most 65535 are used (a `u16` index, one value reserved); as many as the polygons are cut into |
+/// | `FACES` | faces | 64 bytes | at most 65535 used; one per polygon with a trapezoid |
+/// | `SEGMENTS` | segments | 28 bytes | at most 65535 used; a display list uses one |
+/// | `ROWS` | the scan-line index | 2 bytes | at least the frame's height (at most 4096) |
+/// | `EDGES` | edge slots | 32 bytes | scratch for one polygon: as many as its vertices (at most 65535) |
+/// | `ACTIVE` | active list and cover array | 116 + 20 bytes | at most 65535 used; the most trapezoids overlapping one row |
+/// | `RUNS` | runs of one row | 4 bytes | at least the frame's width (at most 4096) |
+/// | `LABELS` | label slots | 20 bytes | one per label placed |
+/// | `TEXT` | label text | 1 byte | the bytes of every label's text |
+///
+/// A pool too small is an error when it runs out, naming the pool; slots
+/// beyond a limit are never used.
+#[derive(Clone, Debug)]
+pub struct SceneStorage<
+    const TRAPEZOIDS: usize,
+    const FACES: usize,
+    const SEGMENTS: usize,
+    const ROWS: usize,
+    const EDGES: usize,
+    const ACTIVE: usize,
+    const RUNS: usize,
+    const LABELS: usize,
+    const TEXT: usize,
+> {
+    trapezoids: [Trapezoid; TRAPEZOIDS],
+    faces: [Face; FACES],
+    segments: [Segment; SEGMENTS],
+    rows: [u16; ROWS],
+    edges: [EdgeSlot; EDGES],
+    active: [Active; ACTIVE],
+    cover: [Cover; ACTIVE],
+    runs: [Run; RUNS],
+    labels: [Label; LABELS],
+    text: [u8; TEXT],
+}
+
+/// The capacities of a [`SceneStorage`] (or what a list needs of one).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct Capacities {
+    /// Trapezoid slots.
+    pub trapezoids: usize,
+    /// Face slots.
+    pub faces: usize,
+    /// Segments.
+    pub segments: usize,
+    /// Rows of the scan-line index.
+    pub rows: usize,
+    /// Edge slots.
+    pub edges: usize,
+    /// Active-list (and cover) entries.
+    pub active: usize,
+    /// Runs of one row.
+    pub runs: usize,
+    /// Label slots.
+    pub labels: usize,
+    /// Bytes of label text.
+    pub text: usize,
+}
+
+impl<
+        const TRAPEZOIDS: usize,
+        const FACES: usize,
+        const SEGMENTS: usize,
+        const ROWS: usize,
+        const EDGES: usize,
+        const ACTIVE: usize,
+        const RUNS: usize,
+        const LABELS: usize,
+        const TEXT: usize,
+    > SceneStorage<TRAPEZOIDS, FACES, SEGMENTS, ROWS, EDGES, ACTIVE, RUNS, LABELS, TEXT>
+{
+    /// Storage with every slot unused.
+    pub const fn new() -> Self {
+        SceneStorage {
+            trapezoids: [Trapezoid::EMPTY; TRAPEZOIDS],
+            faces: [Face::EMPTY; FACES],
+            segments: [Segment::EMPTY; SEGMENTS],
+            rows: [0; ROWS],
+            edges: [EdgeSlot::EMPTY; EDGES],
+            active: [Active::EMPTY; ACTIVE],
+            cover: [Cover::EMPTY; ACTIVE],
+            runs: [Run::EMPTY; RUNS],
+            labels: [Label::EMPTY; LABELS],
+            text: [0; TEXT],
+        }
+    }
+
+    /// The capacities, as the const generics give them.
+    pub const fn capacities(&self) -> Capacities {
+        Capacities {
+            trapezoids: TRAPEZOIDS,
+            faces: FACES,
+            segments: SEGMENTS,
+            rows: ROWS,
+            edges: EDGES,
+            active: ACTIVE,
+            runs: RUNS,
+            labels: LABELS,
+            text: TEXT,
+        }
+    }
+
+    /// The memory as slices, the capacities erased: what
+    /// [`Scene`](super::Scene) and the controller take.
+    pub fn as_memory(&mut self) -> SceneMemory<'_> {
+        SceneMemory {
+            store: StoreMemory {
+                trapezoids: &mut self.trapezoids,
+                faces: &mut self.faces,
+                segments: &mut self.segments,
+                rows: &mut self.rows,
+                edges: &mut self.edges,
+            },
+            active: &mut self.active,
+            cover: &mut self.cover,
+            runs: &mut self.runs,
+            labels: &mut self.labels,
+            text: &mut self.text,
+        }
+    }
+}
+
+impl<
+        const TRAPEZOIDS: usize,
+        const FACES: usize,
+        const SEGMENTS: usize,
+        const ROWS: usize,
+        const EDGES: usize,
+        const ACTIVE: usize,
+        const RUNS: usize,
+        const LABELS: usize,
+        const TEXT: usize,
+    > Default
+    for SceneStorage<TRAPEZOIDS, FACES, SEGMENTS, ROWS, EDGES, ACTIVE, RUNS, LABELS, TEXT>
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    type Small = SceneStorage<4, 2, 1, 8, 3, 5, 6, 1, 7>;
+
+    /// Made at compile time, usable as a `static`.
+    static STATIC: Small = Small::new();
+
+    #[test]
+    fn capacities_are_the_const_generics() {
+        let mut s = STATIC.clone();
+        let m = s.as_memory();
+        assert_eq!(
+            (
+                m.store.trapezoids.len(),
+                m.store.faces.len(),
+                m.store.segments.len()
+            ),
+            (4, 2, 1)
+        );
+        assert_eq!((m.store.rows.len(), m.store.edges.len()), (8, 3));
+        assert_eq!((m.active.len(), m.cover.len(), m.runs.len()), (5, 5, 6));
+        assert_eq!((m.labels.len(), m.text.len()), (1, 7));
+        assert_eq!(
+            STATIC.capacities(),
+            Capacities {
+                trapezoids: 4,
+                faces: 2,
+                segments: 1,
+                rows: 8,
+                edges: 3,
+                active: 5,
+                runs: 6,
+                labels: 1,
+                text: 7
+            }
+        );
+    }
+}

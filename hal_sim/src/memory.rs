@@ -1,0 +1,100 @@
+//! The graphic controller's memory for one display list, on the heap,
+//! sized by what the list needs ([`scanvert::controller::needs`]).
+
+use scanvert::controller::{edges_3d, needs, Controller, Needs, RenderError};
+use scanvert::display_list::DisplayList;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::scene::label::Label;
+use scanvert::scene::SceneMemory;
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Face, Segment, StoreMemory};
+use scanvert::visible::sweep::{Active, Cover};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+
+/// Edge storage for the rasteriser and the 3D layer's memory, each pool
+/// as large as the list needs and no larger: a list that would need more
+/// than a pool can address is refused before anything is allocated.
+#[derive(Debug)]
+pub struct ListMemory {
+    need: Needs,
+    edges: Vec<Edge>,
+    trapezoids: Vec<Trapezoid>,
+    faces: Vec<Face>,
+    segments: Vec<Segment>,
+    rows: Vec<u16>,
+    slots: Vec<EdgeSlot>,
+    active: Vec<Active>,
+    cover: Vec<Cover>,
+    runs: Vec<Run>,
+    labels: Vec<Label>,
+    text: Vec<u8>,
+}
+
+impl ListMemory {
+    /// The memory `list` needs. Fails, naming the command, when its 3D
+    /// layer needs more than a pool can address or a 3D command fails
+    /// (as rendering would).
+    pub fn for_list(
+        list: &DisplayList<'_>,
+    ) -> Result<ListMemory, RenderError<core::convert::Infallible>> {
+        let mut slots = vec![EdgeSlot::EMPTY; edges_3d(list)];
+        let need = needs(list, &mut slots)?;
+        Ok(ListMemory {
+            need,
+            edges: vec![Edge::EMPTY; need.edges],
+            trapezoids: vec![Trapezoid::EMPTY; need.trapezoids],
+            faces: vec![Face::EMPTY; need.faces],
+            segments: vec![Segment::EMPTY; need.segments],
+            rows: vec![0; need.rows],
+            slots,
+            active: vec![Active::EMPTY; need.active],
+            cover: vec![Cover::EMPTY; need.active],
+            runs: vec![Run::EMPTY; need.runs],
+            labels: vec![Label::EMPTY; need.labels],
+            text: vec![0; need.text],
+        })
+    }
+
+    /// What the list needs.
+    pub fn needs(&self) -> &Needs {
+        &self.need
+    }
+
+    /// The 3D layer's memory.
+    pub fn memory_3d(&mut self) -> SceneMemory<'_> {
+        self.parts().1
+    }
+
+    /// A controller over this memory: with the 3D layer's when the list
+    /// has one.
+    pub fn controller(&mut self) -> Controller<'_> {
+        let any = self.need.any();
+        let (edges, three) = self.parts();
+        let c = Controller::new(Rasterizer::new(edges));
+        if any {
+            c.with_3d(three)
+        } else {
+            c
+        }
+    }
+
+    /// The rasteriser's edges and the 3D layer's memory.
+    fn parts(&mut self) -> (&mut [Edge], SceneMemory<'_>) {
+        let three = SceneMemory {
+            store: StoreMemory {
+                trapezoids: &mut self.trapezoids,
+                faces: &mut self.faces,
+                segments: &mut self.segments,
+                rows: &mut self.rows,
+                edges: &mut self.slots,
+            },
+            active: &mut self.active,
+            cover: &mut self.cover,
+            runs: &mut self.runs,
+            labels: &mut self.labels,
+            text: &mut self.text,
+        };
+        (&mut self.edges, three)
+    }
+}
