@@ -12,7 +12,7 @@
 //! |---|---|---|---|
 //! | [`rgb`] | `clear`, `color` | 4 | |
 //! | [`clip`] | `clip` | 9 | |
-//! | [`line`] | `line` | 9 | |
+//! | [`line`](mod@line) | `line` | 9 | |
 //! | [`poly`] | `poly` | 3 | `n × 4` (`n` ≥ 3 at [`poly::COUNT`]) |
 //! | [`poly3`] | `poly3` | 3 | `n × 6` (`n` ≥ 3) |
 //! | [`segment`] | `segment` | 3 | |

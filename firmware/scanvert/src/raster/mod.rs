@@ -2,7 +2,7 @@
 //!
 //! A polygon's edges are set up once ([`edge`]), stepped down the rows
 //! with integer error counters and paired into spans by the even-odd rule
-//! ([`scan`]); `line`s are stepped row by row ([`line`]); every span is cut to the clip registers ([`clip`]) before it
+//! ([`scan`]); `line`s are stepped row by row ([`line`](mod@line)); every span is cut to the clip registers ([`clip`]) before it
 //! leaves for the port. [`dda`] holds the faster, approximate steppers,
 //! with their error measured.
 
