@@ -4,9 +4,8 @@
 //! and for binary lists the disassembler and assembler) without a panic,
 //! and an error names a line or a byte offset.
 //!
-//! Two of them show faults that are known and not fixed yet; their tests
-//! say what is owed and are ignored until the fault is fixed
-//! (`cargo test -p host-tests --test fuzz_regressions -- --ignored`).
+//! Some of them showed faults, now fixed; their tests below say what is
+//! owed.
 
 use scanvert::display_list::{DisplayList, MAGIC};
 use scanvert_sim::cli::{render_scene, Scene};
@@ -44,23 +43,20 @@ fn every_regression_input_is_handled() {
         }
         if raw.starts_with(&MAGIC) {
             let list = DisplayList::new_checked(&raw).expect("checked");
-            // Disassembling never panics; assembling it again may refuse
-            // (see the ignored test below) but names a line.
-            if let Err(e) = text::assemble(&text::disassemble(&list)) {
-                assert!(e.line >= 1);
-            }
+            // Disassembling never panics, and the text assembles back to
+            // the same bytes.
+            let again = text::assemble(&text::disassemble(&list)).expect("assembles");
+            assert_eq!(again.bytes, raw);
         }
     }
     assert!(n >= 4, "{n} regression files");
 }
 
-/// A `face` that needs a face slot, then a `pop` with nothing saved:
-/// `needs_3d` fails on the `pop` and sizes nothing, `render_scene` then
-/// renders with token memory (no face slot), and the program reports
-/// "line 2: the 3D layer needs more than the 0 faces this renderer holds"
-/// instead of the fault, the `pop` on line 3.
+/// A `face` that needs a face slot, then a `pop` with nothing saved: the
+/// fault, the `pop` on line 3, is the one reported (it once was "line 2:
+/// the 3D layer needs more than the 0 faces this renderer holds", when
+/// the memory was sized by a function that gave up on the `pop`).
 #[test]
-#[ignore = "known fault: a failing scene command is reported as the memory running out"]
 fn a_failing_scene_command_is_reported_as_itself() {
     let path = regressions().join("scene-error-behind-capacity.dl");
     let scene =
