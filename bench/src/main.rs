@@ -388,20 +388,28 @@ fn depth_part() -> (Vec<visible3d::DepthRow>, Vec<visible3d::SplitRow>, f64) {
         );
         depth.push(r);
     }
+    // Both versions of a size timed together, so that their ratio holds.
     let mut split = Vec::new();
-    for scene in scenes3d::all() {
-        let r = visible3d::measure_split(&scene);
-        eprintln!(
-            "split {} {:>4} faces: {:.0} trapezoids, P3 {:.3} ms, P4 {:.3} ms, fused {:.3} ms",
-            r.version.short(),
-            r.faces,
-            r.trapezoids,
-            r.p3_ms,
-            r.p4_ms,
-            r.both_ms
-        );
-        split.push(r);
+    for &n in &scenes3d::SIZES {
+        let pair = [
+            scenes3d::scene(scenes3d::Version::Layered, n),
+            scenes3d::scene(scenes3d::Version::Tilted, n),
+        ];
+        for r in visible3d::measure_split(&[&pair[0], &pair[1]]) {
+            eprintln!(
+                "split {} {:>4} faces: {:.0} trapezoids, P3 {:.3} ms, P4 {:.3} ms, fused {:.3} ms",
+                r.version.short(),
+                r.faces,
+                r.trapezoids,
+                r.p3_ms,
+                r.p4_ms,
+                r.both_ms
+            );
+            split.push(r);
+        }
     }
+    // Report order: the 2D version, then the 3D version.
+    split.sort_by_key(|r| (r.version == scenes3d::Version::Tilted, r.faces));
     (depth, split, start.elapsed().as_secs_f64())
 }
 
