@@ -210,8 +210,24 @@ fn profile_w1(mode: &str, passes: u32) {
     }
 }
 
+/// What `--help` (or any argument not understood) prints.
+const USAGE: &str = "\
+scanvert-bench: speed against error, written to docs/performance.md and its plots
+
+  (no argument)             everything; rewrites the page and all its plots
+  --only W1|W2|W3|W4|W5     one 2D workload, printed, nothing written
+  --only 3D | --only 3D:N   the 3D scenes (of N faces), printed, nothing written
+  --only depth              the depth-complexity sweep and the P3/P4 split;
+                            rewrites their section of the page and their plots
+  --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
+  --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind";
+
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().collect();
+    if args.len() > 1 && !matches!(args[1].as_str(), "--only" | "--profile-3d" | "--profile-w1") {
+        eprintln!("{USAGE}");
+        return Ok(());
+    }
     if args.len() == 4 && args[1] == "--profile-3d" {
         visible3d::profile(&args[2], args[3].parse().unwrap_or(25));
         return Ok(());
