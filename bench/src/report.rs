@@ -654,8 +654,11 @@ pub fn section_depth(depth: &[DepthRow], split: &[SplitRow], seconds: f64) -> St
          This section and its two plots are rewritten alone, in about {:.0} s, by\n\n\
          ```sh\ncargo run --release -p scanvert-bench -- --only depth\n```\n\n\
          (the rest of the page is kept as it is); the full run writes them too.\n\
-         Timing, error and the z-buffers are as in the section above.\n",
-        seconds.max(1.0)
+         Timing, error and the z-buffers are as in the section above, but\n\
+         with {} timed runs of each contender (best kept), as these ratios are\n\
+         read across scenes timed at different moments.\n",
+        seconds.max(1.0),
+        crate::visible3d::ROUNDS_DEPTH
     );
     if !depth.is_empty() {
         let _ = writeln!(

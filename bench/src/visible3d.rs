@@ -33,6 +33,9 @@ use testkit::scenes3d::{Scene, Version, H, VIEWS, W};
 const MIN_RUN: Duration = Duration::from_millis(30);
 /// Timed runs per contender, round-robin; best kept.
 pub const ROUNDS: usize = 7;
+/// The same for the depth sweep and the P3/P4 split, whose ratios are
+/// read across scenes: more runs, for a best run less often disturbed.
+pub const ROUNDS_DEPTH: usize = 15;
 
 /// The colour of face `k`: its index, so that a picture tells which face
 /// won each pixel (never black, the background).
@@ -799,7 +802,7 @@ pub fn measure_depth(scene: &Scene, aimed: usize) -> DepthRow {
         zbuffer::<i16>(scene, &inks565),
         zbuffer::<i32>(scene, &inks565),
     ];
-    let secs = time_fns(&mut fns, MIN_RUN, ROUNDS);
+    let secs = time_fns(&mut fns, MIN_RUN, ROUNDS_DEPTH);
     drop(fns);
     let ms = |k: usize| secs[k] * 1e3 / VIEWS as f64;
     DepthRow {
@@ -958,7 +961,7 @@ pub fn measure_split(scenes: &[&Scene]) -> Vec<SplitRow> {
         }));
         fns.push(alone(Resolve::Crossing, ss, m));
     }
-    let secs = time_fns(&mut fns, MIN_RUN, ROUNDS);
+    let secs = time_fns(&mut fns, MIN_RUN, ROUNDS_DEPTH);
     drop(fns);
     let ms = |k: usize| secs[k] * 1e3 / VIEWS as f64;
     scenes
