@@ -717,7 +717,10 @@ pub fn section_depth(depth: &[DepthRow], split: &[SplitRow], seconds: f64) -> St
             "\nscanvert (`Resolve::Crossing`, cut + resolve + decode) against the\n\
              exact reference, all depths, versions and views: **{bad} mismatched\n\
              pixels** in {} covered pixels. *Faster z-buffer ÷ scanvert*: above 1,\n\
-             scanvert is faster. *Spans*: what the sweep classified (empty,\n\
+             scanvert is faster; it compares contenders timed round-robin together\n\
+             and is the robust figure, while a scene timed when this shared machine\n\
+             was busier shifts all three of its times together. *Spans*: what the\n\
+             sweep classified (empty,\n\
              single, multiple, intersecting); *hidden*: trapezoids left out\n\
              where they start because the front hides them.\n",
             thousands(covered)
