@@ -6,7 +6,11 @@
 //! `docs/speed-vs-error.png` and `docs/time-vs-trapezoids.png`. Speed is
 //! measured here only, never in a test. `-- --only W3` times one workload
 //! and writes nothing; `-- --only 3D` times the 3D scenes alone, and
-//! `-- --only 3D:170` those of 170 faces; `-- --profile-w1 MODE PASSES`
+//! `-- --only 3D:170` those of 170 faces; `-- --only depth` runs the
+//! depth-complexity sweep and the P3/P4 split alone and rewrites their
+//! section of `docs/performance.md` (and `docs/time-vs-depth.png`,
+//! `docs/p3-p4-vs-trapezoids.png`), keeping the rest of the page;
+//! `-- --profile-w1 MODE PASSES`
 //! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
 //! alone, for callgrind.
 
@@ -206,8 +210,24 @@ fn profile_w1(mode: &str, passes: u32) {
     }
 }
 
+/// What `--help` (or any argument not understood) prints.
+const USAGE: &str = "\
+scanvert-bench: speed against error, written to docs/performance.md and its plots
+
+  (no argument)             everything; rewrites the page and all its plots
+  --only W1|W2|W3|W4|W5     one 2D workload, printed, nothing written
+  --only 3D | --only 3D:N   the 3D scenes (of N faces), printed, nothing written
+  --only depth              the depth-complexity sweep and the P3/P4 split;
+                            rewrites their section of the page and their plots
+  --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
+  --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind";
+
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().collect();
+    if args.len() > 1 && !matches!(args[1].as_str(), "--only" | "--profile-3d" | "--profile-w1") {
+        eprintln!("{USAGE}");
+        return Ok(());
+    }
     if args.len() == 4 && args[1] == "--profile-3d" {
         visible3d::profile(&args[2], args[3].parse().unwrap_or(25));
         return Ok(());
@@ -218,6 +238,9 @@ fn main() -> std::io::Result<()> {
     }
     // `--only W2`: time one workload, print it, write nothing.
     let only = (args.len() == 3 && args[1] == "--only").then(|| args[2].clone());
+    if only.as_deref() == Some("depth") {
+        return only_depth();
+    }
     let start = Instant::now();
     let load_before = load_average();
     let mut rows = Vec::new();
@@ -326,6 +349,7 @@ fn main() -> std::io::Result<()> {
         eprintln!("3D part: {seconds3:.1} s");
         return Ok(());
     }
+    let (depth, split, seconds_depth) = depth_part();
     let run = report::Run {
         rows,
         checks,
@@ -335,6 +359,9 @@ fn main() -> std::io::Result<()> {
         load_before,
         load_after: load_average(),
         seconds: start.elapsed().as_secs_f64(),
+        depth,
+        split,
+        seconds_depth,
     };
     let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
     std::fs::create_dir_all(&docs)?;
@@ -346,9 +373,100 @@ fn main() -> std::io::Result<()> {
         &docs.join("time-vs-trapezoids.png"),
         plot::render_3d(&run.rows3),
     )?;
+    write_depth_pngs(&docs, &run.depth, &run.split)?;
     eprintln!(
-        "wrote docs/performance.md, docs/speed-vs-error.png and docs/time-vs-trapezoids.png in {:.0} s",
+        "wrote docs/performance.md, docs/speed-vs-error.png, docs/time-vs-trapezoids.png, docs/time-vs-depth.png and docs/p3-p4-vs-trapezoids.png in {:.0} s",
         run.seconds
+    );
+    Ok(())
+}
+
+/// The depth-complexity sweep and the P3/P4 split of the 3D scenes, and
+/// their wall time.
+fn depth_part() -> (Vec<visible3d::DepthRow>, Vec<visible3d::SplitRow>, f64) {
+    let start = Instant::now();
+    let mut depth = Vec::new();
+    for (aimed, scene) in scenes3d::depth_all() {
+        let r = visible3d::measure_depth(&scene, aimed);
+        eprintln!(
+            "depth {} {:>2}: measured {:.2}, {:.0} trapezoids, {:.0} spans, scanvert {:.3} ms, z16 {:.3} ms, z32 {:.3} ms, mismatches {} / {} / {}",
+            r.version.short(),
+            aimed,
+            r.complexity,
+            r.trapezoids,
+            r.spans(),
+            r.ms[0],
+            r.ms[1],
+            r.ms[2],
+            r.err[0].total,
+            r.err[1].total,
+            r.err[2].total
+        );
+        depth.push(r);
+    }
+    // Both versions of a size timed together, so that their ratio holds.
+    let mut split = Vec::new();
+    for &n in &scenes3d::SIZES {
+        let pair = [
+            scenes3d::scene(scenes3d::Version::Layered, n),
+            scenes3d::scene(scenes3d::Version::Tilted, n),
+        ];
+        for r in visible3d::measure_split(&[&pair[0], &pair[1]]) {
+            eprintln!(
+                "split {} {:>4} faces: {:.0} trapezoids, P3 {:.3} ms, P4 {:.3} ms, fused {:.3} ms",
+                r.version.short(),
+                r.faces,
+                r.trapezoids,
+                r.p3_ms,
+                r.p4_ms,
+                r.both_ms
+            );
+            split.push(r);
+        }
+    }
+    // Report order: the 2D version, then the 3D version.
+    split.sort_by_key(|r| (r.version == scenes3d::Version::Tilted, r.faces));
+    (depth, split, start.elapsed().as_secs_f64())
+}
+
+/// Writes the plots of the depth sweep and of the P3/P4 split.
+fn write_depth_pngs(
+    docs: &std::path::Path,
+    depth: &[visible3d::DepthRow],
+    split: &[visible3d::SplitRow],
+) -> std::io::Result<()> {
+    write_png(&docs.join("time-vs-depth.png"), plot::render_depth(depth))?;
+    write_png(
+        &docs.join("p3-p4-vs-trapezoids.png"),
+        plot::render_split(split),
+    )
+}
+
+/// `--only depth`: the sweep and the split alone; their section (and the
+/// history section) of `docs/performance.md` rewritten in place.
+fn only_depth() -> std::io::Result<()> {
+    let (depth, split, seconds) = depth_part();
+    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
+    let md_path = docs.join("performance.md");
+    let old = std::fs::read_to_string(&md_path).unwrap_or_default();
+    let md = report::splice(
+        &old,
+        report::DEPTH_BEGIN,
+        report::DEPTH_END,
+        &report::section_depth(&depth, &split, seconds),
+        "## Targets (issue 5)",
+    );
+    let md = report::splice(
+        &md,
+        report::HISTORY_BEGIN,
+        report::HISTORY_END,
+        report::HISTORY,
+        "## Targets (issue 5)",
+    );
+    std::fs::write(&md_path, md)?;
+    write_depth_pngs(&docs, &depth, &split)?;
+    eprintln!(
+        "rewrote the depth section of docs/performance.md, docs/time-vs-depth.png and docs/p3-p4-vs-trapezoids.png in {seconds:.0} s"
     );
     Ok(())
 }

@@ -221,7 +221,7 @@ pub fn render_3d(rows: &[crate::visible3d::Row3]) -> (u32, u32, Vec<u8>) {
         }
     }
     let mut f = EgFrame::new(W, H, Rgb888::WHITE);
-    let Ok(()) = draw_3d(&mut f, &series);
+    let Ok(()) = draw_3d(&mut f, &series, &TRAPEZOIDS);
     let bytes = f
         .pixels
         .iter()
@@ -230,7 +230,23 @@ pub fn render_3d(rows: &[crate::visible3d::Row3]) -> (u32, u32, Vec<u8>) {
     (W, H, bytes)
 }
 
-fn draw_3d(f: &mut EgFrame<Rgb888>, series: &[Series]) -> Result<(), core::convert::Infallible> {
+/// The texts of a log-log plot.
+struct Labels {
+    title: &'static str,
+    x: &'static str,
+}
+
+/// The labels of the time-against-trapezoids plot.
+const TRAPEZOIDS: Labels = Labels {
+    title: "3D scenes: time against trapezoids, 10 to 1000 faces",
+    x: "trapezoids per frame (log scale)",
+};
+
+fn draw_3d(
+    f: &mut EgFrame<Rgb888>,
+    series: &[Series],
+    labels: &Labels,
+) -> Result<(), core::convert::Infallible> {
     let text = MonoTextStyle::new(&FONT_6X10, Rgb888::BLACK);
     let grey = PrimitiveStyle::with_stroke(Rgb888::new(0xdd, 0xdd, 0xdd), 1);
     let axis = PrimitiveStyle::with_stroke(Rgb888::BLACK, 1);
@@ -282,7 +298,7 @@ fn draw_3d(f: &mut EgFrame<Rgb888>, series: &[Series]) -> Result<(), core::conve
         .into_styled(axis)
         .draw(f)?;
     Text::with_alignment(
-        "trapezoids per frame (log scale)",
+        labels.x,
         Point::new((L + R) / 2, B + 32),
         text,
         Alignment::Center,
@@ -294,12 +310,7 @@ fn draw_3d(f: &mut EgFrame<Rgb888>, series: &[Series]) -> Result<(), core::conve
         text,
     )
     .draw(f)?;
-    Text::new(
-        "3D scenes: time against trapezoids, 10 to 1000 faces",
-        Point::new(L - 60, T - 22),
-        text,
-    )
-    .draw(f)?;
+    Text::new(labels.title, Point::new(L - 60, T - 22), text).draw(f)?;
 
     // Lines first, then the marks over them.
     for s in series {
@@ -377,4 +388,83 @@ fn number(v: f64) -> String {
         let s = format!("{v:.6}");
         s.trim_end_matches('0').to_string()
     }
+}
+
+/// `series` as a plot of `labels`, `(width, height, rgb bytes)`.
+fn render_series(series: &[Series], labels: &Labels) -> (u32, u32, Vec<u8>) {
+    let mut f = EgFrame::new(W, H, Rgb888::WHITE);
+    let Ok(()) = draw_3d(&mut f, series, labels);
+    let bytes = f
+        .pixels
+        .iter()
+        .flat_map(|c| [c.r(), c.g(), c.b()])
+        .collect();
+    (W, H, bytes)
+}
+
+/// Puts `p` in the series `name` of `version`, coloured by `name`'s order.
+fn push_point(series: &mut Vec<Series>, names: &[&str], name: &str, layered: bool, p: (f64, f64)) {
+    let k = names.iter().position(|n| *n == name).unwrap_or(0);
+    match series
+        .iter_mut()
+        .find(|s| s.name == name && s.layered == layered)
+    {
+        Some(s) => s.points.push(p),
+        None => series.push(Series {
+            name: name.into(),
+            layered,
+            color: PALETTE[k % PALETTE.len()],
+            points: vec![p],
+        }),
+    }
+}
+
+/// Time per frame against the measured depth complexity (the sweep at a
+/// fixed face count), both log scales.
+pub fn render_depth(rows: &[crate::visible3d::DepthRow]) -> (u32, u32, Vec<u8>) {
+    use testkit::scenes3d::Version;
+    let names = [
+        "scanvert Resolve::Crossing (cut + resolve + decode)",
+        "z-buffer, i16 depth (Q12.4)",
+        "z-buffer, i32 depth (Q12.4 + 14 bits)",
+    ];
+    let mut series = Vec::new();
+    for r in rows {
+        for (k, name) in names.iter().enumerate() {
+            let layered = r.version == Version::Layered;
+            push_point(&mut series, &names, name, layered, (r.complexity, r.ms[k]));
+        }
+    }
+    render_series(
+        &series,
+        &Labels {
+            title: "3D scenes of 170 faces: time against depth complexity",
+            x: "depth complexity, measured (log scale)",
+        },
+    )
+}
+
+/// P3 (the sweep, no pixel written) and P4 (decode and pixel writes)
+/// against trapezoids per frame, both log scales.
+pub fn render_split(rows: &[crate::visible3d::SplitRow]) -> (u32, u32, Vec<u8>) {
+    use testkit::scenes3d::Version;
+    let names = [
+        "P3: resolve into run-length rows (no pixel writes)",
+        "P4: clear + decode stored rows (pixel writes)",
+        "P3 + P4 fused (visible::draw), as measured",
+    ];
+    let mut series = Vec::new();
+    for r in rows {
+        let layered = r.version == Version::Layered;
+        for (k, ms) in [r.p3_ms, r.p4_ms, r.both_ms].into_iter().enumerate() {
+            push_point(&mut series, &names, names[k], layered, (r.trapezoids, ms));
+        }
+    }
+    render_series(
+        &series,
+        &Labels {
+            title: "P3 and P4 against trapezoids, 10 to 1000 faces",
+            x: "trapezoids per frame (log scale)",
+        },
+    )
 }

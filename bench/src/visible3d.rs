@@ -35,6 +35,9 @@ use testkit::scenes3d::{Scene, Version, H, VIEWS, W};
 const MIN_RUN: Duration = Duration::from_millis(30);
 /// Timed runs per contender, round-robin; best kept.
 pub const ROUNDS: usize = 7;
+/// The same for the depth sweep and the P3/P4 split, whose ratios are
+/// read across scenes: more runs, for a best run less often disturbed.
+pub const ROUNDS_DEPTH: usize = 15;
 
 /// The colour of face `k`: its index, so that a picture tells which face
 /// won each pixel (never black, the background).
@@ -674,6 +677,334 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
     (rows, st)
 }
 
+/// The reference of every view, the covered pixels of each, and the
+/// faces' pixels summed over all views (each face alone, by the pixel
+/// rule).
+fn reference_of(scene: &Scene) -> (Vec<Vec<Option<u32>>>, Vec<usize>, u64) {
+    let want: Vec<Vec<Option<u32>>> = scene
+        .views
+        .iter()
+        .map(|v| reference3d::winners(v, W, H))
+        .collect();
+    let covered = want
+        .iter()
+        .map(|w| w.iter().filter(|c| c.is_some()).count())
+        .collect();
+    let summed = scene
+        .views
+        .iter()
+        .flatten()
+        .map(|f| {
+            let flat: Vec<(i32, i32)> = f.iter().map(|v| (v.x.units(), v.y.units())).collect();
+            let (x0, y0, x1, y1) = pixel_box(&flat, 1, W, H);
+            let mut k = 0u64;
+            for j in y0..y1 {
+                for i in x0..x1 {
+                    k += covers(&flat, i, j) as u64;
+                }
+            }
+            k
+        })
+        .sum();
+    (want, covered, summed)
+}
+
+/// Adds up the counters of two resolutions.
+fn add_stats(a: &mut VisibleStats, b: &VisibleStats) {
+    a.hidden += b.hidden;
+    a.empty += b.empty;
+    a.single += b.single;
+    a.multiple += b.multiple;
+    a.intersecting += b.intersecting;
+    a.splits += b.splits;
+    a.runs += b.runs;
+    a.trapezoids += b.trapezoids;
+    a.max_active = a.max_active.max(b.max_active);
+}
+
+/// One scene of the depth-complexity sweep: scanvert (default mode, full
+/// frames) and both z-buffers.
+#[derive(Debug)]
+pub struct DepthRow {
+    /// Which version.
+    pub version: Version,
+    /// Faces per frame.
+    pub faces: usize,
+    /// The depth complexity the scene was generated for.
+    pub aimed: usize,
+    /// Measured: the faces' pixels over the covered pixels, all views.
+    pub complexity: f64,
+    /// Covered pixels per frame, mean.
+    pub covered: f64,
+    /// Trapezoids per frame, mean.
+    pub trapezoids: f64,
+    /// Rows of the trapezoids, summed, per frame (mean): the entries the
+    /// sweep steps, sorts and looks through, row by row.
+    pub trapezoid_rows: f64,
+    /// What the sweep did, summed over the views.
+    pub stats: VisibleStats,
+    /// Milliseconds per frame: scanvert `Crossing` (cut + resolve +
+    /// decode), `i16` z-buffer, `i32` z-buffer.
+    pub ms: [f64; 3],
+    /// Errors against the reference, in the same order.
+    pub err: [Err3; 3],
+}
+
+impl DepthRow {
+    /// Spans the sweep classified per frame (empty, single, multiple,
+    /// intersecting), mean.
+    pub fn spans(&self) -> f64 {
+        let s = &self.stats;
+        (s.empty + s.single + s.multiple + s.intersecting) as f64 / VIEWS as f64
+    }
+}
+
+/// Measures one scene of the depth sweep.
+pub fn measure_depth(scene: &Scene, aimed: usize) -> DepthRow {
+    let clip = ClipRect::full(W, H);
+    let (want, covered, summed) = reference_of(scene);
+    let covered_all: u64 = covered.iter().map(|&c| c as u64).sum();
+    let mut mems: Vec<StoreMem> = (0..VIEWS).map(|_| StoreMem::for_scene(scene)).collect();
+    let mut stores: Vec<TrapezoidStore<'_>> = mems.iter_mut().map(StoreMem::store).collect();
+    for (s, v) in stores.iter_mut().zip(&scene.views) {
+        cut(s, v, &clip);
+    }
+    let most_traps = stores.iter().map(|s| s.len()).max().unwrap_or(0);
+    let trapezoids = stores.iter().map(|s| s.len()).sum::<usize>() as f64 / VIEWS as f64;
+    let trapezoid_rows = stores
+        .iter()
+        .map(|s| {
+            (0..H)
+                .flat_map(|y| s.starting_at(y))
+                .map(|(_, t)| (t.end().min(H as i32) - t.top().max(0)).max(0) as u64)
+                .sum::<u64>()
+        })
+        .sum::<u64>() as f64
+        / VIEWS as f64;
+
+    // scanvert's error and counters.
+    let mut work = WorkMem::new(most_traps);
+    let mut px = vec![Rgb888::BLACK; W as usize * H as usize];
+    let mut stats = VisibleStats::default();
+    let mut per_view = Vec::new();
+    for (s, w) in stores.iter().zip(&want) {
+        let mut fb = FrameBuffer::new(&mut px, W, H).expect("size");
+        let st = draw(s, &mut work.workspace(), Resolve::Crossing, &mut fb);
+        add_stats(&mut stats, &st);
+        per_view.push(mismatches(px.iter().map(|&c| index_of(c)), w));
+    }
+    let scan_err = err_of(&per_view, covered_all);
+    drop(stores);
+
+    // The z-buffers' errors.
+    let mut edges = vec![Edge::EMPTY; scene.max_vertices().max(3)];
+    let inks888: Vec<Rgb888> = (0..scene.faces).map(color_of).collect();
+    let mut z_err = |sixteen: bool| {
+        let per_view: Vec<u64> = scene
+            .views
+            .iter()
+            .zip(&want)
+            .map(|(v, w)| {
+                if sixteen {
+                    let mut z = ZTarget::<i16, Rgb888>::new();
+                    z.frame(v, &inks888, &mut edges, &clip);
+                    mismatches(z.pixels.iter().map(|&c| index_of(c)), w)
+                } else {
+                    let mut z = ZTarget::<i32, Rgb888>::new();
+                    z.frame(v, &inks888, &mut edges, &clip);
+                    mismatches(z.pixels.iter().map(|&c| index_of(c)), w)
+                }
+            })
+            .collect();
+        err_of(&per_view, covered_all)
+    };
+    let (z16_err, z32_err) = (z_err(true), z_err(false));
+
+    let inks565 = inks_565(scene);
+    let mut own = StoreMem::for_scene(scene);
+    let mut store = own.store();
+    let mut fns: Vec<Box<dyn FnMut() + '_>> = vec![
+        full(Resolve::Crossing, &mut store, scene, most_traps),
+        zbuffer::<i16>(scene, &inks565),
+        zbuffer::<i32>(scene, &inks565),
+    ];
+    let secs = time_fns(&mut fns, MIN_RUN, ROUNDS_DEPTH);
+    drop(fns);
+    let ms = |k: usize| secs[k] * 1e3 / VIEWS as f64;
+    DepthRow {
+        version: scene.version,
+        faces: scene.faces,
+        aimed,
+        complexity: summed as f64 / covered_all.max(1) as f64,
+        covered: covered_all as f64 / VIEWS as f64,
+        trapezoids,
+        trapezoid_rows,
+        stats,
+        ms: [ms(0), ms(1), ms(2)],
+        err: [scan_err, z16_err, z32_err],
+    }
+}
+
+/// One scene's visible-surface time split as J. H. Jackson split his:
+/// P3, the sweep producing run-length rows with no pixel written, and P4,
+/// the rows decoded into pixels.
+#[derive(Debug)]
+pub struct SplitRow {
+    /// Which version.
+    pub version: Version,
+    /// Faces per frame.
+    pub faces: usize,
+    /// Trapezoids per frame, mean.
+    pub trapezoids: f64,
+    /// Runs per frame, mean.
+    pub runs: f64,
+    /// P3: `Workspace::resolve` (`Crossing`) into a sink that discards
+    /// the rows, ms per frame.
+    pub p3_ms: f64,
+    /// P4: the frame cleared and the stored rows decoded into it
+    /// (`rle::decode_row`), ms per frame.
+    pub p4_ms: f64,
+    /// Both at once, as the library draws (`visible::draw`, the frame
+    /// cleared first), ms per frame.
+    pub both_ms: f64,
+}
+
+/// The rows of one view's resolution: `(y, first, end)` into the runs.
+struct StoredRows {
+    rows: Vec<(u16, usize, usize)>,
+    runs: Vec<Run>,
+    inks: Vec<Rgb565>,
+}
+
+impl StoredRows {
+    fn of(store: &TrapezoidStore<'_>, ws: &mut Workspace<'_>) -> StoredRows {
+        let mut out = StoredRows {
+            rows: Vec::new(),
+            runs: Vec::new(),
+            inks: (0..store.face_count())
+                .map(|f| {
+                    let c = store.face(f as u16).map_or(Rgb888::BLACK, |f| f.color());
+                    <Rgb565 as scanvert::color::ListColor>::from_rgb888(c)
+                })
+                .collect(),
+        };
+        let r = ws.resolve(store, Resolve::Crossing, |y, runs| {
+            let a = out.runs.len();
+            out.runs.extend_from_slice(runs);
+            out.rows.push((y, a, out.runs.len()));
+            Ok::<(), Infallible>(())
+        });
+        if let Err(e) = r {
+            panic!("the workspace is sized: {e:?}");
+        }
+        out
+    }
+
+    /// Clears `fb` and decodes every row into it, the background left.
+    #[inline]
+    fn decode(&self, fb: &mut FrameBuffer<'_, Rgb565>) {
+        let Ok(()) = fb.clear(Rgb565::BLACK);
+        for &(y, a, b) in &self.rows {
+            let inks = &self.inks;
+            let r = visible::rle::decode_row(
+                fb,
+                y,
+                &self.runs[a..b],
+                |k| inks.get(k as usize).copied().unwrap_or(Rgb565::BLACK),
+                None,
+            );
+            let Ok(_) = r;
+        }
+    }
+}
+
+/// Times P3, P4 and both on each of `scenes` (every view, stores cut
+/// beforehand), all round-robin together so that the scenes' ratios hold
+/// under a changing load, after checking that the stored rows decode to
+/// the picture `visible::draw` makes.
+pub fn measure_split(scenes: &[&Scene]) -> Vec<SplitRow> {
+    let clip = ClipRect::full(W, H);
+    let n_px = W as usize * H as usize;
+    let mut mems: Vec<Vec<StoreMem>> = scenes
+        .iter()
+        .map(|sc| (0..VIEWS).map(|_| StoreMem::for_scene(sc)).collect())
+        .collect();
+    let mut stores: Vec<Vec<TrapezoidStore<'_>>> = mems
+        .iter_mut()
+        .map(|m| m.iter_mut().map(StoreMem::store).collect())
+        .collect();
+    for (ss, sc) in stores.iter_mut().zip(scenes) {
+        for (s, v) in ss.iter_mut().zip(&sc.views) {
+            cut(s, v, &clip);
+        }
+    }
+    let most: Vec<usize> = stores
+        .iter()
+        .map(|ss| ss.iter().map(|s| s.len()).max().unwrap_or(0))
+        .collect();
+    let stored: Vec<Vec<StoredRows>> = stores
+        .iter()
+        .zip(&most)
+        .map(|(ss, &m)| {
+            let mut work = WorkMem::new(m);
+            ss.iter()
+                .map(|s| {
+                    let rows = StoredRows::of(s, &mut work.workspace());
+                    let mut a = vec![Rgb565::BLACK; n_px];
+                    let mut b = vec![Rgb565::BLACK; n_px];
+                    draw(
+                        s,
+                        &mut work.workspace(),
+                        Resolve::Crossing,
+                        &mut FrameBuffer::new(&mut a, W, H).expect("size"),
+                    );
+                    rows.decode(&mut FrameBuffer::new(&mut b, W, H).expect("size"));
+                    assert!(a == b, "stored rows decode to the drawn picture");
+                    rows
+                })
+                .collect()
+        })
+        .collect();
+    let mut fns: Vec<Box<dyn FnMut() + '_>> = Vec::new();
+    for ((ss, rows), &m) in stores.iter().zip(&stored).zip(&most) {
+        let mut p3_work = WorkMem::new(m);
+        let mut p4_px = vec![Rgb565::BLACK; n_px];
+        fns.push(Box::new(move || {
+            let mut ws = p3_work.workspace();
+            for s in ss {
+                let r = ws.resolve(black_box(s), Resolve::Crossing, |y, runs| {
+                    black_box((y, runs));
+                    Ok::<(), Infallible>(())
+                });
+                black_box(r.is_ok());
+            }
+        }));
+        fns.push(Box::new(move || {
+            let mut fb = FrameBuffer::new(&mut p4_px, W, H).expect("size");
+            for r in rows {
+                black_box(r).decode(&mut fb);
+            }
+        }));
+        fns.push(alone(Resolve::Crossing, ss, m));
+    }
+    let secs = time_fns(&mut fns, MIN_RUN, ROUNDS_DEPTH);
+    drop(fns);
+    let ms = |k: usize| secs[k] * 1e3 / VIEWS as f64;
+    scenes
+        .iter()
+        .enumerate()
+        .map(|(k, sc)| SplitRow {
+            version: sc.version,
+            faces: sc.faces,
+            trapezoids: stores[k].iter().map(|s| s.len()).sum::<usize>() as f64 / VIEWS as f64,
+            runs: stored[k].iter().map(|r| r.runs.len()).sum::<usize>() as f64 / VIEWS as f64,
+            p3_ms: ms(3 * k),
+            p4_ms: ms(3 * k + 1),
+            both_ms: ms(3 * k + 2),
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -699,5 +1030,43 @@ mod tests {
         let bad = mismatches(z.pixels.iter().map(|&c| index_of(c)), &want);
         let covered = want.iter().filter(|w| w.is_some()).count() as u64;
         assert!(bad * 1000 < covered, "{bad} of {covered}");
+    }
+
+    #[test]
+    fn scanvert_matches_the_reference_on_a_deep_interpenetrating_scene() {
+        let s = testkit::scenes3d::depth_scene(Version::Tilted, 24, 8);
+        let clip = ClipRect::full(W, H);
+        for v in [&s.views[0], &s.views[VIEWS - 1]] {
+            let want = reference3d::winners(v, W, H);
+            assert!(want.iter().all(Option::is_some), "every pixel covered");
+            let mut mem = StoreMem::for_scene(&s);
+            let mut store = mem.store();
+            cut(&mut store, v, &clip);
+            let mut work = WorkMem::new(store.len());
+            let mut px = vec![Rgb888::BLACK; W as usize * H as usize];
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let st = draw(&store, &mut work.workspace(), Resolve::Crossing, &mut fb);
+            assert!(st.intersecting > 0, "the faces pass through each other");
+            assert_eq!(mismatches(px.iter().map(|&c| index_of(c)), &want), 0);
+        }
+    }
+
+    #[test]
+    fn stored_rows_decode_to_the_drawn_picture() {
+        let s = scene(Version::Tilted, 30);
+        let clip = ClipRect::full(W, H);
+        let mut mem = StoreMem::for_scene(&s);
+        let mut store = mem.store();
+        cut(&mut store, &s.views[2], &clip);
+        let mut work = WorkMem::new(store.len());
+        let rows = StoredRows::of(&store, &mut work.workspace());
+        assert_eq!(rows.rows.len(), H as usize, "a row of runs for every row");
+        let n = W as usize * H as usize;
+        let (mut a, mut b) = (vec![Rgb565::BLACK; n], vec![Rgb565::RED; n]);
+        let mut fa = FrameBuffer::new(&mut a, W, H).unwrap();
+        draw(&store, &mut work.workspace(), Resolve::Crossing, &mut fa);
+        rows.decode(&mut FrameBuffer::new(&mut b, W, H).unwrap());
+        assert!(a == b);
+        assert!(a.iter().any(|&c| c != Rgb565::BLACK));
     }
 }
