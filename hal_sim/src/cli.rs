@@ -1,7 +1,7 @@
 //! The `scanvert` command-line program.
 //!
 //! ```text
-//! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+//! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
@@ -32,13 +32,16 @@ use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
 usage:
-  scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+  scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
   scanvert demo [--out DIR] [--frames N] [--no-speed]
 
 SCENE is a display list in text form or binary form (told apart by its magic number).
+--band-rows N renders through the library's band path, N >= 1 rows at a time, with
+no whole frame in the library: each band is shipped into the simulator's RAM; the
+image is the same, pixel for pixel.
 demo animates 3D bars over a map with labels through the simulated display
 (double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and
 prints the segments regenerated, trapezoids per frame and frames/s.";
@@ -214,6 +217,103 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     Ok(Rendered { ram, stats })
 }
 
+/// Renders `scene` as [`render_scene`] does, but through the library's
+/// band path, `rows` rows at a time: the controller fills one band buffer
+/// of `rows × width` pixels at a time and each band is shipped into a
+/// fresh (black) dual-port RAM, row by row as spans of equal colour. The
+/// memory is sized from the scene as for [`render_scene`], with an edge
+/// table for every polygon after the last `clear`.
+pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError> {
+    use scanvert::pixelcolor::{Rgb565, RgbColor};
+    use scanvert::port::band::{BandTarget, BandsError};
+    use scanvert::port::{Span, SpanTarget};
+    use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+    let list = scene.list();
+    let mut edges = vec![Edge::EMPTY; edges_needed(&list)];
+    let mut slots = vec![EdgeSlot::EMPTY; edges_3d(&list)];
+    let need = needs_3d(&list, &mut slots).unwrap_or(Needs3d {
+        poly3: 1,
+        rows: list.height() as usize,
+        runs: list.width() as usize,
+        ..Needs3d::default()
+    });
+    let t = needs_table(&list);
+    let mut polygons = vec![TablePolygon::EMPTY; t.polygons];
+    let mut live = vec![0u32; t.polygons];
+    let mut table_edges = vec![Edge::EMPTY; t.edges];
+    let mut labels = vec![Label::EMPTY; need.labels];
+    let mut text = vec![0u8; need.text];
+    let mut traps = vec![Trapezoid::EMPTY; need.trapezoids];
+    let mut faces = vec![Face::EMPTY; need.faces];
+    let mut segments = [Segment::EMPTY; 1];
+    let mut index = vec![0u16; need.rows];
+    let mut active = vec![Active::EMPTY; need.trapezoids];
+    let mut cover = vec![Cover::EMPTY; need.trapezoids];
+    let mut runs = vec![Run::EMPTY; need.runs];
+    let mut controller = Controller::new(Rasterizer::new(&mut edges));
+    if need.any() {
+        controller = controller.with_labels(&mut labels, &mut text);
+        controller = controller.with_3d(Storage3d {
+            store: StoreMemory {
+                trapezoids: &mut traps,
+                faces: &mut faces,
+                segments: &mut segments,
+                rows: &mut index,
+                edges: &mut slots,
+            },
+            active: &mut active,
+            cover: &mut cover,
+            runs: &mut runs,
+            resolve: Resolve::default(),
+        });
+    }
+    /// Ships each band into the RAM's write port.
+    struct Ship<'r>(&'r mut DualPortRam);
+    impl BandTarget for Ship<'_> {
+        type Color = Rgb565;
+        type Error = core::convert::Infallible;
+        fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), Self::Error> {
+            let w = self.0.width() as usize;
+            let mut port = self.0.write_port();
+            for (r, row) in px.chunks_exact(w).take(rows as usize).enumerate() {
+                let mut x0 = 0;
+                while x0 < w {
+                    let c = row[x0];
+                    let x1 = x0 + row[x0..].iter().take_while(|&&p| p == c).count();
+                    port.fill_span(
+                        Span {
+                            y: y + r as u16,
+                            x0: x0 as u16,
+                            x1: x1 as u16,
+                        },
+                        c,
+                    )?;
+                    x0 = x1;
+                }
+            }
+            Ok(())
+        }
+    }
+    let mut ram = DualPortRam::new(list.width(), list.height());
+    let mut band = vec![Rgb565::BLACK; rows.min(list.height()) as usize * list.width() as usize];
+    let table = TableMemory {
+        polygons: &mut polygons,
+        live: &mut live,
+        edges: &mut table_edges,
+    };
+    let stats = controller
+        .render_bands(&list, table, rows, &mut band, &mut Ship(&mut ram))
+        .map_err(|e| match e {
+            BandsError::Render(e) => input(
+                &scene.path,
+                format_args!("{}: {e}", scene.locate(e.offset())),
+            ),
+            BandsError::Band(e) => usage(e),
+            BandsError::Ship { error, .. } => match error {},
+        })?;
+    Ok(Rendered { ram, stats })
+}
+
 /// Writes `bytes` to `path` through a temporary file, so that a failed
 /// write leaves no partial output.
 fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
@@ -235,6 +335,7 @@ struct Args {
     stats: bool,
     frames: Option<usize>,
     no_speed: bool,
+    band_rows: Option<u16>,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -245,6 +346,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         stats: false,
         frames: None,
         no_speed: false,
+        band_rows: None,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -268,6 +370,14 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 a.timing = Some(v.clone());
             }
             "--stats" => a.stats = true,
+            "--band-rows" => {
+                let n = it
+                    .next()
+                    .and_then(|v| v.parse::<u16>().ok())
+                    .filter(|&n| n >= 1)
+                    .ok_or_else(|| usage("--band-rows needs a number of rows from 1 to 65535"))?;
+                a.band_rows = Some(n);
+            }
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(usage(format_args!("unknown option {s}")))
             }
@@ -313,7 +423,10 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
             let scene = Scene::load(&path)?;
             let list = scene.list();
             let timing = timing_for(a.timing.as_deref(), list.width(), list.height())?;
-            let mut r = render_scene(&scene)?;
+            let mut r = match a.band_rows {
+                Some(n) => render_scene_bands(&scene, n)?,
+                None => render_scene(&scene)?,
+            };
             let frame = RefreshController::new(timing).read_frame(&mut r.ram);
             let png = crate::image::encode_png(&frame).map_err(|e| io(&out, e))?;
             write_atomic(&out, &png)?;

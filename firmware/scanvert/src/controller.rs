@@ -78,6 +78,9 @@ use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, W
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
+mod bands;
+pub use bands::{ListBands, ListBandsError, PrepareError};
+
 /// Matrices the transform stack of a list's 3D scene saves (`push`
 /// without `pop`).
 pub const LIST_STACK: usize = 16;

@@ -6,6 +6,7 @@
 //! [`FrameBuffer`], and the simulator's
 //! dual-port RAM is another.
 
+pub mod band;
 pub mod checksum;
 #[cfg(feature = "embedded-graphics")]
 pub mod draw_target;

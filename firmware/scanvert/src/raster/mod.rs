@@ -10,6 +10,7 @@ pub mod clip;
 pub mod dda;
 pub mod edge;
 pub mod scan;
+pub mod table;
 
 pub use clip::{ClipRect, ClipWindow};
 pub use edge::{Edge, Stepper};

@@ -98,7 +98,10 @@
 //! # Ok::<(), SceneError>(())
 //! ```
 
+mod bands;
 pub mod label;
+
+pub use bands::{SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 

@@ -1,0 +1,182 @@
+//! A scene drawn band by band, with no frame buffer (see
+//! [`port::band`](crate::port::band)).
+//!
+//! [`Scene::bands`] starts one top-to-bottom pass of the visible-surface
+//! sweep over the scene's store; [`SceneBands::draw`] fills a band's
+//! buffer with rows `y..y + rows`: the background, the visible faces, then
+//! the labels cut to the band. Rows between two bands are skipped (the
+//! active list stepped, nothing resolved). The scene is only read: several
+//! passes may run over one scene at once, each with its own
+//! [`Workspace`], each drawing some bands and skipping the others (two
+//! cores taking every other band).
+
+use super::{Frame, Scene};
+use crate::color::ListColor;
+use crate::port::band::{Band, BandError, BandTarget, BandsError};
+use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
+use core::convert::Infallible;
+use embedded_graphics::mono_font::MonoFont;
+
+/// The errors of the band path of a scene.
+pub type SceneBandsError<E> = BandsError<VisibleError<Infallible>, E>;
+
+/// One top-to-bottom pass over a scene, band by band. From
+/// [`Scene::bands`].
+#[derive(Debug)]
+pub struct SceneBands<'s, 'a, 'w, const DEPTH: usize, const N: usize, C> {
+    scene: &'s Scene<'a, DEPTH, N>,
+    workspace: &'s mut Workspace<'w>,
+    sweep: Sweep,
+    background: C,
+    font: &'s MonoFont<'s>,
+    next: u16,
+    frame: Frame,
+}
+
+impl<const DEPTH: usize, const N: usize, C: ListColor> SceneBands<'_, '_, '_, DEPTH, N, C> {
+    /// The first row the next band may start at.
+    pub fn next_row(&self) -> u16 {
+        self.next
+    }
+
+    /// What the bands drawn so far did.
+    pub fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// Draws rows `y..y + rows` (cut at the frame's last row) into
+    /// `pixels`, row by row, the frame's width a row; returns the rows
+    /// drawn. Rows between the last band and `y` are skipped. Nothing is
+    /// drawn when the band is refused.
+    pub fn draw(
+        &mut self,
+        y: u16,
+        rows: u16,
+        pixels: &mut [C],
+    ) -> Result<u16, SceneBandsError<Infallible>> {
+        let store = &self.scene.store;
+        let (w, h) = (store.width(), store.height());
+        if rows == 0 {
+            return Err(BandError::NoRows.into());
+        }
+        if y >= h {
+            return Err(BandError::Outside { y, height: h }.into());
+        }
+        if y < self.next {
+            return Err(BandError::Order { next: self.next, y }.into());
+        }
+        let mut band = Band::new(pixels, (w, h), y, rows)?;
+        if y > self.next {
+            self.sweep
+                .skip(store, self.workspace, y - self.next)
+                .map_err(BandsError::Render)?;
+        }
+        let d = self
+            .sweep
+            .draw(
+                store,
+                self.workspace,
+                band.rows(),
+                &mut band,
+                Some(self.background),
+            )
+            .map_err(|e| match e {
+                VisibleError::Sink(e) => match e {},
+                VisibleError::Active { capacity } => {
+                    BandsError::Render(VisibleError::Active { capacity })
+                }
+                VisibleError::Runs { capacity } => {
+                    BandsError::Render(VisibleError::Runs { capacity })
+                }
+            })?;
+        let l = match self.scene.labels.draw(self.font, &mut band) {
+            Ok(l) => l,
+            Err(e) => match e {},
+        };
+        let f = &mut self.frame;
+        f.visible = self.sweep.stats();
+        f.decoded.spans += d.spans;
+        f.decoded.pixels += d.pixels;
+        f.labels.drawn = f.labels.drawn.max(l.drawn);
+        f.labels.off_frame = f.labels.off_frame.max(l.off_frame);
+        f.labels.spans += l.spans;
+        f.labels.pixels += l.pixels;
+        self.next = band.end();
+        Ok(band.rows())
+    }
+}
+
+impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// Starts a band-by-band pass over the scene with `workspace`:
+    /// visible surfaces resolved with `resolve`, the background filled
+    /// with `background`, labels in `font`. Checks first that the
+    /// workspace holds every trapezoid overlapping a row.
+    pub fn bands<'s, 'w, C: ListColor>(
+        &'s self,
+        workspace: &'s mut Workspace<'w>,
+        resolve: Resolve,
+        background: C,
+        font: &'s MonoFont<'s>,
+    ) -> Result<SceneBands<'s, 'a, 'w, DEPTH, N, C>, VisibleError<Infallible>> {
+        workspace.check(&self.store)?;
+        let sweep = Sweep::new(workspace, resolve);
+        Ok(SceneBands {
+            scene: self,
+            workspace,
+            sweep,
+            background,
+            font,
+            next: 0,
+            frame: Frame::default(),
+        })
+    }
+
+    /// Draws the scene band by band, `rows` rows at a time, through the
+    /// caller's buffer `band` (at least `rows × width` pixels), each band
+    /// handed to `target` to ship before the next is drawn: the pixels
+    /// [`draw`](Self::draw) writes with `Some(background)`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn draw_bands<P>(
+        &self,
+        workspace: &mut Workspace<'_>,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<Frame, SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let (w, h) = (self.store.width(), self.store.height());
+        if rows == 0 {
+            return Err(BandError::NoRows.into());
+        }
+        let needed = rows.min(h) as usize * w as usize;
+        if band.len() < needed {
+            return Err(BandError::Buffer {
+                len: band.len(),
+                needed,
+            }
+            .into());
+        }
+        let mut pass = self
+            .bands(workspace, resolve, background, font)
+            .map_err(BandsError::Render)?;
+        let mut y = 0;
+        while y < h {
+            let n = pass.draw(y, rows, band).map_err(|e| match e {
+                BandsError::Band(b) => BandsError::Band(b),
+                BandsError::Render(r) => BandsError::Render(r),
+                BandsError::Ship { error, .. } => match error {},
+            })?;
+            target
+                .ship(y, n, &band[..n as usize * w as usize])
+                .map_err(|error| BandsError::Ship { y, error })?;
+            y += n;
+        }
+        Ok(pass.frame())
+    }
+}
