@@ -516,3 +516,16 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
     }
     Ok(s)
 }
+
+/// The demo's scene at `step`, built from scratch, handed to `f` with the
+/// demo's background: what the band tests and benchmarks draw, each with
+/// workspaces of their own.
+pub fn with_scene<R>(
+    step: Step,
+    f: impl FnOnce(&Scene<'_, DEPTH, N>, Rgb565) -> R,
+) -> Result<R, CliError> {
+    let mut mem = Memory::new();
+    let mut scene = mem.scene();
+    advance(&mut scene, None, step)?;
+    Ok(f(&scene, Rgb565::from(BACKGROUND)))
+}
