@@ -239,7 +239,7 @@ pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError
     });
     let t = needs_table(&list);
     let mut polygons = vec![TablePolygon::EMPTY; t.polygons];
-    let mut live = vec![0u32; t.polygons];
+    let mut table_index = vec![0u32; 2 * t.polygons];
     let mut table_edges = vec![Edge::EMPTY; t.edges];
     let mut labels = vec![Label::EMPTY; need.labels];
     let mut text = vec![0u8; need.text];
@@ -298,7 +298,7 @@ pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError
     let mut band = vec![Rgb565::BLACK; rows.min(list.height()) as usize * list.width() as usize];
     let table = TableMemory {
         polygons: &mut polygons,
-        live: &mut live,
+        index: &mut table_index,
         edges: &mut table_edges,
     };
     let stats = controller

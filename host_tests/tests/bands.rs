@@ -196,14 +196,14 @@ fn bad_bands_are_typed_errors() {
     let need = needs_table(&list);
     let mut edges = vec![Edge::EMPTY; 8];
     let mut polys = vec![TablePolygon::EMPTY; need.polygons];
-    let mut live = vec![0u32; need.polygons];
+    let mut index = vec![0u32; 2 * need.polygons];
     let mut tedges = vec![Edge::EMPTY; need.edges];
     let mut c = Controller::new(Rasterizer::new(&mut edges));
     macro_rules! table {
         () => {
             TableMemory {
                 polygons: &mut polys,
-                live: &mut live,
+                index: &mut index,
                 edges: &mut tedges,
             }
         };
@@ -237,12 +237,12 @@ fn bad_bands_are_typed_errors() {
     // Too small a table.
     let (mut p1, mut l1, mut e1) = (
         vec![TablePolygon::EMPTY; 2],
-        vec![0u32; 2],
+        vec![0u32; 4],
         vec![Edge::EMPTY; 64],
     );
     let small = TableMemory {
         polygons: &mut p1,
-        live: &mut l1,
+        index: &mut l1,
         edges: &mut e1,
     };
     assert!(matches!(

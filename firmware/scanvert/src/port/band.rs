@@ -242,7 +242,7 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
                 .pixels
                 .get_mut(base + span.x0 as usize..base + x1 as usize)
             {
-                run.fill(color);
+                crate::port::framebuffer::fill_run(run, color);
             }
         }
         Ok(())

@@ -10,7 +10,7 @@
 //! up exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
 //! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
 //! first row), so it covers exactly the same pixels. The polygons are then
-//! sorted by first row.
+//! ordered by first row (an index array; the polygons stay in list order).
 //!
 //! [`EdgeTable::draw`] draws rows `y0..y1`: the polygons whose first row
 //! has come join the live list, kept in list order; each live polygon in
@@ -23,8 +23,9 @@
 //!
 //! # Memory
 //!
-//! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (28
-//! bytes on 32-bit targets) and a `u32` of the live list per entered
+//! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (24
+//! bytes on 32-bit targets) and two `u32`s (the live list and the order by
+//! first row) per entered
 //! polygon, and an [`Edge`] (32 bytes) per edge of them; [`needs_table`]
 //! counts both for a list, as an upper bound (one edge per vertex).
 //! Running out is a [`TableError`] found by `build`, before anything is
@@ -44,8 +45,6 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 /// [`TablePolygon::EMPTY`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TablePolygon {
-    /// Its place in the list, for painter's order.
-    seq: u32,
     /// Its first edge slot.
     first: u32,
     /// Its edges, from `first`.
@@ -65,7 +64,6 @@ pub struct TablePolygon {
 impl TablePolygon {
     /// An unused entry.
     pub const EMPTY: TablePolygon = TablePolygon {
-        seq: 0,
         first: 0,
         n: 0,
         active: 0,
@@ -87,8 +85,9 @@ impl TablePolygon {
 pub struct TableMemory<'a> {
     /// One entry per polygon after the last `clear`.
     pub polygons: &'a mut [TablePolygon],
-    /// The live list: as many as `polygons`.
-    pub live: &'a mut [u32],
+    /// The live list and the order by first row: twice as many as
+    /// `polygons`.
+    pub index: &'a mut [u32],
     /// Every edge of those polygons.
     pub edges: &'a mut [Edge],
 }
@@ -97,7 +96,8 @@ pub struct TableMemory<'a> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TableNeeds {
-    /// `poly`s after the last `clear`: polygon entries and live entries.
+    /// `poly`s after the last `clear`: polygon entries (and twice as many
+    /// index entries).
     pub polygons: usize,
     /// Their vertices: edge slots.
     pub edges: usize,
@@ -133,7 +133,7 @@ pub fn last_clear(list: &DisplayList<'_>) -> Option<(usize, Rgb888)> {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum TableError {
-    /// Polygon (and live) entries.
+    /// Polygon (and index) entries.
     Polygons {
         /// Byte offset of the `poly` in the list.
         offset: usize,
@@ -178,12 +178,14 @@ impl fmt::Display for TableError {
 #[derive(Debug)]
 pub struct EdgeTable<'a> {
     polygons: &'a mut [TablePolygon],
-    live: &'a mut [u32],
+    /// `index[..nlive]`: the live polygons, in list order;
+    /// `index[cap..cap + count]`: all of them by first row, of which the
+    /// first `entered` have entered.
+    index: &'a mut [u32],
     edges: &'a mut [Edge],
-    /// Entered polygons are `polygons[..entered]`, sorted by first row.
+    cap: usize,
     count: usize,
     entered: usize,
-    /// `live[..nlive]`: indices of live polygons, in list order.
     nlive: usize,
     /// The next row to draw or skip.
     y: i32,
@@ -200,15 +202,15 @@ impl<'a> EdgeTable<'a> {
     ) -> Result<Self, TableError> {
         let TableMemory {
             polygons,
-            live,
+            index,
             edges,
         } = mem;
         let last = last_clear(list);
-        let cap = polygons.len().min(live.len());
+        let cap = polygons.len().min(index.len() / 2);
         let mut clip = ClipRect::full(w, h);
         let mut color = crate::controller::DEFAULT_COLOR;
         let (mut count, mut used) = (0usize, 0usize);
-        for (seq, (offset, cmd)) in list.commands().enumerate() {
+        for (offset, cmd) in list.commands() {
             match cmd {
                 Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
                 Command::Color(c) => color = c,
@@ -235,7 +237,6 @@ impl<'a> EdgeTable<'a> {
                     let e = &mut room[..n];
                     e.sort_unstable_by_key(|e| e.top());
                     polygons[count] = TablePolygon {
-                        seq: seq as u32,
                         first: used as u32,
                         n: n as u16,
                         active: 0,
@@ -251,11 +252,16 @@ impl<'a> EdgeTable<'a> {
                 _ => {}
             }
         }
-        polygons[..count].sort_unstable_by_key(|p| (p.y, p.seq));
+        let order = &mut index[cap..cap + count];
+        for (k, o) in order.iter_mut().enumerate() {
+            *o = k as u32;
+        }
+        order.sort_unstable_by_key(|&k| polygons[k as usize].y);
         Ok(EdgeTable {
             polygons,
-            live,
+            index,
             edges,
+            cap,
             count,
             entered: 0,
             nlive: 0,
@@ -309,27 +315,42 @@ impl<'a> EdgeTable<'a> {
         if y1 <= self.y {
             return Ok(counts);
         }
-        // Enter the polygons starting above y1, then restore list order.
-        let before = self.nlive;
-        while self.entered < self.count && self.polygons[self.entered].y < y1 {
-            // nlive ≤ entered < count ≤ live.len().
-            self.live[self.nlive] = self.entered as u32;
-            self.nlive += 1;
-            self.entered += 1;
+        // Enter the polygons starting above y1: sorted by list order among
+        // themselves, then merged into the live list from its end.
+        let (cap, e0) = (self.cap, self.entered);
+        let mut e1 = e0;
+        while e1 < self.count && self.polygons[self.index[cap + e1] as usize].y < y1 {
+            e1 += 1;
         }
-        if self.nlive > before {
-            let polys = &*self.polygons;
-            self.live[..self.nlive].sort_unstable_by_key(|&i| polys[i as usize].seq);
+        if e1 > e0 {
+            let (live, order) = self.index.split_at_mut(cap);
+            let new = &mut order[e0..e1];
+            new.sort_unstable();
+            // nlive + (e1 − e0) ≤ e1 ≤ count ≤ cap.
+            let (mut i, mut j) = (self.nlive, new.len());
+            let mut w = self.nlive + new.len();
+            while j > 0 {
+                w -= 1;
+                if i > 0 && live[i - 1] > new[j - 1] {
+                    i -= 1;
+                    live[w] = live[i];
+                } else {
+                    j -= 1;
+                    live[w] = new[j];
+                }
+            }
+            self.nlive += e1 - e0;
+            self.entered = e1;
         }
         let mut kept = 0;
         for q in 0..self.nlive {
-            let i = self.live[q] as usize;
+            let i = self.index[q] as usize;
             let p = &mut self.polygons[i];
             let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
             let color = target.as_ref().map(|_| T::Color::from_rgb888(p.color));
             run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
             if !p.done() {
-                self.live[kept] = i as u32;
+                self.index[kept] = i as u32;
                 kept += 1;
             }
         }

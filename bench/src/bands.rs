@@ -1,0 +1,311 @@
+//! Band rendering against the full-frame render of the same frame, in one
+//! run: W3 (10 000 triangles) and the two `poly3` lists of the firmware
+//! image through the controller, and the 3D demo scene through
+//! `Scene::draw_bands`; then the demo's bands drawn by two threads, each
+//! taking every other band, against one thread. `--only bands`.
+//!
+//! The full frame is rendered into a frame buffer; the bands into one
+//! band buffer, each band handed to a provider that only reads it (the
+//! panel's link is not counted). Both include the frame's preparation
+//! (the list checked, its 3D layer built; for bands, the edge table).
+
+use crate::time_fns;
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use scanvert::controller::{edges_3d, needs_3d, Controller, Storage3d};
+use scanvert::display_list::DisplayList;
+use scanvert::port::band::BandTarget;
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+use scanvert::scene::label::Label;
+use scanvert::scene::DEFAULT_FONT;
+use scanvert::visible::rle::Run;
+use scanvert::visible::store::{Face, Segment, StoreMemory};
+use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use std::fmt::Write as _;
+use std::hint::black_box;
+use std::time::Duration;
+
+/// Band heights measured.
+const HEIGHTS: [u16; 4] = [1, 8, 16, 64];
+
+/// A provider that reads the band and drops it.
+struct Drop;
+
+impl BandTarget for Drop {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+    fn ship(&mut self, _: u16, _: u16, px: &[Rgb565]) -> Result<(), Self::Error> {
+        black_box(px);
+        Ok(())
+    }
+}
+
+/// Everything a list's render needs, sized from the list.
+struct Memory {
+    edges: Vec<Edge>,
+    slots: Vec<EdgeSlot>,
+    traps: Vec<Trapezoid>,
+    faces: Vec<Face>,
+    segments: Vec<Segment>,
+    rows: Vec<u16>,
+    active: Vec<Active>,
+    cover: Vec<Cover>,
+    runs: Vec<Run>,
+    labels: Vec<Label>,
+    text: Vec<u8>,
+    polygons: Vec<TablePolygon>,
+    index: Vec<u32>,
+    table: Vec<Edge>,
+    three: bool,
+}
+
+impl Memory {
+    fn for_list(list: &DisplayList<'_>) -> Memory {
+        let mut slots = vec![EdgeSlot::EMPTY; edges_3d(list)];
+        let need = needs_3d(list, &mut slots).expect("the list's 3D layer runs");
+        let t = needs_table(list);
+        let edges = list
+            .commands()
+            .map(|(_, c)| match c {
+                scanvert::display_list::Command::Poly(v) => v.len(),
+                _ => 0,
+            })
+            .max()
+            .unwrap_or(0);
+        Memory {
+            edges: vec![Edge::EMPTY; edges],
+            slots,
+            traps: vec![Trapezoid::EMPTY; need.trapezoids],
+            faces: vec![Face::EMPTY; need.faces],
+            segments: vec![Segment::EMPTY; 1],
+            rows: vec![0; need.rows],
+            active: vec![Active::EMPTY; need.trapezoids],
+            cover: vec![Cover::EMPTY; need.trapezoids],
+            runs: vec![Run::EMPTY; need.runs],
+            labels: vec![Label::EMPTY; need.labels],
+            text: vec![0; need.text],
+            polygons: vec![TablePolygon::EMPTY; t.polygons],
+            index: vec![0; 2 * t.polygons],
+            table: vec![Edge::EMPTY; t.edges],
+            three: need.any(),
+        }
+    }
+
+    /// The full frame (`None`) or bands of `rows`.
+    fn render(&mut self, list: &DisplayList<'_>, fb: &mut [Rgb565], band: Option<u16>) {
+        let mut c = Controller::new(Rasterizer::new(&mut self.edges));
+        if self.three {
+            c = c
+                .with_labels(&mut self.labels, &mut self.text)
+                .with_3d(Storage3d {
+                    store: StoreMemory {
+                        trapezoids: &mut self.traps,
+                        faces: &mut self.faces,
+                        segments: &mut self.segments,
+                        rows: &mut self.rows,
+                        edges: &mut self.slots,
+                    },
+                    active: &mut self.active,
+                    cover: &mut self.cover,
+                    runs: &mut self.runs,
+                    resolve: Resolve::default(),
+                });
+        }
+        let (w, h) = (list.width(), list.height());
+        match band {
+            None => {
+                let mut f = FrameBuffer::new(fb, w, h).expect("frame");
+                c.render(list, &mut f).expect("renders");
+            }
+            Some(rows) => {
+                let table = TableMemory {
+                    polygons: &mut self.polygons,
+                    index: &mut self.index,
+                    edges: &mut self.table,
+                };
+                let n = rows as usize * w as usize;
+                c.render_bands(list, table, rows, &mut fb[..n], &mut Drop)
+                    .expect("renders");
+            }
+        }
+    }
+}
+
+/// Times the full frame and the band heights of one list: ms per frame.
+fn list_times(bytes: &[u8]) -> (f64, Vec<f64>) {
+    let list = DisplayList::new_checked(bytes).expect("list");
+    let mut mem = Memory::for_list(&list);
+    let mut fb = vec![Rgb565::BLACK; list.width() as usize * list.height() as usize];
+    let cell = std::cell::RefCell::new((&mut mem, &mut fb));
+    let mut fs: Vec<Box<dyn FnMut() + '_>> = Vec::new();
+    for band in std::iter::once(None).chain(HEIGHTS.map(Some)) {
+        let cell = &cell;
+        let list = &list;
+        fs.push(Box::new(move || {
+            let mut g = cell.borrow_mut();
+            let (m, f) = &mut *g;
+            m.render(black_box(list), f, band);
+        }));
+    }
+    let t = time_fns(&mut fs, Duration::from_millis(150), 5);
+    (t[0] * 1e3, t[1..].iter().map(|s| s * 1e3).collect())
+}
+
+/// The visible-surface memory of one worker on the demo.
+struct Work {
+    active: Vec<Active>,
+    cover: Vec<Cover>,
+    runs: Vec<Run>,
+}
+
+impl Work {
+    fn new() -> Work {
+        Work {
+            active: vec![Active::EMPTY; 512],
+            cover: vec![Cover::EMPTY; 512],
+            runs: vec![Run::EMPTY; scanvert_sim::demo::WIDTH as usize],
+        }
+    }
+    fn workspace(&mut self) -> Workspace<'_> {
+        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
+    }
+}
+
+/// The demo's first frame: full, bands, and 16-row bands on one and two
+/// threads. `(full ms, band ms per height, one thread ms, two threads ms)`.
+fn demo_times() -> (f64, Vec<f64>, f64, f64) {
+    use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
+    let step = steps(1)[0];
+    with_scene(step, |scene, bg| {
+        let w = WIDTH as usize;
+        let mut work = Work::new();
+        let mut fb = vec![Rgb565::BLACK; w * HEIGHT as usize];
+        let cell = std::cell::RefCell::new((&mut work, &mut fb));
+        let mut fs: Vec<Box<dyn FnMut() + '_>> = Vec::new();
+        fs.push(Box::new(|| {
+            let mut g = cell.borrow_mut();
+            let (wk, f) = &mut *g;
+            let mut t = FrameBuffer::new(f, WIDTH, HEIGHT).expect("frame");
+            scene
+                .draw(
+                    &mut wk.workspace(),
+                    Resolve::default(),
+                    Some(bg),
+                    DEFAULT_FONT,
+                    &mut t,
+                )
+                .expect("draws");
+        }));
+        for rows in HEIGHTS {
+            let cell = &cell;
+            fs.push(Box::new(move || {
+                let mut g = cell.borrow_mut();
+                let (wk, f) = &mut *g;
+                let n = rows as usize * w;
+                scene
+                    .draw_bands(
+                        &mut wk.workspace(),
+                        Resolve::default(),
+                        bg,
+                        DEFAULT_FONT,
+                        rows,
+                        &mut f[..n],
+                        &mut Drop,
+                    )
+                    .expect("bands");
+            }));
+        }
+        // Every other band of 16 rows on each of `workers` threads.
+        let banded = |workers: u16| {
+            let rows = 16u16;
+            let job = |k: u16| {
+                let mut work = Work::new();
+                let mut ws = work.workspace();
+                let mut band = vec![Rgb565::BLACK; rows as usize * w];
+                let mut pass = scene
+                    .bands(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
+                    .expect("pass");
+                let mut y = k * rows;
+                while y < HEIGHT {
+                    pass.draw(y, rows, &mut band).expect("band");
+                    black_box(&band);
+                    y += workers * rows;
+                }
+            };
+            if workers == 1 {
+                job(0);
+            } else {
+                std::thread::scope(|s| {
+                    let other = s.spawn(move || job(1));
+                    job(0);
+                    other.join().expect("worker");
+                });
+            }
+        };
+        fs.push(Box::new(move || banded(1)));
+        fs.push(Box::new(move || banded(2)));
+        let t = time_fns(&mut fs, Duration::from_millis(150), 5);
+        let ms: Vec<f64> = t.iter().map(|s| s * 1e3).collect();
+        (ms[0], ms[1..5].to_vec(), ms[5], ms[6])
+    })
+    .expect("demo scene")
+}
+
+/// Measures everything and returns the section of `performance.md`.
+pub fn run() -> String {
+    let lists: [(&str, &[u8]); 3] = [
+        (
+            "W3: 10 000 triangles, 2D",
+            include_bytes!("../../firmware/image/scenes/w3.scvl"),
+        ),
+        (
+            "poly3-layered: 170 faces",
+            include_bytes!("../../firmware/image/scenes/poly3-layered.scvl"),
+        ),
+        (
+            "poly3-tilted: 170 faces, interpenetrating",
+            include_bytes!("../../firmware/image/scenes/poly3-tilted.scvl"),
+        ),
+    ];
+    let mut md = String::new();
+    md += "| frame | full frame, ms | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n";
+    let mut row = |name: &str, full: f64, bands: &[f64]| {
+        let _ = write!(md, "| {name} | {full:.3} |");
+        for b in bands {
+            let _ = write!(md, " {:.2}× |", b / full);
+        }
+        md.push('\n');
+        eprintln!("  {name}: full {full:.3} ms, bands {bands:.3?} ms");
+    };
+    for (name, bytes) in lists {
+        let (full, bands) = list_times(bytes);
+        row(name, full, &bands);
+    }
+    let (full, bands, one, two) = demo_times();
+    row("the 3D demo's first frame (Scene)", full, &bands);
+    let _ = write!(
+        md,
+        "\nThe demo's first frame in bands of 16 rows, every other band on each of two threads (each with its own workspace, stepping over the other's bands): {two:.3} ms against {one:.3} ms on one thread, a speed-up of {:.2}×.\n",
+        one / two
+    );
+    eprintln!(
+        "  two threads {two:.3} ms, one {one:.3} ms: {:.2}×",
+        one / two
+    );
+    md
+}
+
+/// `--profile-bands ROWS PASSES`: W3 alone in bands of ROWS (0: the full
+/// frame), for a profiler.
+pub fn profile(rows: u16, passes: u32) {
+    let bytes: &[u8] = include_bytes!("../../firmware/image/scenes/w3.scvl");
+    let list = DisplayList::new_checked(bytes).expect("list");
+    let mut mem = Memory::for_list(&list);
+    let mut fb = vec![Rgb565::BLACK; list.width() as usize * list.height() as usize];
+    for _ in 0..passes {
+        mem.render(&list, &mut fb, (rows > 0).then_some(rows));
+    }
+}
