@@ -145,10 +145,11 @@ impl ListBands<'_> {
             self.stats.spans += c.spans;
             self.stats.pixels += c.pixels as u64;
             if let Some(labels) = labels {
-                let c = ok(labels.draw(label::DEFAULT_FONT, &mut band));
+                let rows = (band.y() as i32, band.end() as i32);
+                let c = ok(labels.draw_rows(label::DEFAULT_FONT, rows, &mut band));
                 self.stats.spans += c.spans;
                 self.stats.pixels += c.pixels as u64;
-                self.stats.labels = self.stats.labels.max(c.drawn);
+                self.stats.labels += c.drawn;
             }
         }
         self.next = band.end();

@@ -89,7 +89,8 @@ impl<const DEPTH: usize, const N: usize, C: ListColor> SceneBands<'_, '_, '_, DE
                     BandsError::Render(VisibleError::Runs { capacity })
                 }
             })?;
-        let l = match self.scene.labels.draw(self.font, &mut band) {
+        let rows = (band.y() as i32, band.end() as i32);
+        let l = match self.scene.labels.draw_rows(self.font, rows, &mut band) {
             Ok(l) => l,
             Err(e) => match e {},
         };
@@ -97,8 +98,7 @@ impl<const DEPTH: usize, const N: usize, C: ListColor> SceneBands<'_, '_, '_, DE
         f.visible = self.sweep.stats();
         f.decoded.spans += d.spans;
         f.decoded.pixels += d.pixels;
-        f.labels.drawn = f.labels.drawn.max(l.drawn);
-        f.labels.off_frame = f.labels.off_frame.max(l.off_frame);
+        f.labels.drawn += l.drawn;
         f.labels.spans += l.spans;
         f.labels.pixels += l.pixels;
         self.next = band.end();

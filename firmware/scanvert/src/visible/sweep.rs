@@ -817,7 +817,7 @@ where
         self.runs = 0;
     }
 
-    #[inline]
+    #[inline(always)]
     fn run(&mut self, len: i32, _ink: u16, color: u32) {
         self.runs += 1;
         let x0 = self.x;
