@@ -413,3 +413,90 @@ proptest! {
         prop_assert_eq!(differs(&s, rows), None, "{}", text);
     }
 }
+
+/// A panel that keeps its own pixels: shipped rows overwrite its rows.
+struct Panel {
+    width: usize,
+    pixels: Vec<Rgb565>,
+    rows: u32,
+}
+
+impl BandTarget for Panel {
+    type Color = Rgb565;
+    type Error = ();
+    fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), ()> {
+        let at = y as usize * self.width;
+        self.pixels[at..at + px.len()].copy_from_slice(px);
+        self.rows += rows as u32;
+        Ok(())
+    }
+}
+
+#[test]
+fn the_demo_through_partial_updates_keeps_the_panel_equal_to_full_renders() {
+    use scanvert::scene::DirtyRows;
+    use scanvert_sim::demo::{drive, HEIGHT, WIDTH};
+    use std::cell::RefCell;
+    let w = WIDTH as usize;
+    let mut bits = vec![0u32; DirtyRows::words(HEIGHT)];
+    let dirty = RefCell::new(DirtyRows::new(&mut bits, HEIGHT).expect("bits"));
+    dirty.borrow_mut().mark_all(); // the panel starts unknown
+    let mut panel = Panel {
+        width: w,
+        pixels: vec![Rgb565::RED; w * HEIGHT as usize],
+        rows: 0,
+    };
+    let mut work = Work::new();
+    let mut band = vec![Rgb565::BLACK; 16 * w];
+    let mut shipped = Vec::new();
+    drive(
+        12,
+        |scene, procs| scene.update_marking(procs, DEFAULT_FONT, &mut dirty.borrow_mut()),
+        |scene, step, _, bg| {
+            let mut d = dirty.borrow_mut();
+            panel.rows = 0;
+            let (_, rows) = scene
+                .draw_marked(
+                    &mut work.workspace(),
+                    Resolve::default(),
+                    bg,
+                    DEFAULT_FONT,
+                    &d,
+                    16,
+                    &mut band,
+                    &mut panel,
+                )
+                .expect("partial frame");
+            assert_eq!(rows, panel.rows);
+            d.clear();
+            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
+            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
+            scene
+                .draw(
+                    &mut work.workspace(),
+                    Resolve::default(),
+                    Some(bg),
+                    DEFAULT_FONT,
+                    &mut fb,
+                )
+                .expect("full");
+            let diff = px.iter().zip(&panel.pixels).filter(|(a, b)| a != b).count();
+            assert_eq!(diff, 0, "{step:?}: the panel differs from the full render");
+            shipped.push((step, rows));
+        },
+    )
+    .expect("demo runs");
+    // The threshold-only frames (the camera still) ship fewer rows than a
+    // frame; the camera's frames ship the rows the scene covers.
+    let frame_bytes = w * HEIGHT as usize * 2;
+    for (i, (step, rows)) in shipped.iter().enumerate() {
+        let bytes = *rows as usize * w * 2;
+        println!(
+            "frame {i}: threshold {}, camera {}°: {rows} rows, {bytes} bytes of {frame_bytes}",
+            step.threshold, step.orbit
+        );
+        if (1..4).contains(&i) {
+            assert!(bytes < frame_bytes, "frame {i}");
+        }
+    }
+}

@@ -180,3 +180,188 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         Ok(pass.frame())
     }
 }
+
+/// Rows of a frame to draw again: one bit per row, in caller memory
+/// ([`DirtyRows::words`] `u32`s for a frame's height).
+#[derive(Debug)]
+pub struct DirtyRows<'d> {
+    bits: &'d mut [u32],
+    height: u16,
+}
+
+impl<'d> DirtyRows<'d> {
+    /// `u32`s needed for `height` rows.
+    pub const fn words(height: u16) -> usize {
+        (height as usize).div_ceil(32)
+    }
+
+    /// No row marked, over `bits`; `None` when it holds fewer than
+    /// [`words`](Self::words)`(height)`.
+    pub fn new(bits: &'d mut [u32], height: u16) -> Option<Self> {
+        let bits = bits.get_mut(..Self::words(height))?;
+        bits.fill(0);
+        Some(DirtyRows { bits, height })
+    }
+
+    /// Rows in the frame.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// Marks rows `y0..y1`, cut to the frame.
+    pub fn mark(&mut self, y0: i32, y1: i32) {
+        let (y0, y1) = (y0.max(0), y1.min(self.height as i32));
+        for y in y0..y1 {
+            self.bits[y as usize / 32] |= 1 << (y % 32);
+        }
+    }
+
+    /// Marks every row.
+    pub fn mark_all(&mut self) {
+        self.mark(0, self.height as i32);
+    }
+
+    /// Unmarks every row.
+    pub fn clear(&mut self) {
+        self.bits.fill(0);
+    }
+
+    /// `true` when row `y` is marked.
+    pub fn is_marked(&self, y: u16) -> bool {
+        y < self.height && self.bits[y as usize / 32] & (1 << (y % 32)) != 0
+    }
+
+    /// Rows marked.
+    pub fn count(&self) -> usize {
+        self.bits.iter().map(|w| w.count_ones() as usize).sum()
+    }
+
+    /// The marked rows as runs `(y0, y1)`, top to bottom.
+    pub fn runs(&self) -> impl Iterator<Item = (u16, u16)> + '_ {
+        let mut y = 0u16;
+        core::iter::from_fn(move || {
+            while y < self.height && !self.is_marked(y) {
+                y += 1;
+            }
+            if y >= self.height {
+                return None;
+            }
+            let y0 = y;
+            while y < self.height && self.is_marked(y) {
+                y += 1;
+            }
+            Some((y0, y))
+        })
+    }
+}
+
+/// Segments whose stale marks [`Scene::update_marking`] remembers; with
+/// more segments, every row is marked.
+const MARKED_SEGMENTS: usize = 256;
+
+impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// Marks the rows segment `s` shows on: those of its trapezoids, and
+    /// those of its labels' cells in `font`.
+    pub fn mark_segment_rows(&self, s: usize, font: &MonoFont<'_>, dirty: &mut DirtyRows<'_>) {
+        for (_, t) in self.store.segment_trapezoids(s) {
+            dirty.mark(t.top(), t.end());
+        }
+        let ch = font.character_size.height as i32;
+        for (l, _) in self.labels.iter() {
+            if l.segment() as usize == s {
+                let (_, y) = l.anchor();
+                dirty.mark(y - ch, y);
+            }
+        }
+    }
+
+    /// [`update`](Self::update), marking in `dirty` the rows each rebuilt
+    /// segment showed on before and shows on after (its trapezoids and
+    /// its labels in `font`): the rows where the frame may have changed.
+    /// What the update did not change (the camera, the projection, the
+    /// light, the clip, which mark every segment stale, are changes it
+    /// sees) keeps its rows. With more than 256 segments every row is
+    /// marked.
+    pub fn update_marking(
+        &mut self,
+        procedures: &mut [&mut dyn super::Procedure<DEPTH, N>],
+        font: &MonoFont<'_>,
+        dirty: &mut DirtyRows<'_>,
+    ) -> Result<super::Update, super::UpdateError> {
+        let n = procedures.len();
+        let mut stale = [0u32; MARKED_SEGMENTS / 32];
+        for s in 0..n {
+            if self.is_stale(s) {
+                self.mark_segment_rows(s, font, dirty);
+                if s < MARKED_SEGMENTS {
+                    stale[s / 32] |= 1 << (s % 32);
+                } else {
+                    dirty.mark_all();
+                }
+            }
+        }
+        let r = self.update(procedures);
+        for s in 0..n.min(MARKED_SEGMENTS) {
+            if stale[s / 32] & (1 << (s % 32)) != 0 {
+                self.mark_segment_rows(s, font, dirty);
+            }
+        }
+        r
+    }
+
+    /// Draws only the rows marked in `dirty`, in bands of at most `rows`
+    /// rows through the caller's buffer `band`, each shipped to `target`
+    /// as [`draw_bands`](Self::draw_bands) ships them: one top-to-bottom
+    /// pass, the rows between stepped over. A panel that keeps its pixels
+    /// then shows the whole frame. Returns what was drawn and the rows
+    /// shipped.
+    #[allow(clippy::too_many_arguments)]
+    pub fn draw_marked<P>(
+        &self,
+        workspace: &mut Workspace<'_>,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        dirty: &DirtyRows<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<(Frame, u32), SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let w = self.store.width();
+        if rows == 0 {
+            return Err(BandError::NoRows.into());
+        }
+        let needed = rows.min(self.store.height()) as usize * w as usize;
+        if band.len() < needed {
+            return Err(BandError::Buffer {
+                len: band.len(),
+                needed,
+            }
+            .into());
+        }
+        let mut pass = self
+            .bands(workspace, resolve, background, font)
+            .map_err(BandsError::Render)?;
+        let mut shipped = 0u32;
+        for (y0, y1) in dirty.runs() {
+            let mut y = y0;
+            while y < y1 {
+                let n = pass.draw(y, rows.min(y1 - y), band).map_err(|e| match e {
+                    BandsError::Band(b) => BandsError::Band(b),
+                    BandsError::Render(r) => BandsError::Render(r),
+                    BandsError::Ship { error, .. } => match error {},
+                })?;
+                target
+                    .ship(y, n, &band[..n as usize * w as usize])
+                    .map_err(|error| BandsError::Ship { y, error })?;
+                shipped += n as u32;
+                y += n;
+            }
+        }
+        Ok((pass.frame(), shipped))
+    }
+}

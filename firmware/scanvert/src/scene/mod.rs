@@ -101,7 +101,7 @@
 mod bands;
 pub mod label;
 
-pub use bands::{SceneBands, SceneBandsError};
+pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 
