@@ -16,6 +16,7 @@ use crate::port::band::{Band, BandError, BandTarget, BandsError};
 use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
 use core::convert::Infallible;
 use embedded_graphics::mono_font::MonoFont;
+use embedded_graphics_core::pixelcolor::RgbColor;
 
 /// The errors of the band path of a scene.
 pub type SceneBandsError<E> = BandsError<VisibleError<Infallible>, E>;
@@ -275,24 +276,87 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         }
     }
 
-    /// [`update`](Self::update), marking in `dirty` the rows each rebuilt
-    /// segment showed on before and shows on after (its trapezoids and
-    /// its labels in `font`): the rows where the frame may have changed.
-    /// What the update did not change (the camera, the projection, the
-    /// light, the clip, which mark every segment stale, are changes it
-    /// sees) keeps its rows. With more than 256 segments every row is
-    /// marked.
+    /// Adds to `sig[y]`, for every row `y`, a hash of what segment `s`
+    /// puts on the row: its trapezoids (edges, plane, colour, columns)
+    /// and its labels' cells (anchor, colour, text) in `font`. Sums are
+    /// order-free, so the same content hashes the same however it was
+    /// built.
+    fn add_signature(&self, s: usize, font: &MonoFont<'_>, sig: &mut [u64]) {
+        let h = sig.len() as i32;
+        for (_, t) in self.store.segment_trapezoids(s) {
+            let mut k = Mix::new();
+            for f in t.left.fields().into_iter().chain(t.right.fields()) {
+                k.add(f as u32 as u64);
+            }
+            for f in [t.z, t.zx, t.zy, t.color as i32, t.x0 as i32, t.x1 as i32] {
+                k.add(f as u32 as u64);
+            }
+            let k = k.finish();
+            for y in t.top().max(0)..t.end().min(h) {
+                sig[y as usize] = sig[y as usize].wrapping_add(k);
+            }
+        }
+        let ch = font.character_size.height as i32;
+        for (l, text) in self.labels.iter() {
+            if l.segment() as usize != s {
+                continue;
+            }
+            let (x, y) = l.anchor();
+            let mut k = Mix::new();
+            k.add(x as u32 as u64);
+            k.add(y as u32 as u64);
+            let c = l.color();
+            k.add(((c.r() as u64) << 16) | ((c.g() as u64) << 8) | c.b() as u64);
+            for b in text.bytes() {
+                k.add(b as u64);
+            }
+            k.add(text.len() as u64);
+            let k = k.finish();
+            for y in (y - ch).max(0)..y.min(h) {
+                sig[y as usize] = sig[y as usize].wrapping_add(k);
+            }
+        }
+    }
+
+    /// [`update`](Self::update), marking in `dirty` the rows where a
+    /// rebuilt segment's content changed. With `scratch` of twice the
+    /// frame's height, a row is marked when the hash of what the rebuilt
+    /// segments put on it (see below) differs before and after, so a
+    /// segment rebuilt the same costs no row; with less, every row a
+    /// rebuilt segment showed on before or shows on after is marked.
+    ///
+    /// The hash of a row is the sum of 64-bit mixes of each trapezoid's
+    /// and label's every field: two different contents of a row hash the
+    /// same with a chance of about 2⁻⁶⁴. Changes the update does not see
+    /// (the background) are the caller's to mark; those that mark every
+    /// segment stale (the camera, the projection, the light, the clip)
+    /// it sees. With more than 256 segments every row is marked.
     pub fn update_marking(
         &mut self,
         procedures: &mut [&mut dyn super::Procedure<DEPTH, N>],
         font: &MonoFont<'_>,
         dirty: &mut DirtyRows<'_>,
+        scratch: &mut [u64],
     ) -> Result<super::Update, super::UpdateError> {
         let n = procedures.len();
+        let h = self.store.height() as usize;
         let mut stale = [0u32; MARKED_SEGMENTS / 32];
+        let sigs = scratch.get_mut(..2 * h);
+        let exact = sigs.is_some();
+        let (before, after) = match sigs {
+            Some(s) => {
+                s.fill(0);
+                s.split_at_mut(h)
+            }
+            None => (&mut [][..], &mut [][..]),
+        };
         for s in 0..n {
             if self.is_stale(s) {
-                self.mark_segment_rows(s, font, dirty);
+                if exact {
+                    self.add_signature(s, font, before);
+                } else {
+                    self.mark_segment_rows(s, font, dirty);
+                }
                 if s < MARKED_SEGMENTS {
                     stale[s / 32] |= 1 << (s % 32);
                 } else {
@@ -303,7 +367,16 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         let r = self.update(procedures);
         for s in 0..n.min(MARKED_SEGMENTS) {
             if stale[s / 32] & (1 << (s % 32)) != 0 {
-                self.mark_segment_rows(s, font, dirty);
+                if exact {
+                    self.add_signature(s, font, after);
+                } else {
+                    self.mark_segment_rows(s, font, dirty);
+                }
+            }
+        }
+        for (y, (a, b)) in before.iter().zip(after.iter()).enumerate() {
+            if a != b {
+                dirty.mark(y as i32, y as i32 + 1);
             }
         }
         r
@@ -363,5 +436,25 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             }
         }
         Ok((pass.frame(), shipped))
+    }
+}
+
+/// A 64-bit mix of words (splitmix64 steps), for row hashes.
+struct Mix(u64);
+
+impl Mix {
+    fn new() -> Mix {
+        Mix(0x9e37_79b9_7f4a_7c15)
+    }
+
+    fn add(&mut self, v: u64) {
+        let mut z = (self.0 ^ v).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        self.0 = z ^ (z >> 31);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
     }
 }
