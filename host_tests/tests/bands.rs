@@ -517,3 +517,87 @@ fn partial_frames(exact: bool) {
         }
     }
 }
+
+/// Renders every other band of `rows` starting with band `k` of `list`
+/// with memory of its own (sized as the CLI sizes it), skipping the
+/// others; returns `(y, pixels)` of each band drawn.
+fn every_other_band(s: &Scene, rows: u16, k: u16) -> Vec<(u16, Vec<Rgb565>)> {
+    use scanvert::controller::{edges_3d, needs_3d, Storage3d};
+    use scanvert::scene::label::Label;
+    use scanvert::visible::store::{Face, Segment, StoreMemory};
+    use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+    let list = s.list();
+    let (w, h) = (list.width() as usize, list.height());
+    let mut slots = vec![EdgeSlot::EMPTY; edges_3d(&list)];
+    let need = needs_3d(&list, &mut slots).expect("sized");
+    let t = needs_table(&list);
+    let mut edges = vec![Edge::EMPTY; scanvert_sim::cli::edges_needed(&list)];
+    let (mut polys, mut index, mut tedges) = (
+        vec![TablePolygon::EMPTY; t.polygons],
+        vec![0u32; 2 * t.polygons],
+        vec![Edge::EMPTY; t.edges],
+    );
+    let (mut labels, mut text) = (vec![Label::EMPTY; need.labels], vec![0u8; need.text]);
+    let (mut traps, mut faces, mut segs, mut rws) = (
+        vec![Trapezoid::EMPTY; need.trapezoids],
+        vec![Face::EMPTY; need.faces],
+        vec![Segment::EMPTY; 1],
+        vec![0u16; need.rows],
+    );
+    let (mut active, mut cover, mut runs) = (
+        vec![Active::EMPTY; need.trapezoids],
+        vec![Cover::EMPTY; need.trapezoids],
+        vec![Run::EMPTY; need.runs],
+    );
+    let mut c = Controller::new(Rasterizer::new(&mut edges));
+    if need.any() {
+        c = c.with_labels(&mut labels, &mut text).with_3d(Storage3d {
+            store: StoreMemory {
+                trapezoids: &mut traps,
+                faces: &mut faces,
+                segments: &mut segs,
+                rows: &mut rws,
+                edges: &mut slots,
+            },
+            active: &mut active,
+            cover: &mut cover,
+            runs: &mut runs,
+            resolve: Resolve::default(),
+        });
+    }
+    let table = TableMemory {
+        polygons: &mut polys,
+        index: &mut index,
+        edges: &mut tedges,
+    };
+    let mut pass = c.bands(&list, table).expect("prepared");
+    let mut out = Vec::new();
+    let mut y = k * rows;
+    while y < h {
+        let mut band = vec![Rgb565::GREEN; rows as usize * w];
+        let n = pass.draw(y, rows, &mut band).expect("band");
+        band.truncate(n as usize * w);
+        out.push((y, band));
+        y += 2 * rows;
+    }
+    out
+}
+
+#[test]
+fn two_passes_each_skipping_the_others_bands_make_the_frame() {
+    for text in [FLAT, NO_CLEAR, THREE_D] {
+        let s = scene(text);
+        let full = render_scene(&s).expect("full");
+        let w = s.list().width() as usize;
+        for rows in [1, 3, 7, 16] {
+            let mut whole = vec![Rgb565::RED; full.ram.contents().len()];
+            for k in 0..2 {
+                for (y, band) in every_other_band(&s, rows, k) {
+                    let at = y as usize * w;
+                    whole[at..at + band.len()].copy_from_slice(&band);
+                }
+            }
+            assert!(whole == full.ram.contents(), "band rows {rows}\n{text}");
+        }
+    }
+}
