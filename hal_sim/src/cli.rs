@@ -371,12 +371,14 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
             }
             "--stats" => a.stats = true,
             "--band-rows" => {
+                // Any count ≥ 1; more rows than the frame has is one band.
                 let n = it
                     .next()
-                    .and_then(|v| v.parse::<u16>().ok())
-                    .filter(|&n| n >= 1)
-                    .ok_or_else(|| usage("--band-rows needs a number of rows from 1 to 65535"))?;
-                a.band_rows = Some(n);
+                    .map(|v| v.strip_prefix('+').unwrap_or(v))
+                    .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+                    .filter(|d| d.bytes().any(|b| b != b'0'))
+                    .ok_or_else(|| usage("--band-rows needs a number of rows, at least 1"))?;
+                a.band_rows = Some(n.parse::<u16>().unwrap_or(u16::MAX));
             }
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(usage(format_args!("unknown option {s}")))

@@ -601,3 +601,45 @@ fn two_passes_each_skipping_the_others_bands_make_the_frame() {
         }
     }
 }
+
+#[test]
+fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bands_cli");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let src = dir.join("three.dl");
+    std::fs::write(&src, THREE_D).expect("scene");
+    let run = |out: &Path, extra: &[&str]| {
+        let mut args: Vec<String> = [
+            "render",
+            src.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        args.extend(extra.iter().map(|s| s.to_string()));
+        scanvert_sim::cli::run(&args)
+    };
+    let full = dir.join("full.png");
+    run(&full, &[]).expect("full render");
+    let want = std::fs::read(&full).expect("png");
+    for n in ["1", "7", "16", "64", "65", "100000"] {
+        let out = dir.join(format!("band-{n}.png"));
+        run(&out, &["--band-rows", n]).expect("band render");
+        assert_eq!(std::fs::read(&out).expect("png"), want, "--band-rows {n}");
+    }
+    for bad in [
+        &["--band-rows", "0"][..],
+        &["--band-rows", "x"],
+        &["--band-rows", "-1"],
+        &["--band-rows"],
+    ] {
+        let out = dir.join("bad.png");
+        let _ = std::fs::remove_file(&out);
+        let e = run(&out, bad).expect_err("refused");
+        assert_eq!(e.status, scanvert_sim::cli::EXIT_USAGE, "{bad:?}");
+        assert!(e.message.contains("--band-rows"), "{}", e.message);
+        assert!(!out.exists(), "no image for {bad:?}");
+    }
+}
