@@ -189,7 +189,7 @@ impl<'e> Controller<'e> {
             },
         };
         let table = EdgeTable::build(table, list, (w, h)).map_err(PrepareError::Table)?;
-        stats.commands = list.commands().count() as u32;
+        stats.commands = table.commands();
         stats.polygons = table.len() as u32;
         stats.clears = table.clear_color().is_some() as u32;
         Ok(ListBands {

@@ -5,7 +5,8 @@
 //! # One pass
 //!
 //! [`EdgeTable::build`] reads the list once. Every `poly` after the last
-//! `clear` (what comes before it is covered by it) is entered with its
+//! `clear` (what comes before it is covered by it: a `clear` empties the
+//! table) is entered with its
 //! colour and the clip registers in force at its place: its edges are set
 //! up exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
 //! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
@@ -190,6 +191,7 @@ pub struct EdgeTable<'a> {
     /// The next row to draw or skip.
     y: i32,
     clear: Option<Rgb888>,
+    commands: u32,
 }
 
 impl<'a> EdgeTable<'a> {
@@ -205,34 +207,41 @@ impl<'a> EdgeTable<'a> {
             index,
             edges,
         } = mem;
-        let last = last_clear(list);
         let cap = polygons.len().min(index.len() / 2);
         let mut clip = ClipRect::full(w, h);
         let mut color = crate::controller::DEFAULT_COLOR;
-        let (mut count, mut used) = (0usize, 0usize);
+        let (mut count, mut used, mut commands) = (0usize, 0usize, 0u32);
+        // One pass: a `clear` empties the table (it covers everything
+        // before it), and running out of memory counts only if no `clear`
+        // follows.
+        let mut clear = None;
+        let mut full: Option<TableError> = None;
         for (offset, cmd) in list.commands() {
+            commands += 1;
             match cmd {
+                Command::Clear(c) => {
+                    (count, used, full, clear) = (0, 0, None, Some(c));
+                }
                 Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
                 Command::Color(c) => color = c,
-                Command::Poly(v) if last.map_or(true, |(c, _)| offset > c) => {
-                    if clip.is_empty() {
-                        continue;
-                    }
+                Command::Poly(v) if full.is_none() && !clip.is_empty() => {
                     let room = &mut edges[used..];
                     let Some(n) = build_edges(room, v.iter(), &clip) else {
-                        return Err(TableError::Edges {
+                        full = Some(TableError::Edges {
                             offset,
                             capacity: edges.len(),
                         });
+                        continue;
                     };
                     if n < 2 {
                         continue;
                     }
                     if count >= cap {
-                        return Err(TableError::Polygons {
+                        full = Some(TableError::Polygons {
                             offset,
                             capacity: cap,
                         });
+                        continue;
                     }
                     let e = &mut room[..n];
                     e.sort_unstable_by_key(|e| e.top());
@@ -252,6 +261,9 @@ impl<'a> EdgeTable<'a> {
                 _ => {}
             }
         }
+        if let Some(e) = full {
+            return Err(e);
+        }
         let order = &mut index[cap..cap + count];
         for (k, o) in order.iter_mut().enumerate() {
             *o = k as u32;
@@ -266,7 +278,8 @@ impl<'a> EdgeTable<'a> {
             entered: 0,
             nlive: 0,
             y: 0,
-            clear: last.map(|(_, c)| c),
+            clear,
+            commands,
         })
     }
 
@@ -278,6 +291,11 @@ impl<'a> EdgeTable<'a> {
     /// `true` when no polygon draws anything.
     pub fn is_empty(&self) -> bool {
         self.count == 0
+    }
+
+    /// Commands in the list.
+    pub fn commands(&self) -> u32 {
+        self.commands
     }
 
     /// The colour of the list's last `clear`.
