@@ -264,11 +264,32 @@ impl<'a> EdgeTable<'a> {
         if let Some(e) = full {
             return Err(e);
         }
-        let order = &mut index[cap..cap + count];
-        for (k, o) in order.iter_mut().enumerate() {
-            *o = k as u32;
+        // The order by first row: a counting sort over the rows when the
+        // live list (unused yet) can hold a counter a row, else a sort.
+        let (live, order) = index.split_at_mut(cap);
+        let order = &mut order[..count];
+        let rows = h as usize;
+        if let Some(at) = live.get_mut(..rows + 1) {
+            // First rows lie in the clip rows, inside 0..h.
+            let row = |p: &TablePolygon| (p.y.max(0) as usize).min(rows - 1);
+            at.fill(0);
+            for p in &polygons[..count] {
+                at[row(p) + 1] += 1;
+            }
+            for r in 1..=rows {
+                at[r] += at[r - 1];
+            }
+            for (k, p) in polygons[..count].iter().enumerate() {
+                let slot = &mut at[row(p)];
+                order[*slot as usize] = k as u32;
+                *slot += 1;
+            }
+        } else {
+            for (k, o) in order.iter_mut().enumerate() {
+                *o = k as u32;
+            }
+            order.sort_unstable_by_key(|&k| polygons[k as usize].y);
         }
-        order.sort_unstable_by_key(|&k| polygons[k as usize].y);
         Ok(EdgeTable {
             polygons,
             index,
