@@ -368,12 +368,13 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          filled with the background first. On a loaded host these ratios move by ±0.2. The\n\
          targets are 1.25× for W3 in bands of 16 rows and 1.1× for the 3D frames.\n\n{table}\n\
          Where the time goes (profiles of `--profile-bands ROWS PASSES`, `BANDS_LIST=layered`\n\
-         for the `poly3` list): in one band of the whole height W3 costs about 1.1× (the edge\n\
-         table of 30 000 edges is set up and ordered before the first row, where the full\n\
-         frame keeps one polygon's edges in L1); each further band revisits every polygon it\n\
-         meets, reloading its edges (about 40 ns a visit), which is the rest at 16 rows and\n\
-         most at 1 row. The `poly3` lists resolve the same rows with the same sweep, so they\n\
-         stay near 1×; the demo draws each label in every band it reaches (a glyph pass of\n\
+         for the `poly3` list): the fixed part (W3 in 64-row bands: 1.04× the instructions on\n\
+         x86-64, 1.13× on the M4) is entering the 10 000 polygons into the table (their edges\n\
+         written out and read back, the order by first row); each further band revisits every\n\
+         polygon it meets, reloading its state and edges, which is most of the cost at 1 row.\n\
+         The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
+         each band with the background (they have no `clear`, and the full frame leaves what\n\
+         was there). The demo draws each label in every band it reaches (a glyph pass of\n\
          `embedded-graphics` per band), which dominates at 1 and 8 rows.\n\n\
          Instructions per frame (x86-64, from `valgrind --tool=callgrind` on\n\
          `--profile-bands ROWS PASSES` with `BANDS_LIST` = `w3`, `layered`, `tilted` or `demo`,\n\
@@ -445,4 +446,4 @@ fn profile_demo(rows: u16, passes: u32) {
 /// on `--profile-bands ROWS PASSES` (`BANDS_LIST` = `w3`, `layered`,
 /// `tilted`, `demo`; ROWS 0 for the full frame): the count of 6 passes
 /// less that of 1, over 5. They do not move with the host's load.
-const COUNTS: &str = "| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 35,472,208 | 2.20× | 1.28× | 1.22× | 1.17× |\n| poly3-layered: 170 faces | 2,495,536 | 1.09× | 1.05× | 1.05× | 1.05× |\n| poly3-tilted: 170 faces, interpenetrating | 2,980,302 | 1.07× | 1.04× | 1.04× | 1.04× |\n| the 3D demo's first frame (Scene) | 2,797,006 | 2.31× | 1.17× | 1.09× | 1.03× |\n\nTwo workers on the demo's first frame, 16-row bands, each drawing every other band and stepping over the other's (`BANDS_WORKER=0` or `1` with `BANDS_LIST=demo`): 1,682,560 and 1,764,522 instructions, against 3,044,877 for all the bands on one: a bound of 1.73× on the speed-up (1.59× against the full frame) on two free cores; the rest is each worker's own work on the other's rows (stepping its active list, the workspace check, the labels' tests).\n";
+const COUNTS: &str = "| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 35,472,208 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,495,536 | 1.05× | 1.02× | 1.01× | 1.01× |\n| poly3-tilted: 170 faces, interpenetrating | 2,980,302 | 1.04× | 1.01× | 1.01× | 1.01× |\n| the 3D demo's first frame (Scene) | 2,803,513 | 2.33× | 1.18× | 1.09× | 1.03× |\n\nTwo workers on the demo's first frame, 16-row bands, each drawing every other band and stepping over the other's (`BANDS_WORKER=0` or `1` with `BANDS_LIST=demo`): 1,682,560 and 1,764,522 instructions, against 3,054,427 for all the bands on one: a bound of 1.73× on the speed-up (1.59× against the full frame) on two free cores; the rest is each worker's own work on the other's rows (stepping its active list, the workspace check, the labels' tests).\n\nOn the Cortex-M4F (the firmware image with `--features bands`, QEMU `mps2-an386`, `-icount shift=0`: every list rendered again in bands into a running checksum, which equals the host's for every list and band height; the instructions are those of a run shipping nowhere, as the full frame's exclude its checksum):\n\n| list | full frame, instructions | 1 row | 16 rows | 64 rows |\n|---|---|---|---|---|\n| demo (2D, 320 × 200) | 431,560 | 1.53× | 1.06× | 1.04× |\n| W1 | 1,219,680 | 2.26× | 1.21× | 1.15× |\n| W2 (a clear) | 115,320 | 1.31× | 1.06× | 1.05× |\n| W3: 10 000 triangles | 36,130,120 | 2.30× | 1.18× | 1.13× |\n| W4 | 1,511,360 | 2.32× | 1.20× | 1.14× |\n| W5 (no clear: each band is filled black first) | 408,680 | 1.81× | 1.59× | 1.58× |\n| poly3-layered (no clear, as W5) | 2,740,880 | 1.12× | 1.10× | 1.10× |\n| poly3-tilted (no clear, as W5) | 3,394,360 | 1.10× | 1.09× | 1.09× |\n";
