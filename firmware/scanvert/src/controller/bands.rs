@@ -116,12 +116,15 @@ impl ListBands<'_> {
             return Err(BandError::Order { next: self.next, y }.into());
         }
         let mut band = Band::new(pixels, (w, h), y, rows)?;
+        // The offset of the layer's first command, as the full frame
+        // reports the layer's errors.
+        let first = self.layer.as_ref().map_or(0, |((.., first, _), _)| *first);
         let layer_error = |e: VisibleError<Infallible>| match e {
             VisibleError::Sink(e) => match e {},
             // Checked when the layer was built: never.
             VisibleError::Active { capacity } | VisibleError::Runs { capacity } => {
                 BandsError::Render(PrepareError::Render(RenderError::Capacity3d {
-                    offset: 0,
+                    offset: first,
                     resource: super::Resource::Active,
                     capacity,
                 }))

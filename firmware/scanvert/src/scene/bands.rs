@@ -458,3 +458,28 @@ impl Mix {
         self.0
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::DirtyRows;
+
+    #[test]
+    fn dirty_rows_mark_cut_and_run() {
+        let mut bits = [u32::MAX; 3];
+        assert!(DirtyRows::new(&mut bits[..1], 40).is_none());
+        let mut d = DirtyRows::new(&mut bits, 70).unwrap();
+        assert_eq!(d.count(), 0, "starts empty");
+        d.mark(-5, 2);
+        d.mark(30, 34);
+        d.mark(33, 40);
+        d.mark(69, 90);
+        let runs: [(u16, u16); 3] = [(0, 2), (30, 40), (69, 70)];
+        assert!(d.runs().eq(runs));
+        assert_eq!(d.count(), 13);
+        assert!(d.is_marked(31) && !d.is_marked(40) && !d.is_marked(70));
+        d.clear();
+        assert_eq!(d.runs().count(), 0);
+        d.mark_all();
+        assert!(d.runs().eq([(0u16, 70u16)]));
+    }
+}

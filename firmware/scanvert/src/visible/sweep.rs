@@ -540,7 +540,9 @@ pub struct Sweep {
 
 impl Sweep {
     /// A sweep at row 0 with `workspace`, resolving intersecting spans by
-    /// `mode`. The same workspace must be passed to every call after.
+    /// `mode`. The same workspace and the same store, unchanged, must be
+    /// passed to every call after (a workspace of another capacity is
+    /// refused; another store gives another picture, never a panic).
     pub fn new(workspace: &mut Workspace<'_>, mode: Resolve) -> Sweep {
         Sweep::start(workspace.active, workspace.cover, mode)
     }
