@@ -80,8 +80,10 @@ impl ListBands<'_> {
         self.next
     }
 
-    /// What has been drawn so far (the 3D layer's counts as of the last
-    /// band).
+    /// What has been drawn so far: the 3D layer's counts as of the last
+    /// band; `polygons` are those entered in the table (the full frame
+    /// counts every `poly`), and spans, pixels and labels are summed over
+    /// the bands (a label reaching two bands counts twice).
     pub fn stats(&self) -> Stats {
         self.stats
     }

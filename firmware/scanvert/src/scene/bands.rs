@@ -40,7 +40,8 @@ impl<const DEPTH: usize, const N: usize, C: ListColor> SceneBands<'_, '_, '_, DE
         self.next
     }
 
-    /// What the bands drawn so far did.
+    /// What the bands drawn so far did: spans, pixels and labels summed
+    /// over the bands (a label reaching two bands counts twice).
     pub fn frame(&self) -> Frame {
         self.frame
     }
