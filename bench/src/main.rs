@@ -12,8 +12,11 @@
 //! `docs/p3-p4-vs-trapezoids.png`), keeping the rest of the page;
 //! `-- --profile-w1 MODE PASSES`
 //! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
-//! alone, for callgrind.
+//! alone, for callgrind. `-- --only bands` times band rendering
+//! against the full frame and writes only `docs/performance.md`'s section
+//! on bands (which the full run keeps).
 
+mod bands;
 mod contenders;
 mod heap;
 mod numbers;
@@ -219,17 +222,33 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
   --only 3D | --only 3D:N   the 3D scenes (of N faces), printed, nothing written
   --only depth              the depth-complexity sweep and the P3/P4 split;
                             rewrites their section of the page and their plots
+  --only bands              bands against the full frame (W3, the 3D scenes, the
+                            demo, two threads); rewrites its section of the page
   --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
-  --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind";
+  --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind
+  --profile-bands ROWS PASSES  W3 (or $BANDS_LIST: layered, tilted, demo) in
+                            bands of ROWS rows alone, for callgrind";
 
 fn main() -> std::io::Result<()> {
     let args: Vec<String> = std::env::args().collect();
-    if args.len() > 1 && !matches!(args[1].as_str(), "--only" | "--profile-3d" | "--profile-w1") {
+    if args.len() > 1
+        && !matches!(
+            args[1].as_str(),
+            "--only" | "--profile-3d" | "--profile-w1" | "--profile-bands"
+        )
+    {
         eprintln!("{USAGE}");
         return Ok(());
     }
     if args.len() == 4 && args[1] == "--profile-3d" {
         visible3d::profile(&args[2], args[3].parse().unwrap_or(25));
+        return Ok(());
+    }
+    if args.len() == 4 && args[1] == "--profile-bands" {
+        bands::profile(
+            args[2].parse().unwrap_or(16),
+            args[3].parse().unwrap_or(100),
+        );
         return Ok(());
     }
     if args.len() == 4 && args[1] == "--profile-w1" {
@@ -240,6 +259,12 @@ fn main() -> std::io::Result<()> {
     let only = (args.len() == 3 && args[1] == "--only").then(|| args[2].clone());
     if only.as_deref() == Some("depth") {
         return only_depth();
+    }
+    if only.as_deref() == Some("bands") {
+        eprintln!("bands against the full frame (ms per frame, ratios):");
+        let machine = format!("load average {} before the run", load_average());
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
+        return bands::write_section(&path, &machine);
     }
     let start = Instant::now();
     let load_before = load_average();
