@@ -7,6 +7,8 @@
 //! dual-port RAM is another.
 
 pub mod band;
+#[cfg(feature = "embedded-graphics")]
+pub mod band_draw_target;
 pub mod checksum;
 #[cfg(feature = "embedded-graphics")]
 pub mod draw_target;
