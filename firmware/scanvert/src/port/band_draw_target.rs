@@ -158,4 +158,54 @@ mod tests {
         let on = |y| fb.row(y).unwrap().iter().all(|&c| c == BinaryColor::On);
         assert!(!on(2) && on(3), "row 4 is outside and discarded");
     }
+
+    #[test]
+    fn bands_through_the_port_equal_the_whole_frame() {
+        use crate::controller::Controller;
+        use crate::display_list::{DisplayList, Writer};
+        use crate::fixed::Vertex;
+        use crate::port::framebuffer::FrameBuffer;
+        use crate::raster::edge::Edge;
+        use crate::raster::scan::Rasterizer;
+        use crate::raster::table::{TableMemory, TablePolygon};
+        use embedded_graphics_core::pixelcolor::Rgb888;
+
+        const W: u16 = 23;
+        const H: u16 = 19;
+        let px = |x: i16, y: i16| Vertex::from_bits(x, y);
+        let mut bytes = [0u8; 256];
+        let mut w = Writer::new(&mut bytes, W, H).unwrap();
+        w.clear(Rgb888::new(10, 20, 30)).unwrap();
+        w.color(Rgb888::RED).unwrap();
+        w.poly([px(5, 3), px(360, 40), px(20, 300)]).unwrap();
+        w.color(Rgb888::GREEN).unwrap();
+        w.poly([px(-40, 100), px(200, 90), px(300, 310), px(100, 250)])
+            .unwrap();
+        let list = DisplayList::new_checked(w.finish()).unwrap();
+        let mut edges = [Edge::EMPTY; 8];
+        let mut c = Controller::new(Rasterizer::new(&mut edges));
+        let mut whole = [Rgb565::BLACK; W as usize * H as usize];
+        c.render(&list, &mut FrameBuffer::new(&mut whole, W, H).unwrap())
+            .unwrap();
+        let has = |c| whole.contains(&c);
+        assert!(
+            has(Rgb565::RED) && has(Rgb565::GREEN),
+            "both polygons drawn"
+        );
+        for rows in [1, 4, 7, H, H + 3] {
+            let mut shown = [Rgb565::BLUE; W as usize * H as usize];
+            let mut port = DrawTargetPort::new(FrameBuffer::new(&mut shown, W, H).unwrap());
+            let (mut polygons, mut index) = ([TablePolygon::EMPTY; 2], [0u32; 4]);
+            let mut table_edges = [Edge::EMPTY; 7];
+            let table = TableMemory {
+                polygons: &mut polygons,
+                index: &mut index,
+                edges: &mut table_edges,
+            };
+            let mut band = [Rgb565::WHITE; W as usize * H as usize];
+            c.render_bands(&list, table, rows, &mut band, &mut port)
+                .unwrap();
+            assert_eq!(shown, whole, "bands of {rows} rows");
+        }
+    }
 }
