@@ -19,6 +19,9 @@
 //!   64-bit hash of each band is kept, 15 words in all, not the frame);
 //!   the panel keeps the other rows.
 //!
+//! With `--out FILE.ppm` the panel's memory after the last frame is also
+//! written as a PPM image.
+//!
 //! ```sh
 //! cargo run -p scanvert-sim --example st7789
 //! ```
@@ -375,4 +378,18 @@ fn main() {
         last.clone_from(&whole);
     }
     println!("the panel's memory equals the frame rendered whole after each: yes");
+
+    let args: Vec<String> = std::env::args().collect();
+    if let [_, flag, path] = args.as_slice() {
+        if flag == "--out" {
+            use scanvert::color::ToRgb888;
+            let mut ppm = format!("P6\n{W} {H}\n255\n").into_bytes();
+            for &c in &link.borrow().memory {
+                let c = c.to_rgb888();
+                ppm.extend([c.r(), c.g(), c.b()]);
+            }
+            std::fs::write(path, ppm).expect("writes the image");
+            println!("wrote {path}");
+        }
+    }
 }
