@@ -8,6 +8,7 @@
 //! dual-port RAM is another.
 
 pub mod band;
+pub mod band_draw_target;
 pub mod checksum;
 pub mod draw_target;
 pub mod framebuffer;
