@@ -2,13 +2,14 @@
 //! with memory sized as the `scanvert` program sizes it, into a frame of
 //! at most 64×64. Small frames also go through the program's own path
 //! (`Scene::from_bytes`, `render_scene` into the dual-port RAM), which
-//! must agree pixel for pixel.
+//! must agree pixel for pixel, and so must band rendering (bands of 1 to
+//! 17 rows, chosen by the input's length).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use scanvert::display_list::{DisplayList, HEADER_LEN};
 use scanvert::visible::sweep::Resolve;
-use scanvert_fuzz::{check_rendered, render_small};
+use scanvert_fuzz::{check_bands, check_rendered, render_small};
 use scanvert_sim::cli::{render_scene, Scene};
 use std::path::Path;
 
@@ -31,6 +32,8 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     check_rendered(&list, &r);
+    // Bands of 1 to 17 rows against the full frame.
+    check_bands(&list, &r, 1 + (data.len() % 17) as u16);
     if r.whole {
         let scene = Scene::from_bytes(Path::new("fuzz.scvl"), data.to_vec())
             .expect("the program accepts what new_checked accepts");

@@ -8,6 +8,7 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use scanvert::controller::{RenderError, RenderStats, Resource};
 use scanvert::display_list::DisplayList;
+use scanvert::port::band::BandTarget;
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::visible::sweep::Resolve;
 use scanvert_sim::memory::ListMemory;
@@ -105,5 +106,51 @@ pub fn check_rendered(list: &DisplayList<'_>, r: &Rendered) {
             ),
             "memory sized by needs ran out: {e}"
         );
+    }
+}
+
+/// The frame assembled from shipped bands.
+struct Shipped {
+    width: usize,
+    pixels: Vec<Rgb565>,
+}
+
+impl BandTarget for Shipped {
+    type Color = Rgb565;
+    type Error = core::convert::Infallible;
+    fn ship(&mut self, y: u16, rows: u16, pixels: &[Rgb565]) -> Result<(), Self::Error> {
+        let at = y as usize * self.width;
+        let n = rows as usize * self.width;
+        self.pixels[at..at + n].copy_from_slice(&pixels[..n]);
+        Ok(())
+    }
+}
+
+/// Renders a whole frame `r` gave (at most 64 × 64) again in bands of
+/// `rows` rows, with memory sized as the program sizes it for bands, and
+/// checks that the bands give the same pixels and the same outcome.
+pub fn check_bands(list: &DisplayList<'_>, r: &Rendered, rows: u16) {
+    if !r.whole {
+        return;
+    }
+    let Ok(mut memory) = ListMemory::for_bands(list) else {
+        assert!(r.result.is_err(), "needs refused a list the render drew");
+        return;
+    };
+    let (w, h) = (list.width() as usize, list.height() as usize);
+    let mut band = vec![Rgb565::BLACK; rows as usize * w];
+    let mut out = Shipped {
+        width: w,
+        pixels: vec![Rgb565::new(1, 2, 3); w * h],
+    };
+    let (mut controller, table) = memory.band_parts();
+    let banded = controller.render_bands(list, table, rows, &mut band, &mut out);
+    match (&r.result, banded) {
+        (Ok(_), Ok(_)) => assert!(
+            out.pixels == r.pixels,
+            "bands of {rows} rows differ from the full frame"
+        ),
+        (Err(_), Err(_)) => {}
+        (full, bands) => panic!("the full frame gave {full:?}, bands of {rows} rows {bands:?}"),
     }
 }
