@@ -74,49 +74,14 @@
 //!
 //! # Measured
 //!
-//! Error, against the exact reference of `host_tests` (coverage by the
-//! pixel rule, nearest plane at each pixel centre, ties to the earlier
-//! polygon): **0 mismatched pixels** in both modes, on the property tests'
-//! layered and interpenetrating scenes (about 120 000 covered pixels a run
-//! of 200 scenes, with a few hundred intersecting spans) and on the four
-//! 512 × 256 scenes below. A z-buffer at the same depth precision misses
-//! ties and near-ties (1 pixel in 131 072 on `dense`).
-//!
-//! Cost on the Cortex-M4: the firmware image renders `flat` and `tilted`
-//! as `poly3-layered` and `poly3-tilted` (one colour per face, the
-//! background left as it is) and counts the cut and the resolution
-//! separately; `firmware/image/measure.sh` publishes the counts in the
-//! on-target section of `docs/performance.md`. There, resolving and
-//! decoding take about 2.1 M instructions a frame on `flat` and 2.5 M on
-//! `tilted`, and cutting 0.48 M and 0.69 M.
-//!
-//! Before the sweep kept a front (it classified a span between every two
-//! neighbouring `l` and `r`: about 9 500 spans a `flat` row set against
-//! 5 500 fronts now), an earlier variant of the image measured all four
-//! scenes, every pixel written (background filled), against a plain
-//! z-buffer at the same precision (32-bit depth per pixel, the same
-//! fixed-point planes, the exact rasteriser's spans, runs of passing
-//! pixels written as spans; its depth clear included), in instructions
-//! per 512 × 256 RGB565 frame:
-//!
-//! | scene | faces drawn | trapezoids | cut (once per change) | resolve + decode, crossing | bisection | z-buffer |
-//! |---|---|---|---|---|---|---|
-//! | flat: 170 faces parallel to the screen | 170 | 249 | 0.60 M | 2.61 M | 2.61 M | 4.36 M |
-//! | tilted: 170 tilted faces, interpenetrating | 170 | 375 | 0.83 M | 2.94 M | 2.95 M | 3.89 M |
-//! | bars: a 10 × 7 map and 20 bars | 130 | 386 | 0.80 M | 1.87 M | 1.87 M | 2.68 M |
-//! | dense: 170 large triangles through each other (depth complexity about 40) | 170 | 322 | 0.79 M | 23.4 M | 23.7 M | 46.0 M |
-//!
-//! At 168 M instructions/s that was 64, 57, 90 and 7 frames/s when only
-//! the visible surfaces are recomputed, against 39, 43, 63 and 4 for the
-//! z-buffer, with 512 KiB less memory (the whole 3D layer of `bars` takes
-//! about 54 KiB). The two modes differ only where planes intersect: on
-//! `tilted`, 246 intersecting spans took 709 subdivisions by bisection
-//! and 246 at the crossing point; on `dense`, 951 took 2 028 and 974. The
-//! crossing point is the default.
-//!
-//! `cargo run --release -p host-tests --example visible_modes` measures
-//! the same scenes on the host (time, error, and the z-buffer), and writes
-//! them as display lists with `-- --write-lists DIR`.
+//! Both modes give **0 mismatched pixels** against the exact reference
+//! (`testkit::reference3d`) on every scene the tests and the benchmark
+//! draw. The cost, on the host and on the Cortex-M4, and its history are
+//! in `docs/performance.md` (the 3D scenes, the depth-complexity sweep,
+//! P3 against P4, the on-target section and "History"), measured by one
+//! command each; `cargo run --release -p host-tests --example
+//! visible_modes` measures the four 512 × 256 scenes on the host and
+//! writes them as display lists with `-- --write-lists DIR`.
 //!
 //! [`Face::key`]: crate::visible::store::Face::key
 
