@@ -98,7 +98,7 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub use crate::scene::list::{front_facing, DEFAULT_COLOR};
 
-mod bands;
+pub mod bands;
 pub use bands::{ListBands, ListBandsError, PrepareError};
 
 /// Matrices the transform stack of a list's 3D scene saves (`push`

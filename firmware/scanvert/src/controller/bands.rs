@@ -5,7 +5,7 @@
 //! checked, its 3D layer built (as [`Controller::render`] builds it, with
 //! the same interpreter into the same memory), and every `poly` and `line`
 //! after the last `clear` entered into an
-//! [`EdgeTable`](crate::raster::table::EdgeTable). [`ListBands::draw`]
+//! [`EdgeTable`]. [`ListBands::draw`]
 //! then draws the bands top to bottom, each in the full-frame path's
 //! order: the background (the last `clear`'s colour, or black), the 2D
 //! polygons and lines in painter's order, the 3D layer's rows over them with its

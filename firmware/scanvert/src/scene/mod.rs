@@ -98,7 +98,7 @@
 //! # Ok::<(), SceneError>(())
 //! ```
 
-mod bands;
+pub mod bands;
 pub mod label;
 pub mod list;
 pub mod storage;
