@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+//!                  [--race MHZ [--fifo K]]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
@@ -34,6 +35,7 @@ use std::path::{Path, PathBuf};
 const USAGE: &str = "\
 usage:
   scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+                  [--race MHZ [--fifo K]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
@@ -52,6 +54,7 @@ Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 
 const HELP_RENDER: &str = "\
 usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+                       [--race MHZ [--fifo K]]
 
 Renders SCENE, a display list in text or binary form, through the simulated display
 hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
@@ -78,6 +81,17 @@ options:
   --stats              print what the graphic controller did: commands, polygons,
                        spans, pixels, clears; for 3D scenes also poly3s, faces
                        (culled, clipped away), labels, trapezoids and runs
+  --race MHZ           race the beam with no frame RAM: the refresh controller reads
+                       each line from a ring of run-length rows that the graphic
+                       controller, its CPU at MHZ megahertz (e.g. 168 or 12.5), draws
+                       one row at a time just before the beam needs it; each row's
+                       time comes from a cost model of its work fitted to the
+                       instructions counted on a Cortex-M4. A line whose row is not
+                       ready when the beam reaches it is a deadline miss, shown pure
+                       red (#ff0000). Prints `deadline misses: M of N lines` and
+                       exits 0 whether or not lines were missed
+  --fifo K             with --race: the ring's rows, 1 to 65535 (default: 2); the
+                       graphic controller runs at most K rows ahead of the beam
   --help, -h           this help";
 
 const HELP_ASM: &str = "\
@@ -284,6 +298,8 @@ struct Args {
     frames: Option<usize>,
     no_speed: bool,
     help: bool,
+    race: Option<crate::timing::Clock>,
+    fifo: Option<u16>,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -295,6 +311,8 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         frames: None,
         no_speed: false,
         help: false,
+        race: None,
+        fifo: None,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -318,6 +336,18 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 a.timing = Some(v.clone());
             }
             "--stats" => a.stats = true,
+            "--race" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                a.race = Some(crate::race::parse_mhz(v).ok_or_else(|| {
+                    usage("--race needs the CPU clock in MHz, a number above 0 (e.g. 168 or 12.5)")
+                })?);
+            }
+            "--fifo" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                let k = v.parse::<u16>().ok().filter(|&k| k >= 1);
+                a.fifo =
+                    Some(k.ok_or_else(|| usage("--fifo needs a count of rows from 1 to 65535"))?);
+            }
             "--help" | "-h" => a.help = true,
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(usage(format_args!("unknown option {s}")))
@@ -407,6 +437,12 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             let list = scene.list();
             let mode = a.timing.as_deref().unwrap_or("auto");
             let timing = timing_for(mode, list.width(), list.height())?;
+            if a.fifo.is_some() && a.race.is_none() {
+                return Err(usage("render: --fifo goes with --race"));
+            }
+            if let Some(cpu) = a.race {
+                return crate::race::render(&scene, &timing, cpu, a.fifo, &out, warn);
+            }
             let mut r = render_scene(&scene)?;
             // The image is the mode's visible area, read from the RAM's
             // top-left corner (see `refresh`): a smaller area crops.
