@@ -8,8 +8,11 @@
 //! and writes nothing; `-- --only 3D` times the 3D scenes alone, and
 //! `-- --only 3D:170` those of 170 faces; `-- --profile-w1 MODE PASSES`
 //! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
-//! alone, for callgrind.
+//! alone, for callgrind. `-- --only bands` times band rendering
+//! against the full frame and writes only `docs/performance.md`'s section
+//! on bands (which the full run keeps).
 
+mod bands;
 mod contenders;
 mod heap;
 mod numbers;
@@ -212,12 +215,25 @@ fn main() -> std::io::Result<()> {
         visible3d::profile(&args[2], args[3].parse().unwrap_or(25));
         return Ok(());
     }
+    if args.len() == 4 && args[1] == "--profile-bands" {
+        bands::profile(
+            args[2].parse().unwrap_or(16),
+            args[3].parse().unwrap_or(100),
+        );
+        return Ok(());
+    }
     if args.len() == 4 && args[1] == "--profile-w1" {
         profile_w1(&args[2], args[3].parse().unwrap_or(100));
         return Ok(());
     }
     // `--only W2`: time one workload, print it, write nothing.
     let only = (args.len() == 3 && args[1] == "--only").then(|| args[2].clone());
+    if only.as_deref() == Some("bands") {
+        eprintln!("bands against the full frame (ms per frame, ratios):");
+        let machine = format!("load average {} before the run", load_average());
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
+        return bands::write_section(&path, &machine);
+    }
     let start = Instant::now();
     let load_before = load_average();
     let mut rows = Vec::new();

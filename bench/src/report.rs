@@ -39,7 +39,7 @@ pub struct Run {
 
 /// Byte offset of the first line of `text` that is `marker` alone
 /// (surrounding spaces allowed), at or after `from`.
-fn marker_line(text: &str, marker: &str, from: usize) -> Option<usize> {
+pub fn marker_line(text: &str, marker: &str, from: usize) -> Option<usize> {
     let mut at = 0;
     for line in text.split_inclusive('\n') {
         if at >= from && line.trim() == marker {
@@ -518,6 +518,7 @@ pub fn markdown(run: &Run, old: &str) -> String {
         );
     }
     s.push_str(crate::report::NOTES);
+    s.push_str(&crate::bands::kept_section(old));
     let _ = writeln!(s, "\n## On target\n\n{}", on_target_section(old));
     s
 }

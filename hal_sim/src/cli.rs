@@ -1,7 +1,7 @@
 //! The `scanvert` command-line program.
 //!
 //! ```text
-//! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+//! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
 //!                  [--race MHZ [--fifo K]]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
@@ -34,7 +34,7 @@ use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
 usage:
-  scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
+  scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
                   [--race MHZ [--fifo K]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
@@ -45,8 +45,9 @@ usage:
 SCENE is a display list in text form or binary form (told apart by its magic number),
 at most 16 MiB. render draws it through the simulated display hardware into a PNG;
 --timing picks the video timing of the simulated monitor, whose visible area is the
-image (auto, the default: the frame's own size). asm and disasm convert between the
-two forms. demo animates 3D bars over a map with labels through the simulated display
+image (auto, the default: the frame's own size); --band-rows N renders through the
+library's band path, N >= 1 rows at a time (the image is the same, pixel for pixel).
+asm and disasm convert between the two forms. demo animates 3D bars over a map with labels through the simulated display
 (double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and prints the
 segments regenerated, trapezoids per frame and frames/s.
 `scanvert help COMMAND` or `scanvert COMMAND --help` explains a command's options.
@@ -54,7 +55,7 @@ Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 
 const HELP_RENDER: &str = "\
 usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
-                       [--race MHZ [--fifo K]]
+                      [--band-rows N] [--race MHZ [--fifo K]]
 
 Renders SCENE, a display list in text or binary form, through the simulated display
 hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
@@ -78,6 +79,10 @@ options:
                        Where the visible area is smaller than the frame, the image
                        is cropped to the frame's top-left part, and a warning says
                        so; where it is larger, the rest of the image is black.
+  --band-rows N        render through the library's band path, N rows at a time (N at
+                       least 1; more rows than the frame is one band), with no whole
+                       frame in the library: each band is shipped into the simulated
+                       RAM. The image is the same, pixel for pixel
   --stats              print what the graphic controller did: commands, polygons,
                        spans, pixels, clears; for 3D scenes also poly3s, faces
                        (culled, clipped away), labels, trapezoids and runs
@@ -290,6 +295,62 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
     Ok(Rendered { ram, stats })
 }
 
+/// Renders `scene` as [`render_scene`] does, but through the library's
+/// band path, `rows` rows at a time: the controller fills one band buffer
+/// of `rows × width` pixels at a time and each band is shipped into a
+/// fresh (black) dual-port RAM, row by row as spans of equal colour. The
+/// memory is [`ListMemory::for_bands`]: the list's, with an edge table for
+/// its 2D commands after the last `clear`.
+pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError> {
+    use scanvert::controller::PrepareError;
+    use scanvert::pixelcolor::{Rgb565, RgbColor};
+    use scanvert::port::band::{BandTarget, BandsError};
+    use scanvert::port::{Span, SpanTarget};
+    let list = scene.list();
+    let mut memory = ListMemory::for_bands(&list).map_err(|e| scene.render_error(e))?;
+    /// Ships each band into the RAM's write port.
+    struct Ship<'r>(&'r mut DualPortRam);
+    impl BandTarget for Ship<'_> {
+        type Color = Rgb565;
+        type Error = core::convert::Infallible;
+        fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), Self::Error> {
+            let w = self.0.width() as usize;
+            let mut port = self.0.write_port();
+            for (r, row) in px.chunks_exact(w).take(rows as usize).enumerate() {
+                let mut x0 = 0;
+                while x0 < w {
+                    let c = row[x0];
+                    let x1 = x0 + row[x0..].iter().take_while(|&&p| p == c).count();
+                    port.fill_span(
+                        Span {
+                            y: y + r as u16,
+                            x0: x0 as u16,
+                            x1: x1 as u16,
+                        },
+                        c,
+                    )?;
+                    x0 = x1;
+                }
+            }
+            Ok(())
+        }
+    }
+    let mut ram = DualPortRam::new(list.width(), list.height());
+    let mut band = vec![Rgb565::BLACK; rows.min(list.height()) as usize * list.width() as usize];
+    let (mut controller, table) = memory.band_parts();
+    let stats = controller
+        .render_bands(&list, table, rows, &mut band, &mut Ship(&mut ram))
+        .map_err(|e| match e {
+            BandsError::Render(PrepareError::Render(e)) => scene.render_error(e),
+            BandsError::Render(e) => input(
+                &scene.path,
+                format_args!("{}: {e}", scene.locate(e.offset())),
+            ),
+            BandsError::Band(e) => usage(e),
+            BandsError::Ship { error, .. } => match error {},
+        })?;
+    Ok(Rendered { ram, stats })
+}
 struct Args {
     positional: Vec<String>,
     out: Option<PathBuf>,
@@ -298,6 +359,7 @@ struct Args {
     frames: Option<usize>,
     no_speed: bool,
     help: bool,
+    band_rows: Option<u16>,
     race: Option<crate::timing::Clock>,
     fifo: Option<u16>,
 }
@@ -311,6 +373,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         frames: None,
         no_speed: false,
         help: false,
+        band_rows: None,
         race: None,
         fifo: None,
     };
@@ -349,6 +412,16 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                     Some(k.ok_or_else(|| usage("--fifo needs a count of rows from 1 to 65535"))?);
             }
             "--help" | "-h" => a.help = true,
+            "--band-rows" => {
+                // Any count ≥ 1; more rows than the frame has is one band.
+                let n = it
+                    .next()
+                    .map(|v| v.strip_prefix('+').unwrap_or(v))
+                    .filter(|d| !d.is_empty() && d.bytes().all(|b| b.is_ascii_digit()))
+                    .filter(|d| d.bytes().any(|b| b != b'0'))
+                    .ok_or_else(|| usage("--band-rows needs a number of rows, at least 1"))?;
+                a.band_rows = Some(n.parse::<u16>().unwrap_or(u16::MAX));
+            }
             s if s.starts_with('-') && s.len() > 1 => {
                 return Err(usage(format_args!("unknown option {s}")))
             }
@@ -443,7 +516,10 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             if let Some(cpu) = a.race {
                 return crate::race::render(&scene, &timing, cpu, a.fifo, &out, warn);
             }
-            let mut r = render_scene(&scene)?;
+            let mut r = match a.band_rows {
+                Some(n) => render_scene_bands(&scene, n)?,
+                None => render_scene(&scene)?,
+            };
             // The image is the mode's visible area, read from the RAM's
             // top-left corner (see `refresh`): a smaller area crops.
             let (tw, th) = (timing.width(), timing.height());

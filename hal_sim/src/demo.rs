@@ -501,3 +501,50 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
     }
     Ok(s)
 }
+
+/// The demo's scene at `step`, built from scratch, handed to `f` with the
+/// demo's background: what the band tests and benchmarks draw, in the
+/// scene's workspace or in workspaces of their own.
+pub fn with_scene<R>(
+    step: Step,
+    f: impl FnOnce(&mut Scene<'_, DEPTH, N>, Rgb565) -> R,
+) -> Result<R, CliError> {
+    let mut mem = Memory::new();
+    let mut scene = mem.scene();
+    advance(&mut scene, None, step)?;
+    Ok(f(&mut scene, Rgb565::from(BACKGROUND)))
+}
+
+/// The demo's `frames` steps on one scene: each step's changes applied
+/// (the camera set, the bars' segment invalidated) and the stale segments
+/// rebuilt by `update(scene, procedures)` (`Scene::update` or a variant
+/// of it), then `frame(scene, step)`. For the band tests and benchmarks.
+pub fn drive(
+    frames: usize,
+    mut update: impl FnMut(
+        &mut Scene<'_, DEPTH, N>,
+        &mut [&mut dyn Procedure<DEPTH, N>],
+    ) -> Result<Update, scanvert::scene::UpdateError>,
+    mut frame: impl FnMut(&mut Scene<'_, DEPTH, N>, Step, Update, Rgb565),
+) -> Result<(), CliError> {
+    let fail = |e: &dyn std::fmt::Display| crate::error::input(Path::new("demo"), e);
+    let mut mem = Memory::new();
+    let mut scene = mem.scene();
+    let mut last: Option<Step> = None;
+    for step in steps(frames) {
+        if last.map(|l| l.orbit) != Some(step.orbit) {
+            scene.set_view(&view(step.orbit)).map_err(|e| fail(&e))?;
+        }
+        if last.map(|l| l.threshold) != Some(step.threshold) {
+            scene.invalidate(1).map_err(|e| fail(&e))?;
+        }
+        let mut g = ground;
+        let mut b = |s: &mut DemoBuilder<'_, '_>| bars(s, step.threshold);
+        let mut n = names;
+        let procs: &mut [&mut dyn Procedure<DEPTH, N>] = &mut [&mut g, &mut b, &mut n];
+        let u = update(&mut scene, procs).map_err(|e| fail(&e))?;
+        frame(&mut scene, step, u, Rgb565::from(BACKGROUND));
+        last = Some(step);
+    }
+    Ok(())
+}

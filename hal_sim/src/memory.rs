@@ -5,6 +5,7 @@ use scanvert::controller::{edges_3d, needs, Controller, Needs, RenderError};
 use scanvert::display_list::DisplayList;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
+use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
 use scanvert::scene::label::Label;
 use scanvert::scene::SceneMemory;
 use scanvert::visible::rle::Run;
@@ -29,6 +30,9 @@ pub struct ListMemory {
     runs: Vec<Run>,
     labels: Vec<Label>,
     text: Vec<u8>,
+    table_polygons: Vec<TablePolygon>,
+    table_index: Vec<u32>,
+    table_edges: Vec<Edge>,
 }
 
 impl ListMemory {
@@ -53,7 +57,34 @@ impl ListMemory {
             runs: vec![Run::EMPTY; need.runs],
             labels: vec![Label::EMPTY; need.labels],
             text: vec![0; need.text],
+            table_polygons: Vec::new(),
+            table_index: Vec::new(),
+            table_edges: Vec::new(),
         })
+    }
+
+    /// [`for_list`](Self::for_list) with an edge table for the band path
+    /// ([`Controller::bands`]): as [`needs_table`] counts it, for the 2D
+    /// commands after the last `clear`.
+    pub fn for_bands(
+        list: &DisplayList<'_>,
+    ) -> Result<ListMemory, RenderError<core::convert::Infallible>> {
+        let mut m = Self::for_list(list)?;
+        let t = needs_table(list);
+        m.table_polygons = vec![TablePolygon::EMPTY; t.polygons];
+        m.table_index = vec![0; 2 * t.polygons];
+        m.table_edges = vec![Edge::EMPTY; t.edges];
+        Ok(m)
+    }
+
+    /// A controller over this memory, as [`controller`](Self::controller),
+    /// and the edge table's memory (empty unless made by
+    /// [`for_bands`](Self::for_bands)).
+    pub fn band_parts(&mut self) -> (Controller<'_>, TableMemory<'_>) {
+        let any = self.need.any();
+        let (edges, three, table) = self.parts();
+        let c = Controller::new(Rasterizer::new(edges));
+        (if any { c.with_3d(three) } else { c }, table)
     }
 
     /// What the list needs.
@@ -70,7 +101,7 @@ impl ListMemory {
     /// has one.
     pub fn controller(&mut self) -> Controller<'_> {
         let any = self.need.any();
-        let (edges, three) = self.parts();
+        let (edges, three, _) = self.parts();
         let c = Controller::new(Rasterizer::new(edges));
         if any {
             c.with_3d(three)
@@ -79,8 +110,9 @@ impl ListMemory {
         }
     }
 
-    /// The rasteriser's edges and the 3D layer's memory.
-    fn parts(&mut self) -> (&mut [Edge], SceneMemory<'_>) {
+    /// The rasteriser's edges, the 3D layer's memory and the edge
+    /// table's.
+    fn parts(&mut self) -> (&mut [Edge], SceneMemory<'_>, TableMemory<'_>) {
         let three = SceneMemory {
             store: StoreMemory {
                 trapezoids: &mut self.trapezoids,
@@ -95,6 +127,11 @@ impl ListMemory {
             labels: &mut self.labels,
             text: &mut self.text,
         };
-        (&mut self.edges, three)
+        let table = TableMemory {
+            polygons: &mut self.table_polygons,
+            index: &mut self.table_index,
+            edges: &mut self.table_edges,
+        };
+        (&mut self.edges, three, table)
     }
 }

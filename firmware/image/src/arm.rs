@@ -94,3 +94,18 @@ pub fn frame_memory() -> Option<&'static mut [crate::Cell; crate::CELLS]> {
 pub fn memory_3d() -> Option<&'static mut crate::Memory3d> {
     cortex_m::singleton!(: crate::Memory3d = crate::EMPTY_3D)
 }
+
+/// The band path's edge table and band buffer, in `.bss`, handed out
+/// once; in parts, so that no more than one is made on the stack at a
+/// time.
+#[cfg(feature = "bands")]
+pub fn table_memory() -> Option<crate::bands::Table> {
+    use crate::bands::{BAND_PIXELS, TABLE_EDGES, TABLE_POLYGONS};
+    use scanvert::raster::{edge::Edge, table::TablePolygon};
+    Some(crate::bands::Table {
+        polygons: cortex_m::singleton!(: [TablePolygon; TABLE_POLYGONS] = [TablePolygon::EMPTY; TABLE_POLYGONS])?,
+        index: cortex_m::singleton!(: [u32; 2 * TABLE_POLYGONS] = [0; 2 * TABLE_POLYGONS])?,
+        edges: cortex_m::singleton!(: [Edge; TABLE_EDGES] = [Edge::EMPTY; TABLE_EDGES])?,
+        band: cortex_m::singleton!(: [crate::Pixel; BAND_PIXELS] = [crate::BLACK; BAND_PIXELS])?,
+    })
+}

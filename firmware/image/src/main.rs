@@ -31,11 +31,15 @@
 
 #[cfg(all(feature = "defmt", not(target_arch = "arm")))]
 compile_error!("the `defmt` feature of the image is for Cortex-M only");
+#[cfg(all(feature = "bands", feature = "discard"))]
+compile_error!("the `bands` feature of the image checks the bands' pixels: not with `discard`");
 
 #[cfg_attr(target_arch = "arm", path = "arm.rs")]
 #[cfg_attr(target_arch = "riscv32", path = "riscv.rs")]
 mod platform;
 
+#[cfg(feature = "bands")]
+mod bands;
 mod log;
 mod scenes;
 
@@ -400,6 +404,17 @@ pub fn run() -> bool {
             matched += 1;
         } else {
             ok = false;
+        }
+    }
+    // The same lists again, band by band, checked against the same sums.
+    #[cfg(feature = "bands")]
+    {
+        let Some(mut table) = platform::table_memory() else {
+            log::fault("the edge table is taken");
+            return false;
+        };
+        for scene in scenes::SCENES {
+            ok &= bands::measure(scene, &mut edges, mem, &mut table, &counter);
         }
     }
     log::summary(matched, scenes::SCENES.len(), ok);

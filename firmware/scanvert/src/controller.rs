@@ -98,6 +98,9 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub use crate::scene::list::{front_facing, DEFAULT_COLOR};
 
+mod bands;
+pub use bands::{ListBands, ListBandsError, PrepareError};
+
 /// Matrices the transform stack of a list's 3D scene saves (`push`
 /// without `pop`).
 pub const LIST_STACK: usize = 16;
@@ -699,21 +702,7 @@ impl<'e> Controller<'e> {
                 let mut scene =
                     build_layer(mem.reborrow(), list, (w, h), first, &mut stats).map_err(widen)?;
                 hook.stage(Stage::Cut);
-                scene.check().map_err(|e| {
-                    widen(match e {
-                        VisibleError::Active { capacity } => RenderError::Capacity3d {
-                            offset: first,
-                            resource: Resource::Active,
-                            capacity,
-                        },
-                        VisibleError::Runs { capacity } => RenderError::Capacity3d {
-                            offset: first,
-                            resource: Resource::Runs,
-                            capacity,
-                        },
-                        VisibleError::Sink(e) => match e {},
-                    })
-                })?;
+                scene.check().map_err(|e| widen(visible_error(first, e)))?;
                 hook.stage(Stage::Checked);
                 Some((scene, first))
             }
@@ -763,6 +752,27 @@ impl<'e> Controller<'e> {
             draw_layer(scene, first, *resolve, target, &mut stats, hook)?;
         }
         Ok(stats)
+    }
+}
+
+/// The workspace's check of the layer whose first command is at `first`,
+/// as a render error.
+fn visible_error(
+    first: usize,
+    e: VisibleError<core::convert::Infallible>,
+) -> RenderError<core::convert::Infallible> {
+    match e {
+        VisibleError::Active { capacity } => RenderError::Capacity3d {
+            offset: first,
+            resource: Resource::Active,
+            capacity,
+        },
+        VisibleError::Runs { capacity } => RenderError::Capacity3d {
+            offset: first,
+            resource: Resource::Runs,
+            capacity,
+        },
+        VisibleError::Sink(e) => match e {},
     }
 }
 

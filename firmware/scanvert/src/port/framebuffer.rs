@@ -85,7 +85,7 @@ impl<'a, C: PixelColor> FrameBuffer<'a, C> {
 /// shorter ones still use it. `docs/performance.md` has the measurements
 /// (about +40 % on 30-pixel spans, nothing lost on long ones).
 #[inline(always)]
-fn fill_run<C: Copy>(run: &mut [C], color: C) {
+pub(crate) fn fill_run<C: Copy>(run: &mut [C], color: C) {
     let n = run.len();
     if (8..64).contains(&n) {
         let splat = [color; 8];

@@ -7,6 +7,7 @@
 //! time is [`PackedFrameBuffer`], and the simulator's
 //! dual-port RAM is another.
 
+pub mod band;
 pub mod checksum;
 pub mod draw_target;
 pub mod framebuffer;

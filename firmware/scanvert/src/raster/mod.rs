@@ -11,6 +11,7 @@ pub mod dda;
 pub mod edge;
 pub mod line;
 pub mod scan;
+pub mod table;
 
 pub use clip::{ClipRect, ClipWindow};
 pub use edge::{Edge, Stepper};

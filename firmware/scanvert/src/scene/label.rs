@@ -402,6 +402,61 @@ impl<T: SpanTarget + ?Sized> DrawTarget for Spans<'_, T> {
     }
 }
 
+impl LabelStore<'_> {
+    /// Draws the labels that reach rows `rows.0..rows.1` as
+    /// [`draw`](Self::draw) does, for a band of those rows: the others
+    /// cost one test each. Labels wholly off the frame count as
+    /// `off_frame`; those on it that miss the rows are not counted.
+    pub fn draw_rows<T>(
+        &self,
+        font: &MonoFont<'_>,
+        rows: (i32, i32),
+        target: &mut T,
+    ) -> Result<LabelCounts, T::Error>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        let mut counts = LabelCounts::default();
+        let (w, h) = target.size();
+        let pitch = (font.character_size.width + font.character_spacing) as i32;
+        let (cw, ch) = (
+            font.character_size.width as i32,
+            font.character_size.height as i32,
+        );
+        let (y0, y1) = (rows.0.max(0), rows.1.min(h as i32));
+        for (l, text) in self.iter() {
+            // As in `draw`: every sum is far inside i32.
+            let right = l.x + (text.len() as i32 - 1) * pitch + cw;
+            let top = l.y - ch;
+            if right <= 0 || l.x >= w as i32 || l.y <= 0 || top >= h as i32 {
+                counts.off_frame += 1;
+                continue;
+            }
+            if l.y <= y0 || top >= y1 {
+                continue;
+            }
+            let mut adapter = Spans {
+                target: &mut *target,
+                size: (w, h),
+                run: None,
+                written: Counts::default(),
+                error: None,
+            };
+            let style = MonoTextStyle::new(font, T::Color::from_rgb888(l.color));
+            let at = Point::new(l.x, l.y - 1);
+            let _ = Text::with_baseline(text, at, style, Baseline::Bottom).draw(&mut adapter);
+            adapter.flush();
+            counts.written += adapter.written;
+            if let Some(e) = adapter.error {
+                return Err(e);
+            }
+            counts.drawn += 1;
+        }
+        Ok(counts)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

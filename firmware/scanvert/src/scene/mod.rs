@@ -98,9 +98,12 @@
 //! # Ok::<(), SceneError>(())
 //! ```
 
+mod bands;
 pub mod label;
 pub mod list;
 pub mod storage;
+
+pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 pub use list::{list_pipeline, Executed, ListState};

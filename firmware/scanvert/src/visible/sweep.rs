@@ -513,80 +513,242 @@ fn resolve_into<O: RowOut>(
     mode: Resolve,
     out: O,
 ) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
-    let width = store.width() as i32;
-    let cap = active.len().min(cover.len()).min(NONE as usize);
-    let act = &mut active[..cap];
-    let cover = &mut cover[..cap];
-    for (i, a) in act.iter_mut().enumerate() {
-        a.free = i as u16;
+    let mut s = Sweep::start(active, cover, mode);
+    let out = s.rows(active, cover, store, store.height(), out)?;
+    Ok((s.stats, out))
+}
+
+/// A frame's resolution under way, top to bottom: the rows done so far
+/// and where the active list stands. It holds no memory of its own; the
+/// workspace it started with and the store are passed to each call, so
+/// that the store can be shared (read only) by several sweeps, each with
+/// its own workspace, each drawing some bands and skipping the others.
+///
+/// [`Sweep::draw`] resolves the next rows into a port; [`Sweep::skip`]
+/// steps the active list over rows without resolving them (two Bresenham
+/// steps and an add per active trapezoid and row, no sort, no sweep).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sweep {
+    /// The next row.
+    y: u16,
+    /// `act[..k].hot.slot`: the live trapezoids.
+    k: usize,
+    /// `act[..nf].free`: the free slots.
+    nf: usize,
+    /// The workspace's capacity when the sweep started.
+    cap: usize,
+    mode: Resolve,
+    stats: VisibleStats,
+}
+
+impl Sweep {
+    /// A sweep at row 0 with `workspace`, resolving intersecting spans by
+    /// `mode`. The same workspace and the same store, unchanged, must be
+    /// passed to every call after (a workspace of another capacity is
+    /// refused; another store gives another picture, never a panic).
+    pub fn new(workspace: &mut Workspace<'_>, mode: Resolve) -> Sweep {
+        Sweep::start(workspace.active, workspace.cover, mode)
     }
-    let mut cx = Ctx {
-        store,
-        out,
-        ink: Run::BACKGROUND,
-        len: 0,
-        color: BACKGROUND,
-        mode,
-        y: 0,
-        stats: VisibleStats::default(),
-    };
-    // act[..k].hot: the live trapezoids, sorted by l as of the last
-    // row; act[..nf].free: the free slots.
-    let (mut k, mut nf) = (0usize, cap);
-    for y in 0..store.height() {
-        let yi = y as i32;
-        cx.y = yi;
-        // Step the live trapezoids to this row, dropping those that
-        // ended, and reload their pixels (in place, keeping the order).
-        let mut w = 0;
-        for p in 0..k {
-            let slot = act[p].hot.slot;
-            let e = &mut act[slot as usize].entry;
-            if e.left.end() <= yi {
-                act[nf].free = slot;
-                nf += 1;
-                continue;
-            }
-            e.left.step();
-            e.right.step();
-            e.z = e.z.wrapping_add(e.zy);
-            let h = e.hot(slot);
-            act[w].hot = h;
-            w += 1;
+
+    fn start(active: &mut [Active], cover: &[Cover], mode: Resolve) -> Sweep {
+        let cap = active.len().min(cover.len()).min(NONE as usize);
+        for (i, a) in active[..cap].iter_mut().enumerate() {
+            a.free = i as u16;
         }
-        k = w;
-        // Enter the trapezoids whose top is this row.
-        let mut t = store.row_head(y as usize);
-        while let Some(tr) = store.trapezoid(t) {
-            if nf == 0 {
-                return Err(VisibleError::Active { capacity: cap });
-            }
-            nf -= 1;
-            let slot = act[nf].free;
-            let e = &mut act[slot as usize].entry;
-            *e = Entry::from(tr);
-            let h = e.hot(slot);
-            act[k].hot = h;
-            k += 1;
-            cx.stats.trapezoids += 1;
-            t = tr.next_row;
+        Sweep {
+            y: 0,
+            k: 0,
+            nf: cap,
+            cap,
+            mode,
+            stats: VisibleStats::default(),
         }
-        cx.stats.max_active = cx.stats.max_active.max(k as u32);
-        cx.out.start(y);
-        (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
-        if k == 0 {
-            cx.len = width;
-            cx.stats.empty += 1;
-        } else {
-            let live = &mut act[..k];
-            sort(live);
-            sweep(live, cover, width, &mut cx);
-        }
-        cx.flush();
-        cx.stats.rows += 1;
-        cx.stats.runs += cx.out.finish().map_err(VisibleError::Sink)?;
     }
-    Ok((cx.stats, cx.out))
+
+    /// The next row to draw or skip.
+    pub fn next_row(&self) -> u16 {
+        self.y
+    }
+
+    /// What the rows resolved so far did.
+    pub fn stats(&self) -> VisibleStats {
+        self.stats
+    }
+
+    /// Resolves the next `rows` rows of `store` (cut at its height) and
+    /// writes them into `target` as [`draw`] does: faces in their
+    /// colours, the background filled with `background` or left as it is.
+    pub fn draw<T>(
+        &mut self,
+        store: &TrapezoidStore<'_>,
+        workspace: &mut Workspace<'_>,
+        rows: u16,
+        target: &mut T,
+        background: Option<T::Color>,
+    ) -> Result<Counts, VisibleError<T::Error>>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        self.check(workspace)?;
+        let (tw, th) = target.size();
+        let out = ToTarget {
+            target,
+            background,
+            size: (tw as u32, th as u32),
+            y: 0,
+            x: 0,
+            runs: 0,
+            counts: Counts::default(),
+            error: None,
+        };
+        let out = self.rows(workspace.active, workspace.cover, store, rows, out)?;
+        Ok(out.counts)
+    }
+
+    /// Steps over the next `rows` rows of `store` (cut at its height)
+    /// without resolving them.
+    pub fn skip(
+        &mut self,
+        store: &TrapezoidStore<'_>,
+        workspace: &mut Workspace<'_>,
+        rows: u16,
+    ) -> Result<(), VisibleError<core::convert::Infallible>> {
+        self.check(workspace)?;
+        let act = &mut workspace.active[..self.cap];
+        let end = self.y.saturating_add(rows).min(store.height());
+        let (mut k, mut nf) = (self.k, self.nf);
+        for y in self.y..end {
+            let yi = y as i32;
+            let mut w = 0;
+            for p in 0..k {
+                let slot = act[p].hot.slot;
+                let e = &mut act[slot as usize].entry;
+                if e.left.end() <= yi {
+                    act[nf].free = slot;
+                    nf += 1;
+                    continue;
+                }
+                e.left.step();
+                e.right.step();
+                e.z = e.z.wrapping_add(e.zy);
+                act[w].hot.slot = slot;
+                w += 1;
+            }
+            k = w;
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                if nf == 0 {
+                    return Err(VisibleError::Active { capacity: self.cap });
+                }
+                nf -= 1;
+                let slot = act[nf].free;
+                act[slot as usize].entry = Entry::from(tr);
+                act[k].hot.slot = slot;
+                k += 1;
+                t = tr.next_row;
+            }
+        }
+        (self.y, self.k, self.nf) = (end.max(self.y), k, nf);
+        Ok(())
+    }
+
+    /// `Err` when `workspace` is not of the capacity the sweep started
+    /// with.
+    fn check<E>(&self, workspace: &Workspace<'_>) -> Result<(), VisibleError<E>> {
+        if workspace.capacity() != self.cap {
+            return Err(VisibleError::Active {
+                capacity: workspace.capacity(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Resolves the next `rows` rows into `out`.
+    fn rows<O: RowOut>(
+        &mut self,
+        active: &mut [Active],
+        cover: &mut [Cover],
+        store: &TrapezoidStore<'_>,
+        rows: u16,
+        out: O,
+    ) -> Result<O, VisibleError<O::Error>> {
+        let width = store.width() as i32;
+        let cap = self.cap;
+        let act = &mut active[..cap];
+        let cover = &mut cover[..cap];
+        let mut cx = Ctx {
+            store,
+            out,
+            ink: Run::BACKGROUND,
+            len: 0,
+            color: BACKGROUND,
+            mode: self.mode,
+            y: 0,
+            stats: self.stats,
+        };
+        // act[..k].hot: the live trapezoids, sorted by l as of the last
+        // row; act[..nf].free: the free slots.
+        let (mut k, mut nf) = (self.k, self.nf);
+        let end = self.y.saturating_add(rows).min(store.height());
+        for y in self.y..end {
+            let yi = y as i32;
+            cx.y = yi;
+            // Step the live trapezoids to this row, dropping those that
+            // ended, and reload their pixels (in place, keeping the order).
+            let mut w = 0;
+            for p in 0..k {
+                let slot = act[p].hot.slot;
+                let e = &mut act[slot as usize].entry;
+                if e.left.end() <= yi {
+                    act[nf].free = slot;
+                    nf += 1;
+                    continue;
+                }
+                e.left.step();
+                e.right.step();
+                e.z = e.z.wrapping_add(e.zy);
+                let h = e.hot(slot);
+                act[w].hot = h;
+                w += 1;
+            }
+            k = w;
+            // Enter the trapezoids whose top is this row.
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                if nf == 0 {
+                    return Err(VisibleError::Active { capacity: cap });
+                }
+                nf -= 1;
+                let slot = act[nf].free;
+                let e = &mut act[slot as usize].entry;
+                *e = Entry::from(tr);
+                let h = e.hot(slot);
+                act[k].hot = h;
+                k += 1;
+                cx.stats.trapezoids += 1;
+                t = tr.next_row;
+            }
+            cx.stats.max_active = cx.stats.max_active.max(k as u32);
+            cx.out.start(y);
+            (cx.ink, cx.len, cx.color) = (Run::BACKGROUND, 0, BACKGROUND);
+            if k == 0 {
+                cx.len = width;
+                cx.stats.empty += 1;
+            } else {
+                let live = &mut act[..k];
+                sort(live);
+                sweep(live, cover, width, &mut cx);
+            }
+            cx.flush();
+            cx.stats.rows += 1;
+            cx.stats.runs += cx.out.finish().map_err(VisibleError::Sink)?;
+            // Saved row by row: an error leaves the sweep where it stopped.
+            (self.y, self.k, self.nf) = (y + 1, k, nf);
+        }
+        self.stats = cx.stats;
+        Ok(cx.out)
+    }
 }
 
 /// Where the resolved runs go, one row at a time.
@@ -660,7 +822,7 @@ where
         self.runs = 0;
     }
 
-    #[inline]
+    #[inline(always)]
     fn run(&mut self, len: i32, _ink: u16, color: u32) {
         self.runs += 1;
         let x0 = self.x;

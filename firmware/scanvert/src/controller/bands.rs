@@ -1,0 +1,264 @@
+//! A display list rendered band by band, with no frame buffer (see
+//! [`port::band`](crate::port::band)).
+//!
+//! [`Controller::bands`] prepares the frame's work once: the list is
+//! checked, its 3D layer built (as [`Controller::render`] builds it), and
+//! every `poly` after the last `clear` entered into an
+//! [`EdgeTable`](crate::raster::table::EdgeTable). [`ListBands::draw`]
+//! then draws the bands top to bottom, each in the full-frame path's
+//! order: the background (the last `clear`'s colour, or black), the 2D
+//! polygons in painter's order, the 3D layer's rows over them with its
+//! background skipped, then the labels cut to the band's rows. So every
+//! band is, pixel for pixel, those rows of the frame [`Controller::render`]
+//! draws into a black frame buffer. [`Controller::render_bands`] runs the
+//! whole frame through one buffer and a [`BandTarget`].
+
+use super::{build_layer, is_3d, Controller, ListScene, RenderError, RenderStats, Resource};
+use crate::color::ListColor;
+use crate::display_list::DisplayList;
+use crate::port::band::{Band, BandError, BandTarget, BandsError};
+use crate::port::SpanTarget;
+use crate::raster::table::{EdgeTable, TableError, TableMemory};
+use crate::scene::label;
+use crate::visible::{Sweep, VisibleError};
+use core::convert::Infallible;
+use core::fmt;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+
+/// Why a list's bands could not be prepared or drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum PrepareError {
+    /// What [`Controller::render`] would report.
+    Render(RenderError<Infallible>),
+    /// The edge table is too small for the list's polygons.
+    Table(TableError),
+}
+
+impl PrepareError {
+    /// Byte offset of the command at fault.
+    pub fn offset(&self) -> usize {
+        match self {
+            PrepareError::Render(e) => e.offset(),
+            PrepareError::Table(e) => e.offset(),
+        }
+    }
+}
+
+impl fmt::Display for PrepareError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PrepareError::Render(e) => write!(f, "{e}"),
+            PrepareError::Table(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// The errors of the band path of a list.
+pub type ListBandsError<E> = BandsError<PrepareError, E>;
+
+/// A display list's frame, prepared once and drawn band by band, top to
+/// bottom (see the [module](self) docs). From [`Controller::bands`].
+#[derive(Debug)]
+pub struct ListBands<'t> {
+    table: EdgeTable<'t>,
+    /// The 3D layer, its pass, and the offset of its first command.
+    layer: Option<(ListScene<'t>, Sweep, usize)>,
+    background: Rgb888,
+    size: (u16, u16),
+    next: u16,
+    stats: RenderStats,
+}
+
+impl ListBands<'_> {
+    /// Width and height of the frame.
+    pub fn size(&self) -> (u16, u16) {
+        self.size
+    }
+
+    /// The first row the next band may start at.
+    pub fn next_row(&self) -> u16 {
+        self.next
+    }
+
+    /// What has been drawn so far: the 3D layer's counts as of the last
+    /// band; `polygons` are those entered in the table (the full frame
+    /// counts every `poly`), and spans, pixels and labels are summed over
+    /// the bands (a label reaching two bands counts twice).
+    pub fn stats(&self) -> RenderStats {
+        self.stats
+    }
+
+    /// The colour of rows no command writes: the last `clear`'s, or
+    /// black.
+    pub fn background(&self) -> Rgb888 {
+        self.background
+    }
+
+    /// Draws rows `y..y + rows` (cut at the frame's last row) into
+    /// `pixels`, row by row, `width` pixels a row; returns the rows drawn.
+    /// Rows between the last band and `y` are skipped. Nothing is drawn
+    /// when the band is refused.
+    pub fn draw<C>(
+        &mut self,
+        y: u16,
+        rows: u16,
+        pixels: &mut [C],
+    ) -> Result<u16, ListBandsError<Infallible>>
+    where
+        C: ListColor,
+    {
+        let (w, h) = self.size;
+        if rows == 0 {
+            return Err(BandError::NoRows.into());
+        }
+        if y >= h {
+            return Err(BandError::Outside { y, height: h }.into());
+        }
+        if y < self.next {
+            return Err(BandError::Order { next: self.next, y }.into());
+        }
+        let mut band = Band::new(pixels, (w, h), y, rows)?;
+        // The offset of the layer's first command, as the full frame
+        // reports the layer's errors.
+        let first = self.layer.as_ref().map_or(0, |(.., first)| *first);
+        let layer_error = |e: VisibleError<Infallible>| match e {
+            VisibleError::Sink(e) => match e {},
+            // Checked when the layer was built: never.
+            VisibleError::Active { capacity } | VisibleError::Runs { capacity } => {
+                BandsError::Render(PrepareError::Render(RenderError::Capacity3d {
+                    offset: first,
+                    resource: Resource::Active,
+                    capacity,
+                }))
+            }
+        };
+        if y > self.next {
+            self.table.skip(y as i32);
+            if let Some((scene, sweep, _)) = self.layer.as_mut() {
+                let (store, _, ws) = scene.band_parts();
+                sweep.skip(store, ws, y - self.next).map_err(layer_error)?;
+            }
+        }
+        ok(band.clear(C::from_rgb888(self.background)));
+        let c = ok(self.table.draw(band.end() as i32, &mut band));
+        self.stats.spans += c.spans;
+        self.stats.pixels += c.pixels as u64;
+        if let Some((scene, sweep, _)) = self.layer.as_mut() {
+            let (store, labels, ws) = scene.band_parts();
+            let c = sweep
+                .draw(store, ws, band.rows(), &mut band, None)
+                .map_err(layer_error)?;
+            self.stats.visible = sweep.stats();
+            self.stats.spans += c.spans;
+            self.stats.pixels += c.pixels as u64;
+            let rows = (band.y() as i32, band.end() as i32);
+            let c = ok(labels.draw_rows(label::DEFAULT_FONT, rows, &mut band));
+            self.stats.spans += c.written.spans;
+            self.stats.pixels += c.written.pixels as u64;
+            self.stats.labels += c.drawn;
+        }
+        self.next = band.end();
+        Ok(band.rows())
+    }
+}
+
+impl<'e> Controller<'e> {
+    /// Prepares `list` to be drawn band by band (see the
+    /// [module](self) docs), with `table` for its 2D polygons: checks it
+    /// as [`render`](Self::render) does, builds its 3D layer, and enters
+    /// its polygons. On any error nothing is drawn.
+    pub fn bands<'t>(
+        &'t mut self,
+        list: &DisplayList<'_>,
+        table: TableMemory<'t>,
+    ) -> Result<ListBands<'t>, PrepareError> {
+        self.check(list).map_err(PrepareError::Render)?;
+        let (w, h) = (list.width(), list.height());
+        let mut stats = RenderStats::default();
+        let Controller { three, resolve, .. } = self;
+        // The 3D layer as `render` builds and checks it, through the same
+        // interpreter.
+        let first = match three {
+            Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
+            None => None,
+        };
+        let layer = match (three.as_mut(), first) {
+            (Some(mem), Some(first)) => {
+                let mut scene = build_layer(mem.reborrow(), list, (w, h), first, &mut stats)
+                    .map_err(PrepareError::Render)?;
+                scene
+                    .check()
+                    .map_err(|e| PrepareError::Render(super::visible_error(first, e)))?;
+                let sweep = Sweep::new(scene.band_parts().2, *resolve);
+                Some((scene, sweep, first))
+            }
+            _ => None,
+        };
+        let table = EdgeTable::build(table, list, (w, h)).map_err(PrepareError::Table)?;
+        stats.commands = table.commands();
+        stats.polygons = table.len() as u32;
+        stats.clears = table.clear_color().is_some() as u32;
+        Ok(ListBands {
+            background: table.clear_color().unwrap_or(Rgb888::BLACK),
+            table,
+            layer,
+            size: (w, h),
+            next: 0,
+            stats,
+        })
+    }
+
+    /// Renders `list` band by band, `rows` rows at a time, through the
+    /// caller's buffer `band` (at least `rows × width` pixels), each band
+    /// handed to `target` to ship before the next is drawn. The frame is
+    /// the list's; the pixels are those [`render`](Self::render) writes
+    /// into a black frame buffer.
+    pub fn render_bands<P>(
+        &mut self,
+        list: &DisplayList<'_>,
+        table: TableMemory<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<RenderStats, ListBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let (w, h) = (list.width(), list.height());
+        if rows == 0 {
+            return Err(BandError::NoRows.into());
+        }
+        let needed = rows.min(h) as usize * w as usize;
+        if band.len() < needed {
+            return Err(BandError::Buffer {
+                len: band.len(),
+                needed,
+            }
+            .into());
+        }
+        let mut bands = self.bands(list, table).map_err(BandsError::Render)?;
+        let mut y = 0;
+        while y < h {
+            let n = bands.draw(y, rows, band).map_err(|e| match e {
+                BandsError::Band(b) => BandsError::Band(b),
+                BandsError::Render(r) => BandsError::Render(r),
+                BandsError::Ship { error, .. } => match error {},
+            })?;
+            target
+                .ship(y, n, &band[..n as usize * w as usize])
+                .map_err(|error| BandsError::Ship { y, error })?;
+            y += n;
+        }
+        Ok(bands.stats())
+    }
+}
+
+/// The value of a result that cannot fail.
+pub(crate) fn ok<T>(r: Result<T, Infallible>) -> T {
+    match r {
+        Ok(t) => t,
+        Err(e) => match e {},
+    }
+}

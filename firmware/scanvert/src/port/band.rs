@@ -1,0 +1,288 @@
+//! Bands of rows: rendering without a frame buffer.
+//!
+//! The scan-line design finishes each row before the next, so a frame can
+//! be produced top to bottom a few rows at a time into a small buffer, each
+//! band shipped (to an SPI panel, by DMA) before the next is drawn. The
+//! caller owns one buffer of `rows × width` pixels; the library fills it
+//! with rows `y..y + rows` and hands it to a [`BandTarget`] to ship, then
+//! fills it again with the next band.
+//!
+//! # Why the library holds the buffer
+//!
+//! The band's buffer is a plain slice the caller lends for the whole frame
+//! ([`Controller::render_bands`](crate::controller::Controller::render_bands),
+//! [`Scene::draw_bands`](crate::scene::Scene::draw_bands)), and the
+//! provider only ships. A provider that lent a buffer per band would have
+//! to hand out a `&mut` slice that outlives its own call, which with no
+//! `alloc` and no `unsafe` means the provider owns the memory anyway; the
+//! one case that needs two buffers (draw one while the other is on its way
+//! by DMA) is served by calling the band API of
+//! [`ListBands`](crate::controller::ListBands) or
+//! [`SceneBands`](crate::scene::SceneBands) directly, one band at a time,
+//! with the buffer of the caller's choice each time.
+//!
+//! # Rows no command writes
+//!
+//! A band is a fresh buffer: before anything is drawn into it, every pixel
+//! of it is set to the frame's *background*. For a display list that is
+//! the colour of its last `clear`, or black when it has none (the content
+//! of a fresh frame buffer, as the simulator starts with); for a scene it
+//! is the background given to the call. So a frame rendered band by band
+//! is, pixel for pixel, the frame rendered whole into a black (or
+//! background-filled) frame buffer.
+//!
+//! # Errors
+//!
+//! A band of 0 rows, a buffer shorter than `rows × width`, a band that
+//! starts above the last one's end (bands come from one top-to-bottom
+//! pass) or below the frame are [`BandError`]s, found before anything is
+//! drawn into the band. Rows between the last band and the next are
+//! skipped: stepped through without being resolved or drawn.
+
+use crate::port::{Span, SpanTarget};
+use core::fmt;
+use embedded_graphics_core::pixelcolor::PixelColor;
+
+/// Where finished bands go: a panel's link, a DMA channel, or the rows of
+/// a larger image.
+pub trait BandTarget {
+    /// The pixel format of the band.
+    type Color: PixelColor;
+    /// What shipping can fail with.
+    type Error;
+
+    /// Ships rows `y..y + rows` of the frame: `pixels` holds them row by
+    /// row, `rows × width` pixels. The slice is the caller's band buffer;
+    /// it is filled again with the next band once this returns.
+    fn ship(&mut self, y: u16, rows: u16, pixels: &[Self::Color]) -> Result<(), Self::Error>;
+}
+
+impl<B: BandTarget + ?Sized> BandTarget for &mut B {
+    type Color = B::Color;
+    type Error = B::Error;
+    fn ship(&mut self, y: u16, rows: u16, pixels: &[Self::Color]) -> Result<(), Self::Error> {
+        (**self).ship(y, rows, pixels)
+    }
+}
+
+/// Why a band could not be drawn. Nothing is drawn into the band.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum BandError {
+    /// A band of no rows.
+    NoRows,
+    /// The buffer holds fewer than `rows × width` pixels.
+    Buffer {
+        /// Pixels the buffer holds.
+        len: usize,
+        /// Pixels the band needs.
+        needed: usize,
+    },
+    /// The band starts above the end of the last one: rows come from one
+    /// pass, top to bottom.
+    Order {
+        /// The first row the next band may start at.
+        next: u16,
+        /// The row asked for.
+        y: u16,
+    },
+    /// The band starts at or below the frame's last row.
+    Outside {
+        /// The row asked for.
+        y: u16,
+        /// The frame's height.
+        height: u16,
+    },
+}
+
+impl fmt::Display for BandError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BandError::NoRows => f.write_str("a band needs at least one row"),
+            BandError::Buffer { len, needed } => write!(
+                f,
+                "the band buffer holds {len} pixels; the band needs {needed}"
+            ),
+            BandError::Order { next, y } => write!(
+                f,
+                "band at row {y} requested after rows up to {next} were drawn: bands go top to bottom"
+            ),
+            BandError::Outside { y, height } => {
+                write!(f, "band at row {y} is outside the frame of {height} rows")
+            }
+        }
+    }
+}
+
+impl core::error::Error for BandError {}
+
+/// Why a frame could not be rendered band by band.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum BandsError<R, E> {
+    /// The band or its buffer is wrong; nothing was drawn into it.
+    Band(BandError),
+    /// The frame's work could not be prepared or resolved (as the
+    /// full-frame path reports it).
+    Render(R),
+    /// The provider failed to ship the band at row `y`.
+    Ship {
+        /// The band's first row.
+        y: u16,
+        /// The provider's error.
+        error: E,
+    },
+}
+
+impl<R: fmt::Display, E: fmt::Debug> fmt::Display for BandsError<R, E> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BandsError::Band(e) => write!(f, "{e}"),
+            BandsError::Render(e) => write!(f, "{e}"),
+            BandsError::Ship { y, error } => {
+                write!(f, "shipping the band at row {y} failed: {error:?}")
+            }
+        }
+    }
+}
+
+impl<R, E> From<BandError> for BandsError<R, E> {
+    fn from(e: BandError) -> Self {
+        BandsError::Band(e)
+    }
+}
+
+/// Rows `y0..y0 + rows` of a `width × height` frame over the caller's
+/// buffer, as a [`SpanTarget`] of the whole frame's size: spans on the
+/// band's rows are written, all others dropped. Every stage draws into it
+/// as into a frame buffer.
+///
+/// # Guarantees
+/// `rows ≥ 1`, `y0 + rows ≤ height` and the buffer holds `rows × width`
+/// pixels, checked by [`Band::new`].
+#[derive(Debug)]
+pub struct Band<'b, C> {
+    pixels: &'b mut [C],
+    width: u16,
+    height: u16,
+    y0: u16,
+    rows: u16,
+}
+
+impl<'b, C: PixelColor> Band<'b, C> {
+    /// The band of rows `y0..y0 + rows` of a `width × height` frame over
+    /// `pixels`. The band is cut at the frame's last row.
+    pub fn new(
+        pixels: &'b mut [C],
+        (width, height): (u16, u16),
+        y0: u16,
+        rows: u16,
+    ) -> Result<Self, BandError> {
+        if rows == 0 {
+            return Err(BandError::NoRows);
+        }
+        if y0 >= height {
+            return Err(BandError::Outside { y: y0, height });
+        }
+        let rows = rows.min(height - y0);
+        let needed = rows as usize * width as usize;
+        if pixels.len() < needed {
+            return Err(BandError::Buffer {
+                len: pixels.len(),
+                needed,
+            });
+        }
+        Ok(Band {
+            pixels: &mut pixels[..needed],
+            width,
+            height,
+            y0,
+            rows,
+        })
+    }
+
+    /// The band's first row.
+    pub fn y(&self) -> u16 {
+        self.y0
+    }
+
+    /// Rows in the band (after cutting at the frame's end).
+    pub fn rows(&self) -> u16 {
+        self.rows
+    }
+
+    /// One past the band's last row.
+    pub fn end(&self) -> u16 {
+        self.y0 + self.rows
+    }
+
+    /// The band's pixels, row by row.
+    pub fn pixels(&self) -> &[C] {
+        self.pixels
+    }
+}
+
+impl<C: PixelColor> SpanTarget for Band<'_, C> {
+    type Color = C;
+    type Error = core::convert::Infallible;
+
+    fn size(&self) -> (u16, u16) {
+        (self.width, self.height)
+    }
+
+    #[inline]
+    fn fill_span(&mut self, span: Span, color: C) -> Result<(), Self::Error> {
+        let Some(row) = span.y.checked_sub(self.y0).filter(|&r| r < self.rows) else {
+            return Ok(());
+        };
+        let x1 = span.x1.min(self.width);
+        if span.x0 < x1 {
+            let base = row as usize * self.width as usize;
+            if let Some(run) = self
+                .pixels
+                .get_mut(base + span.x0 as usize..base + x1 as usize)
+            {
+                crate::port::framebuffer::fill_run(run, color);
+            }
+        }
+        Ok(())
+    }
+
+    fn clear(&mut self, color: C) -> Result<(), Self::Error> {
+        self.pixels.fill(color);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_band_takes_only_its_rows() {
+        let mut px = [0u8; 12].map(|_| embedded_graphics_core::pixelcolor::BinaryColor::Off);
+        let mut b = Band::new(&mut px, (4, 10), 8, 5).unwrap();
+        assert_eq!((b.y(), b.rows(), b.end()), (8, 2, 10));
+        use embedded_graphics_core::pixelcolor::BinaryColor::On;
+        for y in 0..12 {
+            b.fill_span(Span { y, x0: 1, x1: 9 }, On).unwrap();
+        }
+        let on = b.pixels().iter().filter(|&&c| c == On).count();
+        assert_eq!(on, 6);
+        assert_eq!(
+            Band::new(&mut px, (4, 10), 0, 0).unwrap_err(),
+            BandError::NoRows
+        );
+        assert_eq!(
+            Band::new(&mut px, (4, 10), 0, 4).unwrap_err(),
+            BandError::Buffer {
+                len: 12,
+                needed: 16
+            }
+        );
+        assert_eq!(
+            Band::new(&mut px, (4, 10), 10, 1).unwrap_err(),
+            BandError::Outside { y: 10, height: 10 }
+        );
+    }
+}

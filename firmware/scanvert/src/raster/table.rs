@@ -1,0 +1,580 @@
+//! The 2D edge table: every polygon of a display list set up once and
+//! stepped down the frame band by band, for rendering without a frame
+//! buffer ([`port::band`](crate::port::band)).
+//!
+//! # One pass
+//!
+//! [`EdgeTable::build`] reads the list once. Every `poly` after the last
+//! `clear` (what comes before it is covered by it: a `clear` empties the
+//! table) is entered with its
+//! colour and the clip registers in force at its place: its edges are set
+//! up exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
+//! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
+//! first row), so it covers exactly the same pixels. The polygons are then
+//! ordered by first row (an index array; the polygons stay in list order).
+//!
+//! [`EdgeTable::draw`] draws rows `y0..y1`: the polygons whose first row
+//! has come join the live list, kept in list order; each live polygon in
+//! that order (painter's order: the band holds all its rows, so a later
+//! polygon covers an earlier one on every row) emits its spans on the
+//! band's rows and keeps its active edges, stepped to `y1`, for the next
+//! band; polygons past their last row leave. [`EdgeTable::skip`] steps
+//! the same way without emitting anything. Nothing is set up again, and
+//! the list is not read again.
+//!
+//! # Memory
+//!
+//! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (24
+//! bytes on 32-bit targets) and two `u32`s (the live list and the order by
+//! first row) per entered
+//! polygon, and an [`Edge`] (32 bytes) per edge of them; [`needs_table`]
+//! counts both for a list, as an upper bound (one edge per vertex).
+//! Running out is a [`TableError`] found by `build`, before anything is
+//! drawn.
+
+use crate::color::ListColor;
+use crate::display_list::{Command, DisplayList};
+use crate::fixed::{ceil_px, Vertex, HALF};
+use crate::port::Counts;
+use crate::port::{Span, SpanTarget};
+use crate::raster::clip::ClipRect;
+use crate::raster::edge::Edge;
+use core::fmt;
+use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// One polygon of the table. The caller provides the array, filled with
+/// [`TablePolygon::EMPTY`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TablePolygon {
+    /// Its first edge slot.
+    first: u32,
+    /// Its edges, from `first`.
+    n: u16,
+    /// `edges[..active]` are active, `edges[active..next]` finished,
+    /// `edges[next..]` wait for their first row.
+    active: u16,
+    next: u16,
+    /// The next row it works on (its first row until it starts).
+    y: i32,
+    /// The clip rectangle's columns.
+    x0: u16,
+    x1: u16,
+    color: Rgb888,
+}
+
+impl TablePolygon {
+    /// An unused entry.
+    pub const EMPTY: TablePolygon = TablePolygon {
+        first: 0,
+        n: 0,
+        active: 0,
+        next: 0,
+        y: 0,
+        x0: 0,
+        x1: 0,
+        color: Rgb888::new(0, 0, 0),
+    };
+
+    /// `true` when every edge has been used up.
+    fn done(&self) -> bool {
+        self.active == 0 && self.next == self.n
+    }
+}
+
+/// The caller's memory for an [`EdgeTable`]; [`needs_table`] sizes it.
+#[derive(Debug)]
+pub struct TableMemory<'a> {
+    /// One entry per polygon after the last `clear`.
+    pub polygons: &'a mut [TablePolygon],
+    /// The live list and the order by first row: twice as many as
+    /// `polygons`.
+    pub index: &'a mut [u32],
+    /// Every edge of those polygons.
+    pub edges: &'a mut [Edge],
+}
+
+/// What the table of a list needs, from [`needs_table`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct TableNeeds {
+    /// `poly`s after the last `clear`: polygon entries (and twice as many
+    /// index entries).
+    pub polygons: usize,
+    /// Their vertices: edge slots.
+    pub edges: usize,
+}
+
+/// Counts the table memory of `list`: the `poly`s after its last `clear`
+/// and their vertices (an upper bound of their edges).
+pub fn needs_table(list: &DisplayList<'_>) -> TableNeeds {
+    let last = last_clear(list);
+    let mut n = TableNeeds::default();
+    for (offset, cmd) in list.commands() {
+        if let Command::Poly(v) = cmd {
+            if last.is_none_or(|(c, _)| offset > c) {
+                n.polygons += 1;
+                n.edges += v.len();
+            }
+        }
+    }
+    n
+}
+
+/// The offset and colour of the last `clear` of `list`.
+pub fn last_clear(list: &DisplayList<'_>) -> Option<(usize, Rgb888)> {
+    list.commands()
+        .filter_map(|(o, c)| match c {
+            Command::Clear(c) => Some((o, c)),
+            _ => None,
+        })
+        .last()
+}
+
+/// The table ran out of memory at the `poly` at `offset`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub enum TableError {
+    /// Polygon (and index) entries.
+    Polygons {
+        /// Byte offset of the `poly` in the list.
+        offset: usize,
+        /// Entries available.
+        capacity: usize,
+    },
+    /// Edge slots.
+    Edges {
+        /// Byte offset of the `poly` in the list.
+        offset: usize,
+        /// Slots available.
+        capacity: usize,
+    },
+}
+
+impl TableError {
+    /// Byte offset of the `poly` at fault.
+    pub fn offset(&self) -> usize {
+        match *self {
+            TableError::Polygons { offset, .. } | TableError::Edges { offset, .. } => offset,
+        }
+    }
+}
+
+impl fmt::Display for TableError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TableError::Polygons { capacity, .. } => write!(
+                f,
+                "the edge table holds {capacity} polygons; the list has more"
+            ),
+            TableError::Edges { capacity, .. } => write!(
+                f,
+                "the edge table holds {capacity} edges; the list's polygons have more"
+            ),
+        }
+    }
+}
+
+/// The polygons of a display list after its last `clear`, set up once,
+/// drawn band by band. See the [module](self) docs.
+#[derive(Debug)]
+pub struct EdgeTable<'a> {
+    polygons: &'a mut [TablePolygon],
+    /// `index[..nlive]`: the live polygons, in list order;
+    /// `index[cap..cap + count]`: all of them by first row, of which the
+    /// first `entered` have entered.
+    index: &'a mut [u32],
+    edges: &'a mut [Edge],
+    cap: usize,
+    count: usize,
+    entered: usize,
+    nlive: usize,
+    /// The next row to draw or skip.
+    y: i32,
+    clear: Option<Rgb888>,
+    commands: u32,
+}
+
+impl<'a> EdgeTable<'a> {
+    /// Enters every `poly` of `list` after its last `clear`, on a frame
+    /// of `w × h` (the list's frame cut to the target's).
+    pub fn build(
+        mem: TableMemory<'a>,
+        list: &DisplayList<'_>,
+        (w, h): (u16, u16),
+    ) -> Result<Self, TableError> {
+        let TableMemory {
+            polygons,
+            index,
+            edges,
+        } = mem;
+        let cap = polygons.len().min(index.len() / 2);
+        let mut clip = ClipRect::full(w, h);
+        let mut color = crate::controller::DEFAULT_COLOR;
+        let (mut count, mut used, mut commands) = (0usize, 0usize, 0u32);
+        // One pass: a `clear` empties the table (it covers everything
+        // before it), and running out of memory counts only if no `clear`
+        // follows.
+        let mut clear = None;
+        let mut full: Option<TableError> = None;
+        for (offset, cmd) in list.commands() {
+            commands += 1;
+            match cmd {
+                Command::Clear(c) => {
+                    (count, used, full, clear) = (0, 0, None, Some(c));
+                }
+                Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
+                Command::Color(c) => color = c,
+                Command::Poly(v) if full.is_none() && !clip.is_empty() => {
+                    let room = &mut edges[used..];
+                    let Some(n) = build_edges(room, v.iter(), &clip) else {
+                        full = Some(TableError::Edges {
+                            offset,
+                            capacity: edges.len(),
+                        });
+                        continue;
+                    };
+                    if n < 2 {
+                        continue;
+                    }
+                    if count >= cap {
+                        full = Some(TableError::Polygons {
+                            offset,
+                            capacity: cap,
+                        });
+                        continue;
+                    }
+                    let e = &mut room[..n];
+                    e.sort_unstable_by_key(|e| e.top());
+                    polygons[count] = TablePolygon {
+                        first: used as u32,
+                        n: n as u16,
+                        active: 0,
+                        next: 0,
+                        y: e[0].top(),
+                        x0: clip.x0(),
+                        x1: clip.x1(),
+                        color,
+                    };
+                    count += 1;
+                    used += n;
+                }
+                _ => {}
+            }
+        }
+        if let Some(e) = full {
+            return Err(e);
+        }
+        // The order by first row: a counting sort over the rows when the
+        // live list (unused yet) can hold a counter a row, else a sort.
+        let (live, order) = index.split_at_mut(cap);
+        let order = &mut order[..count];
+        let rows = h as usize;
+        if let Some(at) = live.get_mut(..rows + 1) {
+            // First rows lie in the clip rows, inside 0..h.
+            let row = |p: &TablePolygon| (p.y.max(0) as usize).min(rows - 1);
+            at.fill(0);
+            for p in &polygons[..count] {
+                at[row(p) + 1] += 1;
+            }
+            for r in 1..=rows {
+                at[r] += at[r - 1];
+            }
+            for (k, p) in polygons[..count].iter().enumerate() {
+                let slot = &mut at[row(p)];
+                order[*slot as usize] = k as u32;
+                *slot += 1;
+            }
+        } else {
+            for (k, o) in order.iter_mut().enumerate() {
+                *o = k as u32;
+            }
+            order.sort_unstable_by_key(|&k| polygons[k as usize].y);
+        }
+        Ok(EdgeTable {
+            polygons,
+            index,
+            edges,
+            cap,
+            count,
+            entered: 0,
+            nlive: 0,
+            y: 0,
+            clear,
+            commands,
+        })
+    }
+
+    /// Polygons entered.
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// `true` when no polygon draws anything.
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// Commands in the list.
+    pub fn commands(&self) -> u32 {
+        self.commands
+    }
+
+    /// The colour of the list's last `clear`.
+    pub fn clear_color(&self) -> Option<Rgb888> {
+        self.clear
+    }
+
+    /// The next row [`draw`](Self::draw) or [`skip`](Self::skip) starts at.
+    pub fn next_row(&self) -> i32 {
+        self.y
+    }
+
+    /// Draws rows `self.next_row()..y1` of every polygon into `target`,
+    /// in painter's order, and keeps their edges for the rows after.
+    pub fn draw<T>(&mut self, y1: i32, target: &mut T) -> Result<Counts, T::Error>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        self.advance(y1, Some(target))
+    }
+
+    /// Steps every polygon to row `y1` without drawing.
+    pub fn skip(&mut self, y1: i32) {
+        // `None` of a target that cannot fail.
+        let _ = self.advance::<crate::port::band::Band<'_, Rgb888>>(y1, None);
+    }
+
+    fn advance<T>(&mut self, y1: i32, mut target: Option<&mut T>) -> Result<Counts, T::Error>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        let mut counts = Counts::default();
+        if y1 <= self.y {
+            return Ok(counts);
+        }
+        // Enter the polygons starting above y1: sorted by list order among
+        // themselves, then merged into the live list from its end.
+        let (cap, e0) = (self.cap, self.entered);
+        let mut e1 = e0;
+        while e1 < self.count && self.polygons[self.index[cap + e1] as usize].y < y1 {
+            e1 += 1;
+        }
+        if e1 > e0 {
+            let (live, order) = self.index.split_at_mut(cap);
+            let new = &mut order[e0..e1];
+            new.sort_unstable();
+            // nlive + (e1 − e0) ≤ e1 ≤ count ≤ cap.
+            let (mut i, mut j) = (self.nlive, new.len());
+            let mut w = self.nlive + new.len();
+            while j > 0 {
+                w -= 1;
+                if i > 0 && live[i - 1] > new[j - 1] {
+                    i -= 1;
+                    live[w] = live[i];
+                } else {
+                    j -= 1;
+                    live[w] = new[j];
+                }
+            }
+            self.nlive += e1 - e0;
+            self.entered = e1;
+        }
+        let mut kept = 0;
+        for q in 0..self.nlive {
+            let i = self.index[q] as usize;
+            let p = &mut self.polygons[i];
+            let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
+            let color = target.as_ref().map(|_| T::Color::from_rgb888(p.color));
+            run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
+            if !p.done() {
+                self.index[kept] = i as u32;
+                kept += 1;
+            }
+        }
+        self.nlive = kept;
+        self.y = y1;
+        Ok(counts)
+    }
+}
+
+/// Sets up the edges of the polygon through `vertices` that cross a row
+/// centre inside `clip` into `edges`, as the rasteriser does; returns
+/// their number (0 when the polygon's box misses the clip columns), or
+/// `None` when they do not fit.
+fn build_edges(
+    edges: &mut [Edge],
+    vertices: impl IntoIterator<Item = Vertex>,
+    clip: &ClipRect,
+) -> Option<usize> {
+    let rows = (clip.y0() as i32, clip.y1() as i32);
+    let mut it = vertices.into_iter();
+    let Some(first) = it.next() else {
+        return Some(0);
+    };
+    let (mut lo, mut hi) = (first.x.units(), first.x.units());
+    let mut n = 0;
+    let mut prev = first;
+    let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
+        if let Some(e) = Edge::new(a, b, rows) {
+            *edges.get_mut(*n)? = e;
+            *n += 1;
+        }
+        Some(())
+    };
+    for v in it {
+        push(prev, v, &mut n)?;
+        lo = lo.min(v.x.units());
+        hi = hi.max(v.x.units());
+        prev = v;
+    }
+    push(prev, first, &mut n)?;
+    if ceil_px(hi - HALF) <= clip.x0() as i32 || ceil_px(lo - HALF) >= clip.x1() as i32 {
+        return Some(0);
+    }
+    Some(n)
+}
+
+/// Rows `p.y..y1` of one polygon, as
+/// [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill) steps them,
+/// drawn into `target` (or only stepped without one); its state is left
+/// for row `y1`.
+#[inline]
+fn run<T: SpanTarget + ?Sized>(
+    p: &mut TablePolygon,
+    edges: &mut [Edge],
+    y1: i32,
+    color: Option<T::Color>,
+    mut target: Option<&mut T>,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    let n = edges.len();
+    let (mut active, mut next, mut y) = (p.active as usize, p.next as usize, p.y);
+    let cx = (p.x0 as i32, p.x1 as i32);
+    loop {
+        if active == 0 {
+            match edges.get(next) {
+                Some(e) => y = y.max(e.top()),
+                None => break,
+            }
+        }
+        if y >= y1 {
+            break;
+        }
+        while next < n && edges[next].top() <= y {
+            edges.swap(active, next);
+            active += 1;
+            next += 1;
+        }
+        let mut stop = edges.get(next).map_or(i32::MAX, |e| e.top()).min(y1);
+        for e in &edges[..active] {
+            stop = stop.min(e.end());
+        }
+        let live = &mut edges[..active];
+        match (target.as_deref_mut(), color) {
+            (Some(t), Some(color)) => {
+                if let [a, b] = live {
+                    let (mut a, mut b) = (*a, *b);
+                    loop {
+                        a.load_pixel();
+                        b.load_pixel();
+                        let (l, r) = if a.pixel() <= b.pixel() {
+                            (a.pixel(), b.pixel())
+                        } else {
+                            (b.pixel(), a.pixel())
+                        };
+                        emit(y, l, r, cx, color, t, counts)?;
+                        y += 1;
+                        if y >= stop {
+                            break;
+                        }
+                        a.step();
+                        b.step();
+                    }
+                    live[0] = a;
+                    live[1] = b;
+                } else {
+                    loop {
+                        for e in live.iter_mut() {
+                            e.load_pixel();
+                        }
+                        insertion_sort(live);
+                        for pair in live.chunks_exact(2) {
+                            emit(y, pair[0].pixel(), pair[1].pixel(), cx, color, t, counts)?;
+                        }
+                        y += 1;
+                        if y >= stop {
+                            break;
+                        }
+                        for e in live.iter_mut() {
+                            e.step();
+                        }
+                    }
+                }
+            }
+            _ => {
+                // Stepped only: to row stop − 1, as drawing would leave them.
+                for _ in y + 1..stop {
+                    for e in live.iter_mut() {
+                        e.step();
+                    }
+                }
+                y = stop;
+            }
+        }
+        let mut i = 0;
+        while i < active {
+            if edges[i].end() <= y {
+                active -= 1;
+                edges.swap(i, active);
+            } else {
+                edges[i].step();
+                i += 1;
+            }
+        }
+    }
+    p.active = active as u16;
+    p.next = next as u16;
+    p.y = y;
+    Ok(())
+}
+
+/// Writes the span `l..r` of row `y`, cut to the clip columns `cx`.
+#[inline(always)]
+fn emit<T: SpanTarget + ?Sized>(
+    y: i32,
+    l: i32,
+    r: i32,
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    let (x0, x1) = (l.max(cx.0), r.min(cx.1));
+    if x0 < x1 {
+        target.fill_span(
+            Span {
+                y: y as u16,
+                x0: x0 as u16,
+                x1: x1 as u16,
+            },
+            color,
+        )?;
+        counts.spans += 1;
+        counts.pixels += (x1 - x0) as u32;
+    }
+    Ok(())
+}
+
+/// Sorts by crossing pixel; linear when the order is the last row's.
+#[inline]
+fn insertion_sort(e: &mut [Edge]) {
+    for i in 1..e.len() {
+        let mut j = i;
+        while j > 0 && e[j - 1].pixel() > e[j].pixel() {
+            e.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}

@@ -1,0 +1,527 @@
+//! A scene drawn band by band, with no frame buffer (see
+//! [`port::band`](crate::port::band)).
+//!
+//! [`Scene::bands`] starts one top-to-bottom pass of the visible-surface
+//! sweep over the scene's store, in the scene's own workspace (its
+//! [`SceneMemory`](super::SceneMemory)'s active list and runs);
+//! [`SceneBands::draw`] fills a band's buffer with rows `y..y + rows`: the
+//! background, the visible faces, then the labels cut to the band. Rows
+//! between two bands are skipped (the active list stepped, nothing
+//! resolved). The scene is only read: [`Scene::bands_in`] runs a pass in
+//! another [`Workspace`], so several passes may run over one scene at
+//! once, each drawing some bands and skipping the others (two cores taking
+//! every other band).
+
+use super::{Frame, LabelStore, Scene};
+use crate::color::ListColor;
+use crate::port::band::{Band, BandError, BandTarget, BandsError};
+use crate::visible::store::TrapezoidStore;
+use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
+use core::convert::Infallible;
+use embedded_graphics::mono_font::MonoFont;
+use embedded_graphics_core::pixelcolor::RgbColor;
+
+/// The errors of the band path of a scene.
+pub type SceneBandsError<E> = BandsError<VisibleError<Infallible>, E>;
+
+/// One top-to-bottom pass over a scene, band by band. From
+/// [`Scene::bands`] or [`Scene::bands_in`].
+#[derive(Debug)]
+pub struct SceneBands<'s, 'a, 'w, C> {
+    store: &'s TrapezoidStore<'a>,
+    labels: &'s LabelStore<'a>,
+    workspace: &'s mut Workspace<'w>,
+    sweep: Sweep,
+    background: C,
+    font: &'s MonoFont<'s>,
+    next: u16,
+    frame: Frame,
+}
+
+impl<C: ListColor> SceneBands<'_, '_, '_, C> {
+    /// The first row the next band may start at.
+    pub fn next_row(&self) -> u16 {
+        self.next
+    }
+
+    /// What the bands drawn so far did: spans, pixels and labels summed
+    /// over the bands (a label reaching two bands counts twice).
+    pub fn frame(&self) -> Frame {
+        self.frame
+    }
+
+    /// Draws rows `y..y + rows` (cut at the frame's last row) into
+    /// `pixels`, row by row, the frame's width a row; returns the rows
+    /// drawn. Rows between the last band and `y` are skipped. Nothing is
+    /// drawn when the band is refused.
+    pub fn draw(
+        &mut self,
+        y: u16,
+        rows: u16,
+        pixels: &mut [C],
+    ) -> Result<u16, SceneBandsError<Infallible>> {
+        let store = self.store;
+        let (w, h) = (store.width(), store.height());
+        if rows == 0 {
+            return Err(BandError::NoRows.into());
+        }
+        if y >= h {
+            return Err(BandError::Outside { y, height: h }.into());
+        }
+        if y < self.next {
+            return Err(BandError::Order { next: self.next, y }.into());
+        }
+        let mut band = Band::new(pixels, (w, h), y, rows)?;
+        if y > self.next {
+            self.sweep
+                .skip(store, self.workspace, y - self.next)
+                .map_err(BandsError::Render)?;
+        }
+        let d = self
+            .sweep
+            .draw(
+                store,
+                self.workspace,
+                band.rows(),
+                &mut band,
+                Some(self.background),
+            )
+            .map_err(|e| match e {
+                VisibleError::Sink(e) => match e {},
+                VisibleError::Active { capacity } => {
+                    BandsError::Render(VisibleError::Active { capacity })
+                }
+                VisibleError::Runs { capacity } => {
+                    BandsError::Render(VisibleError::Runs { capacity })
+                }
+            })?;
+        let rows = (band.y() as i32, band.end() as i32);
+        let l = match self.labels.draw_rows(self.font, rows, &mut band) {
+            Ok(l) => l,
+            Err(e) => match e {},
+        };
+        let f = &mut self.frame;
+        f.visible = self.sweep.stats();
+        f.decoded += d;
+        f.labels.drawn += l.drawn;
+        f.labels.off_frame = l.off_frame;
+        f.labels.written += l.written;
+        self.next = band.end();
+        Ok(band.rows())
+    }
+}
+
+impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// Starts a band-by-band pass over the scene in its own workspace:
+    /// visible surfaces resolved with `resolve`, the background filled
+    /// with `background`, labels in `font`. Checks first that the
+    /// workspace holds every trapezoid overlapping a row.
+    pub fn bands<'s, C: ListColor>(
+        &'s mut self,
+        resolve: Resolve,
+        background: C,
+        font: &'s MonoFont<'s>,
+    ) -> Result<SceneBands<'s, 'a, 'a, C>, VisibleError<Infallible>> {
+        let Scene {
+            store,
+            labels,
+            workspace,
+            ..
+        } = self;
+        pass(store, labels, workspace, resolve, background, font)
+    }
+
+    /// [`bands`](Self::bands) in `workspace` instead of the scene's own,
+    /// reading the scene only: another pass over the same scene at the
+    /// same time (another core's, taking other bands).
+    pub fn bands_in<'s, 'w, C: ListColor>(
+        &'s self,
+        workspace: &'s mut Workspace<'w>,
+        resolve: Resolve,
+        background: C,
+        font: &'s MonoFont<'s>,
+    ) -> Result<SceneBands<'s, 'a, 'w, C>, VisibleError<Infallible>> {
+        pass(
+            &self.store,
+            &self.labels,
+            workspace,
+            resolve,
+            background,
+            font,
+        )
+    }
+
+    /// Draws the scene band by band, `rows` rows at a time, through the
+    /// caller's buffer `band` (at least `rows × width` pixels), each band
+    /// handed to `target` to ship before the next is drawn: the pixels
+    /// [`draw`](Self::draw) writes with `Some(background)`.
+    pub fn draw_bands<P>(
+        &mut self,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<Frame, SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let (w, h) = (self.store.width(), self.store.height());
+        check_buffer(rows, h, w, band.len())?;
+        let mut pass = self
+            .bands(resolve, background, font)
+            .map_err(BandsError::Render)?;
+        let mut y = 0;
+        while y < h {
+            let n = pass.draw(y, rows, band).map_err(widen)?;
+            target
+                .ship(y, n, &band[..n as usize * w as usize])
+                .map_err(|error| BandsError::Ship { y, error })?;
+            y += n;
+        }
+        Ok(pass.frame())
+    }
+}
+
+impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// The store and labels, read, and the workspace, for a pass kept
+    /// outside the scene (the controller's bands).
+    pub(crate) fn band_parts(
+        &mut self,
+    ) -> (&TrapezoidStore<'a>, &LabelStore<'a>, &mut Workspace<'a>) {
+        (&self.store, &self.labels, &mut self.workspace)
+    }
+}
+
+/// A pass over `store` and `labels` in `workspace`.
+fn pass<'s, 'a, 'w, C: ListColor>(
+    store: &'s TrapezoidStore<'a>,
+    labels: &'s LabelStore<'a>,
+    workspace: &'s mut Workspace<'w>,
+    resolve: Resolve,
+    background: C,
+    font: &'s MonoFont<'s>,
+) -> Result<SceneBands<'s, 'a, 'w, C>, VisibleError<Infallible>> {
+    workspace.check(store)?;
+    let sweep = Sweep::new(workspace, resolve);
+    Ok(SceneBands {
+        store,
+        labels,
+        workspace,
+        sweep,
+        background,
+        font,
+        next: 0,
+        frame: Frame::default(),
+    })
+}
+
+/// Refuses no rows and a buffer too small for a band of `rows` rows.
+fn check_buffer<E>(rows: u16, h: u16, w: u16, len: usize) -> Result<(), SceneBandsError<E>> {
+    if rows == 0 {
+        return Err(BandError::NoRows.into());
+    }
+    let needed = rows.min(h) as usize * w as usize;
+    if len < needed {
+        return Err(BandError::Buffer { len, needed }.into());
+    }
+    Ok(())
+}
+
+/// A band's error, as one of a port's.
+fn widen<E>(e: SceneBandsError<Infallible>) -> SceneBandsError<E> {
+    match e {
+        BandsError::Band(b) => BandsError::Band(b),
+        BandsError::Render(r) => BandsError::Render(r),
+        BandsError::Ship { error, .. } => match error {},
+    }
+}
+
+/// Rows of a frame to draw again: one bit per row, in caller memory
+/// ([`DirtyRows::words`] `u32`s for a frame's height).
+#[derive(Debug)]
+pub struct DirtyRows<'d> {
+    bits: &'d mut [u32],
+    height: u16,
+}
+
+impl<'d> DirtyRows<'d> {
+    /// `u32`s needed for `height` rows.
+    pub const fn words(height: u16) -> usize {
+        (height as usize).div_ceil(32)
+    }
+
+    /// No row marked, over `bits`; `None` when it holds fewer than
+    /// [`words`](Self::words)`(height)`.
+    pub fn new(bits: &'d mut [u32], height: u16) -> Option<Self> {
+        let bits = bits.get_mut(..Self::words(height))?;
+        bits.fill(0);
+        Some(DirtyRows { bits, height })
+    }
+
+    /// Rows in the frame.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// Marks rows `y0..y1`, cut to the frame.
+    pub fn mark(&mut self, y0: i32, y1: i32) {
+        let (y0, y1) = (y0.max(0), y1.min(self.height as i32));
+        for y in y0..y1 {
+            self.bits[y as usize / 32] |= 1 << (y % 32);
+        }
+    }
+
+    /// Marks every row.
+    pub fn mark_all(&mut self) {
+        self.mark(0, self.height as i32);
+    }
+
+    /// Unmarks every row.
+    pub fn clear(&mut self) {
+        self.bits.fill(0);
+    }
+
+    /// `true` when row `y` is marked.
+    pub fn is_marked(&self, y: u16) -> bool {
+        y < self.height && self.bits[y as usize / 32] & (1 << (y % 32)) != 0
+    }
+
+    /// Rows marked.
+    pub fn count(&self) -> usize {
+        self.bits.iter().map(|w| w.count_ones() as usize).sum()
+    }
+
+    /// The marked rows as runs `(y0, y1)`, top to bottom.
+    pub fn runs(&self) -> impl Iterator<Item = (u16, u16)> + '_ {
+        let mut y = 0u16;
+        core::iter::from_fn(move || {
+            while y < self.height && !self.is_marked(y) {
+                y += 1;
+            }
+            if y >= self.height {
+                return None;
+            }
+            let y0 = y;
+            while y < self.height && self.is_marked(y) {
+                y += 1;
+            }
+            Some((y0, y))
+        })
+    }
+}
+
+/// Segments whose stale marks [`Scene::update_marking`] remembers; with
+/// more segments, every row is marked.
+const MARKED_SEGMENTS: usize = 256;
+
+impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// Marks the rows segment `s` shows on: those of its trapezoids, and
+    /// those of its labels' cells in `font`.
+    pub fn mark_segment_rows(&self, s: usize, font: &MonoFont<'_>, dirty: &mut DirtyRows<'_>) {
+        for (_, t) in self.store.segment_trapezoids(s) {
+            dirty.mark(t.top(), t.end());
+        }
+        let ch = font.character_size.height as i32;
+        for (l, _) in self.labels.iter() {
+            if l.segment() as usize == s {
+                let (_, y) = l.anchor();
+                dirty.mark(y - ch, y);
+            }
+        }
+    }
+
+    /// Adds to `sig[y]`, for every row `y`, a hash of what segment `s`
+    /// puts on the row: its trapezoids (edges, plane, colour, columns)
+    /// and its labels' cells (anchor, colour, text) in `font`. Sums are
+    /// order-free, so the same content hashes the same however it was
+    /// built.
+    fn add_signature(&self, s: usize, font: &MonoFont<'_>, sig: &mut [u64]) {
+        let h = sig.len() as i32;
+        for (_, t) in self.store.segment_trapezoids(s) {
+            let mut k = Mix::new();
+            for f in t.left.fields().into_iter().chain(t.right.fields()) {
+                k.add(f as u32 as u64);
+            }
+            for f in [t.z, t.zx, t.zy, t.color as i32, t.x0 as i32, t.x1 as i32] {
+                k.add(f as u32 as u64);
+            }
+            let k = k.finish();
+            for y in t.top().max(0)..t.end().min(h) {
+                sig[y as usize] = sig[y as usize].wrapping_add(k);
+            }
+        }
+        let ch = font.character_size.height as i32;
+        for (l, text) in self.labels.iter() {
+            if l.segment() as usize != s {
+                continue;
+            }
+            let (x, y) = l.anchor();
+            let mut k = Mix::new();
+            k.add(x as u32 as u64);
+            k.add(y as u32 as u64);
+            let c = l.color();
+            k.add(((c.r() as u64) << 16) | ((c.g() as u64) << 8) | c.b() as u64);
+            for b in text.bytes() {
+                k.add(b as u64);
+            }
+            k.add(text.len() as u64);
+            let k = k.finish();
+            for y in (y - ch).max(0)..y.min(h) {
+                sig[y as usize] = sig[y as usize].wrapping_add(k);
+            }
+        }
+    }
+
+    /// [`update`](Self::update), marking in `dirty` the rows where a
+    /// rebuilt segment's content changed. With `scratch` of twice the
+    /// frame's height, a row is marked when the hash of what the rebuilt
+    /// segments put on it (see below) differs before and after, so a
+    /// segment rebuilt the same costs no row; with less, every row a
+    /// rebuilt segment showed on before or shows on after is marked.
+    ///
+    /// The hash of a row is the sum of 64-bit mixes of each trapezoid's
+    /// and label's every field: two different contents of a row hash the
+    /// same with a chance of about 2⁻⁶⁴. Changes the update does not see
+    /// (the background) are the caller's to mark; those that mark every
+    /// segment stale (the camera, the projection, the light, the clip)
+    /// it sees. With more than 256 segments every row is marked.
+    pub fn update_marking(
+        &mut self,
+        procedures: &mut [&mut dyn super::Procedure<DEPTH, N>],
+        font: &MonoFont<'_>,
+        dirty: &mut DirtyRows<'_>,
+        scratch: &mut [u64],
+    ) -> Result<super::Update, super::UpdateError> {
+        let n = procedures.len();
+        let h = self.store.height() as usize;
+        let mut stale = [0u32; MARKED_SEGMENTS / 32];
+        let sigs = scratch.get_mut(..2 * h);
+        let exact = sigs.is_some();
+        let (before, after) = match sigs {
+            Some(s) => {
+                s.fill(0);
+                s.split_at_mut(h)
+            }
+            None => (&mut [][..], &mut [][..]),
+        };
+        for s in 0..n {
+            if self.is_stale(s) {
+                if exact {
+                    self.add_signature(s, font, before);
+                } else {
+                    self.mark_segment_rows(s, font, dirty);
+                }
+                if s < MARKED_SEGMENTS {
+                    stale[s / 32] |= 1 << (s % 32);
+                } else {
+                    dirty.mark_all();
+                }
+            }
+        }
+        let r = self.update(procedures);
+        for s in 0..n.min(MARKED_SEGMENTS) {
+            if stale[s / 32] & (1 << (s % 32)) != 0 {
+                if exact {
+                    self.add_signature(s, font, after);
+                } else {
+                    self.mark_segment_rows(s, font, dirty);
+                }
+            }
+        }
+        for (y, (a, b)) in before.iter().zip(after.iter()).enumerate() {
+            if a != b {
+                dirty.mark(y as i32, y as i32 + 1);
+            }
+        }
+        r
+    }
+
+    /// Draws only the rows marked in `dirty`, in bands of at most `rows`
+    /// rows through the caller's buffer `band`, each shipped to `target`
+    /// as [`draw_bands`](Self::draw_bands) ships them: one top-to-bottom
+    /// pass, the rows between stepped over. A panel that keeps its pixels
+    /// then shows the whole frame. Returns what was drawn and the rows
+    /// shipped.
+    #[allow(clippy::too_many_arguments)]
+    pub fn draw_marked<P>(
+        &mut self,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        dirty: &DirtyRows<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<(Frame, u32), SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let (w, h) = (self.store.width(), self.store.height());
+        check_buffer(rows, h, w, band.len())?;
+        let mut pass = self
+            .bands(resolve, background, font)
+            .map_err(BandsError::Render)?;
+        let mut shipped = 0u32;
+        for (y0, y1) in dirty.runs() {
+            let mut y = y0;
+            while y < y1 {
+                let n = pass.draw(y, rows.min(y1 - y), band).map_err(widen)?;
+                target
+                    .ship(y, n, &band[..n as usize * w as usize])
+                    .map_err(|error| BandsError::Ship { y, error })?;
+                shipped += n as u32;
+                y += n;
+            }
+        }
+        Ok((pass.frame(), shipped))
+    }
+}
+
+/// A 64-bit mix of words (splitmix64 steps), for row hashes.
+struct Mix(u64);
+
+impl Mix {
+    fn new() -> Mix {
+        Mix(0x9e37_79b9_7f4a_7c15)
+    }
+
+    fn add(&mut self, v: u64) {
+        let mut z = (self.0 ^ v).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        self.0 = z ^ (z >> 31);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DirtyRows;
+
+    #[test]
+    fn dirty_rows_mark_cut_and_run() {
+        let mut bits = [u32::MAX; 3];
+        assert!(DirtyRows::new(&mut bits[..1], 40).is_none());
+        let mut d = DirtyRows::new(&mut bits, 70).unwrap();
+        assert_eq!(d.count(), 0, "starts empty");
+        d.mark(-5, 2);
+        d.mark(30, 34);
+        d.mark(33, 40);
+        d.mark(69, 90);
+        let runs: [(u16, u16); 3] = [(0, 2), (30, 40), (69, 70)];
+        assert!(d.runs().eq(runs));
+        assert_eq!(d.count(), 13);
+        assert!(d.is_marked(31) && !d.is_marked(40) && !d.is_marked(70));
+        d.clear();
+        assert_eq!(d.runs().count(), 0);
+        d.mark_all();
+        assert!(d.runs().eq([(0u16, 70u16)]));
+    }
+}

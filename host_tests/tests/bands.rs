@@ -1,0 +1,587 @@
+//! Rendering band by band, with no frame buffer: every list and scene
+//! rendered with bands of 1, 7, 16 and 64 rows and of the frame's height
+//! must equal the full-frame render pixel for pixel (2D lists with clip
+//! windows and several `clear`s, generated 2D lists, 3D lists with labels,
+//! the repository's scenes, and the 3D demo scene, also drawn by two
+//! threads taking every other band); and the band path's typed errors.
+
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
+use proptest::prelude::*;
+use scanvert::controller::Controller;
+use scanvert::port::band::{BandError, BandTarget, BandsError};
+use scanvert::port::framebuffer::FrameBuffer;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+use scanvert::scene::DEFAULT_FONT;
+use scanvert::visible::rle::Run;
+use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert_sim::cli::{render_scene, render_scene_bands, Scene};
+use scanvert_sim::memory::ListMemory;
+use std::path::Path;
+
+fn scene(text: &str) -> Scene {
+    Scene::from_bytes(Path::new("bands.dl"), text.as_bytes().to_vec()).expect("scene reads")
+}
+
+/// The first pixel where the band render with `rows` differs from the
+/// full render, if any, with the number of differing pixels.
+fn differs(s: &Scene, rows: u16) -> Option<(usize, usize)> {
+    let full = render_scene(s).expect("full render");
+    let band = render_scene_bands(s, rows).expect("band render");
+    let (a, b) = (full.ram.contents(), band.ram.contents());
+    assert_eq!(a.len(), b.len());
+    let first = a.iter().zip(b).position(|(p, q)| p != q)?;
+    Some((first, a.iter().zip(b).filter(|(p, q)| p != q).count()))
+}
+
+fn all_heights_match(s: &Scene) {
+    let h = s.list().height();
+    for rows in [1, 7, 16, 64, h, h + 5] {
+        assert_eq!(differs(s, rows), None, "band rows {rows}");
+    }
+}
+
+const FLAT: &str = "\
+frame 70 50
+color #ff0000
+poly 2 2 60 5 30 45
+clear #203040
+color #00ff00
+poly 5 5 65 10 10 48.5 40 20
+clip 10 8 50 30
+color #0000ff
+poly 0 0 70 0 70 50 0 50
+poly 20 -10 80 25 -5 60 30.0625 12.5
+clip 60 40 20 10
+color #ffffff
+poly 0 0 70 0 70 50
+clip -10 -10 100 100
+color #ff8000
+poly 33 33 34 33 34 34
+poly 12 40 68 44 12 49 68 41
+clear #102030
+color #808080
+poly 1 1 3 1 3 3 1 3
+clip 3 3 66 46
+poly 35 0 69 25 35 49.9 0 25
+color #00ffff
+poly 0 12 70 12.4 70 12.6 0 13
+";
+
+const NO_CLEAR: &str = "\
+frame 40 30
+clip 5 5 34 24
+color #c0c0c0
+poly -5 -5 45 -5 45 35 -5 35
+color #ff00ff
+poly 10 2 30 15 10 28
+";
+
+const THREE_D: &str = "\
+frame 96 64
+clear #101820
+color #404040
+poly 0 40 96 40 96 64 0 64
+clip 0 0 60 63
+color #e0e000
+poly3 10 10 50  10 50 50  50 30 50
+clip -1 -1 200 200
+perspective 60 1 100
+lookat 3 2.5 5  0 0 0
+light 1 2 3 70
+segment 1
+color #ff0000
+face -1 -1 1  1 -1 1  1 1 1  -1 1 1
+face 1 -1 -1  -1 -1 -1  -1 1 -1  1 1 -1
+face 1 -1 1  1 -1 -1  1 1 -1  1 1 1
+face -1 -1 -1  -1 -1 1  -1 1 1  -1 1 -1
+face -1 1 1  1 1 1  1 1 -1  -1 1 -1
+face -1 -1 -1  1 -1 -1  1 -1 1  -1 -1 1
+segment 2
+push
+translate 0 1.6 0
+color #00ff00
+face 0 0 0
+pop
+color #ffffff
+label -200 0 0 far off to the left
+label 1 1 1 hi
+label -1 1.2 1 a longer label across rows
+clip 20 20 70 50
+color #00c0ff
+poly3 0 0 30  96 0 30  0 64 30
+clear #000040
+color #ff8080
+poly 80 0 96 0 96 16
+";
+
+#[test]
+fn a_2d_list_with_clips_and_clears_is_the_same_in_bands() {
+    all_heights_match(&scene(FLAT));
+}
+
+#[test]
+fn rows_no_command_writes_are_black_as_in_a_fresh_frame() {
+    all_heights_match(&scene(NO_CLEAR));
+}
+
+#[test]
+fn a_3d_list_with_labels_clips_and_clears_is_the_same_in_bands() {
+    all_heights_match(&scene(THREE_D));
+}
+
+#[test]
+fn the_repository_scenes_are_the_same_in_bands() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut files = vec![root.join("scenes/demo.dl")];
+    for e in std::fs::read_dir(root.join("firmware/image/scenes")).expect("scenes") {
+        let p = e.expect("entry").path();
+        if p.extension().is_some_and(|x| x == "scvl") {
+            files.push(p);
+        }
+    }
+    assert!(files.len() >= 5, "{files:?}");
+    for f in files {
+        let s = Scene::load(&f).expect("loads");
+        let h = s.list().height();
+        for rows in [1, 16, h] {
+            assert_eq!(differs(&s, rows), None, "{} band rows {rows}", f.display());
+        }
+    }
+}
+
+/// Bands shipped into a whole image, checking they come top to bottom,
+/// one after the other.
+struct Collect {
+    width: usize,
+    pixels: Vec<Rgb565>,
+    next: u16,
+    bands: usize,
+}
+
+impl BandTarget for Collect {
+    type Color = Rgb565;
+    type Error = ();
+    fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), ()> {
+        assert_eq!(y, self.next, "bands in order, none missing");
+        assert_eq!(px.len(), rows as usize * self.width);
+        self.pixels.extend_from_slice(px);
+        self.next = y + rows;
+        self.bands += 1;
+        Ok(())
+    }
+}
+
+/// A provider that fails at its second band.
+struct Fails(u32);
+
+impl BandTarget for Fails {
+    type Color = Rgb565;
+    type Error = &'static str;
+    fn ship(&mut self, _: u16, _: u16, _: &[Rgb565]) -> Result<(), &'static str> {
+        self.0 += 1;
+        if self.0 == 2 {
+            Err("link down")
+        } else {
+            Ok(())
+        }
+    }
+}
+
+#[test]
+fn bad_bands_are_typed_errors() {
+    let s = scene(FLAT);
+    let list = s.list();
+    let (w, h) = (list.width() as usize, list.height());
+    let need = needs_table(&list);
+    let mut edges = vec![Edge::EMPTY; 8];
+    let mut polys = vec![TablePolygon::EMPTY; need.polygons];
+    let mut index = vec![0u32; 2 * need.polygons];
+    let mut tedges = vec![Edge::EMPTY; need.edges];
+    let mut c = Controller::new(Rasterizer::new(&mut edges));
+    macro_rules! table {
+        () => {
+            TableMemory {
+                polygons: &mut polys,
+                index: &mut index,
+                edges: &mut tedges,
+            }
+        };
+    }
+    let mut band = vec![Rgb565::BLACK; 4 * w];
+    let mut out = Collect {
+        width: w,
+        pixels: Vec::new(),
+        next: 0,
+        bands: 0,
+    };
+    assert_eq!(
+        c.render_bands(&list, table!(), 0, &mut band, &mut out),
+        Err(BandsError::Band(BandError::NoRows))
+    );
+    assert_eq!(
+        c.render_bands(&list, table!(), 5, &mut band, &mut out),
+        Err(BandsError::Band(BandError::Buffer {
+            len: 4 * w,
+            needed: 5 * w
+        }))
+    );
+    assert_eq!(out.bands, 0, "nothing shipped");
+    assert_eq!(
+        c.render_bands(&list, table!(), 4, &mut band, &mut Fails(0)),
+        Err(BandsError::Ship {
+            y: 4,
+            error: "link down"
+        })
+    );
+    // Too small a table.
+    let (mut p1, mut l1, mut e1) = (
+        vec![TablePolygon::EMPTY; 2],
+        vec![0u32; 4],
+        vec![Edge::EMPTY; 64],
+    );
+    let small = TableMemory {
+        polygons: &mut p1,
+        index: &mut l1,
+        edges: &mut e1,
+    };
+    assert!(matches!(
+        c.render_bands(&list, small, 4, &mut band, &mut out),
+        Err(BandsError::Render(
+            scanvert::controller::PrepareError::Table(
+                scanvert::raster::table::TableError::Polygons { capacity: 2, .. }
+            )
+        ))
+    ));
+    // The pull API: out of order, outside, and a band skipping rows.
+    let mut bands = c.bands(&list, table!()).expect("prepared");
+    assert_eq!(bands.draw(10, 4, &mut band), Ok(4));
+    assert_eq!(
+        bands.draw(12, 4, &mut band),
+        Err(BandsError::Band(BandError::Order { next: 14, y: 12 }))
+    );
+    assert_eq!(
+        bands.draw(h, 4, &mut band),
+        Err(BandsError::Band(BandError::Outside { y: h, height: h }))
+    );
+    assert_eq!(
+        bands.draw(20, 0, &mut band),
+        Err(BandsError::Band(BandError::NoRows))
+    );
+    assert_eq!(bands.draw(h - 1, 4, &mut band), Ok(1), "cut at the end");
+    // Every band through render_bands is the full frame's rows.
+    let full = render_scene(&s).expect("full");
+    c.render_bands(&list, table!(), 3, &mut band, &mut out)
+        .expect("renders");
+    assert_eq!(out.pixels, full.ram.contents());
+}
+
+/// The demo's memory for the visible surfaces, per worker.
+struct Work {
+    active: Vec<Active>,
+    cover: Vec<Cover>,
+    runs: Vec<Run>,
+}
+
+impl Work {
+    fn new() -> Work {
+        Work {
+            active: vec![Active::EMPTY; 512],
+            cover: vec![Cover::EMPTY; 512],
+            runs: vec![Run::EMPTY; scanvert_sim::demo::WIDTH as usize],
+        }
+    }
+    fn workspace(&mut self) -> Workspace<'_> {
+        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
+    }
+}
+
+#[test]
+fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
+    use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
+    let w = WIDTH as usize;
+    for step in steps(12).into_iter().step_by(3) {
+        with_scene(step, |scene, bg| {
+            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
+            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
+            scene
+                .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
+                .expect("draws");
+            for rows in [1, 7, 16, 64, HEIGHT] {
+                let mut band = vec![Rgb565::BLACK; rows as usize * w];
+                let mut out = Collect {
+                    width: w,
+                    pixels: Vec::new(),
+                    next: 0,
+                    bands: 0,
+                };
+                scene
+                    .draw_bands(
+                        Resolve::default(),
+                        bg,
+                        DEFAULT_FONT,
+                        rows,
+                        &mut band,
+                        &mut out,
+                    )
+                    .expect("bands");
+                let diff = px.iter().zip(&out.pixels).filter(|(a, b)| a != b).count();
+                assert_eq!(diff, 0, "{step:?} band rows {rows}");
+            }
+            // Two workers, every other band of 16 rows each, sharing the
+            // scene, each with its own workspace.
+            let scene = &*scene;
+            let rows = 16u16;
+            let halves: Vec<Vec<(u16, Vec<Rgb565>)>> = std::thread::scope(|s| {
+                let workers: Vec<_> = (0..2u16)
+                    .map(|k| {
+                        s.spawn(move || {
+                            let mut work = Work::new();
+                            let mut ws = work.workspace();
+                            let mut pass = scene
+                                .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
+                                .expect("pass");
+                            let mut got = Vec::new();
+                            let mut y = k * rows;
+                            while y < HEIGHT {
+                                let mut band = vec![Rgb565::BLACK; rows as usize * w];
+                                let n = pass.draw(y, rows, &mut band).expect("band");
+                                band.truncate(n as usize * w);
+                                got.push((y, band));
+                                y += 2 * rows;
+                            }
+                            got
+                        })
+                    })
+                    .collect();
+                workers
+                    .into_iter()
+                    .map(|h| h.join().expect("worker"))
+                    .collect()
+            });
+            let mut whole = vec![Rgb565::RED; w * HEIGHT as usize];
+            for (y, band) in halves.into_iter().flatten() {
+                whole[y as usize * w..y as usize * w + band.len()].copy_from_slice(&band);
+            }
+            assert!(whole == px, "{step:?}: two workers");
+        })
+        .expect("demo scene");
+    }
+}
+
+/// A random 2D list in text form: clears, clip windows (some partly or
+/// wholly outside the frame, some empty), colours and polygons.
+fn list_text() -> impl Strategy<Value = String> {
+    let coord = |side: i32| (-8 * 16..(side + 8) * 16).prop_map(|u| u as f64 / 16.0);
+    let poly = prop::collection::vec((coord(48), coord(32)), 3..9).prop_map(|v| {
+        let mut s = String::from("poly");
+        for (x, y) in v {
+            s += &format!(" {x} {y}");
+        }
+        s
+    });
+    let cmd = prop_oneof![
+        1 => (0u32..0xffffff).prop_map(|c| format!("clear #{c:06x}")),
+        2 => (-5i32..50, -5i32..35, -5i32..55, -5i32..40)
+            .prop_map(|(a, b, c, d)| format!("clip {a} {b} {c} {d}")),
+        3 => (0u32..0xffffff).prop_map(|c| format!("color #{c:06x}")),
+        8 => poly,
+    ];
+    (1u16..=48, 1u16..=32, prop::collection::vec(cmd, 0..24)).prop_map(|(w, h, cmds)| {
+        let mut s = format!("frame {w} {h}\n");
+        for c in cmds {
+            s += &c;
+            s.push('\n');
+        }
+        s
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn generated_2d_lists_are_the_same_in_bands(text in list_text(), rows in prop_oneof![Just(1u16), Just(7), Just(16), 1u16..40]) {
+        let s = scene(&text);
+        prop_assert_eq!(differs(&s, rows), None, "{}", text);
+    }
+}
+
+/// A panel that keeps its own pixels: shipped rows overwrite its rows.
+struct Panel {
+    width: usize,
+    pixels: Vec<Rgb565>,
+    rows: u32,
+}
+
+impl BandTarget for Panel {
+    type Color = Rgb565;
+    type Error = ();
+    fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), ()> {
+        let at = y as usize * self.width;
+        self.pixels[at..at + px.len()].copy_from_slice(px);
+        self.rows += rows as u32;
+        Ok(())
+    }
+}
+
+#[test]
+fn the_demo_through_partial_updates_keeps_the_panel_equal_to_full_renders() {
+    for exact in [true, false] {
+        partial_frames(exact);
+    }
+}
+
+/// The demo through partial frames, rows marked by row hashes (`exact`) or
+/// by the rows rebuilt segments cover.
+fn partial_frames(exact: bool) {
+    use scanvert::scene::DirtyRows;
+    use scanvert_sim::demo::{drive, HEIGHT, WIDTH};
+    use std::cell::RefCell;
+    let w = WIDTH as usize;
+    let mut bits = vec![0u32; DirtyRows::words(HEIGHT)];
+    let dirty = RefCell::new(DirtyRows::new(&mut bits, HEIGHT).expect("bits"));
+    dirty.borrow_mut().mark_all(); // the panel starts unknown
+    let mut panel = Panel {
+        width: w,
+        pixels: vec![Rgb565::RED; w * HEIGHT as usize],
+        rows: 0,
+    };
+    let mut band = vec![Rgb565::BLACK; 16 * w];
+    let mut shipped = Vec::new();
+    let mut scratch = vec![0u64; 2 * HEIGHT as usize];
+    drive(
+        12,
+        |scene, procs| {
+            let n = if exact { scratch.len() } else { 0 };
+            scene.update_marking(
+                procs,
+                DEFAULT_FONT,
+                &mut dirty.borrow_mut(),
+                &mut scratch[..n],
+            )
+        },
+        |scene, step, _, bg| {
+            let mut d = dirty.borrow_mut();
+            panel.rows = 0;
+            let (_, rows) = scene
+                .draw_marked(
+                    Resolve::default(),
+                    bg,
+                    DEFAULT_FONT,
+                    &d,
+                    16,
+                    &mut band,
+                    &mut panel,
+                )
+                .expect("partial frame");
+            assert_eq!(rows, panel.rows);
+            d.clear();
+            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
+            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
+            scene
+                .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
+                .expect("full");
+            let diff = px.iter().zip(&panel.pixels).filter(|(a, b)| a != b).count();
+            assert_eq!(diff, 0, "{step:?}: the panel differs from the full render");
+            shipped.push((step, rows));
+        },
+    )
+    .expect("demo runs");
+    // The threshold-only frames (the camera still) ship fewer rows than a
+    // frame; the camera's frames ship the rows the scene covers.
+    let frame_bytes = w * HEIGHT as usize * 2;
+    for (i, (step, rows)) in shipped.iter().enumerate() {
+        let bytes = *rows as usize * w * 2;
+        println!(
+            "exact {exact}: frame {i}: threshold {}, camera {}°: {rows} rows, {bytes} bytes of {frame_bytes}",
+            step.threshold, step.orbit
+        );
+        if exact && (1..4).contains(&i) {
+            assert!(bytes < frame_bytes, "frame {i}");
+        }
+    }
+}
+
+/// Renders every other band of `rows` starting with band `k` of `list`
+/// with memory of its own (sized as the CLI sizes it), skipping the
+/// others; returns `(y, pixels)` of each band drawn.
+fn every_other_band(s: &Scene, rows: u16, k: u16) -> Vec<(u16, Vec<Rgb565>)> {
+    let list = s.list();
+    let (w, h) = (list.width() as usize, list.height());
+    let mut memory = ListMemory::for_bands(&list).expect("sized");
+    let (mut c, table) = memory.band_parts();
+    let mut pass = c.bands(&list, table).expect("prepared");
+    let mut out = Vec::new();
+    let mut y = k * rows;
+    while y < h {
+        let mut band = vec![Rgb565::GREEN; rows as usize * w];
+        let n = pass.draw(y, rows, &mut band).expect("band");
+        band.truncate(n as usize * w);
+        out.push((y, band));
+        y += 2 * rows;
+    }
+    out
+}
+
+#[test]
+fn two_passes_each_skipping_the_others_bands_make_the_frame() {
+    for text in [FLAT, NO_CLEAR, THREE_D] {
+        let s = scene(text);
+        let full = render_scene(&s).expect("full");
+        let w = s.list().width() as usize;
+        for rows in [1, 3, 7, 16] {
+            let mut whole = vec![Rgb565::RED; full.ram.contents().len()];
+            for k in 0..2 {
+                for (y, band) in every_other_band(&s, rows, k) {
+                    let at = y as usize * w;
+                    whole[at..at + band.len()].copy_from_slice(&band);
+                }
+            }
+            assert!(whole == full.ram.contents(), "band rows {rows}\n{text}");
+        }
+    }
+}
+
+#[test]
+fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bands_cli");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let src = dir.join("three.dl");
+    std::fs::write(&src, THREE_D).expect("scene");
+    let run = |out: &Path, extra: &[&str]| {
+        let mut args: Vec<String> = [
+            "render",
+            src.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        args.extend(extra.iter().map(|s| s.to_string()));
+        scanvert_sim::cli::run(&args)
+    };
+    let full = dir.join("full.png");
+    run(&full, &[]).expect("full render");
+    let want = std::fs::read(&full).expect("png");
+    for n in ["1", "7", "16", "64", "65", "100000"] {
+        let out = dir.join(format!("band-{n}.png"));
+        run(&out, &["--band-rows", n]).expect("band render");
+        assert_eq!(std::fs::read(&out).expect("png"), want, "--band-rows {n}");
+    }
+    for bad in [
+        &["--band-rows", "0"][..],
+        &["--band-rows", "x"],
+        &["--band-rows", "-1"],
+        &["--band-rows"],
+    ] {
+        let out = dir.join("bad.png");
+        let _ = std::fs::remove_file(&out);
+        let e = run(&out, bad).expect_err("refused");
+        assert_eq!(e.status, scanvert_sim::cli::EXIT_USAGE, "{bad:?}");
+        assert!(e.message.contains("--band-rows"), "{}", e.message);
+        assert!(!out.exists(), "no image for {bad:?}");
+    }
+}
