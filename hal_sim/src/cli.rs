@@ -351,6 +351,18 @@ pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError
         })?;
     Ok(Rendered { ram, stats })
 }
+
+/// A failure to prepare `scene`'s bands, naming the line (or offset).
+pub(crate) fn prepare_error(scene: &Scene, e: scanvert::controller::PrepareError) -> CliError {
+    match e {
+        scanvert::controller::PrepareError::Render(e) => scene.render_error(e),
+        e => input(
+            &scene.path,
+            format_args!("{}: {e}", scene.locate(e.offset())),
+        ),
+    }
+}
+
 struct Args {
     positional: Vec<String>,
     out: Option<PathBuf>,

@@ -41,6 +41,8 @@ mod platform;
 #[cfg(feature = "bands")]
 mod bands;
 mod log;
+#[cfg(feature = "rows")]
+mod rows;
 mod scenes;
 
 use core::convert::Infallible;
@@ -415,6 +417,11 @@ pub fn run() -> bool {
         };
         for scene in scenes::SCENES {
             ok &= bands::measure(scene, &mut edges, mem, &mut table, &counter);
+        }
+        // Each list again, one row at a time, each row counted.
+        #[cfg(feature = "rows")]
+        for scene in scenes::SCENES {
+            ok &= rows::measure(scene, &mut edges, mem, &mut table, &counter);
         }
     }
     log::summary(matched, scenes::SCENES.len(), ok);
