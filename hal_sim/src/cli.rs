@@ -6,7 +6,7 @@
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
-//! scanvert demo [--out DIR] [--frames N] [--no-speed]
+//! scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
 //! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
 //!
@@ -39,7 +39,7 @@ usage:
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
-  scanvert demo [--out DIR] [--frames N] [--no-speed]
+  scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
   scanvert help [COMMAND]
 
 SCENE is a display list in text form or binary form (told apart by its magic number),
@@ -133,7 +133,7 @@ options:
   --help, -h           this help";
 
 const HELP_DEMO: &str = "\
-usage: scanvert demo [--out DIR] [--frames N] [--no-speed]
+usage: scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
 512x256 through the simulated display (double-buffered): first the threshold that
@@ -147,6 +147,11 @@ options:
                        that is not a regular file is refused
   --frames N           how many frames, 1 to 100 (default: 8)
   --no-speed           skip measuring the frames per second
+  --race MHZ           show every frame by racing the beam with no frame RAM, as
+                       `scanvert render --race` does (`scanvert help render`), in the
+                       mode of --timing (default: auto); prints a line
+                       `frame NN: deadline misses: M of N lines` a frame instead
+  --fifo K             with --race: the ring's rows (default: 2)
   --help, -h           this help";
 
 /// The help of `command`, or `None` for a command that does not exist.
@@ -622,6 +627,14 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 return Err(usage("demo: takes no input file"));
             }
             let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("demo"));
+            if a.fifo.is_some() && a.race.is_none() {
+                return Err(usage("demo: --fifo goes with --race"));
+            }
+            if let Some(cpu) = a.race {
+                let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);
+                let timing = timing_for(a.timing.as_deref().unwrap_or("auto"), w, h)?;
+                return crate::race::demo(&dir, a.frames.unwrap_or(8), &timing, cpu, a.fifo);
+            }
             crate::demo::run(&dir, a.frames.unwrap_or(8), !a.no_speed)
         }
         other => Err(usage(format_args!("unknown command {other}"))),

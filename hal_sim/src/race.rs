@@ -61,6 +61,7 @@ use crate::timing::{Clock, VideoTiming};
 use embedded_graphics_core::pixelcolor::Rgb565;
 use scanvert::controller::{ListBands, RenderStats};
 use scanvert::display_list::{Command, DisplayList};
+use scanvert::scene::{Frame as SceneFrame, SceneBands};
 
 /// The colour of a missed line: pure red (`#ff0000` in the image).
 pub const MISS: Rgb565 = Rgb565::new(31, 0, 0);
@@ -941,4 +942,151 @@ pub fn list_work(list: &DisplayList<'_>) -> Option<(PrepareWork, Vec<RowWork>)> 
     let mut runs = Vec::new();
     let work = (0..rows.size().1).map(|y| rows.row(y, &mut runs)).collect();
     Some((rows.prepare(), work))
+}
+
+/// The producer of a 3D scene's rows: the scene's band pass
+/// ([`Scene::bands`](scanvert::scene::Scene::bands)) with 1-row bands,
+/// each row encoded into colour runs. The scene's polygons are already
+/// cut into trapezoids (by `Scene::update`, before the pass, which is not
+/// counted), so preparing the pass is priced as the frame term of the
+/// model alone.
+#[derive(Debug)]
+pub struct SceneRows<'s, 'a, 'w> {
+    bands: SceneBands<'s, 'a, 'w, Rgb565>,
+    size: (u16, u16),
+    row: Vec<Rgb565>,
+    last: SceneFrame,
+}
+
+impl<'s, 'a, 'w> SceneRows<'s, 'a, 'w> {
+    /// The rows of a pass over a scene of `size` (width, height), none
+    /// drawn yet.
+    pub fn new(bands: SceneBands<'s, 'a, 'w, Rgb565>, size: (u16, u16)) -> Self {
+        SceneRows {
+            last: bands.frame(),
+            bands,
+            size,
+            row: vec![Rgb565::new(0, 0, 0); usize::from(size.0)],
+        }
+    }
+}
+
+impl Producer for SceneRows<'_, '_, '_> {
+    fn size(&self) -> (u16, u16) {
+        self.size
+    }
+    fn prepare(&self) -> PrepareWork {
+        PrepareWork::default()
+    }
+    fn row(&mut self, y: u16, runs: &mut Vec<Run>) -> RowWork {
+        let drawn = self.bands.draw(y, 1, &mut self.row);
+        debug_assert!(drawn.is_ok());
+        let n = encode_row(&self.row, runs);
+        let (a, b) = (self.last, self.bands.frame());
+        self.last = b;
+        let resolved = |f: &SceneFrame| {
+            let v = &f.visible;
+            v.empty + v.single + v.multiple + v.intersecting
+        };
+        RowWork {
+            width: u32::from(self.size.0),
+            spans: (b.decoded.spans + b.labels.written.spans)
+                - (a.decoded.spans + a.labels.written.spans),
+            pixels: (b.decoded.pixels + b.labels.written.pixels)
+                - (a.decoded.pixels + a.labels.written.pixels),
+            runs: n as u32,
+            entered: b.visible.trapezoids - a.visible.trapezoids,
+            resolved: resolved(&b) - resolved(&a),
+            labels: b.labels.drawn - a.labels.drawn,
+            live: 0,
+        }
+    }
+}
+
+/// `scanvert demo --race MHZ [--fifo K]`: every frame of the demo shown
+/// by racing the beam of `timing`, written as `DIR/frame-NN.png`; returns
+/// a line `frame NN: deadline misses: M of N lines` a frame.
+pub(crate) fn demo(
+    dir: &std::path::Path,
+    frames: usize,
+    timing: &VideoTiming,
+    cpu: Clock,
+    fifo: Option<u16>,
+) -> Result<String, crate::error::CliError> {
+    use crate::demo::{HEIGHT, WIDTH};
+    use scanvert::scene::DEFAULT_FONT;
+    use scanvert::visible::sweep::Resolve;
+    std::fs::create_dir_all(dir).map_err(|e| crate::error::io(dir, e))?;
+    let mut report = String::new();
+    let mut failure = None;
+    let mut i = 0;
+    crate::demo::drive(
+        frames,
+        |scene, procs| scene.update(procs),
+        |scene, _, _, background| {
+            if failure.is_some() {
+                return;
+            }
+            let shown = match scene.bands(Resolve::default(), background, DEFAULT_FONT) {
+                Ok(bands) => race(
+                    SceneRows::new(bands, (WIDTH, HEIGHT)),
+                    timing,
+                    cpu,
+                    fifo.unwrap_or(DEFAULT_FIFO),
+                    &CostModel::M4,
+                ),
+                Err(e) => {
+                    failure = Some(crate::error::input(std::path::Path::new("demo"), e));
+                    return;
+                }
+            };
+            let path = dir.join(format!("frame-{i:02}.png"));
+            let written = crate::image::encode_png(&shown.frame)
+                .map_err(|e| crate::error::io(&path, e))
+                .and_then(|png| crate::output::write_output(&path, &png));
+            match written {
+                Ok(()) => {
+                    report += &format!("frame {i:02}: ");
+                    report += &misses_line(shown.misses(), shown.lines());
+                }
+                Err(e) => failure = Some(e),
+            }
+            i += 1;
+        },
+    )?;
+    match failure {
+        Some(e) => Err(e),
+        None => Ok(report),
+    }
+}
+
+/// The instructions, from `model`, of preparing and of each row of every
+/// frame of the demo's first `frames` steps (`scanvert demo`).
+pub fn demo_costs(
+    frames: usize,
+    model: &CostModel,
+) -> Result<Vec<(u64, Vec<u64>)>, crate::error::CliError> {
+    use crate::demo::{HEIGHT, WIDTH};
+    use scanvert::scene::DEFAULT_FONT;
+    use scanvert::visible::sweep::Resolve;
+    let timing = VideoTiming::for_frame(WIDTH, HEIGHT);
+    let cpu = Clock::from_mhz(1000).expect("1 GHz");
+    let mut costs = Vec::new();
+    crate::demo::drive(
+        frames,
+        |scene, procs| scene.update(procs),
+        |scene, _, _, background| {
+            if let Ok(bands) = scene.bands(Resolve::default(), background, DEFAULT_FONT) {
+                let r = race(
+                    SceneRows::new(bands, (WIDTH, HEIGHT)),
+                    &timing,
+                    cpu,
+                    1,
+                    model,
+                );
+                costs.push((r.prepare, r.rows));
+            }
+        },
+    )?;
+    Ok(costs)
 }

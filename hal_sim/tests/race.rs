@@ -160,3 +160,42 @@ fn bad_race_options_are_usage_errors_and_write_no_image() {
         assert!(o.stdout.is_empty(), "{extra:?}");
     }
 }
+
+#[test]
+fn the_demo_races_every_frame() {
+    let out = dir().join("demo");
+    let _ = std::fs::remove_dir_all(&out);
+    let o = scanvert(&["demo", "--race", "4000", "--frames", "2", "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        text,
+        "frame 00: deadline misses: 0 of 256 lines\nframe 01: deadline misses: 0 of 256 lines\n"
+    );
+    for i in 0..2 {
+        assert!(out.join(format!("frame-{i:02}.png")).is_file());
+    }
+    // 1 Hz: every line of every frame is red.
+    let o = scanvert(&[
+        "demo",
+        "--race",
+        "0.000001",
+        "--frames",
+        "1",
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        "frame 00: deadline misses: 256 of 256 lines\n"
+    );
+    let png = std::fs::read(out.join("frame-00.png")).expect("frame");
+    let (w, _, px) = scanvert_sim::image::decode_png(&png).expect("decode");
+    assert_eq!(red_rows(&px, w as usize), 256);
+    for bad in [&["--race", "0"][..], &["--race", "x"], &["--fifo", "2"]] {
+        let mut args = vec!["demo", "--frames", "1", "--out", s(&out)];
+        args.extend_from_slice(bad);
+        assert_eq!(scanvert(&args).status.code(), Some(2), "{bad:?}");
+    }
+}

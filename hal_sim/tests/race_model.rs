@@ -172,3 +172,127 @@ fn fit_the_m4_model() {
     );
     println!("frame: {}, command: {}, trapezoid: {}", p[0], p[1], p[2]);
 }
+
+/// The `p`-th percentile (nearest rank) of `v`.
+fn percentile(v: &[u64], p: usize) -> u64 {
+    let mut s = v.to_vec();
+    s.sort_unstable();
+    s[(s.len() * p).div_ceil(100).clamp(1, s.len()) - 1]
+}
+
+fn mhz(c: Option<scanvert_sim::timing::Clock>) -> String {
+    c.map_or("> 4,294".into(), |c| {
+        format!("{:.0}", f64::from(c.hz()) / 1e6)
+    })
+}
+
+/// A scene's name, instructions of preparing it and of each row from the
+/// model, and of each row measured on the M4 if it was.
+type Costs = (String, u64, Vec<u64>, Option<Vec<u64>>);
+
+#[test]
+#[ignore = "prints the table of docs/performance.md's racing-the-beam section"]
+fn race_table() {
+    use scanvert_sim::race::{demo_costs, lowest_clock, schedule};
+    use scanvert_sim::timing::{Clock, VideoTiming};
+    let (_, measured_rows) = measured();
+    let m4 = CostModel::M4;
+    // (name, prepare, rows, measured rows on the M4 if any)
+    let mut scenes: Vec<Costs> = Vec::new();
+    let demo = demo_costs(8, &m4).expect("demo");
+    // The demo's frame of the most instructions.
+    let (dp, dr) = demo
+        .into_iter()
+        .max_by_key(|(p, r)| p + r.iter().sum::<u64>())
+        .expect("frames");
+    scenes.push((
+        "3D demo (`scanvert demo`, worst of 8 frames), 512×256".into(),
+        dp,
+        dr,
+        None,
+    ));
+    let mut list = |name: String, bytes: Vec<u8>, m4rows: Option<Vec<u64>>| {
+        let l = DisplayList::new_checked(&bytes).expect("list");
+        let (pw, work) = list_work(&l).expect("work");
+        let rows = work.iter().map(|w| m4.row(w)).collect();
+        scenes.push((name, m4.prepare(&pw), rows, m4rows));
+    };
+    for (name, label) in [
+        ("demo", "2D demo (`scenes/demo.dl`), 320×200"),
+        ("poly3-layered", "poly3-layered (170 faces), 512×256"),
+        ("poly3-tilted", "poly3-tilted (170 faces), 512×256"),
+        ("w3", "W3 (10,000 polygons), 512×256"),
+    ] {
+        let bytes = std::fs::read(image_dir().join(format!("scenes/{name}.scvl"))).expect("scene");
+        let mut ys: Vec<_> = measured_rows
+            .iter()
+            .filter(|((n, _), _)| n == name)
+            .map(|((_, y), c)| (*y, *c))
+            .collect();
+        ys.sort_unstable();
+        list(
+            label.into(),
+            bytes,
+            Some(ys.into_iter().map(|(_, c)| c).collect()),
+        );
+    }
+    let cube = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/cube.dl"),
+    )
+    .expect("cube")
+    .replace("frame 320 240", "frame 640 480");
+    let cube = scanvert_sim::text::assemble_bytes(cube.as_bytes())
+        .expect("cube")
+        .bytes;
+    list(
+        "cube (`scenes/cube.dl` at 640×480: 3D, labels)".into(),
+        cube,
+        None,
+    );
+
+    let timings = [
+        ("reference", VideoTiming::REFERENCE_640X480),
+        ("VGA", VideoTiming::VGA_640X480_60),
+    ];
+    println!("| scene | lowest MHz, reference, K = 2 / 4 / 16 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 | misses at 168 MHz, reference, K = 2 / 4 / 16 | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |");
+    println!("|---|---|---|---|---|---|---|");
+    let cpu = Clock::from_mhz(168).expect("168 MHz");
+    for (name, prep, rows, m4rows) in &scenes {
+        let mut cells = Vec::new();
+        for (_, t) in &timings {
+            let c: Vec<String> = [2u16, 4, 16]
+                .iter()
+                .map(|&k| mhz(lowest_clock(*prep, rows, t, k)))
+                .collect();
+            cells.push(c.join(" / "));
+        }
+        let shown = rows.len().min(480);
+        let m: Vec<String> = [2u16, 4, 16]
+            .iter()
+            .map(|&k| {
+                let n = schedule(*prep, &rows[..shown], &timings[0].1, cpu, k)
+                    .iter()
+                    .filter(|&&m| m)
+                    .count();
+                format!("{n}")
+            })
+            .collect();
+        cells.push(format!("{} of {shown}", m.join(" / ")));
+        let (src, r) = match m4rows {
+            Some(r) => ("M4", r),
+            None => ("model", rows),
+        };
+        let (worst, p99) = (*r.iter().max().unwrap(), percentile(r, 99));
+        cells.push(format!("{worst} ({src})"));
+        cells.push(format!("{p99} ({src})"));
+        cells.push(format!(
+            "{:.2}× / {:.2}×",
+            worst as f64 / 5376.0,
+            p99 as f64 / 5376.0
+        ));
+        println!("| {name} | {} |", cells.join(" | "));
+    }
+    for (name, prep, ..) in &scenes {
+        println!("prepare {name}: {prep}");
+    }
+}
