@@ -172,8 +172,15 @@ fn the_demo_races_every_frame() {
         text,
         "frame 00: deadline misses: 0 of 256 lines\nframe 01: deadline misses: 0 of 256 lines\n"
     );
-    for i in 0..2 {
-        assert!(out.join(format!("frame-{i:02}.png")).is_file());
+    // Each frame is the demo's step drawn from scratch into a frame buffer.
+    for (i, step) in scanvert_sim::demo::steps(2).into_iter().enumerate() {
+        let want = scanvert_sim::demo::reference_frame(step).expect("reference");
+        let (w, h) = (scanvert_sim::demo::WIDTH, scanvert_sim::demo::HEIGHT);
+        let want = scanvert_sim::image::encode_pixels(w.into(), h.into(), &want).expect("png");
+        let want = scanvert_sim::image::decode_png(&want).expect("decode").2;
+        let got = std::fs::read(out.join(format!("frame-{i:02}.png"))).expect("frame");
+        let got = scanvert_sim::image::decode_png(&got).expect("decode").2;
+        assert!(got == want, "frame {i} differs from the plain render");
     }
     // 1 Hz: every line of every frame is red.
     let o = scanvert(&[
