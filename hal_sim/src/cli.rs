@@ -531,6 +531,11 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 return Err(usage("render: --fifo goes with --race"));
             }
             if let Some(cpu) = a.race {
+                if a.band_rows.is_some() || a.stats {
+                    return Err(usage(
+                        "render: --race draws 1-row bands and prints its misses; --band-rows and --stats do not go with it",
+                    ));
+                }
                 return crate::race::render(&scene, &timing, cpu, a.fifo, &out, warn);
             }
             let mut r = match a.band_rows {

@@ -145,6 +145,8 @@ fn bad_race_options_are_usage_errors_and_write_no_image() {
         &["--race", "168", "--fifo", "two"],
         &["--race", "168", "--fifo"],
         &["--fifo", "2"],
+        &["--race", "168", "--band-rows", "4"],
+        &["--race", "168", "--stats"],
     ] {
         let _ = std::fs::remove_file(&png);
         let mut args = vec!["render", s(&src), "--out", s(&png)];
