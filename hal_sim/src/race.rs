@@ -461,7 +461,9 @@ impl<P: Producer> Ring<'_, P> {
     /// The beam reaches line `y`'s first active pixel.
     fn begin_line(&mut self, y: u16) {
         let old = std::mem::take(&mut self.line);
-        self.spare.push(old);
+        if old.capacity() > 0 {
+            self.spare.push(old);
+        }
         self.cursor = (0, 0);
         self.red = false;
         if y >= self.lines {
@@ -799,6 +801,18 @@ mod tests {
                 prop_assert_eq!(red, m);
             }
         }
+    }
+
+    #[test]
+    fn live_polygons_counts_the_rows_each_polygon_reaches() {
+        let asm = crate::text::assemble_bytes(
+            b"frame 8 12\ncolor #ffffff\npoly 0 2 8 2 4 10\nclear #000000\npoly 0 2.5 8 2.5 4 4.5\npoly 0 -3 8 0 4 1.5\n",
+        )
+        .unwrap();
+        let list = DisplayList::new_checked(&asm.bytes).unwrap();
+        // After the clear: rows 2 and 3 (centres 2.5, 3.5 in [2.5, 4.5))
+        // and rows 0 (centre 0.5 in [-3, 1.5)); the first poly is cleared.
+        assert_eq!(live_polygons(&list), [1, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0]);
     }
 
     #[test]
