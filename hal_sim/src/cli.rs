@@ -47,9 +47,10 @@ at most 16 MiB. render draws it through the simulated display hardware into a PN
 --timing picks the video timing of the simulated monitor, whose visible area is the
 image (auto, the default: the frame's own size); --band-rows N renders through the
 library's band path, N >= 1 rows at a time (the image is the same, pixel for pixel).
-asm and disasm convert between the two forms. demo animates 3D bars over a map with labels through the simulated display
-(double-buffered), writes DIR/frame-NN.png (default: demo/, 8 frames) and prints the
-segments regenerated, trapezoids per frame and frames/s.
+asm and disasm convert between the two forms. demo animates 3D bars over a map with
+labels through the simulated display (double-buffered), writes DIR/frame-NN.png
+(default: demo/, 8 frames) and prints the segments regenerated, trapezoids per frame
+and frames/s.
 `scanvert help COMMAND` or `scanvert COMMAND --help` explains a command's options.
 Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 

@@ -4,6 +4,7 @@
 use scanvert::controller::{edges_3d, needs, Controller, Needs, RenderError};
 use scanvert::display_list::DisplayList;
 use scanvert::raster::edge::Edge;
+use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
 use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
 use scanvert::scene::label::Label;
@@ -33,6 +34,7 @@ pub struct ListMemory {
     table_polygons: Vec<TablePolygon>,
     table_index: Vec<u32>,
     table_edges: Vec<Edge>,
+    table_lines: Vec<Option<Line>>,
 }
 
 impl ListMemory {
@@ -60,12 +62,13 @@ impl ListMemory {
             table_polygons: Vec::new(),
             table_index: Vec::new(),
             table_edges: Vec::new(),
+            table_lines: Vec::new(),
         })
     }
 
     /// [`for_list`](Self::for_list) with an edge table for the band path
-    /// ([`Controller::bands`]): as [`needs_table`] counts it, for the 2D
-    /// commands after the last `clear`.
+    /// ([`Controller::bands`]): as [`needs_table`] counts it, for the
+    /// `poly`s and `line`s after the last `clear`.
     pub fn for_bands(
         list: &DisplayList<'_>,
     ) -> Result<ListMemory, RenderError<core::convert::Infallible>> {
@@ -74,6 +77,7 @@ impl ListMemory {
         m.table_polygons = vec![TablePolygon::EMPTY; t.polygons];
         m.table_index = vec![0; 2 * t.polygons];
         m.table_edges = vec![Edge::EMPTY; t.edges];
+        m.table_lines = vec![None; t.lines];
         Ok(m)
     }
 
@@ -131,6 +135,7 @@ impl ListMemory {
             polygons: &mut self.table_polygons,
             index: &mut self.table_index,
             edges: &mut self.table_edges,
+            lines: &mut self.table_lines,
         };
         (&mut self.edges, three, table)
     }

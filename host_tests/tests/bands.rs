@@ -1,7 +1,8 @@
 //! Rendering band by band, with no frame buffer: every list and scene
 //! rendered with bands of 1, 7, 16 and 64 rows and of the frame's height
-//! must equal the full-frame render pixel for pixel (2D lists with clip
-//! windows and several `clear`s, generated 2D lists, 3D lists with labels,
+//! must equal the full-frame render pixel for pixel (2D lists of polygons
+//! and lines with clip windows and several `clear`s, generated 2D lists
+//! with lines, 3D lists with labels,
 //! the repository's scenes, and the 3D demo scene, also drawn by two
 //! threads taking every other band); and the band path's typed errors.
 
@@ -69,6 +70,53 @@ color #00ffff
 poly 0 12 70 12.4 70 12.6 0 13
 ";
 
+/// Lines among polygons, in painter's order both ways, under clips that
+/// cut them (partly, wholly, empty), in every direction and slope, long
+/// ones far outside the frame, lines of one pixel and of none, and lines
+/// before the last `clear` (covered).
+const LINES: &str = "\
+frame 64 48
+color #ff0000
+line 0 0 64 48
+clear #102030
+color #ffff00
+line 0 0 64 48
+line 64 0 0 48
+color #00ff00
+poly 10 10 50 12 30 40
+color #ff00ff
+line 5 20 60 22
+line 30 -100 31.5 200
+line -1000 30.5 1000 33
+line 20.5 5 20.5 45
+line 2 46.5 62 46.5
+line 40 40 40 40
+line 8.5 8.5 8.5625 8.5
+color #0000ff
+poly 25 15 45 15 45 35 25 35
+color #ffffff
+line 40 2 2 30
+line 63.9 47.9 0.1 0.1
+clip 15 12 50 36
+color #00ffff
+line 0 24 64 24.9
+line 0 0 64 48
+line 64 10 0 40
+line 32 0 33 48
+line 0 13 64 13
+poly 0 30 64 30 64 34 0 34
+color #808000
+line 0 31 64 33
+clip 70 0 80 10
+line 0 0 64 48
+clip 20 20 20 30
+line 0 0 64 48
+clip -10 -10 100 100
+color #ff8000
+line 63 0 63.5 47.5
+line 0.25 47.75 63.75 0.25
+";
+
 const NO_CLEAR: &str = "\
 frame 40 30
 clip 5 5 34 24
@@ -119,6 +167,28 @@ poly 80 0 96 0 96 16
 #[test]
 fn a_2d_list_with_clips_and_clears_is_the_same_in_bands() {
     all_heights_match(&scene(FLAT));
+}
+
+#[test]
+fn lines_among_polygons_with_clips_are_the_same_in_bands() {
+    all_heights_match(&scene(LINES));
+    // The lines are drawn in the full render and in bands alike.
+    let full = render_scene(&scene(LINES)).expect("full render");
+    assert!(full.stats.spans > 100, "{:?}", full.stats);
+}
+
+#[test]
+fn lines_over_no_clear_and_after_a_3d_layer_are_the_same_in_bands() {
+    let text = format!(
+        "{}color #ffffff\nline 0 0 40 30\nline 40 0 0 30\nline 3 28 37 2.5\n",
+        NO_CLEAR
+    );
+    all_heights_match(&scene(&text));
+    let text = format!(
+        "{}color #00ff00\nline 0 0 96 64\nclip 10 10 50 40\nline 96 0 0 64\nline 48 0 48 64\n",
+        THREE_D
+    );
+    all_heights_match(&scene(&text));
 }
 
 #[test]
@@ -199,6 +269,7 @@ fn bad_bands_are_typed_errors() {
     let mut polys = vec![TablePolygon::EMPTY; need.polygons];
     let mut index = vec![0u32; 2 * need.polygons];
     let mut tedges = vec![Edge::EMPTY; need.edges];
+    let mut tlines = vec![None; need.lines];
     let mut c = Controller::new(Rasterizer::new(&mut edges));
     macro_rules! table {
         () => {
@@ -206,6 +277,7 @@ fn bad_bands_are_typed_errors() {
                 polygons: &mut polys,
                 index: &mut index,
                 edges: &mut tedges,
+                lines: &mut tlines,
             }
         };
     }
@@ -245,6 +317,7 @@ fn bad_bands_are_typed_errors() {
         polygons: &mut p1,
         index: &mut l1,
         edges: &mut e1,
+        lines: &mut [],
     };
     assert!(matches!(
         c.render_bands(&list, small, 4, &mut band, &mut out),
@@ -254,6 +327,45 @@ fn bad_bands_are_typed_errors() {
             )
         ))
     ));
+    // Too few line slots: the list's first line after its last clear
+    // that has a pixel in its clip, at its offset.
+    let ls = scene(LINES);
+    let lines_list = ls.list();
+    let need = needs_table(&lines_list);
+    assert_eq!(need.lines, 21, "every line after the last clear");
+    let (mut p2, mut l2, mut e2, mut n2) = (
+        vec![TablePolygon::EMPTY; need.polygons],
+        vec![0u32; 2 * need.polygons],
+        vec![Edge::EMPTY; need.edges],
+        vec![None; 3],
+    );
+    let few = TableMemory {
+        polygons: &mut p2,
+        index: &mut l2,
+        edges: &mut e2,
+        lines: &mut n2,
+    };
+    let mut lw = vec![Rgb565::BLACK; 4 * lines_list.width() as usize];
+    let e = c
+        .render_bands(&lines_list, few, 4, &mut lw, &mut out)
+        .expect_err("three line slots");
+    assert!(
+        matches!(
+            e,
+            BandsError::Render(scanvert::controller::PrepareError::Table(
+                scanvert::raster::table::TableError::Lines { capacity: 3, .. }
+            ))
+        ),
+        "{e:?}"
+    );
+    if let BandsError::Render(p) = e {
+        let at = lines_list
+            .commands()
+            .filter(|(_, c)| matches!(c, scanvert::display_list::Command::Line(..)))
+            .nth(4)
+            .map(|(o, _)| o);
+        assert_eq!(Some(p.offset()), at, "the fourth line after the clear");
+    }
     // The pull API: out of order, outside, and a band skipping rows.
     let mut bands = c.bands(&list, table!()).expect("prepared");
     assert_eq!(bands.draw(10, 4, &mut band), Ok(4));
@@ -371,7 +483,8 @@ fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
 }
 
 /// A random 2D list in text form: clears, clip windows (some partly or
-/// wholly outside the frame, some empty), colours and polygons.
+/// wholly outside the frame, some empty), colours, polygons and lines
+/// (some far outside the frame, some of no length).
 fn list_text() -> impl Strategy<Value = String> {
     let coord = |side: i32| (-8 * 16..(side + 8) * 16).prop_map(|u| u as f64 / 16.0);
     let poly = prop::collection::vec((coord(48), coord(32)), 3..9).prop_map(|v| {
@@ -381,12 +494,20 @@ fn list_text() -> impl Strategy<Value = String> {
         }
         s
     });
+    let far = |side: i32| (-200 * 16..(side + 200) * 16).prop_map(|u| u as f64 / 16.0);
+    let line = prop_oneof![
+        3 => (coord(48), coord(32), coord(48), coord(32)),
+        1 => (far(48), far(32), far(48), far(32)),
+        1 => (coord(48), coord(32)).prop_map(|(x, y)| (x, y, x, y)),
+    ]
+    .prop_map(|(a, b, c, d)| format!("line {a} {b} {c} {d}"));
     let cmd = prop_oneof![
         1 => (0u32..0xffffff).prop_map(|c| format!("clear #{c:06x}")),
         2 => (-5i32..50, -5i32..35, -5i32..55, -5i32..40)
             .prop_map(|(a, b, c, d)| format!("clip {a} {b} {c} {d}")),
         3 => (0u32..0xffffff).prop_map(|c| format!("color #{c:06x}")),
         8 => poly,
+        6 => line,
     ];
     (1u16..=48, 1u16..=32, prop::collection::vec(cmd, 0..24)).prop_map(|(w, h, cmds)| {
         let mut s = format!("frame {w} {h}\n");
@@ -527,7 +648,7 @@ fn every_other_band(s: &Scene, rows: u16, k: u16) -> Vec<(u16, Vec<Rgb565>)> {
 
 #[test]
 fn two_passes_each_skipping_the_others_bands_make_the_frame() {
-    for text in [FLAT, NO_CLEAR, THREE_D] {
+    for text in [FLAT, NO_CLEAR, THREE_D, LINES] {
         let s = scene(text);
         let full = render_scene(&s).expect("full");
         let w = s.list().width() as usize;

@@ -100,12 +100,13 @@ pub fn memory_3d() -> Option<&'static mut crate::Memory3d> {
 /// time.
 #[cfg(feature = "bands")]
 pub fn table_memory() -> Option<crate::bands::Table> {
-    use crate::bands::{BAND_PIXELS, TABLE_EDGES, TABLE_POLYGONS};
-    use scanvert::raster::{edge::Edge, table::TablePolygon};
+    use crate::bands::{BAND_PIXELS, TABLE_EDGES, TABLE_LINES, TABLE_POLYGONS};
+    use scanvert::raster::{edge::Edge, line::Line, table::TablePolygon};
     Some(crate::bands::Table {
         polygons: cortex_m::singleton!(: [TablePolygon; TABLE_POLYGONS] = [TablePolygon::EMPTY; TABLE_POLYGONS])?,
         index: cortex_m::singleton!(: [u32; 2 * TABLE_POLYGONS] = [0; 2 * TABLE_POLYGONS])?,
         edges: cortex_m::singleton!(: [Edge; TABLE_EDGES] = [Edge::EMPTY; TABLE_EDGES])?,
+        lines: cortex_m::singleton!(: [Option<Line>; TABLE_LINES] = [None; TABLE_LINES])?,
         band: cortex_m::singleton!(: [crate::Pixel; BAND_PIXELS] = [crate::BLACK; BAND_PIXELS])?,
     })
 }

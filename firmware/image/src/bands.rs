@@ -6,8 +6,8 @@
 //! run shipping nowhere, as the full frame's exclude its checksum) are
 //! printed on lines starting `bands`, next to the full frame's `frame`
 //! line. With the feature `bands` only (its edge table takes about
-//! 1.25 MiB of `.bss`, the band buffer 64 KiB): `cargo run --release
-//! --features bands`.
+//! 1.24 MiB of `.bss` with 256 lines, the band buffer 64 KiB):
+//! `cargo run --release --features bands`.
 
 use crate::{platform, Memory3d, Pixel, Scene};
 use core::convert::Infallible;
@@ -16,6 +16,7 @@ use scanvert::display_list::{Command, DisplayList};
 use scanvert::port::band::BandTarget;
 use scanvert::port::checksum::Checksum;
 use scanvert::raster::edge::Edge;
+use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
 use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
 use scanvert::visible::Resolve;
@@ -27,10 +28,12 @@ use semihosting::println;
 pub const TABLE_POLYGONS: usize = 10_000;
 /// Edges it holds: W3's 30 000.
 pub const TABLE_EDGES: usize = 30_000;
+/// Lines it holds.
+pub const TABLE_LINES: usize = 256;
 /// Pixels of the band buffer: 64 rows of the widest frame (512).
 pub const BAND_PIXELS: usize = 64 * 512;
 
-/// The edge table's memory (about 1.25 MiB, in `.bss`).
+/// The edge table's memory (about 1.24 MiB, in `.bss`) and the band buffer.
 pub struct Table {
     /// Polygon entries.
     pub polygons: &'static mut [TablePolygon; TABLE_POLYGONS],
@@ -38,6 +41,8 @@ pub struct Table {
     pub index: &'static mut [u32; 2 * TABLE_POLYGONS],
     /// Edges.
     pub edges: &'static mut [Edge; TABLE_EDGES],
+    /// Lines.
+    pub lines: &'static mut [Option<Line>; TABLE_LINES],
     /// The band buffer.
     pub band: &'static mut [Pixel; BAND_PIXELS],
 }
@@ -74,7 +79,7 @@ pub fn measure(
         return false;
     };
     let need = needs_table(&list);
-    if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES {
+    if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES || need.lines > TABLE_LINES {
         report_skip(scene.name);
         return true;
     }
@@ -117,6 +122,7 @@ fn render(
         polygons: &mut table.polygons[..],
         index: &mut table.index[..],
         edges: &mut table.edges[..],
+        lines: &mut table.lines[..],
     };
     let mut c = Controller::new(Rasterizer::new(edges));
     if three {

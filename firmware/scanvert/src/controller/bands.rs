@@ -2,12 +2,13 @@
 //! [`port::band`](crate::port::band)).
 //!
 //! [`Controller::bands`] prepares the frame's work once: the list is
-//! checked, its 3D layer built (as [`Controller::render`] builds it), and
-//! every `poly` after the last `clear` entered into an
+//! checked, its 3D layer built (as [`Controller::render`] builds it, with
+//! the same interpreter into the same memory), and every `poly` and `line`
+//! after the last `clear` entered into an
 //! [`EdgeTable`](crate::raster::table::EdgeTable). [`ListBands::draw`]
 //! then draws the bands top to bottom, each in the full-frame path's
 //! order: the background (the last `clear`'s colour, or black), the 2D
-//! polygons in painter's order, the 3D layer's rows over them with its
+//! polygons and lines in painter's order, the 3D layer's rows over them with its
 //! background skipped, then the labels cut to the band's rows. So every
 //! band is, pixel for pixel, those rows of the frame [`Controller::render`]
 //! draws into a black frame buffer. [`Controller::render_bands`] runs the
@@ -83,7 +84,8 @@ impl ListBands<'_> {
 
     /// What has been drawn so far: the 3D layer's counts as of the last
     /// band; `polygons` are those entered in the table (the full frame
-    /// counts every `poly`), and spans, pixels and labels are summed over
+    /// counts every `poly`; lines are not polygons in either), and spans,
+    /// pixels and labels are summed over
     /// the bands (a label reaching two bands counts twice).
     pub fn stats(&self) -> RenderStats {
         self.stats
@@ -165,7 +167,7 @@ impl ListBands<'_> {
 
 impl<'e> Controller<'e> {
     /// Prepares `list` to be drawn band by band (see the
-    /// [module](self) docs), with `table` for its 2D polygons: checks it
+    /// [module](self) docs), with `table` for its 2D polygons and lines: checks it
     /// as [`render`](Self::render) does, builds its 3D layer, and enters
     /// its polygons. On any error nothing is drawn.
     pub fn bands<'t>(
@@ -197,7 +199,7 @@ impl<'e> Controller<'e> {
         };
         let table = EdgeTable::build(table, list, (w, h)).map_err(PrepareError::Table)?;
         stats.commands = table.commands();
-        stats.polygons = table.len() as u32;
+        stats.polygons = (table.len() - table.lines()) as u32;
         stats.clears = table.clear_color().is_some() as u32;
         Ok(ListBands {
             background: table.clear_color().unwrap_or(Rgb888::BLACK),

@@ -1,34 +1,37 @@
-//! The 2D edge table: every polygon of a display list set up once and
-//! stepped down the frame band by band, for rendering without a frame
-//! buffer ([`port::band`](crate::port::band)).
+//! The 2D edge table: every polygon and line of a display list set up
+//! once and stepped down the frame band by band, for rendering without a
+//! frame buffer ([`port::band`](crate::port::band)).
 //!
 //! # One pass
 //!
-//! [`EdgeTable::build`] reads the list once. Every `poly` after the last
-//! `clear` (what comes before it is covered by it: a `clear` empties the
-//! table) is entered with its
-//! colour and the clip registers in force at its place: its edges are set
-//! up exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
+//! [`EdgeTable::build`] reads the list once. Every `poly` and `line` after
+//! the last `clear` (what comes before it is covered by it: a `clear`
+//! empties the table) is entered, in list order, with its colour and the
+//! clip registers in force at its place. A polygon's edges are set up
+//! exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
 //! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
-//! first row), so it covers exactly the same pixels. The polygons are then
-//! ordered by first row (an index array; the polygons stay in list order).
+//! first row), so it covers exactly the same pixels; a line is the
+//! [`Line`] generator [`draw_line`](crate::raster::line::draw_line) steps,
+//! cut to the same clip, so it writes exactly the same spans. The entries
+//! are then ordered by first row (an index array; the entries stay in list
+//! order).
 //!
-//! [`EdgeTable::draw`] draws rows `y0..y1`: the polygons whose first row
-//! has come join the live list, kept in list order; each live polygon in
+//! [`EdgeTable::draw`] draws rows `y0..y1`: the entries whose first row
+//! has come join the live list, kept in list order; each live entry in
 //! that order (painter's order: the band holds all its rows, so a later
-//! polygon covers an earlier one on every row) emits its spans on the
-//! band's rows and keeps its active edges, stepped to `y1`, for the next
-//! band; polygons past their last row leave. [`EdgeTable::skip`] steps
-//! the same way without emitting anything. Nothing is set up again, and
-//! the list is not read again.
+//! entry covers an earlier one on every row) emits its spans on the band's
+//! rows and keeps its state (a polygon's active edges, a line's row),
+//! stepped to `y1`, for the next band; entries past their last row leave.
+//! [`EdgeTable::skip`] steps the same way without emitting anything.
+//! Nothing is set up again, and the list is not read again.
 //!
 //! # Memory
 //!
 //! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (24
 //! bytes on 32-bit targets) and two `u32`s (the live list and the order by
-//! first row) per entered
-//! polygon, and an [`Edge`] (32 bytes) per edge of them; [`needs_table`]
-//! counts both for a list, as an upper bound (one edge per vertex).
+//! first row) per entry, an [`Edge`] (32 bytes) per edge of the polygons
+//! and an `Option<`[`Line`]`>` (48 bytes) per line; [`needs_table`] counts them for a
+//! list, as an upper bound (one edge per vertex, every line entered).
 //! Running out is a [`TableError`] found by `build`, before anything is
 //! drawn.
 
@@ -39,16 +42,17 @@ use crate::port::Counts;
 use crate::port::{Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::Edge;
+use crate::raster::line::Line;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-/// One polygon of the table. The caller provides the array, filled with
-/// [`TablePolygon::EMPTY`].
+/// One entry of the table: a polygon or a line. The caller provides the
+/// array, filled with [`TablePolygon::EMPTY`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TablePolygon {
-    /// Its first edge slot.
+    /// A polygon's first edge slot; a line's slot.
     first: u32,
-    /// Its edges, from `first`.
+    /// A polygon's edges, from `first` (at least two); 0 for a line.
     n: u16,
     /// `edges[..active]` are active, `edges[active..next]` finished,
     /// `edges[next..]` wait for their first row.
@@ -75,7 +79,12 @@ impl TablePolygon {
         color: Rgb888::new(0, 0, 0),
     };
 
-    /// `true` when every edge has been used up.
+    /// `true` for a line.
+    fn is_line(&self) -> bool {
+        self.n == 0
+    }
+
+    /// `true` when a polygon's every edge has been used up.
     fn done(&self) -> bool {
         self.active == 0 && self.next == self.n
     }
@@ -84,37 +93,49 @@ impl TablePolygon {
 /// The caller's memory for an [`EdgeTable`]; [`needs_table`] sizes it.
 #[derive(Debug)]
 pub struct TableMemory<'a> {
-    /// One entry per polygon after the last `clear`.
+    /// One entry per polygon and line after the last `clear`.
     pub polygons: &'a mut [TablePolygon],
     /// The live list and the order by first row: twice as many as
     /// `polygons`.
     pub index: &'a mut [u32],
     /// Every edge of those polygons.
     pub edges: &'a mut [Edge],
+    /// Those lines, filled with `None`.
+    pub lines: &'a mut [Option<Line>],
 }
 
 /// What the table of a list needs, from [`needs_table`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TableNeeds {
-    /// `poly`s after the last `clear`: polygon entries (and twice as many
-    /// index entries).
+    /// `poly`s and `line`s after the last `clear`: entries (and twice as
+    /// many index entries).
     pub polygons: usize,
-    /// Their vertices: edge slots.
+    /// The `poly`s' vertices: edge slots.
     pub edges: usize,
+    /// The `line`s: line slots.
+    pub lines: usize,
 }
 
-/// Counts the table memory of `list`: the `poly`s after its last `clear`
-/// and their vertices (an upper bound of their edges).
+/// Counts the table memory of `list`: the `poly`s and `line`s after its
+/// last `clear`, the polygons' vertices (an upper bound of their edges).
 pub fn needs_table(list: &DisplayList<'_>) -> TableNeeds {
     let last = last_clear(list);
     let mut n = TableNeeds::default();
     for (offset, cmd) in list.commands() {
-        if let Command::Poly(v) = cmd {
-            if last.is_none_or(|(c, _)| offset > c) {
+        if last.is_some_and(|(c, _)| offset <= c) {
+            continue;
+        }
+        match cmd {
+            Command::Poly(v) => {
                 n.polygons += 1;
                 n.edges += v.len();
             }
+            Command::Line(..) => {
+                n.polygons += 1;
+                n.lines += 1;
+            }
+            _ => {}
         }
     }
     n
@@ -130,7 +151,7 @@ pub fn last_clear(list: &DisplayList<'_>) -> Option<(usize, Rgb888)> {
         .last()
 }
 
-/// The table ran out of memory at the `poly` at `offset`.
+/// The table ran out of memory at the `poly` or `line` at `offset`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum TableError {
@@ -148,13 +169,22 @@ pub enum TableError {
         /// Slots available.
         capacity: usize,
     },
+    /// Line slots.
+    Lines {
+        /// Byte offset of the `line` in the list.
+        offset: usize,
+        /// Slots available.
+        capacity: usize,
+    },
 }
 
 impl TableError {
-    /// Byte offset of the `poly` at fault.
+    /// Byte offset of the `poly` or `line` at fault.
     pub fn offset(&self) -> usize {
         match *self {
-            TableError::Polygons { offset, .. } | TableError::Edges { offset, .. } => offset,
+            TableError::Polygons { offset, .. }
+            | TableError::Edges { offset, .. }
+            | TableError::Lines { offset, .. } => offset,
         }
     }
 }
@@ -164,18 +194,22 @@ impl fmt::Display for TableError {
         match self {
             TableError::Polygons { capacity, .. } => write!(
                 f,
-                "the edge table holds {capacity} polygons; the list has more"
+                "the edge table holds {capacity} polygons and lines; the list has more"
             ),
             TableError::Edges { capacity, .. } => write!(
                 f,
                 "the edge table holds {capacity} edges; the list's polygons have more"
             ),
+            TableError::Lines { capacity, .. } => write!(
+                f,
+                "the edge table holds {capacity} lines; the list has more"
+            ),
         }
     }
 }
 
-/// The polygons of a display list after its last `clear`, set up once,
-/// drawn band by band. See the [module](self) docs.
+/// The polygons and lines of a display list after its last `clear`, set
+/// up once, drawn band by band. See the [module](self) docs.
 #[derive(Debug)]
 pub struct EdgeTable<'a> {
     polygons: &'a mut [TablePolygon],
@@ -184,8 +218,11 @@ pub struct EdgeTable<'a> {
     /// first `entered` have entered.
     index: &'a mut [u32],
     edges: &'a mut [Edge],
+    lines: &'a mut [Option<Line>],
     cap: usize,
     count: usize,
+    /// Of the `count` entries, lines.
+    nlines: usize,
     entered: usize,
     nlive: usize,
     /// The next row to draw or skip.
@@ -195,8 +232,8 @@ pub struct EdgeTable<'a> {
 }
 
 impl<'a> EdgeTable<'a> {
-    /// Enters every `poly` of `list` after its last `clear`, on a frame
-    /// of `w × h` (the list's frame cut to the target's).
+    /// Enters every `poly` and `line` of `list` after its last `clear`,
+    /// on a frame of `w × h` (the list's frame cut to the target's).
     pub fn build(
         mem: TableMemory<'a>,
         list: &DisplayList<'_>,
@@ -206,11 +243,12 @@ impl<'a> EdgeTable<'a> {
             polygons,
             index,
             edges,
+            lines,
         } = mem;
         let cap = polygons.len().min(index.len() / 2);
         let mut clip = ClipRect::full(w, h);
         let mut color = crate::controller::DEFAULT_COLOR;
-        let (mut count, mut used, mut commands) = (0usize, 0usize, 0u32);
+        let (mut count, mut used, mut nlines, mut commands) = (0usize, 0usize, 0usize, 0u32);
         // One pass: a `clear` empties the table (it covers everything
         // before it), and running out of memory counts only if no `clear`
         // follows.
@@ -220,7 +258,7 @@ impl<'a> EdgeTable<'a> {
             commands += 1;
             match cmd {
                 Command::Clear(c) => {
-                    (count, used, full, clear) = (0, 0, None, Some(c));
+                    (count, used, nlines, full, clear) = (0, 0, 0, None, Some(c));
                 }
                 Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
                 Command::Color(c) => color = c,
@@ -258,6 +296,35 @@ impl<'a> EdgeTable<'a> {
                     count += 1;
                     used += n;
                 }
+                Command::Line(a, b) if full.is_none() => {
+                    // As `draw_line`: nothing when no pixel is in the clip.
+                    let Some(line) = Line::new(a, b, &clip) else {
+                        continue;
+                    };
+                    let Some(slot) = lines.get_mut(nlines) else {
+                        full = Some(TableError::Lines {
+                            offset,
+                            capacity: lines.len(),
+                        });
+                        continue;
+                    };
+                    if count >= cap {
+                        full = Some(TableError::Polygons {
+                            offset,
+                            capacity: cap,
+                        });
+                        continue;
+                    }
+                    *slot = Some(line);
+                    polygons[count] = TablePolygon {
+                        first: nlines as u32,
+                        y: line.top(),
+                        color,
+                        ..TablePolygon::EMPTY
+                    };
+                    count += 1;
+                    nlines += 1;
+                }
                 _ => {}
             }
         }
@@ -294,8 +361,10 @@ impl<'a> EdgeTable<'a> {
             polygons,
             index,
             edges,
+            lines,
             cap,
             count,
+            nlines,
             entered: 0,
             nlive: 0,
             y: 0,
@@ -304,12 +373,17 @@ impl<'a> EdgeTable<'a> {
         })
     }
 
-    /// Polygons entered.
+    /// Entries: polygons and lines entered.
     pub fn len(&self) -> usize {
         self.count
     }
 
-    /// `true` when no polygon draws anything.
+    /// Lines entered.
+    pub fn lines(&self) -> usize {
+        self.nlines
+    }
+
+    /// `true` when no polygon or line draws anything.
     pub fn is_empty(&self) -> bool {
         self.count == 0
     }
@@ -329,8 +403,9 @@ impl<'a> EdgeTable<'a> {
         self.y
     }
 
-    /// Draws rows `self.next_row()..y1` of every polygon into `target`,
-    /// in painter's order, and keeps their edges for the rows after.
+    /// Draws rows `self.next_row()..y1` of every polygon and line into
+    /// `target`, in painter's order, and keeps their state for the rows
+    /// after.
     pub fn draw<T>(&mut self, y1: i32, target: &mut T) -> Result<Counts, T::Error>
     where
         T: SpanTarget + ?Sized,
@@ -339,7 +414,7 @@ impl<'a> EdgeTable<'a> {
         self.advance(y1, Some(target))
     }
 
-    /// Steps every polygon to row `y1` without drawing.
+    /// Steps every polygon and line to row `y1` without drawing.
     pub fn skip(&mut self, y1: i32) {
         // `None` of a target that cannot fail.
         let _ = self.advance::<crate::port::band::Band<'_, Rgb888>>(y1, None);
@@ -385,10 +460,27 @@ impl<'a> EdgeTable<'a> {
         for q in 0..self.nlive {
             let i = self.index[q] as usize;
             let p = &mut self.polygons[i];
-            let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
             let color = target.as_ref().map(|_| T::Color::from_rgb888(p.color));
-            run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
-            if !p.done() {
+            let done = if p.is_line() {
+                match self
+                    .lines
+                    .get_mut(p.first as usize)
+                    .and_then(Option::as_mut)
+                {
+                    Some(line) => {
+                        run_line(line, y1, color, target.as_deref_mut(), &mut counts)?;
+                        p.y = line.row();
+                        line.row() >= line.end()
+                    }
+                    // Entered with its line: never.
+                    None => true,
+                }
+            } else {
+                let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
+                run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
+                p.done()
+            };
+            if !done {
                 self.index[kept] = i as u32;
                 kept += 1;
             }
@@ -540,6 +632,37 @@ fn run<T: SpanTarget + ?Sized>(
     Ok(())
 }
 
+/// Rows `line.row()..y1` of one line, as
+/// [`draw_line`](crate::raster::line::draw_line) writes them, drawn into
+/// `target` (or only stepped without one); it is left at row `y1` (or
+/// its end).
+#[inline]
+fn run_line<T: SpanTarget + ?Sized>(
+    line: &mut Line,
+    y1: i32,
+    color: Option<T::Color>,
+    mut target: Option<&mut T>,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    while line.row() < y1.min(line.end()) {
+        if let (Some(t), Some(color), Some((x0, x1))) = (target.as_deref_mut(), color, line.span())
+        {
+            t.fill_span(
+                Span {
+                    y: line.row() as u16,
+                    x0: x0 as u16,
+                    x1: x1 as u16,
+                },
+                color,
+            )?;
+            counts.spans += 1;
+            counts.pixels += (x1 - x0) as u32;
+        }
+        line.step();
+    }
+    Ok(())
+}
+
 /// Writes the span `l..r` of row `y`, cut to the clip columns `cx`.
 #[inline(always)]
 fn emit<T: SpanTarget + ?Sized>(
@@ -576,5 +699,16 @@ fn insertion_sort(e: &mut [Edge]) {
             e.swap(j - 1, j);
             j -= 1;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entry_and_line_sizes_are_as_documented() {
+        assert_eq!(core::mem::size_of::<TablePolygon>(), 24);
+        assert_eq!(core::mem::size_of::<Option<Line>>(), 48);
     }
 }
