@@ -172,25 +172,25 @@ impl CostModel {
     /// and its error are the test `race_model` of `scanvert-sim`, which
     /// prints the coefficients when run with `--ignored`.
     ///
-    /// Against the 1,992 measured rows the model's error is 4.3 % on
-    /// average and 26.5 % at worst (the 3D lists' rows: 7.9 % and 7.1 % on
-    /// average; the 2D lists' 0.8 % to 4.9 %). Preparing a list is fitted
-    /// to the eight lists' counts, within 15 %. Labels are in none of the
+    /// Against the 1,992 measured rows the model's error is 4.4 % on
+    /// average and 26.4 % at worst (the 3D lists' rows: 8.0 % and 7.1 % on
+    /// average; the 2D lists' 0.8 % to 5.1 %). Preparing a list is fitted
+    /// to the eight lists' counts, within 14 %. Labels are in none of the
     /// measured lists, so `label` is 0 and a label costs its spans and
     /// pixels. One instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: -17006,
-        width: 308,
-        span: 1592,
-        pixel: 14,
-        run: 359,
-        entered: 3498,
-        resolved: 3256,
+        row: -17537,
+        width: 310,
+        span: 1516,
+        pixel: 12,
+        run: 383,
+        entered: 3509,
+        resolved: 3298,
         label: 0,
-        live: 4324,
-        frame: 111517,
-        command: 13520,
-        trapezoid: 26249,
+        live: 4517,
+        frame: 111412,
+        command: 14141,
+        trapezoid: 24986,
     };
 
     /// Instructions of a row of `work`, at least 1.

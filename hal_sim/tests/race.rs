@@ -13,15 +13,15 @@ fn dir() -> PathBuf {
     d
 }
 
-/// 2D polygons in painter's order and interpenetrating `poly3`s. (No
-/// `line`: the rows come from the band path, which does not draw `line`s
-/// yet.)
+/// 2D polygons and a line in painter's order, and interpenetrating
+/// `poly3`s.
 const SCENE: &str = "frame 96 64
 clear #203040
 color #ffffff
 poly 4 4 90 10 40 60
 color #ff8000
 poly 50 2 94 30 60 62 10 40
+line 0 63 95 0
 poly3 10 10 5 80 12 5 70 50 5 12 52 5
 color #00ff00
 poly3 30 5 2 60 8 9 50 58 9 20 60 2

@@ -12,7 +12,7 @@
 //! `bands`): `cargo run --release --features rows`; `fit_rows.py` in this
 //! folder fits the cost model to the printed counts.
 
-use crate::bands::{Table, TABLE_EDGES, TABLE_POLYGONS};
+use crate::bands::{Table, TABLE_EDGES, TABLE_LINES, TABLE_POLYGONS};
 use crate::{platform, Memory3d, Scene};
 use scanvert::controller::Controller;
 use scanvert::display_list::{Command, DisplayList};
@@ -37,7 +37,7 @@ pub fn measure(
         return false;
     };
     let need = needs_table(&list);
-    if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES {
+    if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES || need.lines > TABLE_LINES {
         return true;
     }
     let three = list.commands().any(|(_, c)| matches!(c, Command::Poly3(_)));
@@ -45,12 +45,14 @@ pub fn measure(
         polygons,
         index,
         edges: table_edges,
+        lines,
         band,
     } = table;
     let t = TableMemory {
         polygons: &mut polygons[..],
         index: &mut index[..],
         edges: &mut table_edges[..],
+        lines: &mut lines[..],
     };
     let mut c = Controller::new(Rasterizer::new(edges));
     if three {
