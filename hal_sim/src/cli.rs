@@ -2,10 +2,11 @@
 //!
 //! ```text
 //! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
+//!                  [--race MHZ [--fifo K]]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
-//! scanvert demo [--out DIR] [--frames N] [--no-speed]
+//! scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
 //! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
 //!
@@ -34,10 +35,11 @@ use std::path::{Path, PathBuf};
 const USAGE: &str = "\
 usage:
   scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
+                  [--race MHZ [--fifo K]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
-  scanvert demo [--out DIR] [--frames N] [--no-speed]
+  scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
   scanvert help [COMMAND]
 
 SCENE is a display list in text form or binary form (told apart by its magic number),
@@ -54,7 +56,7 @@ Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 
 const HELP_RENDER: &str = "\
 usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
-                      [--band-rows N]
+                      [--band-rows N] [--race MHZ [--fifo K]]
 
 Renders SCENE, a display list in text or binary form, through the simulated display
 hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
@@ -85,6 +87,17 @@ options:
   --stats              print what the graphic controller did: commands, polygons,
                        spans, pixels, clears; for 3D scenes also poly3s, faces
                        (culled, clipped away), labels, trapezoids and runs
+  --race MHZ           race the beam with no frame RAM: the refresh controller reads
+                       each line from a ring of run-length rows that the graphic
+                       controller, its CPU at MHZ megahertz (e.g. 168 or 12.5), draws
+                       one row at a time just before the beam needs it; each row's
+                       time comes from a cost model of its work fitted to the
+                       instructions counted on a Cortex-M4. A line whose row is not
+                       ready when the beam reaches it is a deadline miss, shown pure
+                       red (#ff0000). Prints `deadline misses: M of N lines` and
+                       exits 0 whether or not lines were missed
+  --fifo K             with --race: the ring's rows, 1 to 65535 (default: 2); the
+                       graphic controller runs at most K rows ahead of the beam
   --help, -h           this help";
 
 const HELP_ASM: &str = "\
@@ -121,7 +134,7 @@ options:
   --help, -h           this help";
 
 const HELP_DEMO: &str = "\
-usage: scanvert demo [--out DIR] [--frames N] [--no-speed]
+usage: scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
 512x256 through the simulated display (double-buffered): first the threshold that
@@ -135,6 +148,11 @@ options:
                        that is not a regular file is refused
   --frames N           how many frames, 1 to 100 (default: 8)
   --no-speed           skip measuring the frames per second
+  --race MHZ           show every frame by racing the beam with no frame RAM, as
+                       `scanvert render --race` does (`scanvert help render`), in the
+                       mode of --timing (default: auto); prints a line
+                       `frame NN: deadline misses: M of N lines` a frame instead
+  --fifo K             with --race: the ring's rows (default: 2)
   --help, -h           this help";
 
 /// The help of `command`, or `None` for a command that does not exist.
@@ -339,6 +357,18 @@ pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError
         })?;
     Ok(Rendered { ram, stats })
 }
+
+/// A failure to prepare `scene`'s bands, naming the line (or offset).
+pub(crate) fn prepare_error(scene: &Scene, e: scanvert::controller::PrepareError) -> CliError {
+    match e {
+        scanvert::controller::PrepareError::Render(e) => scene.render_error(e),
+        e => input(
+            &scene.path,
+            format_args!("{}: {e}", scene.locate(e.offset())),
+        ),
+    }
+}
+
 struct Args {
     positional: Vec<String>,
     out: Option<PathBuf>,
@@ -348,6 +378,8 @@ struct Args {
     no_speed: bool,
     help: bool,
     band_rows: Option<u16>,
+    race: Option<crate::timing::Clock>,
+    fifo: Option<u16>,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -360,6 +392,8 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         no_speed: false,
         help: false,
         band_rows: None,
+        race: None,
+        fifo: None,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -383,6 +417,18 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 a.timing = Some(v.clone());
             }
             "--stats" => a.stats = true,
+            "--race" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                a.race = Some(crate::race::parse_mhz(v).ok_or_else(|| {
+                    usage("--race needs the CPU clock in MHz, a number above 0 (e.g. 168 or 12.5)")
+                })?);
+            }
+            "--fifo" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                let k = v.parse::<u16>().ok().filter(|&k| k >= 1);
+                a.fifo =
+                    Some(k.ok_or_else(|| usage("--fifo needs a count of rows from 1 to 65535"))?);
+            }
             "--help" | "-h" => a.help = true,
             "--band-rows" => {
                 // Any count ≥ 1; more rows than the frame has is one band.
@@ -482,6 +528,17 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             let list = scene.list();
             let mode = a.timing.as_deref().unwrap_or("auto");
             let timing = timing_for(mode, list.width(), list.height())?;
+            if a.fifo.is_some() && a.race.is_none() {
+                return Err(usage("render: --fifo goes with --race"));
+            }
+            if let Some(cpu) = a.race {
+                if a.band_rows.is_some() || a.stats {
+                    return Err(usage(
+                        "render: --race draws 1-row bands and prints its misses; --band-rows and --stats do not go with it",
+                    ));
+                }
+                return crate::race::render(&scene, &timing, cpu, a.fifo, &out, warn);
+            }
             let mut r = match a.band_rows {
                 Some(n) => render_scene_bands(&scene, n)?,
                 None => render_scene(&scene)?,
@@ -576,6 +633,14 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 return Err(usage("demo: takes no input file"));
             }
             let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("demo"));
+            if a.fifo.is_some() && a.race.is_none() {
+                return Err(usage("demo: --fifo goes with --race"));
+            }
+            if let Some(cpu) = a.race {
+                let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);
+                let timing = timing_for(a.timing.as_deref().unwrap_or("auto"), w, h)?;
+                return crate::race::demo(&dir, a.frames.unwrap_or(8), &timing, cpu, a.fifo);
+            }
             crate::demo::run(&dir, a.frames.unwrap_or(8), !a.no_speed)
         }
         other => Err(usage(format_args!("unknown command {other}"))),

@@ -15,6 +15,7 @@
 //! | [`image`] | the frame as a PNG (RGB565 expanded by bit replication) |
 //! | [`text`] | the text form of the display list: assembler and disassembler |
 //! | [`cli`] | the `scanvert` program: `render`, `asm`, `disasm`, `checksum` |
+//! | [`race`] | the display device with no frame RAM: a ring of run-length rows drawn just in time, with deadlines |
 //! | [`memory`] | the graphic controller's memory for a list, sized by what it needs |
 //!
 //! ```
@@ -56,6 +57,7 @@ pub mod error;
 pub mod image;
 pub mod memory;
 mod output;
+pub mod race;
 pub mod refresh;
 pub mod text;
 pub mod timing;

@@ -30,6 +30,32 @@ use scanvert::port::{Span, SpanTarget};
 
 const BLACK: Rgb565 = Rgb565::new(0, 0, 0);
 
+/// What the refresh controller reads pixels from: the frame-buffer RAM's
+/// read port, or (with no frame RAM) the ring of run-length rows of
+/// [`race`](crate::race).
+pub trait PixelSource {
+    /// The pixel at `(x, y)`, read on this clock, or `None` where there is
+    /// none (the monitor shows black).
+    fn read(&mut self, x: u16, y: u16) -> Option<Rgb565>;
+    /// The source idles for `cycles` clocks (blanking).
+    fn idle(&mut self, cycles: u64);
+    /// Strobed on each clock of the vertical retrace; `true` when the
+    /// source exchanged its banks.
+    fn vertical_blank(&mut self) -> bool;
+}
+
+impl PixelSource for ReadPort<'_> {
+    fn read(&mut self, x: u16, y: u16) -> Option<Rgb565> {
+        ReadPort::read(self, x, y)
+    }
+    fn idle(&mut self, cycles: u64) {
+        ReadPort::idle(self, cycles)
+    }
+    fn vertical_blank(&mut self) -> bool {
+        ReadPort::vertical_blank(self)
+    }
+}
+
 /// What the refresh controller did during one frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RefreshCounters {
@@ -184,7 +210,11 @@ impl RefreshController {
 
     /// Runs one pixel clock: drives the syncs, reads or idles the port,
     /// advances the beam. Returns the frame when this was its last clock.
-    pub fn tick(&mut self, port: &mut ReadPort<'_>) -> Option<Frame> {
+    ///
+    /// The port is the frame-buffer RAM's read port, or any other
+    /// [`PixelSource`]: the ring of run-length rows of
+    /// [`race`](crate::race), which has no frame RAM.
+    pub fn tick<S: PixelSource + ?Sized>(&mut self, port: &mut S) -> Option<Frame> {
         let (h, v) = (self.timing.horizontal(), self.timing.vertical());
         let (x, y) = (self.x, self.y);
         let hsync = (h.sync_start()..h.sync_end()).contains(&x);

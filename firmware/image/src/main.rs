@@ -23,7 +23,9 @@
 //! everything but the pixel writes; `halfword` renders into
 //! `FrameBuffer<Rgb565>`, one half-word store a pixel, instead of the
 //! default `PackedFrameBuffer` (two pixels to a word, written a word at a
-//! time), to compare the two.
+//! time), to compare the two; `rows` (with `bands`) draws every list again
+//! in 1-row bands and prints each row's instructions (`src/rows.rs`), the
+//! measurements of the simulator's cost model of racing the beam.
 #![no_std]
 #![no_main]
 #![deny(missing_docs)]
@@ -41,6 +43,8 @@ mod platform;
 #[cfg(feature = "bands")]
 mod bands;
 mod log;
+#[cfg(feature = "rows")]
+mod rows;
 mod scenes;
 
 use core::convert::Infallible;
@@ -415,6 +419,11 @@ pub fn run() -> bool {
         };
         for scene in scenes::SCENES {
             ok &= bands::measure(scene, &mut edges, mem, &mut table, &counter);
+        }
+        // Each list again, one row at a time, each row counted.
+        #[cfg(feature = "rows")]
+        for scene in scenes::SCENES {
+            ok &= rows::measure(scene, &mut edges, mem, &mut table, &counter);
         }
     }
     log::summary(matched, scenes::SCENES.len(), ok);

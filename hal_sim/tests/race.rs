@@ -1,0 +1,210 @@
+//! `scanvert render --race MHZ [--fifo K]`: racing the beam with no frame
+//! RAM. At a very high clock no line is missed and the image is the plain
+//! render's; at a very low clock lines are missed, every pixel of a missed
+//! line is pure red, and the printed count is the red lines; bad options
+//! are usage errors (exit 2) that write no image.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn dir() -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("race");
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+/// 2D polygons and a line in painter's order, and interpenetrating
+/// `poly3`s.
+const SCENE: &str = "frame 96 64
+clear #203040
+color #ffffff
+poly 4 4 90 10 40 60
+color #ff8000
+poly 50 2 94 30 60 62 10 40
+line 0 63 95 0
+poly3 10 10 5 80 12 5 70 50 5 12 52 5
+color #00ff00
+poly3 30 5 2 60 8 9 50 58 9 20 60 2
+";
+
+fn scanvert(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_scanvert"))
+        .args(args)
+        .output()
+        .expect("run scanvert")
+}
+
+fn scene(name: &str, text: &str) -> PathBuf {
+    let p = dir().join(format!("{name}.dl"));
+    std::fs::write(&p, text).expect("write scene");
+    p
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().expect("utf-8 path")
+}
+
+/// Renders with `extra` options; returns standard output and the image's
+/// pixels (8-bit RGB).
+fn render(src: &Path, name: &str, extra: &[&str]) -> (String, Vec<u8>) {
+    let png = dir().join(format!("{name}.png"));
+    let _ = std::fs::remove_file(&png);
+    let mut args = vec!["render", s(src), "--out", s(&png)];
+    args.extend_from_slice(extra);
+    let o = scanvert(&args);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{extra:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let (_, _, px) =
+        scanvert_sim::image::decode_png(&std::fs::read(&png).expect("png")).expect("decode");
+    (String::from_utf8_lossy(&o.stdout).into_owned(), px)
+}
+
+/// `(M, N)` of the one line `deadline misses: M of N lines`.
+fn misses(out: &str) -> (usize, usize) {
+    assert_eq!(out.lines().count(), 1, "{out}");
+    let rest = out
+        .strip_prefix("deadline misses: ")
+        .and_then(|r| r.strip_suffix(" lines\n"))
+        .unwrap_or_else(|| panic!("{out:?}"));
+    let (m, n) = rest.split_once(" of ").expect("M of N");
+    (m.parse().expect("M"), n.parse().expect("N"))
+}
+
+/// Rows of `px` (`w` pixels of 3 bytes) that are pure red throughout.
+fn red_rows(px: &[u8], w: usize) -> usize {
+    px.chunks(3 * w)
+        .filter(|row| row.chunks(3).all(|p| p == [0xff, 0, 0]))
+        .count()
+}
+
+#[test]
+fn a_fast_cpu_misses_nothing_and_shows_the_plain_render() {
+    let src = scene("plain", SCENE);
+    let (_, plain) = render(&src, "plain", &[]);
+    for (k, name) in [
+        (None, "fast"),
+        (Some("1"), "fast-k1"),
+        (Some("16"), "fast-k16"),
+    ] {
+        let mut extra = vec!["--race", "4000"];
+        extra.extend(k.iter().flat_map(|k| ["--fifo", *k]));
+        let (out, px) = render(&src, name, &extra);
+        assert_eq!(misses(&out), (0, 64));
+        assert!(
+            px == plain,
+            "{name}: the image differs from the plain render"
+        );
+    }
+}
+
+#[test]
+fn a_slow_cpu_misses_lines_shown_red_and_counted() {
+    let src = scene("slow", SCENE);
+    let (_, plain) = render(&src, "slow-plain", &[]);
+    // 1 Hz: nothing is ready in time.
+    let (out, px) = render(&src, "slow-1hz", &["--race", "0.000001"]);
+    assert_eq!(misses(&out), (64, 64));
+    assert_eq!(red_rows(&px, 96), 64);
+    // Clocks between: the count is the red lines, and every other line
+    // is the plain render's.
+    let mut some = false;
+    for mhz in ["100", "200", "300", "400", "500", "600", "700", "800"] {
+        for k in ["1", "2", "4"] {
+            let name = format!("slow-{mhz}-{k}");
+            let (out, px) = render(&src, &name, &["--race", mhz, "--fifo", k]);
+            let (m, n) = misses(&out);
+            assert_eq!(n, 64);
+            assert_eq!(red_rows(&px, 96), m, "{name}");
+            for (row, want) in px.chunks(3 * 96).zip(plain.chunks(3 * 96)) {
+                let red = row.chunks(3).all(|p| p == [0xff, 0, 0]);
+                assert!(red || row == want, "{name}");
+            }
+            some |= 0 < m && m < n;
+        }
+    }
+    assert!(some, "no clock missed some lines and not others");
+}
+
+#[test]
+fn bad_race_options_are_usage_errors_and_write_no_image() {
+    let src = scene("bad", SCENE);
+    let png = dir().join("bad.png");
+    for extra in [
+        &["--race", "0"][..],
+        &["--race", "0.0"],
+        &["--race", "-168"],
+        &["--race", "fast"],
+        &["--race", "1e3"],
+        &["--race"],
+        &["--race", "168", "--fifo", "0"],
+        &["--race", "168", "--fifo", "-2"],
+        &["--race", "168", "--fifo", "two"],
+        &["--race", "168", "--fifo"],
+        &["--fifo", "2"],
+        &["--race", "168", "--band-rows", "4"],
+        &["--race", "168", "--stats"],
+    ] {
+        let _ = std::fs::remove_file(&png);
+        let mut args = vec!["render", s(&src), "--out", s(&png)];
+        args.extend_from_slice(extra);
+        let o = scanvert(&args);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("--race") || err.contains("--fifo"),
+            "{extra:?}: {err}"
+        );
+        assert!(!png.exists(), "{extra:?} wrote an image");
+        assert!(o.stdout.is_empty(), "{extra:?}");
+    }
+}
+
+#[test]
+fn the_demo_races_every_frame() {
+    let out = dir().join("demo");
+    let _ = std::fs::remove_dir_all(&out);
+    let o = scanvert(&["demo", "--race", "4000", "--frames", "2", "--out", s(&out)]);
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        text,
+        "frame 00: deadline misses: 0 of 256 lines\nframe 01: deadline misses: 0 of 256 lines\n"
+    );
+    // Each frame is the demo's step drawn from scratch into a frame buffer.
+    for (i, step) in scanvert_sim::demo::steps(2).into_iter().enumerate() {
+        let want = scanvert_sim::demo::reference_frame(step).expect("reference");
+        let (w, h) = (scanvert_sim::demo::WIDTH, scanvert_sim::demo::HEIGHT);
+        let want = scanvert_sim::image::encode_pixels(w.into(), h.into(), &want).expect("png");
+        let want = scanvert_sim::image::decode_png(&want).expect("decode").2;
+        let got = std::fs::read(out.join(format!("frame-{i:02}.png"))).expect("frame");
+        let got = scanvert_sim::image::decode_png(&got).expect("decode").2;
+        assert!(got == want, "frame {i} differs from the plain render");
+    }
+    // 1 Hz: every line of every frame is red.
+    let o = scanvert(&[
+        "demo",
+        "--race",
+        "0.000001",
+        "--frames",
+        "1",
+        "--out",
+        s(&out),
+    ]);
+    assert_eq!(o.status.code(), Some(0));
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        "frame 00: deadline misses: 256 of 256 lines\n"
+    );
+    let png = std::fs::read(out.join("frame-00.png")).expect("frame");
+    let (w, _, px) = scanvert_sim::image::decode_png(&png).expect("decode");
+    assert_eq!(red_rows(&px, w as usize), 256);
+    for bad in [&["--race", "0"][..], &["--race", "x"], &["--fifo", "2"]] {
+        let mut args = vec!["demo", "--frames", "1", "--out", s(&out)];
+        args.extend_from_slice(bad);
+        assert_eq!(scanvert(&args).status.code(), Some(2), "{bad:?}");
+    }
+}

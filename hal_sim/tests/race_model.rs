@@ -1,0 +1,298 @@
+//! The cost model of racing the beam (`race::CostModel::M4`) against the
+//! instructions the Cortex-M4 image counted for every row of the lists it
+//! embeds (`firmware/image/rows-m4.txt`): its error, and (with
+//! `--ignored`) the least-squares fit that gave its coefficients.
+//!
+//! The fit weighs each row by the inverse square of its count, so it
+//! minimises the sum of squared *relative* errors; the coefficients are
+//! rounded to 1/16 instruction. Labels appear in none of the measured
+//! lists, so their coefficient stays 0: a label costs its spans and
+//! pixels.
+
+use scanvert::display_list::DisplayList;
+use scanvert_sim::race::{list_work, CostModel, PrepareWork, RowWork};
+use std::collections::HashMap;
+use std::path::PathBuf;
+
+const SCENES: [&str; 8] = [
+    "demo",
+    "w1",
+    "w2",
+    "w3",
+    "w4",
+    "w5",
+    "poly3-layered",
+    "poly3-tilted",
+];
+
+fn image_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../firmware/image")
+}
+
+/// Measured counts: `(prepare by scene, row by (scene, y))`.
+fn measured() -> (HashMap<String, u64>, HashMap<(String, u16), u64>) {
+    let text = std::fs::read_to_string(image_dir().join("rows-m4.txt")).expect("rows-m4.txt");
+    let (mut prep, mut rows) = (HashMap::new(), HashMap::new());
+    let count = |w: &str| -> u64 {
+        w.strip_prefix("instructions=")
+            .and_then(|n| n.parse().ok())
+            .expect("instructions=N")
+    };
+    for line in text.lines().filter(|l| !l.starts_with('#')) {
+        match line.split_whitespace().collect::<Vec<_>>()[..] {
+            ["prepare", name, n] => {
+                prep.insert(name.to_string(), count(n));
+            }
+            ["row", name, y, n] => {
+                rows.insert((name.to_string(), y.parse().expect("y")), count(n));
+            }
+            _ => panic!("unexpected line {line:?}"),
+        }
+    }
+    (prep, rows)
+}
+
+/// Every measured row with its work, and every list's preparation.
+#[allow(clippy::type_complexity)]
+fn samples() -> (
+    Vec<(&'static str, PrepareWork, u64)>,
+    Vec<(&'static str, RowWork, u64)>,
+) {
+    let (prep, rows) = measured();
+    let (mut p, mut r) = (Vec::new(), Vec::new());
+    for name in SCENES {
+        let bytes = std::fs::read(image_dir().join(format!("scenes/{name}.scvl"))).expect("scene");
+        let list = DisplayList::new_checked(&bytes).expect("list");
+        let (pw, work) = list_work(&list).expect("work");
+        p.push((name, pw, prep[name]));
+        for (y, w) in work.into_iter().enumerate() {
+            r.push((name, w, rows[&(name.to_string(), y as u16)]));
+        }
+    }
+    assert_eq!(r.len(), rows.len(), "a measured row has no row of the host");
+    (p, r)
+}
+
+fn row_features(w: &RowWork) -> [f64; 8] {
+    [
+        1.0,
+        w.width.into(),
+        w.spans.into(),
+        w.pixels.into(),
+        w.runs.into(),
+        w.entered.into(),
+        w.resolved.into(),
+        w.live.into(),
+    ]
+}
+
+/// Weighted least squares: minimises Σ ((x·c − y) / y)².
+#[allow(clippy::needless_range_loop)]
+fn fit<const N: usize>(samples: &[([f64; N], u64)]) -> [f64; N] {
+    let mut a = [[0.0f64; N]; N];
+    let mut b = [0.0f64; N];
+    for (x, y) in samples {
+        let w = 1.0 / (*y as f64 * *y as f64);
+        for i in 0..N {
+            b[i] += w * x[i] * *y as f64;
+            for j in 0..N {
+                a[i][j] += w * x[i] * x[j];
+            }
+        }
+    }
+    // Gaussian elimination with partial pivoting.
+    for c in 0..N {
+        let p = (c..N)
+            .max_by(|&i, &j| a[i][c].abs().total_cmp(&a[j][c].abs()))
+            .unwrap();
+        a.swap(c, p);
+        b.swap(c, p);
+        for r in 0..N {
+            if r != c && a[c][c] != 0.0 {
+                let f = a[r][c] / a[c][c];
+                for k in c..N {
+                    a[r][k] -= f * a[c][k];
+                }
+                b[r] -= f * b[c];
+            }
+        }
+    }
+    std::array::from_fn(|i| if a[i][i] == 0.0 { 0.0 } else { b[i] / a[i][i] })
+}
+
+/// Mean and worst relative error of `model` over the rows, and per list.
+fn errors(model: &CostModel, rows: &[(&str, RowWork, u64)]) -> (f64, f64) {
+    let e: Vec<f64> = rows
+        .iter()
+        .map(|(_, w, m)| (model.row(w) as f64 - *m as f64).abs() / *m as f64)
+        .collect();
+    (
+        e.iter().sum::<f64>() / e.len() as f64,
+        e.iter().copied().fold(0.0, f64::max),
+    )
+}
+
+#[test]
+fn the_m4_model_is_within_its_published_error() {
+    let (prep, rows) = samples();
+    let (mean, worst) = errors(&CostModel::M4, &rows);
+    for name in SCENES {
+        let of: Vec<_> = rows.iter().filter(|r| r.0 == name).cloned().collect();
+        let (m, w) = errors(&CostModel::M4, &of);
+        println!("{name}: mean {:.1}%, worst {:.1}%", 100.0 * m, 100.0 * w);
+    }
+    for (name, w, m) in &prep {
+        let p = CostModel::M4.prepare(w);
+        println!("prepare {name}: model {p}, measured {m}");
+    }
+    println!(
+        "rows: mean {:.1}%, worst {:.1}%",
+        100.0 * mean,
+        100.0 * worst
+    );
+    // The figures published in CostModel::M4's docs and docs/performance.md.
+    assert!(mean <= 0.045, "mean relative error {mean}");
+    assert!(worst <= 0.30, "worst relative error {worst}");
+}
+
+#[test]
+#[ignore = "prints the fit that gave CostModel::M4"]
+fn fit_the_m4_model() {
+    let (prep, rows) = samples();
+    let x: Vec<_> = rows.iter().map(|(_, w, m)| (row_features(w), *m)).collect();
+    let c = fit(&x).map(|v| (v * 16.0).round() as i64);
+    let px: Vec<_> = prep
+        .iter()
+        .map(|(_, w, m)| ([1.0, f64::from(w.commands), f64::from(w.trapezoids)], *m))
+        .collect();
+    let p = fit(&px).map(|v| (v * 16.0).round() as i64);
+    println!(
+        "row: {}, width: {}, span: {}, pixel: {}, run: {}, entered: {}, resolved: {}, live: {}",
+        c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]
+    );
+    println!("frame: {}, command: {}, trapezoid: {}", p[0], p[1], p[2]);
+}
+
+/// The `p`-th percentile (nearest rank) of `v`.
+fn percentile(v: &[u64], p: usize) -> u64 {
+    let mut s = v.to_vec();
+    s.sort_unstable();
+    s[(s.len() * p).div_ceil(100).clamp(1, s.len()) - 1]
+}
+
+fn mhz(c: Option<scanvert_sim::timing::Clock>) -> String {
+    c.map_or("> 4,294".into(), |c| {
+        format!("{:.0}", f64::from(c.hz()) / 1e6)
+    })
+}
+
+/// A scene's name, instructions of preparing it and of each row from the
+/// model, and of each row measured on the M4 if it was.
+type Costs = (String, u64, Vec<u64>, Option<Vec<u64>>);
+
+#[test]
+#[ignore = "prints the table of docs/performance.md's racing-the-beam section"]
+fn race_table() {
+    use scanvert_sim::race::{demo_costs, lowest_clock, schedule};
+    use scanvert_sim::timing::{Clock, VideoTiming};
+    let (_, measured_rows) = measured();
+    let m4 = CostModel::M4;
+    // (name, prepare, rows, measured rows on the M4 if any)
+    let mut scenes: Vec<Costs> = Vec::new();
+    let demo = demo_costs(8, &m4).expect("demo");
+    // The demo's frame of the most instructions.
+    let (dp, dr) = demo
+        .into_iter()
+        .max_by_key(|(p, r)| p + r.iter().sum::<u64>())
+        .expect("frames");
+    scenes.push((
+        "3D demo (`scanvert demo`, worst of 8 frames), 512×256".into(),
+        dp,
+        dr,
+        None,
+    ));
+    let mut list = |name: String, bytes: Vec<u8>, m4rows: Option<Vec<u64>>| {
+        let l = DisplayList::new_checked(&bytes).expect("list");
+        let (pw, work) = list_work(&l).expect("work");
+        let rows = work.iter().map(|w| m4.row(w)).collect();
+        scenes.push((name, m4.prepare(&pw), rows, m4rows));
+    };
+    for (name, label) in [
+        ("demo", "2D demo (`scenes/demo.dl`), 320×200"),
+        ("poly3-layered", "poly3-layered (170 faces), 512×256"),
+        ("poly3-tilted", "poly3-tilted (170 faces), 512×256"),
+        ("w3", "W3 (10,000 polygons), 512×256"),
+    ] {
+        let bytes = std::fs::read(image_dir().join(format!("scenes/{name}.scvl"))).expect("scene");
+        let mut ys: Vec<_> = measured_rows
+            .iter()
+            .filter(|((n, _), _)| n == name)
+            .map(|((_, y), c)| (*y, *c))
+            .collect();
+        ys.sort_unstable();
+        list(
+            label.into(),
+            bytes,
+            Some(ys.into_iter().map(|(_, c)| c).collect()),
+        );
+    }
+    let cube = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/cube.dl"),
+    )
+    .expect("cube")
+    .replace("frame 320 240", "frame 640 480");
+    let cube = scanvert_sim::text::assemble_bytes(cube.as_bytes())
+        .expect("cube")
+        .bytes;
+    list(
+        "cube (`scenes/cube.dl` at 640×480: 3D, labels)".into(),
+        cube,
+        None,
+    );
+
+    let timings = [
+        ("reference", VideoTiming::REFERENCE_640X480),
+        ("VGA", VideoTiming::VGA_640X480_60),
+    ];
+    println!("| scene | lowest MHz, reference, K = 2 / 4 / 16 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 | misses at 168 MHz, reference, K = 2 / 4 / 16 | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |");
+    println!("|---|---|---|---|---|---|---|");
+    let cpu = Clock::from_mhz(168).expect("168 MHz");
+    for (name, prep, rows, m4rows) in &scenes {
+        let mut cells = Vec::new();
+        for (_, t) in &timings {
+            let c: Vec<String> = [2u16, 4, 16]
+                .iter()
+                .map(|&k| mhz(lowest_clock(*prep, rows, t, k)))
+                .collect();
+            cells.push(c.join(" / "));
+        }
+        let shown = rows.len().min(480);
+        let m: Vec<String> = [2u16, 4, 16]
+            .iter()
+            .map(|&k| {
+                let n = schedule(*prep, &rows[..shown], &timings[0].1, cpu, k)
+                    .iter()
+                    .filter(|&&m| m)
+                    .count();
+                format!("{n}")
+            })
+            .collect();
+        cells.push(format!("{} of {shown}", m.join(" / ")));
+        let (src, r) = match m4rows {
+            Some(r) => ("M4", r),
+            None => ("model", rows),
+        };
+        let (worst, p99) = (*r.iter().max().unwrap(), percentile(r, 99));
+        cells.push(format!("{worst} ({src})"));
+        cells.push(format!("{p99} ({src})"));
+        cells.push(format!(
+            "{:.2}× / {:.2}×",
+            worst as f64 / 5376.0,
+            p99 as f64 / 5376.0
+        ));
+        println!("| {name} | {} |", cells.join(" | "));
+    }
+    for (name, prep, ..) in &scenes {
+        println!("prepare {name}: {prep}");
+    }
+}
