@@ -21,7 +21,7 @@
 //!
 //! # Memory
 //!
-//! All of it is the caller's: a slice of [`Label`] slots (24 bytes each on
+//! All of it is the caller's: a slice of [`Label`] slots (20 bytes each on
 //! 32-bit targets) and a byte slice for the text of all labels together.
 //! Emptying a segment removes its labels and closes the gap in both, so
 //! the other segments' labels keep their order and the memory needed is

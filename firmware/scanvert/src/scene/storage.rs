@@ -219,3 +219,18 @@ mod tests {
         );
     }
 }
+
+// The slot sizes the table above and the module docs of the pools give,
+// checked where they are stated: on 32-bit targets (the cross builds).
+#[cfg(target_pointer_width = "32")]
+const _: () = {
+    use core::mem::size_of;
+    assert!(size_of::<Trapezoid>() == 96);
+    assert!(size_of::<Face>() == 64);
+    assert!(size_of::<Segment>() == 28);
+    assert!(size_of::<EdgeSlot>() == 32);
+    assert!(size_of::<Active>() == 116);
+    assert!(size_of::<Cover>() == 20);
+    assert!(size_of::<Run>() == 4);
+    assert!(size_of::<Label>() == 20);
+};

@@ -31,7 +31,8 @@
 //! every row of a trapezoid, so the trapezoids cover the rule's pixels and
 //! never overlap. Two faces that share an edge therefore leave no gap and
 //! no double hit, as polygons do. A triangle is one or two trapezoids, a
-//! convex `n`-gon at most `n − 2`.
+//! convex `n`-gon at most `n − 1` (each vertex between the top and the
+//! bottom one starts a new trapezoid on its side).
 //!
 //! # The plane
 //!
@@ -1076,7 +1077,7 @@ mod tests {
         // A triangle: two trapezoids (the middle vertex splits one side).
         let tri = [px(2, 2), px(30, 9), px(6, 28)];
         assert_eq!(hits(&tri, &clip, &mut slots).1, 2);
-        // A convex hexagon: at most n − 2 = 4.
+        // A convex hexagon with horizontal top and bottom: 2.
         let hex = [
             px(10, 2),
             px(20, 2),
@@ -1085,7 +1086,19 @@ mod tests {
             px(10, 24),
             px(3, 12),
         ];
-        assert!(hits(&hex, &clip, &mut slots).1 <= 4);
+        assert_eq!(hits(&hex, &clip, &mut slots).1, 2);
+        // A convex hexagon with its vertices on six different rows: each
+        // of the four between the top and the bottom one starts a
+        // trapezoid, n − 1 = 5 in all.
+        let hex = [
+            px(15, 2),
+            px(26, 6),
+            px(28, 16),
+            px(20, 27),
+            px(6, 22),
+            px(3, 9),
+        ];
+        assert_eq!(hits(&hex, &clip, &mut slots).1, 5);
         // An axis-aligned rectangle: one.
         let rect = [px(3, 3), px(20, 3), px(20, 10), px(3, 10)];
         assert_eq!(hits(&rect, &clip, &mut slots).1, 1);
