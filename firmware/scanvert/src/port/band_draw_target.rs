@@ -1,5 +1,4 @@
-//! Bands into an embedded-graphics [`DrawTarget`] (feature
-//! `embedded-graphics`): each band becomes ONE
+//! Bands into an embedded-graphics [`DrawTarget`]: each band becomes ONE
 //! [`fill_contiguous`](DrawTarget::fill_contiguous) of the rectangle of
 //! its rows, so a display driver sets one address window and streams the
 //! band's pixels in one burst.
@@ -27,10 +26,11 @@
 //! let list = DisplayList::new_checked(w.finish()).unwrap();
 //!
 //! let mut pixels = [Rgb565::BLACK; 32 * 16];
-//! let mut port = DrawTargetPort::new(FrameBuffer::new(&mut pixels, 32, 16).unwrap());
+//! let mut fb = FrameBuffer::new(&mut pixels, 32, 16).unwrap();
+//! let mut port = DrawTargetPort::new(&mut fb);
 //! let (mut edges, mut polygons) = ([Edge::EMPTY; 3], [TablePolygon::EMPTY; 1]);
 //! let (mut index, mut table_edges) = ([0u32; 2], [Edge::EMPTY; 3]);
-//! let table = TableMemory { polygons: &mut polygons, index: &mut index, edges: &mut table_edges };
+//! let table = TableMemory { polygons: &mut polygons, index: &mut index, edges: &mut table_edges, lines: &mut [] };
 //! // 4-row bands through a buffer of 4 × 32 pixels: 4 fill_contiguous calls.
 //! let mut band = [Rgb565::BLACK; 4 * 32];
 //! Controller::new(Rasterizer::new(&mut edges))
