@@ -243,39 +243,53 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// Sets up the edges that cross a row centre inside `clip`; returns
     /// their number, or `None` when they do not fit. Returns 0 when the
     /// polygon's box misses the window's columns.
+    #[inline(always)]
     fn build<I: IntoIterator<Item = Vertex>>(
         &mut self,
         vertices: I,
         clip: &ClipRect,
     ) -> Option<usize> {
-        let rows = (clip.y0() as i32, clip.y1() as i32);
-        let mut it = vertices.into_iter();
-        let Some(first) = it.next() else {
-            return Some(0);
-        };
-        let (mut lo, mut hi) = (first.x.units(), first.x.units());
-        let mut n = 0;
-        let mut prev = first;
-        let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
-            if let Some(e) = S::new(a, b, rows) {
-                *self.edges.get_mut(*n)? = e;
-                *n += 1;
-            }
-            Some(())
-        };
-        for v in it {
-            push(prev, v, &mut n)?;
-            lo = lo.min(v.x.units());
-            hi = hi.max(v.x.units());
-            prev = v;
-        }
-        push(prev, first, &mut n)?;
-        // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
-        if ceil_px(hi - HALF) <= clip.x0() as i32 || ceil_px(lo - HALF) >= clip.x1() as i32 {
-            return Some(0);
-        }
-        Some(n)
+        build_edges(self.edges, vertices, clip)
     }
+}
+
+/// Sets up the edges of the polygon through `vertices` that cross a row
+/// centre inside `clip` into `edges`; returns their number (0 when the
+/// polygon's box misses the clip columns), or `None` when they do not
+/// fit. The rasteriser and the band path's edge table
+/// ([`table`](super::table)) both set up polygons so.
+pub(super) fn build_edges<S: Stepper>(
+    edges: &mut [S],
+    vertices: impl IntoIterator<Item = Vertex>,
+    clip: &ClipRect,
+) -> Option<usize> {
+    let rows = (clip.y0() as i32, clip.y1() as i32);
+    let mut it = vertices.into_iter();
+    let Some(first) = it.next() else {
+        return Some(0);
+    };
+    let (mut lo, mut hi) = (first.x.units(), first.x.units());
+    let mut n = 0;
+    let mut prev = first;
+    let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
+        if let Some(e) = S::new(a, b, rows) {
+            *edges.get_mut(*n)? = e;
+            *n += 1;
+        }
+        Some(())
+    };
+    for v in it {
+        push(prev, v, &mut n)?;
+        lo = lo.min(v.x.units());
+        hi = hi.max(v.x.units());
+        prev = v;
+    }
+    push(prev, first, &mut n)?;
+    // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
+    if ceil_px(hi - HALF) <= clip.x0() as i32 || ceil_px(lo - HALF) >= clip.x1() as i32 {
+        return Some(0);
+    }
+    Some(n)
 }
 
 /// Copies slot `from` into slot `to < from`. Through two disjoint borrows

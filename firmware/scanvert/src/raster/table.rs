@@ -37,12 +37,12 @@
 
 use crate::color::ListColor;
 use crate::display_list::{Command, DisplayList};
-use crate::fixed::{ceil_px, Vertex, HALF};
 use crate::port::Counts;
 use crate::port::{Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::Edge;
 use crate::raster::line::Line;
+use crate::raster::scan::build_edges;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -489,43 +489,6 @@ impl<'a> EdgeTable<'a> {
         self.y = y1;
         Ok(counts)
     }
-}
-
-/// Sets up the edges of the polygon through `vertices` that cross a row
-/// centre inside `clip` into `edges`, as the rasteriser does; returns
-/// their number (0 when the polygon's box misses the clip columns), or
-/// `None` when they do not fit.
-fn build_edges(
-    edges: &mut [Edge],
-    vertices: impl IntoIterator<Item = Vertex>,
-    clip: &ClipRect,
-) -> Option<usize> {
-    let rows = (clip.y0() as i32, clip.y1() as i32);
-    let mut it = vertices.into_iter();
-    let Some(first) = it.next() else {
-        return Some(0);
-    };
-    let (mut lo, mut hi) = (first.x.units(), first.x.units());
-    let mut n = 0;
-    let mut prev = first;
-    let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
-        if let Some(e) = Edge::new(a, b, rows) {
-            *edges.get_mut(*n)? = e;
-            *n += 1;
-        }
-        Some(())
-    };
-    for v in it {
-        push(prev, v, &mut n)?;
-        lo = lo.min(v.x.units());
-        hi = hi.max(v.x.units());
-        prev = v;
-    }
-    push(prev, first, &mut n)?;
-    if ceil_px(hi - HALF) <= clip.x0() as i32 || ceil_px(lo - HALF) >= clip.x1() as i32 {
-        return Some(0);
-    }
-    Some(n)
 }
 
 /// Rows `p.y..y1` of one polygon, as
