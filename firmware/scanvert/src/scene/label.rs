@@ -294,41 +294,8 @@ impl<'a> LabelStore<'a> {
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        let mut counts = LabelCounts::default();
-        let (w, h) = target.size();
-        let pitch = (font.character_size.width + font.character_spacing) as i32;
-        let (cw, ch) = (
-            font.character_size.width as i32,
-            font.character_size.height as i32,
-        );
-        for (l, text) in self.iter() {
-            // |x|, |y| ≤ 2²⁴, text ≤ 255 characters of a font below 2¹⁶
-            // pixels: every sum below is far inside i32.
-            let right = l.x + (text.len() as i32 - 1) * pitch + cw;
-            let top = l.y - ch;
-            if right <= 0 || l.x >= w as i32 || l.y <= 0 || top >= h as i32 {
-                counts.off_frame += 1;
-                continue;
-            }
-            let mut adapter = Spans {
-                target: &mut *target,
-                size: (w, h),
-                run: None,
-                written: Counts::default(),
-                error: None,
-            };
-            let style = MonoTextStyle::new(font, T::Color::from_rgb888(l.color));
-            // The bottom row of the cell is the row above the anchor.
-            let at = Point::new(l.x, l.y - 1);
-            let _ = Text::with_baseline(text, at, style, Baseline::Bottom).draw(&mut adapter);
-            adapter.flush();
-            counts.written += adapter.written;
-            if let Some(e) = adapter.error {
-                return Err(e);
-            }
-            counts.drawn += 1;
-        }
-        Ok(counts)
+        // Every row: a label on the frame reaches one of them.
+        self.draw_rows(font, (0, i32::MAX), target)
     }
 }
 
@@ -426,7 +393,8 @@ impl LabelStore<'_> {
         );
         let (y0, y1) = (rows.0.max(0), rows.1.min(h as i32));
         for (l, text) in self.iter() {
-            // As in `draw`: every sum is far inside i32.
+            // |x|, |y| ≤ 2²⁴, text ≤ 255 characters of a font below 2¹⁶
+            // pixels: every sum below is far inside i32.
             let right = l.x + (text.len() as i32 - 1) * pitch + cw;
             let top = l.y - ch;
             if right <= 0 || l.x >= w as i32 || l.y <= 0 || top >= h as i32 {
@@ -444,6 +412,7 @@ impl LabelStore<'_> {
                 error: None,
             };
             let style = MonoTextStyle::new(font, T::Color::from_rgb888(l.color));
+            // The bottom row of the cell is the row above the anchor.
             let at = Point::new(l.x, l.y - 1);
             let _ = Text::with_baseline(text, at, style, Baseline::Bottom).draw(&mut adapter);
             adapter.flush();
