@@ -129,5 +129,9 @@ mod tests {
         is_error::<crate::geometry::TransformError>();
         is_error::<crate::geometry::ProjectionError>();
         is_error::<crate::geometry::PipelineError<Infallible>>();
+        is_error::<crate::port::band::BandError>();
+        is_error::<crate::controller::ListBandsError<Infallible>>();
+        is_error::<crate::controller::PrepareError>();
+        is_error::<crate::raster::table::TableError>();
     }
 }

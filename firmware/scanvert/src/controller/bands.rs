@@ -55,6 +55,8 @@ impl fmt::Display for PrepareError {
     }
 }
 
+impl core::error::Error for PrepareError {}
+
 /// The errors of the band path of a list.
 pub type ListBandsError<E> = BandsError<PrepareError, E>;
 

@@ -146,6 +146,8 @@ impl<R: fmt::Display, E: fmt::Debug> fmt::Display for BandsError<R, E> {
     }
 }
 
+impl<R: fmt::Display + fmt::Debug, E: fmt::Debug> core::error::Error for BandsError<R, E> {}
+
 impl<R, E> From<BandError> for BandsError<R, E> {
     fn from(e: BandError) -> Self {
         BandsError::Band(e)

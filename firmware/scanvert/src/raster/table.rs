@@ -208,6 +208,8 @@ impl fmt::Display for TableError {
     }
 }
 
+impl core::error::Error for TableError {}
+
 /// The polygons and lines of a display list after its last `clear`, set
 /// up once, drawn band by band. See the [module](self) docs.
 #[derive(Debug)]
