@@ -88,6 +88,18 @@ impl Ram {
         }
     }
 
+    /// A projection: the same counts with trapezoid slots of `trapezoid`
+    /// bytes, active-plus-cover entries of `active` bytes and bands of
+    /// `rows` rows.
+    fn projected(c: &Counts, trapezoid: usize, active: usize, rows: usize) -> Ram {
+        Ram {
+            trapezoids: c.trapezoids * trapezoid,
+            active: c.active * active,
+            band: rows * c.width * slot::PIXEL,
+            ..Ram::of(c)
+        }
+    }
+
     fn total(&self) -> usize {
         self.trapezoids
             + self.faces
@@ -149,6 +161,10 @@ fn the_arithmetic_of_the_parts() {
     assert_eq!(z_buffer(320, 240, 2), 307_200);
     assert_eq!(z_buffer(320, 240, 4), 460_800);
     assert_eq!(Ram::of(&Counts::default()).total(), 0);
+    let p = Ram::projected(&c, 48, 72, 8);
+    assert_eq!((p.trapezoids, p.active, p.band), (480, 360, 5120));
+    assert_eq!(p.total(), r.total() - 960 + 480 - 680 + 360 - 10_240 + 5120);
+    assert_eq!(Ram::projected(&c, 96, 136, 16), r);
 }
 
 /// The slot sizes above are the library's where it can be checked on the
@@ -331,6 +347,42 @@ fn ram_table() {
                 &pools
             )
         );
+        if frames == 34 {
+            // Projections (not implemented): compact records, as
+            // `docs/performance.md` describes them, on the pools for
+            // every frame, at 512×256 and with the rows, runs and band at
+            // 320×240.
+            let small = Counts {
+                width: 320,
+                height: 240,
+                ..pools
+            };
+            for (size, c) in [("512×256", &pools), ("320×240", &small)] {
+                for (what, t, a, rows) in [
+                    ("as measured", 96, 136, 16),
+                    ("trapezoid 48 B", 48, 136, 16),
+                    ("trapezoid 40 B", 40, 136, 16),
+                    ("trapezoid 48 B, active + cover 72 B", 48, 72, 16),
+                    (
+                        "trapezoid 48 B, active + cover 72 B, 8-row bands",
+                        48,
+                        72,
+                        8,
+                    ),
+                ] {
+                    let p = Ram::projected(c, t, a, rows);
+                    println!(
+                        "projection, demo pools for {frames} frames, {size}, {what}: trapezoids {} active {} band {} total {} ({} KiB), {} under 65536",
+                        p.trapezoids,
+                        p.active,
+                        p.band,
+                        p.total(),
+                        kib(p.total()),
+                        65_536 - p.total() as i64
+                    );
+                }
+            }
+        }
         if frames == 8 {
             // The same counts at 320×240: an estimate (the demo is built
             // at 512×256 only).
