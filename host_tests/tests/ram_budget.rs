@@ -165,6 +165,10 @@ fn the_arithmetic_of_the_parts() {
     assert_eq!((p.trapezoids, p.active, p.band), (480, 360, 5120));
     assert_eq!(p.total(), r.total() - 960 + 480 - 680 + 360 - 10_240 + 5120);
     assert_eq!(Ram::projected(&c, 96, 136, 16), r);
+    assert_eq!(
+        (sep(0), sep(999), sep(1000), sep(94_911)),
+        ("0".into(), "999".into(), "1,000".into(), "94,911".into())
+    );
 }
 
 /// The slot sizes above are the library's where it can be checked on the
@@ -257,6 +261,19 @@ fn kib(b: usize) -> String {
     format!("{:.1}", b as f64 / 1024.0)
 }
 
+/// `n` with thousands separated by commas, as the page writes them.
+fn sep(n: usize) -> String {
+    let d = n.to_string();
+    let mut out = String::new();
+    for (i, ch) in d.chars().enumerate() {
+        if i > 0 && (d.len() - i) % 3 == 0 {
+            out.push(',');
+        }
+        out.push(ch);
+    }
+    out
+}
+
 fn row(name: &str, c: &Counts) -> String {
     let r = Ram::of(c);
     let (w, h) = (c.width, c.height);
@@ -266,22 +283,22 @@ fn row(name: &str, c: &Counts) -> String {
         c.trapezoids,
         c.faces,
         c.active,
-        r.trapezoids,
-        r.faces,
-        r.segments,
-        r.index,
-        r.edge_slots,
-        r.active,
-        r.runs,
-        r.labels,
-        r.table,
-        r.band,
-        t,
+        sep(r.trapezoids),
+        sep(r.faces),
+        sep(r.segments),
+        sep(r.index),
+        sep(r.edge_slots),
+        sep(r.active),
+        sep(r.runs),
+        sep(r.labels),
+        sep(r.table),
+        sep(r.band),
+        sep(t),
         kib(t),
-        frame_buffer(w, h),
+        sep(frame_buffer(w, h)),
         frame_buffer(w, h) as f64 / t as f64,
-        z_buffer(w, h, 2),
-        z_buffer(w, h, 4),
+        sep(z_buffer(w, h, 2)),
+        sep(z_buffer(w, h, 4)),
         z_buffer(w, h, 2) as f64 / t as f64,
         z_buffer(w, h, 4) as f64 / t as f64,
     )
