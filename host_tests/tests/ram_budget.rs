@@ -378,12 +378,12 @@ fn ram_table() {
                 for (what, t, a, rows) in [
                     ("as measured", 96, 136, 16),
                     ("trapezoid 48 B", 48, 136, 16),
-                    ("trapezoid 40 B", 40, 136, 16),
-                    ("trapezoid 48 B, active + cover 72 B", 48, 72, 16),
+                    ("trapezoid 44 B", 44, 136, 16),
+                    ("trapezoid 48 B, active + cover 68 B", 48, 68, 16),
                     (
-                        "trapezoid 48 B, active + cover 72 B, 8-row bands",
+                        "trapezoid 48 B, active + cover 68 B, 8-row bands",
                         48,
-                        72,
+                        68,
                         8,
                     ),
                 ] {
