@@ -335,9 +335,11 @@ pub fn markdown(run: &Run, old: &str) -> String {
          [`p3-p4-vs-trapezoids.png`](p3-p4-vs-trapezoids.png) in about {:.0} s\n\
          (the 3D scenes take {:.0} s of it), and keeps the \"On target\" section (between the\n\
          `on-target:begin` and `on-target:end` HTML comments, each on a line\n\
-         of its own) exactly as it finds it. The depth-complexity sweep and the\n\
-         P3/P4 split alone are rewritten by `-- --only depth` (see [their\n\
-         section](#depth-complexity-and-p3-against-p4)).\n",
+         of its own) and the sections after it (written by the examples and\n\
+         tests they name) exactly as it finds them. The depth-complexity\n\
+         sweep and the P3/P4 split alone are rewritten by `-- --only depth`\n\
+         (see [their section](#depth-complexity-and-p3-against-p4)), the bands\n\
+         by `-- --only bands`.\n",
         run.seconds.max(1.0),
         run.seconds3
     );
@@ -532,7 +534,19 @@ pub fn markdown(run: &Run, old: &str) -> String {
     s.push_str(crate::report::NOTES);
     s.push_str(&crate::bands::kept_section(old));
     let _ = writeln!(s, "\n## On target\n\n{}", on_target_section(old));
+    s.push_str(after_on_target(old));
     s
+}
+
+/// What follows the on-target section in `old`: the sections that other
+/// tools write (the display path, racing the beam, RAM), kept verbatim.
+pub fn after_on_target(old: &str) -> &str {
+    marker_line(old, ON_TARGET_BEGIN, 0)
+        .and_then(|b| marker_line(old, ON_TARGET_END, b))
+        .map_or("", |e| {
+            let rest = &old[e + ON_TARGET_END.len()..];
+            rest.strip_prefix('\n').unwrap_or(rest)
+        })
 }
 
 /// Hand-written notes on what limits the figures, from profiles (the
@@ -1035,6 +1049,8 @@ mod tests {
             kept,
             format!("{ON_TARGET_BEGIN}\n| a | b |\n|--|--|\n| 1 | 2 |\n{ON_TARGET_END}")
         );
+        assert_eq!(after_on_target(&old), "tail\n");
+        assert_eq!(after_on_target(""), "");
         assert!(on_target_section("").starts_with(ON_TARGET_BEGIN));
         assert!(on_target_section("").ends_with(ON_TARGET_END));
     }
