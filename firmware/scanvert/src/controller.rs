@@ -393,9 +393,10 @@ fn is_scene_command(cmd: &Command<'_>) -> bool {
 
 /// The geometry stage of `list`'s 3D layer ([`list_pipeline`] on the
 /// list's frame). A frame wider or taller than a window may be
-/// (2047 px) can still hold `poly3`s: the pipeline is then made on a
-/// window cut to that size, and the window's error is returned with it,
-/// for the first scene command to report.
+/// (2047 px), or too narrow for the default projection (its focal length
+/// below 1 px), can still hold `poly3`s: the pipeline is then made on a
+/// window of a size that works, and the default's error is returned with
+/// it, for the first scene command to report.
 fn layer_pipeline(
     list: &DisplayList<'_>,
     first: usize,
@@ -403,7 +404,9 @@ fn layer_pipeline(
     let (w, h) = (list.width(), list.height());
     match list_pipeline(w, h) {
         Ok(p) => Ok((p, None)),
-        Err(e) => list_pipeline(w.min(WINDOW_MAX), h.min(WINDOW_MAX))
+        // `poly3`s need no pipeline, so they are drawn whatever the
+        // frame; a scene command reports the default's error.
+        Err(e) => list_pipeline(w.clamp(16, WINDOW_MAX), h.clamp(16, WINDOW_MAX))
             .map(|p| (p, Some(e)))
             .map_err(|e| error_at(first, e)),
     }
@@ -979,6 +982,33 @@ mod tests {
         let (r, px) = m.render(&l, true);
         assert_eq!(r.unwrap().poly3, 1);
         assert_eq!(px[5 * W as usize + 3], 255);
+    }
+
+    #[test]
+    fn poly3_on_a_frame_too_narrow_for_the_default_projection() {
+        // One column: the default 60° perspective would have a focal
+        // length below 1 px, but `poly3`s use no projection.
+        let mut bytes = [0u8; 256];
+        let mut w = Writer::new(&mut bytes, 1, H).unwrap();
+        w.color(Rgb888::WHITE).unwrap();
+        w.poly3([v(0, 1, 1), v(0, 9, 1), v(1, 5, 1)]).unwrap();
+        let n = w.finish().len();
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let mut m = Mem::new();
+        let (r, px) = m.render_in(&l, true, (1, H));
+        assert_eq!(r.unwrap().poly3, 1);
+        assert_eq!(px[5], 255, "the pixel at row 5 is the face's");
+        // A scene command there reports the default projection's fault.
+        let mut bytes = [0u8; 256];
+        let mut w = Writer::new(&mut bytes, 1, H).unwrap();
+        w.push().unwrap();
+        let n = w.finish().len();
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let (r, _) = m.render_in(&l, true, (1, H));
+        assert!(
+            matches!(r, Err(RenderError::Scene { offset: 16, .. })),
+            "{r:?}"
+        );
     }
 
     #[test]
