@@ -834,7 +834,13 @@ where
 }
 
 /// Insertion sort of the live trapezoids by `l`: one compare each when
-/// the order is the last row's.
+/// the order is the last row's. Many trapezoids that join a row in
+/// another order (listed right to left) would cost `n²/2` moves, so an
+/// element moves at most [`SORT_REACH`] places; one that would move
+/// farther hands the sort over to a heap sort ([`heap_sort_hot`],
+/// `O(n log n)`). So a row costs at most `SORT_REACH · n` moves and a
+/// heap sort. Equal `l` may come in any order: the sweep enters them at
+/// the same pixel.
 #[inline]
 fn sort(live: &mut [Active]) {
     for p in 1..live.len() {
@@ -842,12 +848,60 @@ fn sort(live: &mut [Active]) {
             continue;
         }
         let h = live[p].hot;
+        let lo = p.saturating_sub(SORT_REACH);
         let mut q = p;
-        while q > 0 && live[q - 1].hot.l > h.l {
+        while q > lo && live[q - 1].hot.l > h.l {
             live[q].hot = live[q - 1].hot;
             q -= 1;
         }
         live[q].hot = h;
+        if q == lo && lo > 0 && live[q - 1].hot.l > h.l {
+            heap_sort_hot(live);
+            return;
+        }
+    }
+}
+
+/// The farthest an element of the entry sort moves before it falls back
+/// to a heap sort: with 28-byte elements, insertion is the cheaper of the
+/// two up to a few dozen places.
+const SORT_REACH: usize = 64;
+
+/// Sorts the `hot` elements of `live` by `l` with a heap sort, moving
+/// nothing else (each entry's stepping state stays at its slot): in
+/// place, `O(n log n)` whatever the order. It is
+/// [`heap_sort`](crate::raster::scan::heap_sort) on one field of the
+/// entries instead of the whole entries.
+#[inline(never)]
+fn heap_sort_hot(live: &mut [Active]) {
+    // Moves live[root].hot down the heap of live[..end] (a max-heap by l).
+    let sift = |v: &mut [Active], mut root: usize, end: usize| {
+        let h = v[root].hot;
+        loop {
+            let mut child = 2 * root + 1;
+            if child >= end {
+                break;
+            }
+            if child + 1 < end && v[child].hot.l < v[child + 1].hot.l {
+                child += 1;
+            }
+            if h.l >= v[child].hot.l {
+                break;
+            }
+            v[root].hot = v[child].hot;
+            root = child;
+        }
+        v[root].hot = h;
+    };
+    let n = live.len();
+    for root in (0..n / 2).rev() {
+        sift(live, root, n);
+    }
+    for end in (1..n).rev() {
+        let top = live[0].hot;
+        live[0].hot = live[end].hot;
+        live[end].hot = top;
+        sift(live, 0, end);
     }
 }
 
@@ -939,6 +993,14 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
                         continue;
                     }
                 } else {
+                    // The covers that end by the front's end (the last
+                    // ones, the front among them) are behind it on all
+                    // their pixels left: they leave before the next front
+                    // is sought, so that it is not compared with those the
+                    // last one hid. Each leaves once.
+                    if !broken && nc > PRUNE_FROM {
+                        nc = prune(cover, nc, &f);
+                    }
                     broken = true;
                 }
                 insert(cover, &mut nc, c);
@@ -950,6 +1012,24 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
         }
         cx.emit(x - start, f.face, f.color);
     }
+}
+
+/// Covers past which those a broken front hid leave the array (see
+/// [`sweep`]); below, a comparison with each costs less than their leaving.
+const PRUNE_FROM: usize = 8;
+
+/// Drops from `cover[..nc]` the covers that end by `f.r`, `f` among them,
+/// and puts `f` back last; the new length.
+#[inline(never)]
+fn prune(cover: &mut [Cover], mut nc: usize, f: &Cover) -> usize {
+    while nc > 0 && cover[nc - 1].r <= f.r {
+        nc -= 1;
+    }
+    if let Some(c) = cover.get_mut(nc) {
+        *c = *f;
+        nc += 1;
+    }
+    nc
 }
 
 /// The cover element of a live trapezoid.
@@ -1381,6 +1461,45 @@ mod tests {
             polys[1] = [v(16, 16, -32768), v(700, 40, -32768), v(30, 600, -32767)];
             for mode in [Resolve::Bisect, Resolve::Crossing] {
                 run_scene(&polys, mode);
+            }
+        }
+    }
+
+    #[test]
+    fn sort_falls_back_to_a_heap_and_moves_only_the_sorted_array() {
+        let mut rng = Rng(0x5eed_1234);
+        for n in [0usize, 1, 2, 3, 7, 40, 300] {
+            for pattern in 0..4 {
+                let mut live = [Active::EMPTY; 300];
+                let live = &mut live[..n];
+                for (p, a) in live.iter_mut().enumerate() {
+                    a.hot.l = match pattern {
+                        0 => p as i32,
+                        1 => (n - p) as i32,
+                        2 => rng.below(8),
+                        _ => rng.below(1000),
+                    };
+                    a.hot.slot = p as u16;
+                    a.entry.x0 = p as u16;
+                }
+                let mut before = [Active::EMPTY.hot; 300];
+                for (b, a) in before.iter_mut().zip(live.iter()) {
+                    *b = a.hot;
+                }
+                sort(live);
+                assert!(live.windows(2).all(|w| w[0].hot.l <= w[1].hot.l));
+                // Each element once, unchanged.
+                let mut seen = [false; 300];
+                for a in live.iter() {
+                    assert!(!seen[a.hot.slot as usize]);
+                    seen[a.hot.slot as usize] = true;
+                    assert_eq!(before[a.hot.slot as usize], a.hot);
+                }
+                // The stepping states stay at their slots.
+                assert!(live
+                    .iter()
+                    .enumerate()
+                    .all(|(p, a)| a.entry.x0 as usize == p));
             }
         }
     }
