@@ -848,17 +848,16 @@ fn sort(live: &mut [Active]) {
             continue;
         }
         let h = live[p].hot;
-        let lo = p.saturating_sub(SORT_REACH);
+        if p > SORT_REACH && live[p - SORT_REACH - 1].hot.l > h.l {
+            heap_sort_hot(live);
+            return;
+        }
         let mut q = p;
-        while q > lo && live[q - 1].hot.l > h.l {
+        while q > 0 && live[q - 1].hot.l > h.l {
             live[q].hot = live[q - 1].hot;
             q -= 1;
         }
         live[q].hot = h;
-        if q == lo && lo > 0 && live[q - 1].hot.l > h.l {
-            heap_sort_hot(live);
-            return;
-        }
     }
 }
 
