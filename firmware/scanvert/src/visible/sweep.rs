@@ -9,7 +9,8 @@
 //!    pixels, stepped down a row with no division, cut to its columns.
 //! 3. The active list is sorted by `l` with an insertion sort over an
 //!    index array, which costs one compare per entry when the order is the
-//!    last row's (the usual case).
+//!    last row's (the usual case); an entry that would move more than 64
+//!    places hands the row over to a heap sort.
 //! 4. A sweep from left to right keeps a *front*: a covering trapezoid
 //!    known to be nearest from the sweep's position to its own `r`,
 //!    because it is in front of every other covering trapezoid at both ends
@@ -34,6 +35,30 @@
 //! trapezoids overlapping in depth); nothing is done per pixel, and
 //! nothing is divided except to find a crossing point in
 //! [`Resolve::Crossing`].
+//!
+//! # Complexity
+//!
+//! On a row with `a` active trapezoids, `s` spans resolved (fronts found,
+//! empty and intersecting spans) and at most `c` covers at once:
+//!
+//! * stepping and entering: `O(a)`;
+//! * the sort: `O(a)` when the order is the last row's, at most
+//!   `O(64·a + a log a)` in any order;
+//! * the sweep: `O((a + s) · c)`: a trapezoid that starts costs two depth
+//!   compares behind a front, or its insertion into the cover array
+//!   (`O(c)`); a front found or a span resolved compares the covers once
+//!   (`O(c)`, and a subdivision `O(c)` per part).
+//!
+//! A cover is a trapezoid that has started on the row and has neither
+//! ended nor been hidden: when a trapezoid that starts breaks the front,
+//! the covers that end by the front's end are behind it on all their
+//! pixels left and leave the array (once each), so a front is never
+//! compared again with what the last one hid. Staggered faces each nearer
+//! than the last so keep `c` at 2 however many overlap. What stays is
+//! `c` trapezoids that overlap in depth and outlast the front: faces each
+//! farther than the last, visible one sliver each, make `s` and `c` both
+//! of the order of `a`, and a row `O(a²)`. Per frame, the sum over rows;
+//! the figures are in `docs/performance.md`, "Worst cases".
 //!
 //! # Nearest, and why the classification is exact
 //!
@@ -921,7 +946,8 @@ struct Ctx<'s, O> {
 /// Resolves the row by a sweep over the `l` and `r` of the live
 /// trapezoids. The cover array holds the trapezoids that have started by
 /// decreasing `r`; those that have ended leave from its end whenever a
-/// new front is sought.
+/// new front is sought, and those a front hid up to their end leave when
+/// a trapezoid breaks it (past [`PRUNE_FROM`] covers).
 ///
 /// The sweep keeps a *front*: a covering trapezoid that is nearest on
 /// every pixel from the sweep's position to its own `r`, against every
