@@ -14,6 +14,8 @@
 //! * [`poly3_scenes`]: the four 512 × 256 `poly3` scenes of about 170
 //!   faces (`flat`, `tilted`, `bars`, `dense`) measured on the host and on
 //!   target.
+//! * [`staggered`]: the sweep's worst case, staggered overlapping faces
+//!   each nearer than the last.
 //! * [`rng`]: the one random-number generator all of them draw from.
 //!
 //! Nothing here calls scanvert's rasteriser, stepper or visible-surface
@@ -27,4 +29,5 @@ pub mod reference;
 pub mod reference3d;
 pub mod rng;
 pub mod scenes3d;
+pub mod staggered;
 pub mod workloads;

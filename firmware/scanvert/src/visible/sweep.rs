@@ -9,7 +9,8 @@
 //!    pixels, stepped down a row with no division, cut to its columns.
 //! 3. The active list is sorted by `l` with an insertion sort over an
 //!    index array, which costs one compare per entry when the order is the
-//!    last row's (the usual case).
+//!    last row's (the usual case); an entry that would move more than 64
+//!    places hands the row over to a heap sort.
 //! 4. A sweep from left to right keeps a *front*: a covering trapezoid
 //!    known to be nearest from the sweep's position to its own `r`,
 //!    because it is in front of every other covering trapezoid at both ends
@@ -34,6 +35,30 @@
 //! trapezoids overlapping in depth); nothing is done per pixel, and
 //! nothing is divided except to find a crossing point in
 //! [`Resolve::Crossing`].
+//!
+//! # Complexity
+//!
+//! On a row with `a` active trapezoids, `s` spans resolved (fronts found,
+//! empty and intersecting spans) and at most `c` covers at once:
+//!
+//! * stepping and entering: `O(a)`;
+//! * the sort: `O(a)` when the order is the last row's, at most
+//!   `O(64·a + a log a)` in any order;
+//! * the sweep: `O((a + s) · c)`: a trapezoid that starts costs two depth
+//!   compares behind a front, or its insertion into the cover array
+//!   (`O(c)`); a front found or a span resolved compares the covers once
+//!   (`O(c)`, and a subdivision `O(c)` per part).
+//!
+//! A cover is a trapezoid that has started on the row and has neither
+//! ended nor been hidden: when a trapezoid that starts breaks the front,
+//! the covers that end by the front's end are behind it on all their
+//! pixels left and leave the array (once each), so a front is never
+//! compared again with what the last one hid. Staggered faces each nearer
+//! than the last so keep `c` at 2 however many overlap. What stays is
+//! `c` trapezoids that overlap in depth and outlast the front: faces each
+//! farther than the last, visible one sliver each, make `s` and `c` both
+//! of the order of `a`, and a row `O(a²)`. Per frame, the sum over rows;
+//! the figures are in `docs/performance.md`, "Worst cases".
 //!
 //! # Nearest, and why the classification is exact
 //!
@@ -834,7 +859,13 @@ where
 }
 
 /// Insertion sort of the live trapezoids by `l`: one compare each when
-/// the order is the last row's.
+/// the order is the last row's. Many trapezoids that join a row in
+/// another order (listed right to left) would cost `n²/2` moves, so an
+/// element moves at most [`SORT_REACH`] places; one that would move
+/// farther hands the sort over to a heap sort ([`heap_sort_hot`],
+/// `O(n log n)`). So a row costs at most `SORT_REACH · n` moves and a
+/// heap sort. Equal `l` may come in any order: the sweep enters them at
+/// the same pixel.
 #[inline]
 fn sort(live: &mut [Active]) {
     for p in 1..live.len() {
@@ -842,12 +873,59 @@ fn sort(live: &mut [Active]) {
             continue;
         }
         let h = live[p].hot;
+        if p > SORT_REACH && live[p - SORT_REACH - 1].hot.l > h.l {
+            heap_sort_hot(live);
+            return;
+        }
         let mut q = p;
         while q > 0 && live[q - 1].hot.l > h.l {
             live[q].hot = live[q - 1].hot;
             q -= 1;
         }
         live[q].hot = h;
+    }
+}
+
+/// The farthest an element of the entry sort moves before it falls back
+/// to a heap sort: with 28-byte elements, insertion is the cheaper of the
+/// two up to a few dozen places.
+const SORT_REACH: usize = 64;
+
+/// Sorts the `hot` elements of `live` by `l` with a heap sort, moving
+/// nothing else (each entry's stepping state stays at its slot): in
+/// place, `O(n log n)` whatever the order. It is
+/// [`heap_sort`](crate::raster::scan::heap_sort) on one field of the
+/// entries instead of the whole entries.
+#[inline(never)]
+fn heap_sort_hot(live: &mut [Active]) {
+    // Moves live[root].hot down the heap of live[..end] (a max-heap by l).
+    let sift = |v: &mut [Active], mut root: usize, end: usize| {
+        let h = v[root].hot;
+        loop {
+            let mut child = 2 * root + 1;
+            if child >= end {
+                break;
+            }
+            if child + 1 < end && v[child].hot.l < v[child + 1].hot.l {
+                child += 1;
+            }
+            if h.l >= v[child].hot.l {
+                break;
+            }
+            v[root].hot = v[child].hot;
+            root = child;
+        }
+        v[root].hot = h;
+    };
+    let n = live.len();
+    for root in (0..n / 2).rev() {
+        sift(live, root, n);
+    }
+    for end in (1..n).rev() {
+        let top = live[0].hot;
+        live[0].hot = live[end].hot;
+        live[end].hot = top;
+        sift(live, 0, end);
     }
 }
 
@@ -868,7 +946,8 @@ struct Ctx<'s, O> {
 /// Resolves the row by a sweep over the `l` and `r` of the live
 /// trapezoids. The cover array holds the trapezoids that have started by
 /// decreasing `r`; those that have ended leave from its end whenever a
-/// new front is sought.
+/// new front is sought, and those a front hid up to their end leave when
+/// a trapezoid breaks it (past [`PRUNE_FROM`] covers).
 ///
 /// The sweep keeps a *front*: a covering trapezoid that is nearest on
 /// every pixel from the sweep's position to its own `r`, against every
@@ -939,6 +1018,14 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
                         continue;
                     }
                 } else {
+                    // The covers that end by the front's end (the last
+                    // ones, the front among them) are behind it on all
+                    // their pixels left: they leave before the next front
+                    // is sought, so that it is not compared with those the
+                    // last one hid. Each leaves once.
+                    if !broken && nc > PRUNE_FROM {
+                        nc = prune(cover, nc, &f);
+                    }
                     broken = true;
                 }
                 insert(cover, &mut nc, c);
@@ -950,6 +1037,24 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
         }
         cx.emit(x - start, f.face, f.color);
     }
+}
+
+/// Covers past which those a broken front hid leave the array (see
+/// [`sweep`]); below, a comparison with each costs less than their leaving.
+const PRUNE_FROM: usize = 8;
+
+/// Drops from `cover[..nc]` the covers that end by `f.r`, `f` among them,
+/// and puts `f` back last; the new length.
+#[inline(never)]
+fn prune(cover: &mut [Cover], mut nc: usize, f: &Cover) -> usize {
+    while nc > 0 && cover[nc - 1].r <= f.r {
+        nc -= 1;
+    }
+    if let Some(c) = cover.get_mut(nc) {
+        *c = *f;
+        nc += 1;
+    }
+    nc
 }
 
 /// The cover element of a live trapezoid.
@@ -1381,6 +1486,45 @@ mod tests {
             polys[1] = [v(16, 16, -32768), v(700, 40, -32768), v(30, 600, -32767)];
             for mode in [Resolve::Bisect, Resolve::Crossing] {
                 run_scene(&polys, mode);
+            }
+        }
+    }
+
+    #[test]
+    fn sort_falls_back_to_a_heap_and_moves_only_the_sorted_array() {
+        let mut rng = Rng(0x5eed_1234);
+        for n in [0usize, 1, 2, 3, 7, 40, 300] {
+            for pattern in 0..4 {
+                let mut live = [Active::EMPTY; 300];
+                let live = &mut live[..n];
+                for (p, a) in live.iter_mut().enumerate() {
+                    a.hot.l = match pattern {
+                        0 => p as i32,
+                        1 => (n - p) as i32,
+                        2 => rng.below(8),
+                        _ => rng.below(1000),
+                    };
+                    a.hot.slot = p as u16;
+                    a.entry.x0 = p as u16;
+                }
+                let mut before = [Active::EMPTY.hot; 300];
+                for (b, a) in before.iter_mut().zip(live.iter()) {
+                    *b = a.hot;
+                }
+                sort(live);
+                assert!(live.windows(2).all(|w| w[0].hot.l <= w[1].hot.l));
+                // Each element once, unchanged.
+                let mut seen = [false; 300];
+                for a in live.iter() {
+                    assert!(!seen[a.hot.slot as usize]);
+                    seen[a.hot.slot as usize] = true;
+                    assert_eq!(before[a.hot.slot as usize], a.hot);
+                }
+                // The stepping states stay at their slots.
+                assert!(live
+                    .iter()
+                    .enumerate()
+                    .all(|(p, a)| a.entry.x0 as usize == p));
             }
         }
     }
