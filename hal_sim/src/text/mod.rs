@@ -1,8 +1,8 @@
 //! The text form of the display list (host only).
 //!
-//! The text form is the interface contract of `shared/specs/text-form.md`;
-//! `docs/display-list.md` repeats it with the decisions the contract leaves
-//! open. [`assemble`] turns text into the binary form the firmware reads,
+//! The text form is a contract that outside scenes and tools are written
+//! against; `docs/display-list.md` states it in full, with the decisions
+//! it leaves open. [`assemble`] turns text into the binary form the firmware reads,
 //! keeping a line table so that a fault found later in the binary (by the
 //! controller, at a byte offset) can still be reported by its line;
 //! [`disassemble`] turns a checked binary list back into text.
