@@ -581,17 +581,7 @@ impl Sweep {
         T::Color: ListColor,
     {
         self.check(workspace)?;
-        let (tw, th) = target.size();
-        let out = ToTarget {
-            target,
-            background,
-            size: (tw as u32, th as u32),
-            y: 0,
-            x: 0,
-            runs: 0,
-            counts: Counts::default(),
-            error: None,
-        };
+        let out = ToTarget::new(target, background);
         let out = self.rows(workspace.active, workspace.cover, store, rows, out)?;
         Ok(out.counts)
     }
@@ -796,6 +786,24 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     runs: u32,
     counts: Counts,
     error: Option<T::Error>,
+}
+
+impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
+    /// Rows into `target` from its first, the background filled with
+    /// `background` or left as it is.
+    fn new(target: &'t mut T, background: Option<T::Color>) -> Self {
+        let (tw, th) = target.size();
+        ToTarget {
+            target,
+            background,
+            size: (tw as u32, th as u32),
+            y: 0,
+            x: 0,
+            runs: 0,
+            counts: Counts::default(),
+            error: None,
+        }
+    }
 }
 
 impl<T> RowOut for ToTarget<'_, T>
@@ -1296,17 +1304,7 @@ where
     T::Color: ListColor,
 {
     workspace.check_runs(store)?;
-    let (tw, th) = target.size();
-    let out = ToTarget {
-        target,
-        background,
-        size: (tw as u32, th as u32),
-        y: 0,
-        x: 0,
-        runs: 0,
-        counts: Counts::default(),
-        error: None,
-    };
+    let out = ToTarget::new(target, background);
     let (stats, out) = resolve_into(workspace.active, workspace.cover, store, mode, out)?;
     Ok((stats, out.counts))
 }
