@@ -315,6 +315,22 @@ fn emit<T: SpanTarget + ?Sized>(
     target: &mut T,
     counts: &mut Counts,
 ) -> Result<(), FillError<T::Error>> {
+    emit_span(y, l, r, cx, color, target, counts).map_err(FillError::Target)
+}
+
+/// Writes the span `l..r` of row `y`, cut to the clip columns `cx`, and
+/// counts it: the rasteriser's and the band path's
+/// ([`table`](super::table)) one way to hand a span to the port.
+#[inline(always)]
+pub(super) fn emit_span<T: SpanTarget + ?Sized>(
+    y: i32,
+    l: i32,
+    r: i32,
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
     let (x0, x1) = (l.max(cx.0), r.min(cx.1));
     if x0 < x1 {
         // In 0..=4096 by the clip guarantee.
@@ -323,7 +339,7 @@ fn emit<T: SpanTarget + ?Sized>(
             x0: x0 as u16,
             x1: x1 as u16,
         };
-        target.fill_span(span, color).map_err(FillError::Target)?;
+        target.fill_span(span, color)?;
         counts.span((x1 - x0) as u32);
     }
     Ok(())
@@ -370,7 +386,7 @@ fn emit_rows<T: SpanTarget + ?Sized>(
 /// past it a heap sort ([`heap_sort`], `O(n log n)`, in place) finishes
 /// the job. Equal pixels may come in any order: the spans are the same.
 #[inline]
-fn insertion_sort<S: Stepper>(e: &mut [S]) {
+pub(super) fn insertion_sort<S: Stepper>(e: &mut [S]) {
     let mut budget = 4 * e.len();
     for i in 1..e.len() {
         let mut j = i;

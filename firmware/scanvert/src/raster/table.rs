@@ -42,7 +42,7 @@ use crate::port::{Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::Edge;
 use crate::raster::line::Line;
-use crate::raster::scan::build_edges;
+use crate::raster::scan::{build_edges, emit_span as emit, insertion_sort};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -626,45 +626,6 @@ fn run_line<T: SpanTarget + ?Sized>(
         line.step();
     }
     Ok(())
-}
-
-/// Writes the span `l..r` of row `y`, cut to the clip columns `cx`.
-#[inline(always)]
-fn emit<T: SpanTarget + ?Sized>(
-    y: i32,
-    l: i32,
-    r: i32,
-    cx: (i32, i32),
-    color: T::Color,
-    target: &mut T,
-    counts: &mut Counts,
-) -> Result<(), T::Error> {
-    let (x0, x1) = (l.max(cx.0), r.min(cx.1));
-    if x0 < x1 {
-        target.fill_span(
-            Span {
-                y: y as u16,
-                x0: x0 as u16,
-                x1: x1 as u16,
-            },
-            color,
-        )?;
-        counts.spans += 1;
-        counts.pixels += (x1 - x0) as u32;
-    }
-    Ok(())
-}
-
-/// Sorts by crossing pixel; linear when the order is the last row's.
-#[inline]
-fn insertion_sort(e: &mut [Edge]) {
-    for i in 1..e.len() {
-        let mut j = i;
-        while j > 0 && e[j - 1].pixel() > e[j].pixel() {
-            e.swap(j - 1, j);
-            j -= 1;
-        }
-    }
 }
 
 #[cfg(test)]
