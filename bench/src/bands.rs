@@ -16,7 +16,7 @@ use scanvert::port::band::BandTarget;
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::scene::{Scene, DEFAULT_FONT};
 use scanvert::visible::rle::Run;
-use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{Active, Resolve, Workspace};
 use scanvert_sim::memory::ListMemory;
 use std::fmt::Write as _;
 use std::hint::black_box;
@@ -81,7 +81,6 @@ fn list_times(bytes: &[u8]) -> (f64, Vec<f64>) {
 /// The visible-surface memory of one worker on the demo.
 struct Work {
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
 }
 
@@ -89,12 +88,11 @@ impl Work {
     fn new() -> Work {
         Work {
             active: vec![Active::EMPTY; 512],
-            cover: vec![Cover::EMPTY; 512],
             runs: vec![Run::EMPTY; scanvert_sim::demo::WIDTH as usize],
         }
     }
     fn workspace(&mut self) -> Workspace<'_> {
-        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
+        Workspace::new(&mut self.active, &mut self.runs)
     }
 }
 

@@ -225,8 +225,8 @@ fn section_3d(run: &Run) -> String {
          - **Memory**: working state, the frame buffer ({} B) counted\n\
            separately, `size_of` on this 64-bit host. scanvert: the store's\n\
            slots the worst view needs (trapezoids, faces, one segment, 2 B an\n\
-           index row, edge slots for the largest face), the active list and\n\
-           cover entries for the most trapezoids on one row\n\
+           index row, edge slots for the largest face), the active list's\n\
+           slots for the most trapezoids on one row\n\
            (`Workspace::check`), one row of runs, and the `TrapezoidStore` and\n\
            `Workspace` structs. z-buffers: the depth buffer, edge slots and\n\
            the rasteriser's structs.\n",

@@ -22,7 +22,7 @@ use scanvert::{
     visible::rle::Run,
     visible::store::{Face, Segment, StoreMemory, TrapezoidStore},
     visible::trapezoid::{EdgeSlot, Trapezoid},
-    visible::{self, Active, Cover, Resolve, VisibleStats, Workspace},
+    visible::{self, Active, Resolve, VisibleStats, Workspace},
 };
 use std::convert::Infallible;
 use std::hint::black_box;
@@ -190,7 +190,6 @@ fn cut(store: &mut TrapezoidStore<'_>, faces: &[Vec<Vertex3>], clip: &ClipRect) 
 /// The caller's memory of one [`Workspace`], sized for `n` trapezoids.
 struct WorkMem {
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
 }
 
@@ -198,12 +197,11 @@ impl WorkMem {
     fn new(n: usize) -> WorkMem {
         WorkMem {
             active: vec![Active::EMPTY; n],
-            cover: vec![Cover::EMPTY; n],
             runs: vec![Run::EMPTY; W as usize],
         }
     }
     fn workspace(&mut self) -> Workspace<'_> {
-        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
+        Workspace::new(&mut self.active, &mut self.runs)
     }
 }
 
@@ -550,7 +548,7 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
     let scan_mem = {
         let traps = most_traps * size_of::<Trapezoid>();
         let faces = most_faces * size_of::<Face>();
-        let act = max_active as usize * (size_of::<Active>() + size_of::<Cover>());
+        let act = max_active as usize * (size_of::<Active>());
         let rows_runs = H as usize * size_of::<u16>() + W as usize * size_of::<Run>();
         let other = size_of::<Segment>()
             + scene.max_vertices() * size_of::<EdgeSlot>()
@@ -559,13 +557,13 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
         (
             traps + faces + act + rows_runs + other,
             format!(
-                "trapezoids {} ({most_traps} × {}), faces {} ({most_faces} × {}), active + cover {} ({max_active} × {}), index + runs {}, other {} (segment, edge slots, structs)",
+                "trapezoids {} ({most_traps} × {}), faces {} ({most_faces} × {}), active {} ({max_active} × {}), index + runs {}, other {} (segment, edge slots, structs)",
                 thousands(traps as f64),
                 size_of::<Trapezoid>(),
                 thousands(faces as f64),
                 size_of::<Face>(),
                 thousands(act as f64),
-                size_of::<Active>() + size_of::<Cover>(),
+                size_of::<Active>(),
                 thousands(rows_runs as f64),
                 other
             ),

@@ -34,7 +34,7 @@ use scanvert::scene::label::{Label, DEFAULT_FONT};
 use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory, Update};
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve};
+use scanvert::visible::sweep::{Active, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -221,7 +221,6 @@ struct Memory {
     /// The visible-surface pass: as many active entries as trapezoids
     /// can overlap one row, a run per column.
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
 }
 
@@ -236,7 +235,6 @@ impl Memory {
             labels: vec![Label::EMPTY; 64],
             text: vec![0; 1024],
             active: vec![Active::EMPTY; 512],
-            cover: vec![Cover::EMPTY; 512],
             runs: vec![Run::EMPTY; WIDTH as usize],
         }
     }
@@ -258,7 +256,6 @@ impl Memory {
                 edges: &mut self.edges,
             },
             active: &mut self.active,
-            cover: &mut self.cover,
             runs: &mut self.runs,
             labels: &mut self.labels,
             text: &mut self.text,

@@ -11,7 +11,7 @@ use scanvert::scene::label::Label;
 use scanvert::scene::SceneMemory;
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover};
+use scanvert::visible::sweep::Active;
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 /// Edge storage for the rasteriser and the 3D layer's memory, each pool
@@ -27,7 +27,6 @@ pub struct ListMemory {
     rows: Vec<u16>,
     slots: Vec<EdgeSlot>,
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
     labels: Vec<Label>,
     text: Vec<u8>,
@@ -55,7 +54,6 @@ impl ListMemory {
             rows: vec![0; need.rows],
             slots,
             active: vec![Active::EMPTY; need.active],
-            cover: vec![Cover::EMPTY; need.active],
             runs: vec![Run::EMPTY; need.runs],
             labels: vec![Label::EMPTY; need.labels],
             text: vec![0; need.text],
@@ -126,7 +124,6 @@ impl ListMemory {
                 edges: &mut self.slots,
             },
             active: &mut self.active,
-            cover: &mut self.cover,
             runs: &mut self.runs,
             labels: &mut self.labels,
             text: &mut self.text,

@@ -26,7 +26,7 @@ use scanvert::raster::scan::Rasterizer;
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreMemory, TrapezoidStore};
 use scanvert::visible::trapezoid::{Depth, EdgeSlot, Plane, Trapezoid};
-use scanvert::visible::{self, Active, Cover, Resolve, Workspace};
+use scanvert::visible::{self, Active, Resolve, Workspace};
 use std::convert::Infallible;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -163,9 +163,8 @@ fn main() {
         fill(&mut store);
 
         let mut active = vec![Active::EMPTY; store.len()];
-        let mut cover = vec![Cover::EMPTY; store.len()];
         let mut runs = vec![Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+        let mut ws = Workspace::new(&mut active, &mut runs);
         let most = ws.check(&store).unwrap();
         for mode in [Resolve::Bisect, Resolve::Crossing] {
             // Error: decode into 24-bit colour and compare pixel by pixel.
@@ -327,9 +326,8 @@ fn profile(scene: &[Poly3], mode: &str, frames: u32) {
         return;
     }
     let mut active = vec![Active::EMPTY; store.len()];
-    let mut cover = vec![Cover::EMPTY; store.len()];
     let mut runs = vec![Run::EMPTY; W as usize];
-    let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+    let mut ws = Workspace::new(&mut active, &mut runs);
     for f in 0..frames {
         let (stats, counts) =
             visible::draw(&store, &mut ws, mode, &mut fb, Some(Rgb565::BLACK)).unwrap();

@@ -16,7 +16,7 @@ use scanvert::raster::scan::Rasterizer;
 use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
 use scanvert::scene::DEFAULT_FONT;
 use scanvert::visible::rle::Run;
-use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{Active, Resolve, Workspace};
 use scanvert_sim::cli::{render_scene, render_scene_bands, Scene};
 use scanvert_sim::memory::ListMemory;
 use std::path::Path;
@@ -392,7 +392,6 @@ fn bad_bands_are_typed_errors() {
 /// The demo's memory for the visible surfaces, per worker.
 struct Work {
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
 }
 
@@ -400,12 +399,11 @@ impl Work {
     fn new() -> Work {
         Work {
             active: vec![Active::EMPTY; 512],
-            cover: vec![Cover::EMPTY; 512],
             runs: vec![Run::EMPTY; scanvert_sim::demo::WIDTH as usize],
         }
     }
     fn workspace(&mut self) -> Workspace<'_> {
-        Workspace::new(&mut self.active, &mut self.cover, &mut self.runs)
+        Workspace::new(&mut self.active, &mut self.runs)
     }
 }
 

@@ -12,7 +12,7 @@ use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::raster::clip::ClipRect;
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory, TrapezoidStore, MAX_POOL};
-use scanvert::visible::sweep::{draw, Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{draw, Active, Resolve, Workspace};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -147,8 +147,8 @@ fn v(x: i32, y: i32, z: i32) -> Vertex3 {
 const W: u16 = 32;
 const H: u16 = 24;
 
-/// Pools of `n` slots each (trapezoids, faces, segments, active and
-/// cover entries).
+/// Pools of `n` slots each (trapezoids, faces, segments, active
+/// slots).
 struct Pools {
     traps: Vec<Trapezoid>,
     faces: Vec<Face>,
@@ -156,7 +156,6 @@ struct Pools {
     rows: Vec<u16>,
     edges: Vec<EdgeSlot>,
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
 }
 
@@ -169,7 +168,6 @@ impl Pools {
             rows: vec![0; H as usize],
             edges: vec![EdgeSlot::EMPTY; 8],
             active: vec![Active::EMPTY; n],
-            cover: vec![Cover::EMPTY; n],
             runs: vec![Run::EMPTY; W as usize],
         }
     }
@@ -213,7 +211,7 @@ fn two_triangles(n: usize) -> Vec<Rgb888> {
         )
         .expect("fits");
     assert_eq!(store.len(), 4);
-    let mut ws = Workspace::new(&mut p.active, &mut p.cover, &mut p.runs);
+    let mut ws = Workspace::new(&mut p.active, &mut p.runs);
     let mut pixels = vec![Rgb888::WHITE; W as usize * H as usize];
     let mut fb = FrameBuffer::new(&mut pixels, W, H).expect("frame");
     draw(

@@ -22,7 +22,7 @@ use scanvert::scene::label::{Label, DEFAULT_FONT};
 use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
-use scanvert::visible::sweep::{Active, Cover, Resolve};
+use scanvert::visible::sweep::{Active, Resolve};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 use testkit::reference3d::{drawn, resolve, Poly3};
 
@@ -83,7 +83,6 @@ struct Mem {
     labels: Vec<Label>,
     text: Vec<u8>,
     active: Vec<Active>,
-    cover: Vec<Cover>,
     runs: Vec<Run>,
 }
 
@@ -99,7 +98,6 @@ impl Mem {
             text: vec![0; 256],
             // Every trapezoid may overlap one row.
             active: vec![Active::EMPTY; trapezoids],
-            cover: vec![Cover::EMPTY; trapezoids],
             runs: vec![Run::EMPTY; W as usize],
         }
     }
@@ -115,7 +113,6 @@ impl Mem {
                     edges: &mut self.edges,
                 },
                 active: &mut self.active,
-                cover: &mut self.cover,
                 runs: &mut self.runs,
                 labels: &mut self.labels,
                 text: &mut self.text,

@@ -7,7 +7,7 @@ use host_tests::harness3d::vertex3;
 use scanvert::raster::clip::ClipRect;
 use scanvert::visible::rle::Run;
 use scanvert::visible::store::{Counters, Face, Segment, StoreMemory, TrapezoidStore};
-use scanvert::visible::sweep::{Active, Cover, Resolve, Workspace};
+use scanvert::visible::sweep::{Active, Resolve, Workspace};
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 const W: u16 = 96;
@@ -86,10 +86,9 @@ fn fill(store: &mut TrapezoidStore<'_>, s: usize, version: i32) {
 /// The frame as colours, row-major.
 fn picture(store: &TrapezoidStore<'_>) -> Vec<Option<Rgb888>> {
     let mut active = vec![Active::EMPTY; 256];
-    let mut cover = vec![Cover::EMPTY; 256];
     let mut runs = vec![Run::EMPTY; W as usize];
     let mut out = Vec::new();
-    Workspace::new(&mut active, &mut cover, &mut runs)
+    Workspace::new(&mut active, &mut runs)
         .resolve(store, Resolve::default(), |_, runs| {
             for r in runs {
                 let c = (!r.is_background()).then(|| store.face(r.ink()).unwrap().color());

@@ -341,7 +341,7 @@ pub struct Needs {
     pub segments: usize,
     /// Rows of the scan-line index: the frame's height.
     pub rows: usize,
-    /// Active-list (and cover) entries: at most the trapezoids (the exact
+    /// Active-list slots: at most the trapezoids (the exact
     /// number, the most that overlap one row, is [`Scene::check`]'s).
     ///
     /// [`Scene::check`]: crate::scene::Scene::check

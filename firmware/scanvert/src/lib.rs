@@ -70,7 +70,7 @@ pub use crate::geometry::{
 };
 pub use crate::scene::{Builder, Label, Procedure, Scene, SceneError, SceneMemory};
 pub use crate::visible::{
-    Active, Cover, EdgeSlot, Face, Resolve, Run, Segment, StoreMemory, Trapezoid, Workspace,
+    Active, EdgeSlot, Face, Resolve, Run, Segment, StoreMemory, Trapezoid, Workspace,
 };
 
 // Colours.

@@ -120,7 +120,7 @@ use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::visible::rle::Run;
 use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
-use crate::visible::{self, Active, Cover, Resolve, VisibleError, VisibleStats, Workspace};
+use crate::visible::{self, Active, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -133,7 +133,7 @@ use label::{LabelCounts, LabelError};
 /// | part | what it holds | limit |
 /// |---|---|---|
 /// | `store` | trapezoids, faces, segments, the scan-line index, edge slots (see [`store`](crate::visible::store)) | pools: 65535 each; index: the frame's height |
-/// | `active`, `cover` | trapezoids overlapping one row (the shorter of the two) | 65535 |
+/// | `active` | trapezoids overlapping one row | 65535 |
 /// | `runs` | runs of one row | at least the frame's width |
 /// | `labels`, `text` | label slots and their text, shared by all segments | none |
 #[derive(Debug)]
@@ -144,8 +144,6 @@ pub struct SceneMemory<'a> {
     pub store: StoreMemory<'a>,
     /// The active list of the visible-surface stage.
     pub active: &'a mut [Active],
-    /// The cover array: as many as the active list.
-    pub cover: &'a mut [Cover],
     /// One row of runs: the frame's width is always enough.
     pub runs: &'a mut [Run],
     /// Label slots, shared by all segments.
@@ -166,7 +164,6 @@ impl SceneMemory<'_> {
                 edges: &mut *self.store.edges,
             },
             active: &mut *self.active,
-            cover: &mut *self.cover,
             runs: &mut *self.runs,
             labels: &mut *self.labels,
             text: &mut *self.text,
@@ -384,7 +381,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         let mut scene = Scene {
             store,
             labels: LabelStore::new(mem.labels, mem.text),
-            workspace: Workspace::new(mem.active, mem.cover, mem.runs),
+            workspace: Workspace::new(mem.active, mem.runs),
             pipeline,
             clip: ClipRect::full(width, height),
         };

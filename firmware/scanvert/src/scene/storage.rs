@@ -30,7 +30,7 @@ use super::label::Label;
 use super::SceneMemory;
 use crate::visible::rle::Run;
 use crate::visible::store::{Face, Segment, StoreMemory};
-use crate::visible::sweep::{Active, Cover};
+use crate::visible::sweep::Active;
 use crate::visible::trapezoid::{EdgeSlot, Trapezoid};
 
 /// The memory of a 3D layer or [`Scene`](super::Scene), owned, every
@@ -43,7 +43,7 @@ use crate::visible::trapezoid::{EdgeSlot, Trapezoid};
 /// | `SEGMENTS` | segments | 28 bytes | at most 65535 used; a display list uses one |
 /// | `ROWS` | the scan-line index | 2 bytes | at least the frame's height (at most 4096) |
 /// | `EDGES` | edge slots | 32 bytes | scratch for one polygon: as many as its vertices (at most 65535) |
-/// | `ACTIVE` | active list and cover array | 116 + 20 bytes | at most 65535 used; the most trapezoids overlapping one row |
+/// | `ACTIVE` | active list | 136 bytes | at most 65535 used; the most trapezoids overlapping one row |
 /// | `RUNS` | runs of one row | 4 bytes | at least the frame's width (at most 4096) |
 /// | `LABELS` | label slots | 20 bytes | one per label placed |
 /// | `TEXT` | label text | 1 byte | the bytes of every label's text |
@@ -68,7 +68,6 @@ pub struct SceneStorage<
     rows: [u16; ROWS],
     edges: [EdgeSlot; EDGES],
     active: [Active; ACTIVE],
-    cover: [Cover; ACTIVE],
     runs: [Run; RUNS],
     labels: [Label; LABELS],
     text: [u8; TEXT],
@@ -88,7 +87,7 @@ pub struct Capacities {
     pub rows: usize,
     /// Edge slots.
     pub edges: usize,
-    /// Active-list (and cover) entries.
+    /// Active-list slots.
     pub active: usize,
     /// Runs of one row.
     pub runs: usize,
@@ -119,7 +118,6 @@ impl<
             rows: [0; ROWS],
             edges: [EdgeSlot::EMPTY; EDGES],
             active: [Active::EMPTY; ACTIVE],
-            cover: [Cover::EMPTY; ACTIVE],
             runs: [Run::EMPTY; RUNS],
             labels: [Label::EMPTY; LABELS],
             text: [0; TEXT],
@@ -153,7 +151,6 @@ impl<
                 edges: &mut self.edges,
             },
             active: &mut self.active,
-            cover: &mut self.cover,
             runs: &mut self.runs,
             labels: &mut self.labels,
             text: &mut self.text,
@@ -201,7 +198,7 @@ mod tests {
             (4, 2, 1)
         );
         assert_eq!((m.store.rows.len(), m.store.edges.len()), (8, 3));
-        assert_eq!((m.active.len(), m.cover.len(), m.runs.len()), (5, 5, 6));
+        assert_eq!((m.active.len(), m.runs.len()), (5, 6));
         assert_eq!((m.labels.len(), m.text.len()), (1, 7));
         assert_eq!(
             STATIC.capacities(),
@@ -229,8 +226,7 @@ const _: () = {
     assert!(size_of::<Face>() == 64);
     assert!(size_of::<Segment>() == 28);
     assert!(size_of::<EdgeSlot>() == 32);
-    assert!(size_of::<Active>() == 116);
-    assert!(size_of::<Cover>() == 20);
+    assert!(size_of::<Active>() == 136);
     assert!(size_of::<Run>() == 4);
     assert!(size_of::<Label>() == 20);
 };

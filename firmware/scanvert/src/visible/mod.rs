@@ -15,5 +15,5 @@ pub mod trapezoid;
 
 pub use rle::{Run, RunWriter, RunsFull};
 pub use store::{Face, Segment, StoreError, StoreMemory, TrapezoidStore};
-pub use sweep::{draw, Active, Cover, Resolve, Sweep, VisibleError, VisibleStats, Workspace};
+pub use sweep::{draw, Active, Resolve, Sweep, VisibleError, VisibleStats, Workspace};
 pub use trapezoid::{EdgeSlot, Trapezoid};

@@ -4,7 +4,7 @@
 //! # Per row
 //!
 //! 1. The trapezoids whose top is this row (the scan-line index) enter the
-//!    active list, a caller-owned array of [`Active`] entries.
+//!    active list, a caller-owned array of [`Active`] slots.
 //! 2. Every active trapezoid knows its pixels `l..r` on the row: its edges'
 //!    pixels, stepped down a row with no division, cut to its columns.
 //! 3. The active list is sorted by `l` with an insertion sort over an
@@ -91,10 +91,10 @@
 //!
 //! # Memory
 //!
-//! An [`Active`] entry is 116 bytes (two edges, depth, and one element
-//! each of the sorted and free arrays) and a [`Cover`] 20; the list needs
-//! as many of each as trapezoids overlap one
-//! row ([`Workspace::check`] finds the number before anything is drawn). A
+//! An [`Active`] slot is 136 bytes: one trapezoid's stepping state (two
+//! edges, depth) and one element each of the sorted, cover and free
+//! arrays. The list needs as many slots as trapezoids overlap one row
+//! ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
 //!
 //! # Measured
@@ -141,17 +141,20 @@ pub enum Resolve {
     Crossing,
 }
 
-/// One entry of the active list (116 bytes on 32-bit targets). The
-/// caller provides the array, filled with [`Active::EMPTY`].
+/// One slot of the workspace's active list (136 bytes on 32-bit
+/// targets): the caller provides as many as trapezoids may overlap one
+/// row, filled with [`Active::EMPTY`], and nothing else but the runs.
 ///
-/// Each entry holds one active trapezoid's stepping state (at a slot that
-/// does not move while it is active) and one element of each of two
+/// Each slot holds one active trapezoid's stepping state (at a slot that
+/// does not move while it is active) and one element of each of the three
 /// arrays the resolution works on: the live trapezoids sorted by `l` with
-/// what the sweep reads, and the stack of free slots.
+/// what the sweep reads, the covers of the sweep's position (by
+/// decreasing `r`), and the stack of free slots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Active {
     entry: Entry,
     hot: Hot,
+    cover: Cover,
     free: u16,
 }
 
@@ -184,11 +187,10 @@ struct Hot {
     slot: u16,
 }
 
-/// One entry of the cover array (20 bytes): a trapezoid that has started
-/// on the row and may still show. The caller provides the array, as many
-/// as the active list, filled with [`Cover::EMPTY`].
+/// One element of the cover array (20 bytes, in each [`Active`] slot): a
+/// trapezoid that has started on the row and may still show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Cover {
+struct Cover {
     r: i32,
     z: i32,
     zx: i32,
@@ -197,8 +199,8 @@ pub struct Cover {
 }
 
 impl Cover {
-    /// An unused entry.
-    pub const EMPTY: Cover = Cover {
+    /// An unused element.
+    const EMPTY: Cover = Cover {
         r: 0,
         z: 0,
         zx: 0,
@@ -278,6 +280,7 @@ impl Active {
             face: NONE,
             slot: 0,
         },
+        cover: Cover::EMPTY,
         free: 0,
     };
 }
@@ -356,29 +359,24 @@ pub struct VisibleStats {
     pub runs: u32,
 }
 
-/// The caller's memory for the visible-surface stage: the active list,
-/// the cover array and one row of runs.
+/// The caller's memory for the visible-surface stage: the active list
+/// and one row of runs.
 #[derive(Debug)]
 pub struct Workspace<'a> {
     active: &'a mut [Active],
-    cover: &'a mut [Cover],
     runs: &'a mut [Run],
 }
 
 impl<'a> Workspace<'a> {
-    /// A workspace over `active` and `cover` (the capacity is the shorter,
-    /// at most 65535) and `runs` (at least the frame's width).
-    pub fn new(active: &'a mut [Active], cover: &'a mut [Cover], runs: &'a mut [Run]) -> Self {
-        Workspace {
-            active,
-            cover,
-            runs,
-        }
+    /// A workspace over `active` (its length is the capacity, at most
+    /// 65535 used) and `runs` (at least the frame's width).
+    pub fn new(active: &'a mut [Active], runs: &'a mut [Run]) -> Self {
+        Workspace { active, runs }
     }
 
     /// Trapezoids that may overlap one row.
     pub fn capacity(&self) -> usize {
-        self.active.len().min(self.cover.len()).min(NONE as usize)
+        capacity(self.active)
     }
 
     /// Runs available for one row.
@@ -401,15 +399,15 @@ impl<'a> Workspace<'a> {
         }
         let cap = self.capacity();
         // The last rows of the trapezoids overlapping the row, as a binary
-        // min-heap in `cover[..k].r`: O(log k) per trapezoid, nothing per
-        // row where none starts or ends.
-        let heap = &mut self.cover[..cap];
+        // min-heap in `active[..k].cover.r`: O(log k) per trapezoid,
+        // nothing per row where none starts or ends.
+        let heap = &mut self.active[..cap];
         let mut k = 0usize;
         let mut most = 0usize;
         for y in 0..store.height() {
-            while k > 0 && heap[0].r <= y as i32 {
+            while k > 0 && heap[0].cover.r <= y as i32 {
                 k -= 1;
-                heap[0].r = heap[k].r;
+                heap[0].cover.r = heap[k].cover.r;
                 sift_down(&mut heap[..k]);
             }
             let mut t = store.row_head(y as usize);
@@ -417,7 +415,7 @@ impl<'a> Workspace<'a> {
                 if k >= cap {
                     return Err(VisibleError::Active { capacity: cap });
                 }
-                heap[k].r = tr.end();
+                heap[k].cover.r = tr.end();
                 k += 1;
                 sift_up(&mut heap[..k]);
                 t = tr.next_row;
@@ -441,7 +439,7 @@ impl<'a> Workspace<'a> {
             sink,
             y: 0,
         };
-        resolve_into(self.active, self.cover, store, mode, out).map(|(stats, _)| stats)
+        resolve_into(self.active, store, mode, out).map(|(stats, _)| stats)
     }
 
     /// `Err` when a row of the store's width does not fit the run buffer.
@@ -455,56 +453,61 @@ impl<'a> Workspace<'a> {
     }
 }
 
-/// Moves the last element of the min-heap `h` (by `r`) up to its place.
-fn sift_up(h: &mut [Cover]) {
+/// The capacity of an active list: its length, at most 65535.
+fn capacity(active: &[Active]) -> usize {
+    active.len().min(NONE as usize)
+}
+
+/// Moves the last element of the min-heap `h` (by `cover.r`) up to its
+/// place.
+fn sift_up(h: &mut [Active]) {
     let Some(mut i) = h.len().checked_sub(1) else {
         return;
     };
-    let r = h[i].r;
+    let r = h[i].cover.r;
     while i > 0 {
         let parent = (i - 1) / 2;
-        if h[parent].r <= r {
+        if h[parent].cover.r <= r {
             break;
         }
-        h[i].r = h[parent].r;
+        h[i].cover.r = h[parent].cover.r;
         i = parent;
     }
-    h[i].r = r;
+    h[i].cover.r = r;
 }
 
-/// Moves the first element of the min-heap `h` (by `r`) down to its place.
-fn sift_down(h: &mut [Cover]) {
-    let Some(r) = h.first().map(|c| c.r) else {
+/// Moves the first element of the min-heap `h` (by `cover.r`) down to its
+/// place.
+fn sift_down(h: &mut [Active]) {
+    let Some(r) = h.first().map(|c| c.cover.r) else {
         return;
     };
     let mut i = 0;
     loop {
         let mut child = 2 * i + 1;
         let Some(left) = h.get(child) else { break };
-        if h.get(child + 1).is_some_and(|c| c.r < left.r) {
+        if h.get(child + 1).is_some_and(|c| c.cover.r < left.cover.r) {
             child += 1;
         }
-        if r <= h[child].r {
+        if r <= h[child].cover.r {
             break;
         }
-        h[i].r = h[child].r;
+        h[i].cover.r = h[child].cover.r;
         i = child;
     }
-    h[i].r = r;
+    h[i].cover.r = r;
 }
 
-/// Resolves every row of `store` into `out`, with the active list and the
-/// cover array of a workspace (the capacity is the shorter, at most
-/// 65535). Returns `out` when done.
+/// Resolves every row of `store` into `out`, with the active list of a
+/// workspace. Returns `out` when done.
 fn resolve_into<O: RowOut>(
     active: &mut [Active],
-    cover: &mut [Cover],
     store: &TrapezoidStore<'_>,
     mode: Resolve,
     out: O,
 ) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
-    let mut s = Sweep::start(active, cover, mode);
-    let out = s.rows(active, cover, store, store.height(), out)?;
+    let mut s = Sweep::start(active, mode);
+    let out = s.rows(active, store, store.height(), out)?;
     Ok((s.stats, out))
 }
 
@@ -537,11 +540,11 @@ impl Sweep {
     /// passed to every call after (a workspace of another capacity is
     /// refused; another store gives another picture, never a panic).
     pub fn new(workspace: &mut Workspace<'_>, mode: Resolve) -> Sweep {
-        Sweep::start(workspace.active, workspace.cover, mode)
+        Sweep::start(workspace.active, mode)
     }
 
-    fn start(active: &mut [Active], cover: &[Cover], mode: Resolve) -> Sweep {
-        let cap = active.len().min(cover.len()).min(NONE as usize);
+    fn start(active: &mut [Active], mode: Resolve) -> Sweep {
+        let cap = capacity(active);
         for (i, a) in active[..cap].iter_mut().enumerate() {
             a.free = i as u16;
         }
@@ -582,7 +585,7 @@ impl Sweep {
     {
         self.check(workspace)?;
         let out = ToTarget::new(target, background);
-        let out = self.rows(workspace.active, workspace.cover, store, rows, out)?;
+        let out = self.rows(workspace.active, store, rows, out)?;
         Ok(out.counts)
     }
 
@@ -648,7 +651,6 @@ impl Sweep {
     fn rows<O: RowOut>(
         &mut self,
         active: &mut [Active],
-        cover: &mut [Cover],
         store: &TrapezoidStore<'_>,
         rows: u16,
         out: O,
@@ -656,7 +658,6 @@ impl Sweep {
         let width = store.width() as i32;
         let cap = self.cap;
         let act = &mut active[..cap];
-        let cover = &mut cover[..cap];
         let mut cx = Ctx {
             store,
             out,
@@ -716,9 +717,8 @@ impl Sweep {
                 cx.len = width;
                 cx.stats.empty += 1;
             } else {
-                let live = &mut act[..k];
-                sort(live);
-                sweep(live, cover, width, &mut cx);
+                sort(&mut act[..k]);
+                sweep(act, k, width, &mut cx);
             }
             cx.flush();
             cx.stats.rows += 1;
@@ -967,27 +967,35 @@ struct Ctx<'s, O> {
 /// two comparisons. Where no front can be established (a plane crosses
 /// it before its end), the span up to the next `l` or `r` is resolved and
 /// subdivided as in [`span`].
-fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut Ctx<'_, O>) {
+fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O>) {
+    // act[..k].hot: the live trapezoids, by l; act[..nc].cover: the
+    // covers, by decreasing r (nc ≤ k).
+    let k = k.min(act.len());
     let (mut x, mut nc, mut p) = (0i32, 0usize, 0usize);
+    let next_l = |act: &[Active], p: usize| {
+        if p < k {
+            act[p].hot.l.min(width)
+        } else {
+            width
+        }
+    };
     while x < width {
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
-        while let Some(a) = live.get(p) {
-            if a.hot.l > x {
-                break;
-            }
+        while p < k && act[p].hot.l <= x {
+            let c = cover_of(&act[p].hot);
             p += 1;
-            insert(cover, &mut nc, cover_of(&a.hot));
+            insert(act, &mut nc, c);
         }
-        let mut next = live.get(p).map_or(width, |a| a.hot.l.min(width));
+        let mut next = next_l(act, p);
         // Leave the trapezoids ending here or before: the last ones.
-        while let Some(c) = nc.checked_sub(1).and_then(|q| cover.get(q)) {
-            if c.r > x {
+        while let Some(c) = nc.checked_sub(1).and_then(|q| act.get(q)) {
+            if c.cover.r > x {
                 break;
             }
             nc -= 1;
         }
-        let cov = &cover[..nc];
+        let cov = &act[..nc.min(k)];
         let Some(last) = cov.last() else {
             cx.stats.empty += 1;
             cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
@@ -995,7 +1003,7 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
             continue;
         };
         let Some(f) = cx.establish(cov, x) else {
-            let t = next.min(last.r);
+            let t = next.min(last.cover.r);
             span(cov, x, t, cx);
             x = t;
             continue;
@@ -1010,12 +1018,9 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
                 break;
             }
             let mut broken = false;
-            while let Some(a) = live.get(p) {
-                if a.hot.l > x {
-                    break;
-                }
+            while p < k && act[p].hot.l <= x {
+                let c = cover_of(&act[p].hot);
                 p += 1;
-                let c = cover_of(&a.hot);
                 // The front is in front of the new one on all their
                 // common pixels: when those are all of its pixels, it is
                 // hidden (the front is in the cover array, so this holds
@@ -1032,13 +1037,13 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
                     // is sought, so that it is not compared with those the
                     // last one hid. Each leaves once.
                     if !broken && nc > PRUNE_FROM {
-                        nc = prune(cover, nc, &f);
+                        nc = prune(act, nc, &f);
                     }
                     broken = true;
                 }
-                insert(cover, &mut nc, c);
+                insert(act, &mut nc, c);
             }
-            next = live.get(p).map_or(width, |a| a.hot.l.min(width));
+            next = next_l(act, p);
             if broken {
                 break;
             }
@@ -1051,15 +1056,15 @@ fn sweep<O: RowOut>(live: &[Active], cover: &mut [Cover], width: i32, cx: &mut C
 /// [`sweep`]); below, a comparison with each costs less than their leaving.
 const PRUNE_FROM: usize = 8;
 
-/// Drops from `cover[..nc]` the covers that end by `f.r`, `f` among them,
-/// and puts `f` back last; the new length.
+/// Drops from `act[..nc].cover` the covers that end by `f.r`, `f` among
+/// them, and puts `f` back last; the new length.
 #[inline(never)]
-fn prune(cover: &mut [Cover], mut nc: usize, f: &Cover) -> usize {
-    while nc > 0 && cover[nc - 1].r <= f.r {
+fn prune(act: &mut [Active], mut nc: usize, f: &Cover) -> usize {
+    while nc > 0 && act[nc - 1].cover.r <= f.r {
         nc -= 1;
     }
-    if let Some(c) = cover.get_mut(nc) {
-        *c = *f;
+    if let Some(a) = act.get_mut(nc) {
+        a.cover = *f;
         nc += 1;
     }
     nc
@@ -1077,29 +1082,30 @@ fn cover_of(h: &Hot) -> Cover {
     }
 }
 
-/// Inserts `c` into `cover[..nc]`, kept by decreasing `r`. The array has
-/// a place for every live trapezoid, so it never overflows.
+/// Inserts `c` into `act[..nc].cover`, kept by decreasing `r`. The array
+/// has a place for every live trapezoid, so it never overflows.
 #[inline(always)]
-fn insert(cover: &mut [Cover], nc: &mut usize, c: Cover) {
-    if *nc >= cover.len() {
+fn insert(act: &mut [Active], nc: &mut usize, c: Cover) {
+    if *nc >= act.len() {
         return;
     }
     let mut q = *nc;
-    while q > 0 && cover[q - 1].r < c.r {
-        cover[q] = cover[q - 1];
+    while q > 0 && act[q - 1].cover.r < c.r {
+        act[q].cover = act[q - 1].cover;
         q -= 1;
     }
-    cover[q] = c;
+    act[q].cover = c;
     *nc += 1;
 }
 
 /// Resolves the span `s..t` covered by `cov`; returns the nearest at its
 /// last pixel.
 #[inline]
-fn span<O: RowOut>(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
+fn span<O: RowOut>(cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
     let Some((first, rest)) = cov.split_first() else {
         return Cover::EMPTY;
     };
+    let first = &first.cover;
     if rest.is_empty() {
         cx.stats.single += 1;
         cx.emit(t - s, first.face, first.color);
@@ -1109,7 +1115,7 @@ fn span<O: RowOut>(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover 
     let e = t - 1;
     let (mut a, mut za) = (first, first.z_at(s));
     let (mut b, mut zb) = (first, first.z_at(e));
-    for c in rest {
+    for c in rest.iter().map(|a| &a.cover) {
         let (zs, ze) = (c.z_at(s), c.z_at(e));
         if cx.nearer(c, zs, a, za, s) {
             (a, za) = (c, zs);
@@ -1131,7 +1137,7 @@ fn span<O: RowOut>(cov: &[Cover], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover 
 /// Subdivides `s..t` (at least 2 pixels), whose nearest covering
 /// trapezoids at the ends are `a` and `b ≠ a`.
 fn split<O: RowOut>(
-    cov: &[Cover],
+    cov: &[Active],
     s: i32,
     t: i32,
     a: &Cover,
@@ -1186,13 +1192,13 @@ impl<O: RowOut> Ctx<'_, O> {
     /// the shorter), so on `x..r` of its own; `None` when another crosses
     /// it there.
     #[inline]
-    fn establish(&mut self, cov: &[Cover], x: i32) -> Option<Cover> {
+    fn establish(&mut self, cov: &[Active], x: i32) -> Option<Cover> {
         let f = self.front(cov, x);
         if cov.len() == 1 {
             self.stats.single += 1;
             return Some(*f);
         }
-        for c in cov {
+        for c in cov.iter().map(|a| &a.cover) {
             if core::ptr::eq(c, f) {
                 continue;
             }
@@ -1206,13 +1212,13 @@ impl<O: RowOut> Ctx<'_, O> {
     }
 
     /// The covering trapezoid nearest at pixel `i`.
-    fn front<'v>(&mut self, cov: &'v [Cover], i: i32) -> &'v Cover {
+    fn front<'v>(&mut self, cov: &'v [Active], i: i32) -> &'v Cover {
         let (first, rest) = match cov.split_first() {
-            Some(x) => x,
+            Some((f, r)) => (&f.cover, r),
             None => return &NO_COVER,
         };
         let (mut best, mut bz) = (first, first.z_at(i));
-        for c in rest {
+        for c in rest.iter().map(|a| &a.cover) {
             let cz = c.z_at(i);
             if self.nearer(c, cz, best, bz, i) {
                 (best, bz) = (c, cz);
@@ -1305,7 +1311,7 @@ where
 {
     workspace.check_runs(store)?;
     let out = ToTarget::new(target, background);
-    let (stats, out) = resolve_into(workspace.active, workspace.cover, store, mode, out)?;
+    let (stats, out) = resolve_into(workspace.active, store, mode, out)?;
     Ok((stats, out.counts))
 }
 
@@ -1399,9 +1405,8 @@ mod tests {
         // Face slot → polygon number.
         let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
         let mut active = [Active::EMPTY; 64];
-        let mut cover = [Cover::EMPTY; 64];
         let mut runs = [Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+        let mut ws = Workspace::new(&mut active, &mut runs);
         let most = ws.check(&store).unwrap();
         let stats = ws
             .resolve(&store, mode, |y, runs| {
@@ -1558,17 +1563,15 @@ mod tests {
                 .unwrap();
         }
         let mut active = [Active::EMPTY; 1];
-        let mut cover = [Cover::EMPTY; 1];
         let mut runs = [Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut cover, &mut runs);
+        let mut ws = Workspace::new(&mut active, &mut runs);
         assert_eq!(ws.check(&store), Err(VisibleError::Active { capacity: 1 }));
         let r = ws.resolve(&store, Resolve::Bisect, |_, _| Ok::<(), ()>(()));
         assert_eq!(r, Err(VisibleError::Active { capacity: 1 }));
         let mut runs = [Run::EMPTY; 4];
         let mut active = [Active::EMPTY; 2];
-        let mut cover = [Cover::EMPTY; 2];
         assert_eq!(
-            Workspace::new(&mut active, &mut cover, &mut runs).check(&store),
+            Workspace::new(&mut active, &mut runs).check(&store),
             Err(VisibleError::Runs { capacity: 4 })
         );
     }
