@@ -1,5 +1,7 @@
-//! The graphic controller's memory for one display list, on the heap,
-//! sized by what the list needs ([`scanvert::controller::needs`]).
+//! Memory on the heap, sized by what it holds: the graphic controller's
+//! for one display list, by what the list needs
+//! ([`scanvert::controller::needs`]), and a program's scene's, by running
+//! it ([`SceneHeap::fit`]).
 
 use scanvert::controller::{edges_3d, needs, Controller, Needs, RenderError};
 use scanvert::display_list::DisplayList;
@@ -7,12 +9,14 @@ use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
 use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
-use scanvert::scene::label::Label;
-use scanvert::scene::SceneMemory;
+use scanvert::scene::label::{Label, LabelError};
+use scanvert::scene::{Capacities, SceneError, SceneMemory, UpdateError};
 use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory};
+use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
 use scanvert::visible::sweep::Active;
 use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::visible::VisibleError;
+use std::convert::Infallible;
 
 /// Edge storage for the rasteriser and the 3D layer's memory, each pool
 /// as large as the list needs and no larger: a list that would need more
@@ -135,5 +139,141 @@ impl ListMemory {
             lines: &mut self.table_lines,
         };
         (&mut self.edges, three, table)
+    }
+}
+
+/// A [`Scene`](scanvert::scene::Scene)'s memory on the heap, each pool as
+/// large as [`Capacities`] say: those a program's scene needs are found
+/// with [`SceneHeap::fit`], by running it.
+///
+/// The same capacities, as const generics of
+/// [`SceneStorage`](scanvert::scene::SceneStorage), size the scene's
+/// `static` on a target with no heap.
+#[derive(Debug)]
+pub struct SceneHeap {
+    caps: Capacities,
+    trapezoids: Vec<Trapezoid>,
+    faces: Vec<Face>,
+    segments: Vec<Segment>,
+    rows: Vec<u16>,
+    edges: Vec<EdgeSlot>,
+    active: Vec<Active>,
+    runs: Vec<Run>,
+    labels: Vec<Label>,
+    text: Vec<u8>,
+}
+
+/// Why a scene could not be built or checked in a [`SceneHeap`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shortfall {
+    /// Building failed (a pool ran out, or anything else).
+    Scene(SceneError),
+    /// The active list is shorter than the most trapezoids on one row.
+    Visible(VisibleError<Infallible>),
+}
+
+impl From<SceneError> for Shortfall {
+    fn from(e: SceneError) -> Self {
+        Shortfall::Scene(e)
+    }
+}
+
+impl From<UpdateError> for Shortfall {
+    fn from(e: UpdateError) -> Self {
+        Shortfall::Scene(e.error)
+    }
+}
+
+impl From<VisibleError<Infallible>> for Shortfall {
+    fn from(e: VisibleError<Infallible>) -> Self {
+        Shortfall::Visible(e)
+    }
+}
+
+impl std::fmt::Display for Shortfall {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Shortfall::Scene(e) => write!(f, "{e}"),
+            Shortfall::Visible(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for Shortfall {}
+
+impl SceneHeap {
+    /// Memory of these capacities, every slot unused.
+    pub fn new(caps: Capacities) -> SceneHeap {
+        SceneHeap {
+            caps,
+            trapezoids: vec![Trapezoid::EMPTY; caps.trapezoids],
+            faces: vec![Face::EMPTY; caps.faces],
+            segments: vec![Segment::EMPTY; caps.segments],
+            rows: vec![0; caps.rows],
+            edges: vec![EdgeSlot::EMPTY; caps.edges],
+            active: vec![Active::EMPTY; caps.active],
+            runs: vec![Run::EMPTY; caps.runs],
+            labels: vec![Label::EMPTY; caps.labels],
+            text: vec![0; caps.text],
+        }
+    }
+
+    /// The capacities it was made with.
+    pub fn capacities(&self) -> Capacities {
+        self.caps
+    }
+
+    /// The memory as the scene takes it.
+    pub fn memory(&mut self) -> SceneMemory<'_> {
+        SceneMemory {
+            store: StoreMemory {
+                trapezoids: &mut self.trapezoids,
+                faces: &mut self.faces,
+                segments: &mut self.segments,
+                rows: &mut self.rows,
+                edges: &mut self.edges,
+            },
+            active: &mut self.active,
+            runs: &mut self.runs,
+            labels: &mut self.labels,
+            text: &mut self.text,
+        }
+    }
+
+    /// The capacities a program's scene needs: `run` builds the scene in
+    /// the memory it is given, frame after frame as the program does, and
+    /// returns the [`Capacities::max`] of
+    /// [`Scene::usage`](scanvert::scene::Scene::usage) over its frames.
+    /// `start` gives the frame's rows and width, the segments and the
+    /// edge slots (the pipeline's `N`), and the first size of the pools;
+    /// whenever a pool runs out (trapezoids, faces, labels, text, active
+    /// slots) it is doubled and `run` starts again from nothing. Any other
+    /// failure, or a pool past 65,535, is returned.
+    pub fn fit(
+        start: Capacities,
+        mut run: impl FnMut(SceneMemory<'_>) -> Result<Capacities, Shortfall>,
+    ) -> Result<Capacities, Shortfall> {
+        let mut caps = start;
+        loop {
+            let mut heap = SceneHeap::new(caps);
+            let e = match run(heap.memory()) {
+                Ok(used) => return Ok(used),
+                Err(e) => e,
+            };
+            let pool = match e {
+                Shortfall::Scene(SceneError::Store(StoreError::Trapezoids { .. })) => {
+                    &mut caps.trapezoids
+                }
+                Shortfall::Scene(SceneError::Store(StoreError::Faces { .. })) => &mut caps.faces,
+                Shortfall::Scene(SceneError::Labels(LabelError::Labels { .. })) => &mut caps.labels,
+                Shortfall::Scene(SceneError::Labels(LabelError::Text { .. })) => &mut caps.text,
+                Shortfall::Visible(VisibleError::Active { .. }) => &mut caps.active,
+                _ => return Err(e),
+            };
+            if *pool >= u16::MAX as usize {
+                return Err(e);
+            }
+            *pool = (*pool * 2).clamp(8, u16::MAX as usize);
+        }
     }
 }

@@ -18,12 +18,11 @@ use scanvert::geometry::{
     View, Viewport, Q16,
 };
 use scanvert::port::framebuffer::FrameBuffer;
-use scanvert::scene::label::{Label, DEFAULT_FONT};
-use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory};
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreError, StoreMemory};
-use scanvert::visible::sweep::{Active, Resolve};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::scene::label::DEFAULT_FONT;
+use scanvert::scene::{Builder, Capacities, Procedure, Scene, SceneError};
+use scanvert::visible::store::StoreError;
+use scanvert::visible::sweep::Resolve;
+use scanvert_sim::memory::SceneHeap;
 use testkit::reference3d::{drawn, resolve, Poly3};
 
 const W: u16 = 160;
@@ -73,53 +72,63 @@ impl PolygonSink for Record {
     }
 }
 
-/// The caller's memory of a test scene.
-struct Mem {
-    traps: Vec<Trapezoid>,
-    faces: Vec<Face>,
-    segs: Vec<Segment>,
-    rows: Vec<u16>,
-    edges: Vec<EdgeSlot>,
-    labels: Vec<Label>,
-    text: Vec<u8>,
-    active: Vec<Active>,
-    runs: Vec<Run>,
+/// The caller's memory of a test scene, on the heap.
+struct Mem(SceneHeap);
+
+/// What running `frames` on `pipe` needs, one after the other in one
+/// scene (every segment rebuilt for each): each frame is a procedure per
+/// segment.
+fn needs(pipe: &P, frames: &mut [&mut [&mut dyn Procedure<8, 32>]]) -> Capacities {
+    let segments = frames.first().map_or(1, |f| f.len());
+    let start = Capacities {
+        segments,
+        rows: H as usize,
+        runs: W as usize,
+        edges: 32,
+        ..Capacities::default()
+    };
+    SceneHeap::fit(start, |mem| {
+        let mut scene = Scene::new(mem, pipe.clone())?;
+        let mut most = Capacities::default();
+        for procs in frames.iter_mut() {
+            scene.invalidate_all();
+            scene.update(procs)?;
+            most = most.max(scene.usage()?);
+        }
+        Ok(most)
+    })
+    .unwrap()
 }
 
 impl Mem {
-    fn new(segments: usize, trapezoids: usize) -> Mem {
-        Mem {
-            traps: vec![Trapezoid::EMPTY; trapezoids],
-            faces: vec![Face::EMPTY; 1024],
-            segs: vec![Segment::EMPTY; segments],
-            rows: vec![0; H as usize],
-            edges: vec![EdgeSlot::EMPTY; 32],
-            labels: vec![Label::EMPTY; 16],
-            text: vec![0; 256],
-            // Every trapezoid may overlap one row.
-            active: vec![Active::EMPTY; trapezoids],
-            runs: vec![Run::EMPTY; W as usize],
-        }
+    /// Memory as large as running `frames` needs ([`needs`]).
+    fn fit(pipe: &P, frames: &mut [&mut [&mut dyn Procedure<8, 32>]]) -> Mem {
+        Mem(SceneHeap::new(needs(pipe, frames)))
+    }
+
+    /// Memory of `caps`.
+    fn of(caps: Capacities) -> Mem {
+        Mem(SceneHeap::new(caps))
+    }
+
+    /// Memory with `segments` segments and room for `trapezoids` (and as
+    /// many faces and active slots): a pool deliberately too small.
+    fn with_trapezoids(segments: usize, trapezoids: usize) -> Mem {
+        Mem(SceneHeap::new(Capacities {
+            trapezoids,
+            faces: trapezoids,
+            segments,
+            rows: H as usize,
+            edges: 32,
+            active: trapezoids,
+            runs: W as usize,
+            labels: 0,
+            text: 0,
+        }))
     }
 
     fn scene(&mut self, pipe: P) -> Scene<'_, 8, 32> {
-        Scene::new(
-            SceneMemory {
-                store: StoreMemory {
-                    trapezoids: &mut self.traps,
-                    faces: &mut self.faces,
-                    segments: &mut self.segs,
-                    rows: &mut self.rows,
-                    edges: &mut self.edges,
-                },
-                active: &mut self.active,
-                runs: &mut self.runs,
-                labels: &mut self.labels,
-                text: &mut self.text,
-            },
-            pipe,
-        )
-        .unwrap()
+        Scene::new(self.0.memory(), pipe).unwrap()
     }
 }
 
@@ -162,14 +171,14 @@ fn check(pipe: &P, faces: &[Vec<Point3>]) -> Check {
     for (k, f) in faces.iter().enumerate() {
         twin.polygon(f, color_of(k), &mut rec).unwrap();
     }
-    let mut mem = Mem::new(1, 8192);
-    let mut scene = mem.scene(pipe.clone());
     let mut build = |b: &mut B<'_, '_>| {
         for (k, f) in faces.iter().enumerate() {
             b.face(f, color_of(k))?;
         }
         Ok(())
     };
+    let mut mem = Mem::fit(pipe, &mut [&mut [&mut build]]);
+    let mut scene = mem.scene(pipe.clone());
     scene.update(&mut [&mut build]).unwrap();
     let (got, _, _) = draw(&mut scene);
 
@@ -518,8 +527,6 @@ fn points_and_lines_at_the_window_edges() {
 #[test]
 fn labels_behind_the_eye_and_off_screen() {
     let pipe = pipeline(persp(60, 1.0, 100.0), p(0.0, 0.0, 10.0), p(0.0, 0.0, 0.0));
-    let mut mem = Mem::new(1, 64);
-    let mut scene = mem.scene(pipe);
     let mut placed = Vec::new();
     let mut build = |b: &mut B<'_, '_>| {
         placed.clear();
@@ -537,6 +544,8 @@ fn labels_behind_the_eye_and_off_screen() {
         }
         Ok(())
     };
+    let mut mem = Mem::fit(&pipe, &mut [&mut [&mut build]]);
+    let mut scene = mem.scene(pipe);
     scene.update(&mut [&mut build]).unwrap();
     let behind: Vec<_> = placed.iter().filter(|p| !p.1).map(|p| p.0).collect();
     assert_eq!(behind, ["behind", "at the eye"]);
@@ -582,10 +591,24 @@ fn segment_procs(
 #[test]
 fn only_the_changed_segment_is_rebuilt() {
     let pipe = pipeline(persp(60, 1.0, 100.0), p(2.0, 6.0, 14.0), p(0.0, 1.0, 0.0));
-    let mut mem = Mem::new(3, 1024);
-    let mut scene = mem.scene(pipe.clone());
     let first = three_boxes(0.0);
     let [mut a, mut b, mut c] = segment_procs(&first);
+    let moved = three_boxes(1.5);
+    let [mut a2, mut b2, mut c2] = segment_procs(&moved);
+    // Room for both frames, and for the second after a camera move.
+    let eye = View::look_at(p(-3.0, 6.0, 14.0), p(0.0, 1.0, 0.0)).unwrap();
+    let mut turned = pipe.clone();
+    turned.set_view(&eye).unwrap();
+    let caps = needs(
+        &pipe,
+        &mut [
+            &mut [&mut a, &mut b, &mut c],
+            &mut [&mut a2, &mut b2, &mut c2],
+        ],
+    )
+    .max(needs(&turned, &mut [&mut [&mut a2, &mut b2, &mut c2]]));
+    let mut mem = Mem::of(caps);
+    let mut scene = mem.scene(pipe.clone());
     let u = scene.update(&mut [&mut a, &mut b, &mut c]).unwrap();
     assert_eq!(u.regenerated, 3);
     let before: Vec<_> = scene
@@ -600,8 +623,6 @@ fn only_the_changed_segment_is_rebuilt() {
     assert_eq!((u.regenerated, u.polygons, u.trapezoids), (0, 0, 0));
 
     // The middle box moves: only its segment is emptied and cut again.
-    let moved = three_boxes(1.5);
-    let [mut a2, mut b2, mut c2] = segment_procs(&moved);
     scene.invalidate(1).unwrap();
     let u = scene.update(&mut [&mut a2, &mut b2, &mut c2]).unwrap();
     assert_eq!(u.regenerated, 1);
@@ -621,16 +642,14 @@ fn only_the_changed_segment_is_rebuilt() {
 
     // The picture is the one a scene built from scratch draws.
     let (got, _, _) = draw(&mut scene);
-    let mut mem2 = Mem::new(3, 1024);
+    let mut mem2 = Mem::fit(&pipe, &mut [&mut [&mut a2, &mut b2, &mut c2]]);
     let mut fresh = mem2.scene(pipe.clone());
     fresh.update(&mut [&mut a2, &mut b2, &mut c2]).unwrap();
     let (want, _, _) = draw(&mut fresh);
     assert_eq!(got, want);
 
     // A camera move makes every segment stale.
-    scene
-        .set_view(&View::look_at(p(-3.0, 6.0, 14.0), p(0.0, 1.0, 0.0)).unwrap())
-        .unwrap();
+    scene.set_view(&eye).unwrap();
     let u = scene.update(&mut [&mut a2, &mut b2, &mut c2]).unwrap();
     assert_eq!(u.regenerated, 3);
 }
@@ -639,7 +658,7 @@ fn only_the_changed_segment_is_rebuilt() {
 fn a_failing_segment_is_left_empty_and_stale_alone() {
     let pipe = pipeline(persp(60, 1.0, 100.0), p(2.0, 6.0, 14.0), p(0.0, 1.0, 0.0));
     // Room for the small boxes, not for the big one.
-    let mut mem = Mem::new(3, 40);
+    let mut mem = Mem::with_trapezoids(3, 40);
     let mut scene = mem.scene(pipe);
     let boxes = three_boxes(0.0);
     let [mut a, _, mut c] = segment_procs(&boxes);
@@ -700,13 +719,14 @@ fn the_default_camera_of_a_list_looks_along_minus_z() {
     };
     for (z, shown) in [(-5.0, true), (5.0, false)] {
         for reverse in [false, true] {
-            let mut mem = Mem::new(1, 64);
-            let mut scene = mem.scene(scanvert::scene::list_pipeline(W, H).unwrap());
             let mut face = square(z);
             if reverse {
                 face.reverse();
             }
             let mut build = |b: &mut B<'_, '_>| b.face(&face, color_of(0)).map(|_| ());
+            let pipe = scanvert::scene::list_pipeline(W, H).unwrap();
+            let mut mem = Mem::fit(&pipe, &mut [&mut [&mut build]]);
+            let mut scene = mem.scene(pipe);
             scene.update(&mut [&mut build]).unwrap();
             let (got, _, _) = draw(&mut scene);
             let n = got.iter().filter(|c| c.is_some()).count();
@@ -742,24 +762,24 @@ fn a_concave_face_from_its_reflex_corner_is_drawn() {
         .collect();
     assert!(drawn(&poly));
     let want = resolve(&[Poly3 { poly, clip: None }], W.into(), H.into());
-    let mut mem = Mem::new(1, 64);
-    let mut scene = mem.scene(pipe.clone());
     let mut build = |b: &mut B<'_, '_>| {
         assert_eq!(b.face(&face, color_of(0))?, Outcome::Emitted);
         Ok(())
     };
+    let mut mem = Mem::fit(&pipe, &mut [&mut [&mut build]]);
+    let mut scene = mem.scene(pipe.clone());
     scene.update(&mut [&mut build]).unwrap();
     let (got, _, _) = draw(&mut scene);
     assert_eq!(got, want);
     assert!(got.iter().filter(|c| c.is_some()).count() > 300);
     let mut back = face.clone();
     back.reverse();
-    let mut mem = Mem::new(1, 64);
-    let mut scene = mem.scene(pipe.clone());
     let mut build = |b: &mut B<'_, '_>| {
         assert_eq!(b.face(&back, color_of(0))?, Outcome::Culled);
         Ok(())
     };
+    let mut mem = Mem::fit(&pipe, &mut [&mut [&mut build]]);
+    let mut scene = mem.scene(pipe.clone());
     scene.update(&mut [&mut build]).unwrap();
     let (got, _, _) = draw(&mut scene);
     assert!(got.iter().all(|c| c.is_none()));
@@ -783,7 +803,7 @@ fn a_concave_face_from_its_reflex_corner_is_drawn() {
         &mut run as &mut dyn scanvert::scene::Procedure<8, 32>,
         &mut direct,
     ] {
-        let mut mem = Mem::new(1, 64);
+        let mut mem = Mem::fit(&pipe, &mut [&mut [&mut *proc]]);
         let mut scene = mem.scene(pipe.clone());
         scene.update(&mut [proc]).unwrap();
         frames.push(draw(&mut scene).1);

@@ -47,13 +47,19 @@ struct Memory {
 }
 
 impl Memory {
+    /// Room for every segment's polygons: a face each, and a trapezoid per
+    /// edge at most (a polygon is cut at its vertices' rows).
     fn new() -> Self {
+        let all = (0..SEGMENTS).flat_map(|s| polygons(s, 0));
+        let (faces, edges, most) = all.fold((0, 0, 0), |(f, e, m), p| {
+            (f + 1, e + p.len(), m.max(p.len()))
+        });
         Memory {
-            traps: vec![Trapezoid::EMPTY; 512],
-            faces: vec![Face::EMPTY; 128],
+            traps: vec![Trapezoid::EMPTY; edges],
+            faces: vec![Face::EMPTY; faces],
             segs: vec![Segment::EMPTY; SEGMENTS],
             rows: vec![0; H as usize],
-            edges: vec![EdgeSlot::EMPTY; 8],
+            edges: vec![EdgeSlot::EMPTY; most],
         }
     }
 
@@ -85,7 +91,8 @@ fn fill(store: &mut TrapezoidStore<'_>, s: usize, version: i32) {
 
 /// The frame as colours, row-major.
 fn picture(store: &TrapezoidStore<'_>) -> Vec<Option<Rgb888>> {
-    let mut active = vec![Active::EMPTY; 256];
+    // Every trapezoid of the store may overlap one row.
+    let mut active = vec![Active::EMPTY; store.len()];
     let mut runs = vec![Run::EMPTY; W as usize];
     let mut out = Vec::new();
     Workspace::new(&mut active, &mut runs)

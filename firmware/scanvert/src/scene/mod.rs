@@ -107,7 +107,7 @@ pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 pub use list::{list_pipeline, Executed, ListState};
-pub use storage::SceneStorage;
+pub use storage::{Capacities, SceneStorage};
 
 use crate::color::ListColor;
 use crate::display_list::{Axis, Command};
@@ -530,6 +530,31 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// without drawing (see [`Workspace::check`]).
     pub fn check(&mut self) -> Result<u32, VisibleError<core::convert::Infallible>> {
         self.workspace.check(&self.store)
+    }
+
+    /// What the scene uses now, as [`SceneStorage`] capacities: the
+    /// trapezoids, faces and labels in use and their text, the most
+    /// trapezoids on one row ([`Scene::check`]), the frame's rows and
+    /// width, its segments, and the pipeline's `N` edge slots (scratch
+    /// for one polygon, whose need is its vertices after clipping: at most
+    /// `N`). The most of each over a program's frames is the storage the
+    /// program needs: a procedure-built scene is sized by running it, on
+    /// the host, and taking the [`Capacities::max`] of its frames.
+    ///
+    /// Fails as [`Scene::check`] does when the active list is too short.
+    pub fn usage(&mut self) -> Result<Capacities, VisibleError<core::convert::Infallible>> {
+        let active = self.check()? as usize;
+        Ok(Capacities {
+            trapezoids: self.store.len(),
+            faces: self.store.face_count(),
+            segments: self.store.segments().len(),
+            rows: self.store.height() as usize,
+            edges: N,
+            active,
+            runs: self.store.width() as usize,
+            labels: self.labels.len(),
+            text: self.labels.text_len(),
+        })
     }
 
     /// Draws the scene into `target`: the visible surfaces resolved with

@@ -73,7 +73,8 @@ pub struct SceneStorage<
     text: [u8; TEXT],
 }
 
-/// The capacities of a [`SceneStorage`] (or what a list needs of one).
+/// The capacities of a [`SceneStorage`] (or what a list or a scene needs
+/// of one: [`Scene::usage`](super::Scene::usage)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Capacities {
@@ -95,6 +96,30 @@ pub struct Capacities {
     pub labels: usize,
     /// Bytes of label text.
     pub text: usize,
+}
+
+impl Capacities {
+    /// The larger of each capacity: storage for both.
+    pub const fn max(self, o: Capacities) -> Capacities {
+        const fn m(a: usize, b: usize) -> usize {
+            if a > b {
+                a
+            } else {
+                b
+            }
+        }
+        Capacities {
+            trapezoids: m(self.trapezoids, o.trapezoids),
+            faces: m(self.faces, o.faces),
+            segments: m(self.segments, o.segments),
+            rows: m(self.rows, o.rows),
+            edges: m(self.edges, o.edges),
+            active: m(self.active, o.active),
+            runs: m(self.runs, o.runs),
+            labels: m(self.labels, o.labels),
+            text: m(self.text, o.text),
+        }
+    }
 }
 
 impl<
