@@ -294,7 +294,7 @@ budget_section() {
   read -r _ _ poly_data poly_bss _ poly_ram < <(sizes "$poly.elf")
   cat <<EOF
 
-### RAM without a frame buffer
+### RAM with no frame buffer: the budget variants
 
 The image built with \`--features budget\` renders only the README's 3D
 demo at 320 × 240, its 8 frames (\`scanvert demo\`'s default) written as
