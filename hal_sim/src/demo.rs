@@ -803,6 +803,42 @@ mod tests {
         }
     }
 
+    /// `scanvert demo --size 320x240` writes frames of that size; a bad
+    /// size, or one with `--race`, is a usage error.
+    #[test]
+    fn the_command_line_takes_a_size() {
+        let dir = std::env::temp_dir().join(format!("scanvert-demo-size-{}", std::process::id()));
+        let args = |more: &[&str]| -> Vec<String> {
+            [
+                "demo",
+                "--out",
+                dir.to_str().unwrap(),
+                "--frames",
+                "1",
+                "--no-speed",
+            ]
+            .iter()
+            .chain(more)
+            .map(|s| s.to_string())
+            .collect()
+        };
+        let report = crate::cli::run(&args(&["--size", "320x240"])).expect("runs");
+        assert!(report.contains("320x240"), "{report}");
+        let png = std::fs::read(dir.join("frame-00.png")).expect("a frame");
+        // The IHDR chunk: width and height, big-endian, at bytes 16 and 20.
+        let be = |i: usize| u32::from_be_bytes(png[i..i + 4].try_into().unwrap());
+        assert_eq!((be(16), be(20)), (320, 240));
+        std::fs::remove_dir_all(&dir).unwrap();
+        for bad in [
+            &["--size", "320"][..],
+            &["--size"],
+            &["--size", "320x240", "--race", "100"],
+        ] {
+            let e = crate::cli::run(&args(bad)).expect_err("a usage error");
+            assert_eq!(e.status, crate::cli::EXIT_USAGE, "{bad:?}");
+        }
+    }
+
     #[test]
     fn sizes_parse_in_range() {
         assert_eq!(Size::parse("320x240"), Size::new(320, 240));
