@@ -310,7 +310,9 @@ trapezoids on a row of the host's render: \`src/scenes.rs\`).
 *Total* is \`.data\` + \`.bss\` from \`readelf -S\`; the statics are
 their symbols' sizes (\`nm -S\`, each with its "taken" flag); the scene
 storage's pools are slots × slot size, as the image prints them, and
-its workspace the rest of it (the active list). **The stack is not
+its workspace the rest of it (the active list). The lists have no
+\`poly\` or \`line\`, so the 2D edge table and the rasteriser's edges
+are empty (their statics are the flags alone). **The stack is not
 included**: the image does not measure its high-water mark.
 
 | part | demo, 320 × 240 | 170-face lists, 512 × 256 |
@@ -326,7 +328,7 @@ EOF
     "$(field "$demo.log" budget workspace)" "$(field "$poly.log" budget workspace)"
   budget_row "= scene storage (\`BUDGET_SCENE\`)" "$(symbols "$demo.elf" BUDGET_SCENE)" "$(symbols "$poly.elf" BUDGET_SCENE)"
   budget_row "band buffer (\`BUDGET_BAND\`, RGB565)" "$(symbols "$demo.elf" BUDGET_BAND)" "$(symbols "$poly.elf" BUDGET_BAND)"
-  budget_row "2D edge table and rasteriser edges (none needed)" \
+  budget_row "2D edge table and rasteriser edges (\`BUDGET_TABLE_*\`, \`BUDGET_EDGES\`)" \
     "$(symbols "$demo.elf" 'BUDGET_(TABLE|EDGES)')" "$(symbols "$poly.elf" 'BUDGET_(TABLE|EDGES)')"
   budget_row "the rest (runtime, counter)" \
     "$((demo_ram - $(symbols "$demo.elf" BUDGET_)))" "$((poly_ram - $(symbols "$poly.elf" BUDGET_)))"
