@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds the firmware image, runs it in QEMU, and reports what it costs on
-# target: instructions per frame, per polygon and per pixel, and the size of
-# every variant of the image.
+# target: instructions per frame, per polygon and per pixel, the size of
+# every variant of the image, and the RAM of rendering with no frame buffer
+# (the `budget` variants: their statics are only what the band render of
+# their lists needs, read from the ELF's sections and symbols).
 #
 #   firmware/image/measure.sh           build, run, check, and rewrite the
 #                                       on-target section of docs/performance.md
@@ -62,6 +64,8 @@ echo "== building the image variants" >&2
 build arm-defmt "$arm_target" --features defmt
 build arm-discard "$arm_target" --features discard
 build arm-halfword "$arm_target" --features halfword
+build arm-budget "$arm_target" --features budget
+build arm-budget-poly3 "$arm_target" --features budget-poly3
 if [ "$(uname -m)" != riscv32 ]; then
   build riscv "$rv_target"
 fi
@@ -90,6 +94,9 @@ run arm-discard qemu_arm
 # The frame as FrameBuffer<Rgb565>, a half-word store a pixel: the
 # comparison for the default PackedFrameBuffer.
 run arm-halfword qemu_arm
+# Band by band with no frame buffer, in statics sized for the lists.
+run arm-budget qemu_arm
+run arm-budget-poly3 qemu_arm
 have_rv=no
 if command -v qemu-system-riscv32 >/dev/null; then
   run riscv qemu_rv
@@ -109,6 +116,23 @@ for name in arm arm-halfword $( [ "$have_rv" = yes ] && echo riscv ); do
   fi
   echo "$name: $(wc -l <"$out/$name.sums") checksums equal the host's" >&2
 done
+# The budget variants: every list of theirs, each checksum the host's.
+(cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/budget/*.scvl) \
+  | cat - "$out/host.sums" | sort >"$out/host-all.sums"
+budget_check() { # NAME LISTS: the log's checksums are those of LISTS (file stems) on the host
+  local name=$1
+  shift
+  grep '^checksum ' "$out/$name.log" | sort >"$out/$name.sums"
+  for list in "$@"; do grep "^checksum $(basename "$list" .scvl) " "$out/host-all.sums"; done \
+    | sort >"$out/$name.want"
+  if [ ! -s "$out/$name.want" ] || ! diff -u "$out/$name.want" "$out/$name.sums" >&2; then
+    echo "$name: checksums differ from the host's" >&2
+    exit 1
+  fi
+  echo "$name: $(wc -l <"$out/$name.sums") checksums equal the host's" >&2
+}
+budget_check arm-budget scenes/budget/*.scvl
+budget_check arm-budget-poly3 scenes/poly3-layered.scvl scenes/poly3-tilted.scvl
 
 # Section sizes of an ELF: "text rodata data bss image ram" in bytes.
 # Image: every allocated section with contents (what is loaded); RAM:
@@ -239,6 +263,110 @@ EOF
   if [ -f "$out/riscv.elf" ]; then
     size_row "RV32IMC (all in RAM), plain text log" "$out/riscv.elf"
   fi
+  budget_section
+}
+
+# The value of KEY in the first line of LOG whose first word is WORD.
+field() { # LOG WORD KEY
+  awk -v w="$2" -v k="$3" '$1 == w {
+    for (i = 2; i <= NF; i++) { n = index($i, "="); if (n && substr($i, 1, n - 1) == k) { print substr($i, n + 1); exit } }
+  }' "$1"
+}
+
+# Bytes of the statics of ELF whose demangled names match PATTERN.
+symbols() { # ELF PATTERN
+  local total=0 _addr size type name
+  while read -r _addr size type name; do
+    case "$type" in [bBdD]) if [[ $name =~ $2 ]]; then total=$((total + 16#$size)); fi ;; esac
+  done < <(nm -S -C "$1")
+  echo "$total"
+}
+
+kib() { fmt "$(awk -v b="$1" 'BEGIN { print b / 1024 }')" 1; }
+
+# The RAM of the budget variants, by part: the scene storage's pools from
+# the image's `budget` line (slots × slot size), the statics from their
+# symbols, the total from the sections.
+budget_section() {
+  local demo=$out/arm-budget poly=$out/arm-budget-poly3 k
+  local demo_data demo_bss demo_ram poly_data poly_bss poly_ram
+  read -r _ _ demo_data demo_bss _ demo_ram < <(sizes "$demo.elf")
+  read -r _ _ poly_data poly_bss _ poly_ram < <(sizes "$poly.elf")
+  cat <<EOF
+
+### RAM with no frame buffer: the budget variants
+
+The image built with \`--features budget\` renders only the README's 3D
+demo at 320 × 240, its 8 frames (\`scanvert demo\`'s default) written as
+display lists by \`scanvert_sim::demo::frame_list\` (each list's picture
+is the \`Scene\`'s, checked by the host test \`on_target_scenes\`), with
+\`Controller::render_bands\` in bands of $(field "$demo.log" budget band_rows) rows and no frame buffer; built
+with \`--features budget-poly3\`, the two 170-face lists at 512 × 256.
+Each band is shipped, in order, into a running checksum, which equals
+the host's for every frame. Their statics are only what that needs
+(\`src/budget.rs\`), each capacity the most any of their lists needs
+(\`controller::needs\`, \`raster::table::needs_table\`, the most
+trapezoids on a row of the host's render: \`src/scenes.rs\`).
+*Total* is \`.data\` + \`.bss\` from \`readelf -S\`; the statics are
+their symbols' sizes (\`nm -S\`, each with its "taken" flag); the scene
+storage's pools are slots × slot size, as the image prints them, and
+its workspace the rest of it (the active list). The lists have no
+\`poly\` or \`line\`, so the 2D edge table and the rasteriser's edges
+are empty (their statics are the flags alone). **The stack is not
+included**: the image does not measure its high-water mark.
+
+| part | demo, 320 × 240 | 170-face lists, 512 × 256 |
+|---|--:|--:|
+EOF
+  budget_row "trapezoids" \
+    "$(thousands "$(field "$demo.log" budget trapezoids)") ($(field "$demo.log" budget trapezoid_slots) × $(field "$demo.log" budget trapezoid_size) B)" \
+    "$(thousands "$(field "$poly.log" budget trapezoids)") ($(field "$poly.log" budget trapezoid_slots) × $(field "$poly.log" budget trapezoid_size) B)"
+  for k in faces segments index edge_slots runs labels text; do
+    budget_row "${k/_/ }" "$(field "$demo.log" budget "$k")" "$(field "$poly.log" budget "$k")"
+  done
+  budget_row "workspace ($(field "$demo.log" budget active_slots) / $(field "$poly.log" budget active_slots) active entries)" \
+    "$(field "$demo.log" budget workspace)" "$(field "$poly.log" budget workspace)"
+  budget_row "= scene storage (\`BUDGET_SCENE\`)" "$(symbols "$demo.elf" BUDGET_SCENE)" "$(symbols "$poly.elf" BUDGET_SCENE)"
+  budget_row "band buffer (\`BUDGET_BAND\`, RGB565)" "$(symbols "$demo.elf" BUDGET_BAND)" "$(symbols "$poly.elf" BUDGET_BAND)"
+  budget_row "2D edge table and rasteriser edges (\`BUDGET_TABLE_*\`, \`BUDGET_EDGES\`)" \
+    "$(symbols "$demo.elf" 'BUDGET_(TABLE|EDGES)')" "$(symbols "$poly.elf" 'BUDGET_(TABLE|EDGES)')"
+  budget_row "the rest (runtime, counter)" \
+    "$((demo_ram - $(symbols "$demo.elf" BUDGET_)))" "$((poly_ram - $(symbols "$poly.elf" BUDGET_)))"
+  echo "| **total static RAM** (\`.data\` + \`.bss\`: $(thousands "$demo_data") + $(thousands "$demo_bss"); $(thousands "$poly_data") + $(thousands "$poly_bss")) | **$(thousands "$demo_ram")** ($(kib "$demo_ram") KiB) | **$(thousands "$poly_ram")** ($(kib "$poly_ram") KiB) |"
+  echo "| within 64 KiB (65,536 B)? | $(within "$demo_ram") | $(within "$poly_ram") |"
+  budget_row "against a full RGB565 frame buffer" "$(against $((320 * 240 * 2)) "$demo_ram")" "$(against $((512 * 256 * 2)) "$poly_ram")"
+  budget_row "against a z-buffer renderer's frame + 16-bit depth" "$(against $((320 * 240 * 4)) "$demo_ram")" "$(against $((512 * 256 * 4)) "$poly_ram")"
+  budget_row "against a z-buffer renderer's frame + 32-bit depth" "$(against $((320 * 240 * 6)) "$demo_ram")" "$(against $((512 * 256 * 6)) "$poly_ram")"
+  cat <<'EOF'
+
+| list | frame | trapezoids | most on a row | instructions (bands and checksum) | frames/s at 168 MHz (est.) |
+|---|---|--:|--:|--:|--:|
+EOF
+  awk '$1 == "bands" {
+    for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+    print $2, $3, f["trapezoids"], f["max_active"], f["instructions"]
+  }' "$demo.log" "$poly.log" | while read -r name frame traps active instr; do
+    echo "| $name | ${frame/x/×} | $traps | $active | $(thousands "$instr") | $(fmt "$(awk -v i="$instr" 'BEGIN { print 168e6 / i }')" 1) |"
+  done
+}
+
+budget_row() { # LABEL DEMO POLY: a row of bytes (plain numbers get separators) or text
+  local a=$2 b=$3
+  case "$a" in *[!0-9]*) ;; *) a=$(thousands "$a") ;; esac
+  case "$b" in *[!0-9]*) ;; *) b=$(thousands "$b") ;; esac
+  echo "| $1 | $a | $b |"
+}
+
+within() { # BYTES
+  if [ "$1" -le 65536 ]; then
+    echo "**yes**, $(thousands $((65536 - $1))) B to spare"
+  else
+    echo "**no**, $(thousands $(($1 - 65536))) B over"
+  fi
+}
+
+against() { # OTHER BYTES: "OTHER B (× OTHER/BYTES)"
+  echo "$(thousands "$1") B ($(fmt "$(awk -v o="$1" -v b="$2" 'BEGIN { print o / b }')" 1)×)"
 }
 
 thousands() { printf "%s" "$1" | sed -e ':a' -e 's/\([0-9]\)\([0-9]\{3\}\)\($\|[,.]\)/\1,\2\3/;ta'; }

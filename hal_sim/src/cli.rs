@@ -6,7 +6,7 @@
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
-//! scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
+//! scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed] [--race MHZ [--fifo K]]
 //! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
 //!
@@ -39,7 +39,7 @@ usage:
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
-  scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
+  scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed] [--race MHZ [--fifo K]]
   scanvert help [COMMAND]
 
 SCENE is a display list in text form or binary form (told apart by its magic number),
@@ -134,10 +134,11 @@ options:
   --help, -h           this help";
 
 const HELP_DEMO: &str = "\
-usage: scanvert demo [--out DIR] [--frames N] [--no-speed] [--race MHZ [--fifo K]]
+usage: scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
+                    [--race MHZ [--fifo K]]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
-512x256 through the simulated display (double-buffered): first the threshold that
+512x256 (or --size) through the simulated display (double-buffered): first the threshold that
 highlights bars changes, so only the bars are rebuilt, then the camera moves. Prints
 per frame the segments regenerated and the trapezoids, then the frames per second on
 this host.
@@ -147,6 +148,8 @@ options:
                        is written to a new file and renamed, and an existing frame
                        that is not a regular file is refused
   --frames N           how many frames, 1 to 100 (default: 8)
+  --size WxH           the frame's size, each side 16 to 2047 (default: 512x256),
+                       as 320x240; not with --race
   --no-speed           skip measuring the frames per second
   --race MHZ           show every frame by racing the beam with no frame RAM, as
                        `scanvert render --race` does (`scanvert help render`), in the
@@ -375,6 +378,7 @@ struct Args {
     timing: Option<String>,
     stats: bool,
     frames: Option<usize>,
+    size: Option<crate::demo::Size>,
     no_speed: bool,
     help: bool,
     band_rows: Option<u16>,
@@ -389,6 +393,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         timing: None,
         stats: false,
         frames: None,
+        size: None,
         no_speed: false,
         help: false,
         band_rows: None,
@@ -410,6 +415,12 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                     .filter(|n| (1..=100).contains(n))
                     .ok_or_else(|| usage("--frames needs a count from 1 to 100"))?;
                 a.frames = Some(n);
+            }
+            "--size" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                a.size = Some(crate::demo::Size::parse(v).ok_or_else(|| {
+                    usage("--size needs WxH, each side from 16 to 2047 (e.g. 320x240)")
+                })?);
             }
             "--no-speed" => a.no_speed = true,
             "--timing" => {
@@ -636,12 +647,16 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             if a.fifo.is_some() && a.race.is_none() {
                 return Err(usage("demo: --fifo goes with --race"));
             }
+            if a.race.is_some() && a.size.is_some() {
+                return Err(usage("demo: --size does not go with --race"));
+            }
             if let Some(cpu) = a.race {
                 let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);
                 let timing = timing_for(a.timing.as_deref().unwrap_or("auto"), w, h)?;
                 return crate::race::demo(&dir, a.frames.unwrap_or(8), &timing, cpu, a.fifo);
             }
-            crate::demo::run(&dir, a.frames.unwrap_or(8), !a.no_speed)
+            let size = a.size.unwrap_or(crate::demo::DEFAULT_SIZE);
+            crate::demo::run_at(size, &dir, a.frames.unwrap_or(8), !a.no_speed)
         }
         other => Err(usage(format_args!("unknown command {other}"))),
     }

@@ -20,12 +20,22 @@
 //! The speed figures are measured apart from the simulator (whose cost is
 //! the simulation's, not the renderer's): the same frames drawn into a
 //! plain [`FrameBuffer`], best of several timed runs.
+//!
+//! The frame's size is a parameter ([`Size`]; [`DEFAULT_SIZE`], 512 × 256,
+//! is `scanvert demo`'s, `--size` another). The segments' procedures write
+//! into a [`Sink`]: a segment of the [`Scene`], or a display list
+//! ([`frame_list`]) of the same faces and labels in the same order, with
+//! the camera, projection and light as `view`, `perspective` and `light`
+//! commands of the same bits, which [`Controller`](scanvert::controller::Controller)
+//! draws as the `Scene` draws the frame, pixel for pixel (the firmware
+//! image's `budget` variant renders these lists in bands).
 
 use crate::dual_port::DualPortRam;
 use crate::error::{self, CliError};
 use crate::refresh::{CoSimulation, Frame, RefreshController};
 use crate::timing::VideoTiming;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use scanvert::display_list::{WriteError, Writer};
 use scanvert::fixed::Coord;
 use scanvert::geometry::{Angle, Light, Perspective, Pipeline, Point3, View, Viewport, Q16};
 use scanvert::port::framebuffer::FrameBuffer;
@@ -40,10 +50,52 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// Frame width.
+/// Frame width of the default size.
 pub const WIDTH: u16 = 512;
-/// Frame height.
+/// Frame height of the default size.
 pub const HEIGHT: u16 = 256;
+
+/// The size of the demo's frame, in pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Size {
+    /// Width.
+    pub width: u16,
+    /// Height.
+    pub height: u16,
+}
+
+/// `scanvert demo`'s size: 512 × 256.
+pub const DEFAULT_SIZE: Size = Size {
+    width: WIDTH,
+    height: HEIGHT,
+};
+
+impl Size {
+    /// Smallest side: the projection's focal length is then several
+    /// pixels, and a label fits.
+    pub const MIN: u16 = 16;
+    /// Largest side: the geometry stage's window (2047 px).
+    pub const MAX: u16 = 2047;
+
+    /// `width × height`, or `None` when a side is outside
+    /// [`MIN`](Self::MIN)`..=`[`MAX`](Self::MAX).
+    pub fn new(width: u16, height: u16) -> Option<Size> {
+        let ok = |v: u16| (Self::MIN..=Self::MAX).contains(&v);
+        (ok(width) && ok(height)).then_some(Size { width, height })
+    }
+
+    /// `WxH` (as `320x240`), in range.
+    pub fn parse(s: &str) -> Option<Size> {
+        let (w, h) = s.split_once(['x', 'X', '×'])?;
+        Size::new(w.parse().ok()?, h.parse().ok()?)
+    }
+}
+
+impl std::fmt::Display for Size {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}x{}", self.width, self.height)
+    }
+}
 /// Depth of the transform stack.
 const DEPTH: usize = 8;
 /// Vertices of one polygon at every clipping stage.
@@ -112,15 +164,66 @@ fn corner(i: i32, j: i32) -> (f64, f64) {
     )
 }
 
+/// Where the segments' procedures put their faces and labels: a segment
+/// of the [`Scene`] ([`Builder`]), or a display list ([`ListSink`]).
+pub trait Sink {
+    /// Why a face or a label could not be put.
+    type Error;
+    /// A face of model points, counter-clockwise from its front.
+    fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<(), Self::Error>;
+    /// A label at the model point `at`.
+    fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<(), Self::Error>;
+}
+
+impl Sink for DemoBuilder<'_, '_> {
+    type Error = SceneError;
+    fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<(), SceneError> {
+        Builder::face(self, points, color).map(|_| ())
+    }
+    fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<(), SceneError> {
+        Builder::label(self, at, text, color).map(|_| ())
+    }
+}
+
+/// The segments as display-list commands: `face` and `label`, each after
+/// a `color` when its colour is not the one in force.
+#[derive(Debug)]
+pub struct ListSink<'w, 'b> {
+    writer: &'w mut Writer<'b>,
+    color: Option<Rgb888>,
+}
+
+impl ListSink<'_, '_> {
+    fn color(&mut self, c: Rgb888) -> Result<(), WriteError> {
+        if self.color != Some(c) {
+            self.writer.color(c)?;
+            self.color = Some(c);
+        }
+        Ok(())
+    }
+}
+
+impl Sink for ListSink<'_, '_> {
+    type Error = WriteError;
+    fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<(), WriteError> {
+        self.color(color)?;
+        self.writer.face(points.iter().copied())
+    }
+    fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<(), WriteError> {
+        self.color(color)?;
+        self.writer.label(at, text)
+    }
+}
+
 /// A box on the ground from `(x0, z0)` to `(x1, z1)`, `h` high: its top
 /// and four sides, counter-clockwise seen from outside (no bottom: it
 /// stands on the ground).
-fn bar(
-    b: &mut DemoBuilder<'_, '_>,
+fn bar<S: Sink>(
+    b: &mut S,
     (x0, z0, x1, z1): (f64, f64, f64, f64),
     h: f64,
     c: Rgb888,
-) -> Result<(), SceneError> {
+) -> Result<(), S::Error> {
     let faces = [
         [p(x0, h, z1), p(x1, h, z1), p(x1, h, z0), p(x0, h, z0)],
         [p(x0, 0.0, z1), p(x1, 0.0, z1), p(x1, h, z1), p(x0, h, z1)],
@@ -135,7 +238,7 @@ fn bar(
 }
 
 /// Segment 0: the map tiles.
-fn ground(b: &mut DemoBuilder<'_, '_>) -> Result<(), SceneError> {
+fn ground<S: Sink>(b: &mut S) -> Result<(), S::Error> {
     for j in 0..TILES.1 {
         for i in 0..TILES.0 {
             let (x0, z0) = corner(i, j);
@@ -160,7 +263,7 @@ fn ground(b: &mut DemoBuilder<'_, '_>) -> Result<(), SceneError> {
 }
 
 /// Segment 1: the bars, highlighted and labelled over `threshold`.
-fn bars(b: &mut DemoBuilder<'_, '_>, threshold: i32) -> Result<(), SceneError> {
+fn bars<S: Sink>(b: &mut S, threshold: i32) -> Result<(), S::Error> {
     for j in 0..TILES.1 {
         for i in 0..TILES.0 {
             if (i + j) % 2 != 0 {
@@ -185,7 +288,7 @@ fn bars(b: &mut DemoBuilder<'_, '_>, threshold: i32) -> Result<(), SceneError> {
 }
 
 /// Segment 2: place names on tiles without a bar.
-fn names(b: &mut DemoBuilder<'_, '_>) -> Result<(), SceneError> {
+fn names<S: Sink>(b: &mut S) -> Result<(), S::Error> {
     const NAMES: [(&str, i32, i32); 8] = [
         ("Leiden", 1, 0),
         ("Delft", 5, 0),
@@ -203,6 +306,26 @@ fn names(b: &mut DemoBuilder<'_, '_>) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// The projection's horizontal field of view, degrees; near and far
+/// planes, world units.
+const FOV: i32 = 55;
+const NEAR: f64 = 1.0;
+const FAR: f64 = 200.0;
+/// Toward the light, and its share in percent.
+const LIGHT: ((f64, f64, f64), u8) = ((1.0, 3.0, 2.0), 70);
+/// Points and lines, 1/16 px (the demo draws none).
+const THICKNESS: i16 = 24;
+
+fn perspective(size: Size) -> Result<Perspective, CliError> {
+    Perspective::from_fov(Angle::from_degrees(FOV), size.width, q(NEAR), q(FAR))
+        .map_err(|e| error::input(Path::new("demo"), e))
+}
+
+fn light() -> Light {
+    let ((x, y, z), percent) = LIGHT;
+    Light::new([q(x).to_bits(), q(y).to_bits(), q(z).to_bits()], percent).expect("light")
+}
+
 fn view(orbit: i32) -> View {
     let a = (orbit as f64).to_radians();
     let (r, h) = (40.0, 30.0);
@@ -211,6 +334,7 @@ fn view(orbit: i32) -> View {
 
 /// The caller's memory of the demo scene, sized with room to spare.
 struct Memory {
+    size: Size,
     traps: Vec<Trapezoid>,
     faces: Vec<Face>,
     segments: Vec<Segment>,
@@ -225,28 +349,28 @@ struct Memory {
 }
 
 impl Memory {
-    fn new() -> Memory {
+    fn new(size: Size) -> Memory {
         Memory {
+            size,
             traps: vec![Trapezoid::EMPTY; 2048],
             faces: vec![Face::EMPTY; 512],
             segments: vec![Segment::EMPTY; SEGMENTS.len()],
-            rows: vec![0; HEIGHT as usize],
+            rows: vec![0; size.height as usize],
             edges: vec![EdgeSlot::EMPTY; N],
             labels: vec![Label::EMPTY; 64],
             text: vec![0; 1024],
             active: vec![Active::EMPTY; 512],
-            runs: vec![Run::EMPTY; WIDTH as usize],
+            runs: vec![Run::EMPTY; size.width as usize],
         }
     }
 
-    fn scene(&mut self) -> DemoScene<'_> {
-        let persp = Perspective::from_fov(Angle::from_degrees(55), WIDTH, q(1.0), q(200.0))
-            .expect("a valid projection");
-        let mut pipe = Pipeline::new(persp, Viewport::centred(WIDTH, HEIGHT).expect("window"));
-        pipe.set_light(
-            Light::new([q(1.0).to_bits(), q(3.0).to_bits(), q(2.0).to_bits()], 70).expect("light"),
-        );
-        pipe.set_thickness(Coord::from_bits(24));
+    fn scene(&mut self) -> Result<DemoScene<'_>, CliError> {
+        let size = self.size;
+        let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
+        let window = Viewport::centred(size.width, size.height).map_err(|e| fail(&e))?;
+        let mut pipe = Pipeline::new(perspective(size)?, window);
+        pipe.set_light(light());
+        pipe.set_thickness(Coord::from_bits(THICKNESS));
         let mem = SceneMemory {
             store: StoreMemory {
                 trapezoids: &mut self.traps,
@@ -260,7 +384,7 @@ impl Memory {
             labels: &mut self.labels,
             text: &mut self.text,
         };
-        Scene::new(mem, pipe).expect("rows cover the window")
+        Scene::new(mem, pipe).map_err(|e| fail(&e))
     }
 }
 
@@ -274,9 +398,9 @@ fn advance(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<
     if last.map(|l| l.threshold) != Some(step.threshold) {
         scene.invalidate(1).map_err(|e| fail(&e))?;
     }
-    let mut g = ground;
+    let mut g = |s: &mut DemoBuilder<'_, '_>| ground(s);
     let mut b = |s: &mut DemoBuilder<'_, '_>| bars(s, step.threshold);
-    let mut n = names;
+    let mut n = |s: &mut DemoBuilder<'_, '_>| names(s);
     let procs: &mut [&mut dyn Procedure<DEPTH, N>] = &mut [&mut g, &mut b, &mut n];
     scene.update(procs).map_err(|e| fail(&e))
 }
@@ -338,12 +462,19 @@ pub struct DemoFrame {
     pub rebuilt: [u32; 3],
 }
 
-/// Runs the animation of `frames` frames through the simulator.
+/// Runs the animation of `frames` frames through the simulator, at the
+/// default size.
 pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
-    let mut mem = Memory::new();
-    let mut scene = mem.scene();
-    let mut ram = DualPortRam::double_buffered(WIDTH, HEIGHT);
-    let mut refresh = RefreshController::new(VideoTiming::for_frame(WIDTH, HEIGHT));
+    animate_at(DEFAULT_SIZE, frames)
+}
+
+/// Runs the animation of `frames` frames through the simulator at `size`.
+pub fn animate_at(size: Size, frames: usize) -> Result<Vec<DemoFrame>, CliError> {
+    let mut mem = Memory::new(size);
+    let mut scene = mem.scene()?;
+    let (w, h) = (size.width, size.height);
+    let mut ram = DualPortRam::double_buffered(w, h);
+    let mut refresh = RefreshController::new(VideoTiming::for_frame(w, h));
     let mut co = CoSimulation::new(&mut ram, &mut refresh);
     let mut out = Vec::new();
     let mut last = None;
@@ -376,11 +507,17 @@ pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
 /// The frame of `step` drawn from scratch into a plain frame buffer: what
 /// the monitor must show for it.
 pub fn reference_frame(step: Step) -> Result<Vec<Rgb565>, CliError> {
-    let mut mem = Memory::new();
-    let mut scene = mem.scene();
+    reference_frame_at(DEFAULT_SIZE, step)
+}
+
+/// [`reference_frame`] at `size`.
+pub fn reference_frame_at(size: Size, step: Step) -> Result<Vec<Rgb565>, CliError> {
+    let mut mem = Memory::new(size);
+    let mut scene = mem.scene()?;
     advance(&mut scene, None, step)?;
-    let mut pixels = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
-    let mut fb = FrameBuffer::new(&mut pixels, WIDTH, HEIGHT).expect("frame");
+    let (w, h) = (size.width, size.height);
+    let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
+    let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("frame");
     draw(&mut scene, &mut fb);
     Ok(pixels)
 }
@@ -388,10 +525,16 @@ pub fn reference_frame(step: Step) -> Result<Vec<Rgb565>, CliError> {
 /// Speeds on the host, frames per second: `(camera moves, threshold
 /// changes, nothing changes)`.
 pub fn speeds() -> Result<(f64, f64, f64), CliError> {
-    let mut mem = Memory::new();
-    let mut scene = mem.scene();
-    let mut pixels = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
-    let mut fb = FrameBuffer::new(&mut pixels, WIDTH, HEIGHT).expect("frame");
+    speeds_at(DEFAULT_SIZE)
+}
+
+/// [`speeds`] at `size`.
+pub fn speeds_at(size: Size) -> Result<(f64, f64, f64), CliError> {
+    let mut mem = Memory::new(size);
+    let mut scene = mem.scene()?;
+    let (w, h) = (size.width, size.height);
+    let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
+    let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("frame");
     let mut last = None;
     let mut error = None;
     let mut run = |scene: &mut DemoScene<'_>, step: Step, fb: &mut FrameBuffer<'_, Rgb565>| {
@@ -443,16 +586,21 @@ pub fn speeds() -> Result<(f64, f64, f64), CliError> {
 
 /// `scanvert demo`: writes `frames` PNGs into `dir` and returns the report.
 pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError> {
+    run_at(DEFAULT_SIZE, dir, frames, measure)
+}
+
+/// `scanvert demo --size WxH`: [`run`] at `size`.
+pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<String, CliError> {
     std::fs::create_dir_all(dir).map_err(|e| error::io(dir, e))?;
-    let shown = animate(frames)?;
+    let shown = animate_at(size, frames)?;
     let mut s = String::new();
     let _ = writeln!(
         s,
         "demo: {} bars over a map of {} tiles, with labels, {}x{}, double-buffered through the simulator",
         TILES.0 * TILES.1 / 2,
         TILES.0 * TILES.1,
-        WIDTH,
-        HEIGHT
+        size.width,
+        size.height
     );
     let mut prev = [0u32; 3];
     let mut trapezoids = 0;
@@ -490,7 +638,7 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
         );
     }
     if measure {
-        let (camera, threshold, still) = speeds()?;
+        let (camera, threshold, still) = speeds_at(size)?;
         let _ = writeln!(
             s,
             "frames/s on this host (plain frame buffer, best of 5): camera moving {camera:.0} (all 3 segments regenerated), threshold changing {threshold:.0} (1 segment), nothing changing {still:.0} (draw only); the classic display ran 3"
@@ -506,8 +654,17 @@ pub fn with_scene<R>(
     step: Step,
     f: impl FnOnce(&mut Scene<'_, DEPTH, N>, Rgb565) -> R,
 ) -> Result<R, CliError> {
-    let mut mem = Memory::new();
-    let mut scene = mem.scene();
+    with_scene_at(DEFAULT_SIZE, step, f)
+}
+
+/// [`with_scene`] at `size`.
+pub fn with_scene_at<R>(
+    size: Size,
+    step: Step,
+    f: impl FnOnce(&mut Scene<'_, DEPTH, N>, Rgb565) -> R,
+) -> Result<R, CliError> {
+    let mut mem = Memory::new(size);
+    let mut scene = mem.scene()?;
     advance(&mut scene, None, step)?;
     Ok(f(&mut scene, Rgb565::from(BACKGROUND)))
 }
@@ -518,6 +675,19 @@ pub fn with_scene<R>(
 /// of it), then `frame(scene, step)`. For the band tests and benchmarks.
 pub fn drive(
     frames: usize,
+    update: impl FnMut(
+        &mut Scene<'_, DEPTH, N>,
+        &mut [&mut dyn Procedure<DEPTH, N>],
+    ) -> Result<Update, scanvert::scene::UpdateError>,
+    frame: impl FnMut(&mut Scene<'_, DEPTH, N>, Step, Update, Rgb565),
+) -> Result<(), CliError> {
+    drive_at(DEFAULT_SIZE, frames, update, frame)
+}
+
+/// [`drive`] at `size`.
+pub fn drive_at(
+    size: Size,
+    frames: usize,
     mut update: impl FnMut(
         &mut Scene<'_, DEPTH, N>,
         &mut [&mut dyn Procedure<DEPTH, N>],
@@ -525,8 +695,8 @@ pub fn drive(
     mut frame: impl FnMut(&mut Scene<'_, DEPTH, N>, Step, Update, Rgb565),
 ) -> Result<(), CliError> {
     let fail = |e: &dyn std::fmt::Display| crate::error::input(Path::new("demo"), e);
-    let mut mem = Memory::new();
-    let mut scene = mem.scene();
+    let mut mem = Memory::new(size);
+    let mut scene = mem.scene()?;
     let mut last: Option<Step> = None;
     for step in steps(frames) {
         if last.map(|l| l.orbit) != Some(step.orbit) {
@@ -535,13 +705,151 @@ pub fn drive(
         if last.map(|l| l.threshold) != Some(step.threshold) {
             scene.invalidate(1).map_err(|e| fail(&e))?;
         }
-        let mut g = ground;
+        let mut g = |s: &mut DemoBuilder<'_, '_>| ground(s);
         let mut b = |s: &mut DemoBuilder<'_, '_>| bars(s, step.threshold);
-        let mut n = names;
+        let mut n = |s: &mut DemoBuilder<'_, '_>| names(s);
         let procs: &mut [&mut dyn Procedure<DEPTH, N>] = &mut [&mut g, &mut b, &mut n];
         let u = update(&mut scene, procs).map_err(|e| fail(&e))?;
         frame(&mut scene, step, u, Rgb565::from(BACKGROUND));
         last = Some(step);
     }
     Ok(())
+}
+
+/// The frame of `step` at `size` as a version-2 display list: `clear`
+/// with the background, the `perspective`, `light`, `thickness` and
+/// `view` the scene is drawn with (their bits, so the geometry is the
+/// same), then each segment after a `segment` command, its faces and
+/// labels in the order its procedure makes them. Rendered by
+/// [`Controller`](scanvert::controller::Controller), in full or in bands,
+/// it is the picture [`Scene`] draws of that step, pixel for pixel.
+pub fn frame_list(size: Size, step: Step) -> Result<Vec<u8>, CliError> {
+    let fail = |e: WriteError| error::input(Path::new("demo"), format_args!("frame list: {e}"));
+    // Every command is at most 64 bytes, a label 16 and its text (3
+    // digits or a name): far below this.
+    let mut buf = vec![0u8; 1 << 17];
+    let mut w = Writer::new(&mut buf, size.width, size.height).map_err(fail)?;
+    w.clear(BACKGROUND).map_err(fail)?;
+    w.perspective(Angle::from_degrees(FOV), q(NEAR), q(FAR))
+        .map_err(fail)?;
+    let ((x, y, z), percent) = LIGHT;
+    w.light(p(x, y, z), percent).map_err(fail)?;
+    w.thickness(Coord::from_bits(THICKNESS)).map_err(fail)?;
+    let v = view(step.orbit);
+    w.view(v.eye, v.yaw, v.pitch).map_err(fail)?;
+    let mut sink = ListSink {
+        writer: &mut w,
+        color: None,
+    };
+    for segment in 0..SEGMENTS.len() {
+        sink.writer.segment(segment as u16).map_err(fail)?;
+        match segment {
+            0 => ground(&mut sink),
+            1 => bars(&mut sink, step.threshold),
+            _ => names(&mut sink),
+        }
+        .map_err(fail)?;
+    }
+    Ok(w.finish().to_vec())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::memory::ListMemory;
+    use scanvert::display_list::DisplayList;
+
+    /// `frame_list` rendered by the controller into a black frame.
+    fn list_pixels(size: Size, step: Step) -> Vec<Rgb565> {
+        let bytes = frame_list(size, step).expect("the list is written");
+        let list = DisplayList::new_checked(&bytes).expect("a valid list");
+        let mut memory = ListMemory::for_list(&list).expect("within the pools");
+        let (w, h) = (size.width, size.height);
+        let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
+        let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("frame");
+        memory.controller().render(&list, &mut fb).expect("renders");
+        pixels
+    }
+
+    /// Every frame of the animation, as the `Scene` draws it after its
+    /// updates, equals its display list rendered by the controller.
+    #[test]
+    fn frame_lists_draw_the_scene_s_pictures() {
+        for size in [DEFAULT_SIZE, Size::new(320, 240).unwrap()] {
+            let mut frames = Vec::new();
+            drive_at(
+                size,
+                8,
+                |scene, procs| scene.update(procs),
+                |scene, step, _, bg| {
+                    let (w, h) = (size.width, size.height);
+                    let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
+                    let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("frame");
+                    scene
+                        .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
+                        .expect("draws");
+                    frames.push((step, pixels));
+                },
+            )
+            .expect("the demo runs");
+            for (i, (step, want)) in frames.iter().enumerate() {
+                let got = list_pixels(size, *step);
+                let differ = got.iter().zip(want).filter(|(a, b)| a != b).count();
+                assert_eq!(differ, 0, "{size} frame {i}: {differ} pixels differ");
+            }
+        }
+    }
+
+    /// `scanvert demo --size 320x240` writes frames of that size; a bad
+    /// size, or one with `--race`, is a usage error.
+    #[test]
+    fn the_command_line_takes_a_size() {
+        let dir = std::env::temp_dir().join(format!("scanvert-demo-size-{}", std::process::id()));
+        let args = |more: &[&str]| -> Vec<String> {
+            [
+                "demo",
+                "--out",
+                dir.to_str().unwrap(),
+                "--frames",
+                "1",
+                "--no-speed",
+            ]
+            .iter()
+            .chain(more)
+            .map(|s| s.to_string())
+            .collect()
+        };
+        let report = crate::cli::run(&args(&["--size", "320x240"])).expect("runs");
+        assert!(report.contains("320x240"), "{report}");
+        let png = std::fs::read(dir.join("frame-00.png")).expect("a frame");
+        // The IHDR chunk: width and height, big-endian, at bytes 16 and 20.
+        let be = |i: usize| u32::from_be_bytes(png[i..i + 4].try_into().unwrap());
+        assert_eq!((be(16), be(20)), (320, 240));
+        std::fs::remove_dir_all(&dir).unwrap();
+        for bad in [
+            &["--size", "320"][..],
+            &["--size"],
+            &["--size", "320x240", "--race", "100"],
+        ] {
+            let e = crate::cli::run(&args(bad)).expect_err("a usage error");
+            assert_eq!(e.status, crate::cli::EXIT_USAGE, "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn sizes_parse_in_range() {
+        assert_eq!(Size::parse("320x240"), Size::new(320, 240));
+        assert_eq!(Size::parse("512×256"), Some(DEFAULT_SIZE));
+        for bad in [
+            "320",
+            "x240",
+            "0x240",
+            "15x240",
+            "2048x16",
+            "320x-1",
+            "320 x 240",
+        ] {
+            assert_eq!(Size::parse(bad), None, "{bad}");
+        }
+    }
 }

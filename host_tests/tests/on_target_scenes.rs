@@ -21,13 +21,26 @@
 //! `testkit::poly3_scenes` (170 `poly3`s on 512 × 256, parallel to the
 //! screen in layers, or tilted and through each other), each `poly3`
 //! after a `color` of its own that no other has in RGB565.
+//!
+//! The image's `budget` variants (`firmware/image/src/budget.rs`) render
+//! lists band by band with no frame buffer, in statics sized exactly for
+//! them: the constants of `scenes.rs`'s modules `budget_demo` and
+//! `budget_poly3`, from `controller::needs`, `raster::table::needs_table`
+//! and the most trapezoids on a row of the host's render. `budget_demo`
+//! is the README's 3D demo at 320 × 240, its 8 frames (`scanvert demo`'s
+//! default) written as display lists by `scanvert_sim::demo::frame_list`
+//! into `firmware/image/scenes/budget/`; each list's checksum is also
+//! checked against the `Scene`'s own picture of that frame, so the lists
+//! are the demo. `budget_poly3` is the two 170-face lists above.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use host_tests::harness3d::vertex3;
 use scanvert::controller::{Needs, RenderStats};
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::port::checksum::frame_checksum;
+use scanvert::raster::table::needs_table;
 use scanvert::visible::sweep::Resolve;
+use scanvert_sim::demo::{self, Size};
 use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::memory::ListMemory;
 use std::fmt::Write as _;
@@ -115,6 +128,161 @@ struct Memory3d {
     runs: usize,
 }
 
+/// The size of the demo in the `budget` variant.
+const BUDGET_SIZE: (u16, u16) = (320, 240);
+/// Its frames: `scanvert demo`'s default.
+const BUDGET_FRAMES: usize = 8;
+/// Rows of a band in the `budget` variants.
+const BUDGET_BAND_ROWS: usize = 16;
+
+/// A set of lists for a `budget` variant: the module of `scenes.rs` it
+/// goes in, its doc, and its lists by name with their path under
+/// `firmware/image/scenes`.
+struct BudgetSet {
+    module: &'static str,
+    doc: &'static str,
+    lists: Vec<(String, String, Vec<u8>)>,
+}
+
+/// The `Scene`'s own pictures of the demo's frames at `size`, as
+/// checksums, after each frame's update.
+fn demo_scene_sums(size: Size, frames: usize) -> Vec<(demo::Step, u32)> {
+    let mut out = Vec::new();
+    demo::drive_at(
+        size,
+        frames,
+        |scene, procs| scene.update(procs),
+        |scene, step, _, bg| {
+            let (w, h) = (size.width, size.height);
+            let mut pixels = vec![bg; w as usize * h as usize];
+            let mut fb =
+                scanvert::port::framebuffer::FrameBuffer::new(&mut pixels, w, h).expect("frame");
+            scene
+                .draw(
+                    Resolve::Crossing,
+                    Some(bg),
+                    scanvert::scene::label::DEFAULT_FONT,
+                    &mut fb,
+                )
+                .expect("draws");
+            out.push((step, frame_checksum(&pixels)));
+        },
+    )
+    .expect("the demo runs");
+    out
+}
+
+/// The `budget` variants' lists.
+fn budget_sets(lists: &[(String, Vec<u8>)]) -> Vec<BudgetSet> {
+    let size = Size::new(BUDGET_SIZE.0, BUDGET_SIZE.1).expect("size");
+    let demo_lists = demo_scene_sums(size, BUDGET_FRAMES)
+        .into_iter()
+        .enumerate()
+        .map(|(i, (step, sum))| {
+            let name = format!("demo-{size}-{i:02}");
+            let bytes = demo::frame_list(size, step).expect("the frame's list");
+            assert_eq!(
+                host_render(&bytes).0,
+                sum,
+                "{name}: the list's render is not the Scene's picture"
+            );
+            (name.clone(), format!("budget/{name}.scvl"), bytes)
+        })
+        .collect();
+    let poly3 = lists
+        .iter()
+        .filter(|(name, _)| name.starts_with("poly3-"))
+        .map(|(name, bytes)| (name.clone(), format!("{name}.scvl"), bytes.clone()))
+        .collect();
+    vec![
+        BudgetSet {
+            module: "budget_demo",
+            doc: "the README's 3D demo at 320 × 240, its 8 frames as display lists.",
+            lists: demo_lists,
+        },
+        BudgetSet {
+            module: "budget_poly3",
+            doc: "the two 170-face lists at 512 × 256.",
+            lists: poly3,
+        },
+    ]
+}
+
+/// The module of `scenes.rs` for one `budget` variant: each pool sized
+/// to the most any of its lists needs, and the lists.
+fn budget_module(set: &BudgetSet) -> String {
+    let mut m = Memory3d::default();
+    let (mut labels, mut text, mut slots, mut edges, mut width) = (0, 0, 0, 0, 0);
+    let mut table = scanvert::raster::table::TableNeeds::default();
+    let mut rows = String::new();
+    for (name, path, bytes) in &set.lists {
+        let list = DisplayList::new_checked(bytes).expect("valid list");
+        let (sum, need, stats) = host_render(bytes);
+        m.trapezoids = m.trapezoids.max(need.trapezoids);
+        m.faces = m.faces.max(need.faces);
+        m.active = m.active.max(stats.visible.max_active as usize);
+        m.rows = m.rows.max(need.rows);
+        m.runs = m.runs.max(need.runs);
+        labels = labels.max(need.labels);
+        text = text.max(need.text);
+        slots = slots.max(need.edge_slots);
+        edges = edges.max(need.edges);
+        width = width.max(list.width() as usize);
+        let t = needs_table(&list);
+        table.polygons = table.polygons.max(t.polygons);
+        table.edges = table.edges.max(t.edges);
+        table.lines = table.lines.max(t.lines);
+        writeln!(
+            rows,
+            "        Scene {{\n            name: \"{name}\",\n            list: include_bytes!(\"../scenes/{path}\"),\n            checksum: 0x{sum:08x},\n        }},",
+        )
+        .unwrap();
+    }
+    let mut s = String::new();
+    writeln!(
+        s,
+        "/// The `budget` variant's lists and memory: {doc}\n\
+         ///\n\
+         /// Each capacity is the most any of the lists needs (`controller::needs`,\n\
+         /// `raster::table::needs_table`, the most trapezoids on a row of the\n\
+         /// host's render), and no more. (A build uses one such module.)\n\
+         #[allow(dead_code)]\n\
+         pub mod {module} {{\n    \
+         use crate::Scene;\n\n    \
+         /// Rows of a band.\n    pub const BAND_ROWS: usize = {BUDGET_BAND_ROWS};\n    \
+         /// Pixels of the band buffer: [`BAND_ROWS`] rows of the widest list.\n    pub const BAND_PIXELS: usize = {band};\n    \
+         /// The rasteriser's edge storage: the most vertices of a `poly`.\n    pub const RASTER_EDGES: usize = {edges};\n    \
+         /// Edge-table entries: `poly`s and `line`s after the last `clear`.\n    pub const TABLE_POLYGONS: usize = {tp};\n    \
+         /// Edge-table edges: their vertices.\n    pub const TABLE_EDGES: usize = {te};\n    \
+         /// Edge-table lines.\n    pub const TABLE_LINES: usize = {tl};\n    \
+         /// Trapezoid slots.\n    pub const TRAPEZOID_SLOTS: usize = {tr};\n    \
+         /// Face slots.\n    pub const FACE_SLOTS: usize = {fa};\n    \
+         /// Rows of the scan-line index.\n    pub const INDEX_ROWS: usize = {ro};\n    \
+         /// Edge slots of the store.\n    pub const EDGE_SLOTS: usize = {sl};\n    \
+         /// Active-list entries: the most trapezoids on one row.\n    pub const ACTIVE_SLOTS: usize = {ac};\n    \
+         /// Runs of one row.\n    pub const RUN_SLOTS: usize = {ru};\n    \
+         /// Label slots.\n    pub const LABEL_SLOTS: usize = {labels};\n    \
+         /// Bytes of label text.\n    pub const TEXT_BYTES: usize = {text};\n\n    \
+         /// The lists, in the order the variant renders them.\n    pub const SCENES: &[Scene] = &[",
+        doc = set.doc,
+        module = set.module,
+        band = BUDGET_BAND_ROWS * width,
+        tp = table.polygons,
+        te = table.edges,
+        tl = table.lines,
+        tr = m.trapezoids.max(1),
+        fa = m.faces.max(1),
+        ro = m.rows.max(1),
+        sl = slots.max(1),
+        ac = m.active.max(1),
+        ru = m.runs.max(1),
+    )
+    .unwrap();
+    s += &rows;
+    s += "    ];\n}\n";
+    s
+}
+
 /// The checksum of `bytes` rendered on the host, into a fresh (black)
 /// dual-port RAM, with memory sized by `needs` (as `scanvert checksum`
 /// does); what the list needs, and the render's statistics.
@@ -188,6 +356,10 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
     s += "/// The scenes, in the order the image renders them.\npub const SCENES: &[Scene] = &[\n";
     s += &rows;
     s += "];\n";
+    for set in budget_sets(lists) {
+        s += "\n";
+        s += &budget_module(&set);
+    }
     s
 }
 
@@ -200,6 +372,11 @@ fn embedded_scenes_and_checksums_are_current() {
         .iter()
         .map(|(name, bytes)| (dir.join(format!("{name}.scvl")), bytes.clone()))
         .collect();
+    for set in budget_sets(&lists) {
+        for (_, path, bytes) in set.lists {
+            files.push((dir.join(path), bytes));
+        }
+    }
     files.push((
         root().join("firmware/image/src/scenes.rs"),
         table(&lists).into_bytes(),

@@ -110,3 +110,21 @@ pub fn table_memory() -> Option<crate::bands::Table> {
         band: cortex_m::singleton!(: [crate::Pixel; BAND_PIXELS] = [crate::BLACK; BAND_PIXELS])?,
     })
 }
+
+/// The `budget` variant's memory (`src/budget.rs`), in `.bss`, handed
+/// out once; each part a static of its own, named `BUDGET_*` (measure.sh
+/// reads their sizes), so that no more than one is made on the stack at a
+/// time.
+pub fn budget_memory() -> Option<crate::budget::Memory> {
+    use crate::budget::{set, Storage, EMPTY};
+    use scanvert::raster::{edge::Edge, line::Line, table::TablePolygon};
+    Some(crate::budget::Memory {
+        storage: cortex_m::singleton!(BUDGET_SCENE: Storage = EMPTY)?,
+        edges: cortex_m::singleton!(BUDGET_EDGES: [Edge; set::RASTER_EDGES] = [Edge::EMPTY; set::RASTER_EDGES])?,
+        polygons: cortex_m::singleton!(BUDGET_TABLE_POLYGONS: [TablePolygon; set::TABLE_POLYGONS] = [TablePolygon::EMPTY; set::TABLE_POLYGONS])?,
+        index: cortex_m::singleton!(BUDGET_TABLE_INDEX: [u32; 2 * set::TABLE_POLYGONS] = [0; 2 * set::TABLE_POLYGONS])?,
+        table_edges: cortex_m::singleton!(BUDGET_TABLE_EDGES: [Edge; set::TABLE_EDGES] = [Edge::EMPTY; set::TABLE_EDGES])?,
+        lines: cortex_m::singleton!(BUDGET_TABLE_LINES: [Option<Line>; set::TABLE_LINES] = [None; set::TABLE_LINES])?,
+        band: cortex_m::singleton!(BUDGET_BAND: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+    })
+}

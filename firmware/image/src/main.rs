@@ -25,7 +25,10 @@
 //! default `PackedFrameBuffer` (two pixels to a word, written a word at a
 //! time), to compare the two; `rows` (with `bands`) draws every list again
 //! in 1-row bands and prints each row's instructions (`src/rows.rs`), the
-//! measurements of the simulator's cost model of racing the beam.
+//! measurements of the simulator's cost model of racing the beam;
+//! `budget` (and `budget-poly3`) renders instead only the lists of a RAM
+//! budget, band by band with no frame buffer, in statics sized exactly
+//! for them (`src/budget.rs`).
 #![no_std]
 #![no_main]
 #![deny(missing_docs)]
@@ -35,6 +38,16 @@
 compile_error!("the `defmt` feature of the image is for Cortex-M only");
 #[cfg(all(feature = "bands", feature = "discard"))]
 compile_error!("the `bands` feature of the image checks the bands' pixels: not with `discard`");
+#[cfg(all(
+    feature = "budget",
+    any(
+        feature = "defmt",
+        feature = "discard",
+        feature = "halfword",
+        feature = "bands"
+    )
+))]
+compile_error!("the `budget` variant of the image is built alone: its statics are all it measures");
 
 #[cfg_attr(target_arch = "arm", path = "arm.rs")]
 #[cfg_attr(target_arch = "riscv32", path = "riscv.rs")]
@@ -42,6 +55,7 @@ mod platform;
 
 #[cfg(feature = "bands")]
 mod bands;
+mod budget;
 mod log;
 #[cfg(feature = "rows")]
 mod rows;
@@ -393,6 +407,11 @@ pub fn run() -> bool {
         return false;
     };
     let mut ok = calibrate(&counter);
+    // The budget variant renders its own lists, and nothing here: the
+    // frame memory and the rest are then never made.
+    if cfg!(feature = "budget") {
+        return budget::run(&counter, ok);
+    }
     let Some(pixels) = platform::frame_memory() else {
         log::fault("the frame memory is taken");
         return false;

@@ -68,3 +68,20 @@ pub fn table_memory() -> Option<crate::bands::Table> {
         band: riscv::singleton!(: [crate::Pixel; BAND_PIXELS] = [crate::BLACK; BAND_PIXELS])?,
     })
 }
+
+/// The `budget` variant's memory (`src/budget.rs`), in `.bss`, handed
+/// out once; each part a static of its own, so that no more than one is
+/// made on the stack at a time (measured on the Cortex-M4 image).
+pub fn budget_memory() -> Option<crate::budget::Memory> {
+    use crate::budget::{set, Storage, EMPTY};
+    use scanvert::raster::{edge::Edge, line::Line, table::TablePolygon};
+    Some(crate::budget::Memory {
+        storage: riscv::singleton!(: Storage = EMPTY)?,
+        edges: riscv::singleton!(: [Edge; set::RASTER_EDGES] = [Edge::EMPTY; set::RASTER_EDGES])?,
+        polygons: riscv::singleton!(: [TablePolygon; set::TABLE_POLYGONS] = [TablePolygon::EMPTY; set::TABLE_POLYGONS])?,
+        index: riscv::singleton!(: [u32; 2 * set::TABLE_POLYGONS] = [0; 2 * set::TABLE_POLYGONS])?,
+        table_edges: riscv::singleton!(: [Edge; set::TABLE_EDGES] = [Edge::EMPTY; set::TABLE_EDGES])?,
+        lines: riscv::singleton!(: [Option<Line>; set::TABLE_LINES] = [None; set::TABLE_LINES])?,
+        band: riscv::singleton!(: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+    })
+}
