@@ -220,16 +220,6 @@ impl Stepper for Edge {
     }
 }
 
-impl Edge {
-    /// Every field: two edges with the same fields step through the same
-    /// pixels.
-    pub(crate) fn fields(&self) -> [i32; 7] {
-        [
-            self.x, self.err, self.step, self.rem, self.dy, self.top, self.end,
-        ]
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
