@@ -102,7 +102,7 @@ impl Edge {
     /// The edge from `a` to `b` restricted to rows `rows.0..rows.1`, or
     /// `None` when it crosses no row centre there (horizontal edges, edges
     /// between two row centres, edges outside the rows).
-    #[inline]
+    #[inline(always)]
     pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
         let (mut p, mut q) = (a, b);
         if p.y.units() > q.y.units() {
