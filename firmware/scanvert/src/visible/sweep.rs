@@ -118,7 +118,7 @@ use crate::port::SpanTarget;
 use crate::raster::edge::Edge;
 use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
-use crate::visible::trapezoid::{Depth, Trapezoid, DEPTH_TOLERANCE, NONE};
+use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -231,7 +231,7 @@ impl Entry {
     fn from(t: &Trapezoid, store: &TrapezoidStore<'_>) -> Entry {
         let (d, color) = store
             .face(t.face)
-            .map_or((Depth::default(), 0), |f| (f.depth(), f.color_bits()));
+            .map_or((Default::default(), 0), |f| (f.depth(), f.color_bits()));
         Entry {
             left: t.left(),
             right: t.right(),
