@@ -145,7 +145,7 @@ fn regenerating_one_segment_redoes_only_that_one() {
                 assert_eq!(i, j);
                 assert_eq!(t.left(), u.left());
                 assert_eq!(t.right(), u.right());
-                assert_eq!(t.depth(), u.depth());
+                assert_eq!(t.columns(), u.columns());
                 assert_eq!(t.face(), u.face());
             }
         }

@@ -102,7 +102,7 @@ impl Edge {
     /// The edge from `a` to `b` restricted to rows `rows.0..rows.1`, or
     /// `None` when it crosses no row centre there (horizontal edges, edges
     /// between two row centres, edges outside the rows).
-    #[inline]
+    #[inline(always)]
     pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
         let (mut p, mut q) = (a, b);
         if p.y.units() > q.y.units() {
@@ -217,16 +217,6 @@ impl Stepper for Edge {
     fn is_vertical(&self) -> bool {
         // x += 0 and err −= 0 every row.
         self.step == 0 && self.rem == 0
-    }
-}
-
-impl Edge {
-    /// Every field: two edges with the same fields step through the same
-    /// pixels.
-    pub(crate) fn fields(&self) -> [i32; 7] {
-        [
-            self.x, self.err, self.step, self.rem, self.dy, self.top, self.end,
-        ]
     }
 }
 

@@ -334,7 +334,8 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     }
 
     /// Adds to `sig[y]`, for every row `y`, a hash of what segment `s`
-    /// puts on the row: its trapezoids (edges, plane, colour, columns)
+    /// puts on the row: its trapezoids (edges, rows, columns, their
+    /// faces' depth and colour)
     /// and its labels' cells (anchor, colour, text) in `font`. Sums are
     /// order-free, so the same content hashes the same however it was
     /// built.
@@ -342,10 +343,11 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         let h = sig.len() as i32;
         for (_, t) in self.store.segment_trapezoids(s) {
             let mut k = Mix::new();
-            for f in t.left.fields().into_iter().chain(t.right.fields()) {
-                k.add(f as u32 as u64);
-            }
-            for f in [t.z, t.zx, t.zy, t.color as i32, t.x0 as i32, t.x1 as i32] {
+            let face = self.store.face(t.face()).map_or([0; 4], |f| {
+                let d = f.depth();
+                [d.z, d.zx, d.zy, f.color_bits() as i32]
+            });
+            for f in t.fields().into_iter().chain(face) {
                 k.add(f as u32 as u64);
             }
             let k = k.finish();

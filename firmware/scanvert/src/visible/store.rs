@@ -14,8 +14,8 @@
 //!
 //! | pool | slot (32-bit targets) | holds | limit |
 //! |---|---|---|---|
-//! | trapezoids | [`Trapezoid`], 96 bytes | edges, depth, colour, face, segment, links | [`MAX_POOL`] |
-//! | faces | [`Face`], 64 bytes | exact plane, colour, tie key | [`MAX_POOL`] |
+//! | trapezoids | [`Trapezoid`], 34 bytes | edges' ends, rows, face, segment, columns, links | [`MAX_POOL`] |
+//! | faces | [`Face`], 72 bytes | exact plane, fixed-point depth, colour, tie key | [`MAX_POOL`] |
 //! | segments | [`Segment`], 28 bytes | chains and counters | [`MAX_POOL`] |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
 //! | edge slots | [`EdgeSlot`], 32 bytes | scratch while a polygon is cut | its vertex count |
@@ -48,15 +48,20 @@
 
 use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
-use crate::visible::trapezoid::{EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE};
+use crate::visible::trapezoid::{
+    rgb_bits, Depth, EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE,
+};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-/// A polygon of the store: its exact plane, colour and tie key.
+/// A polygon of the store: its exact plane and fixed-point depth (read by
+/// every trapezoid of it), colour and tie key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Face {
     plane: Plane,
-    color: Rgb888,
+    depth: Depth,
+    /// `0x00rrggbb`.
+    color: u32,
     key: u32,
     segment: u16,
     next: u16,
@@ -66,7 +71,8 @@ impl Face {
     /// An unused slot.
     pub const EMPTY: Face = Face {
         plane: Plane::FLAT,
-        color: Rgb888::new(0, 0, 0),
+        depth: Depth { z: 0, zx: 0, zy: 0 },
+        color: 0,
         key: 0,
         segment: NONE,
         next: NONE,
@@ -77,8 +83,21 @@ impl Face {
         &self.plane
     }
 
+    /// The plane's fixed-point depth, [`Plane::depth`]: that of every
+    /// trapezoid of the face.
+    pub fn depth(&self) -> Depth {
+        self.depth
+    }
+
     /// The colour.
     pub fn color(&self) -> Rgb888 {
+        let c = self.color;
+        Rgb888::new((c >> 16) as u8, (c >> 8) as u8, c as u8)
+    }
+
+    /// The colour as `0x00rrggbb`.
+    #[inline(always)]
+    pub(crate) fn color_bits(&self) -> u32 {
         self.color
     }
 
@@ -572,7 +591,8 @@ impl<'a> TrapezoidStore<'a> {
                         .ok_or(StoreError::Faces { capacity: cap })?;
                     faces[f as usize] = Face {
                         plane,
-                        color,
+                        depth,
+                        color: rgb_bits(color),
                         key,
                         segment: s as u16,
                         next: seg.faces,
@@ -587,7 +607,7 @@ impl<'a> TrapezoidStore<'a> {
             let cap = traps.len();
             let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
                 .ok_or(StoreError::Trapezoids { capacity: cap })?;
-            let mut tr = Trapezoid::new(l, r, &depth, f, color, &clip);
+            let mut tr = Trapezoid::new(l, r, f, &clip);
             tr.segment = s as u16;
             // Rows are inside the frame: the edges were cut to the clip.
             let top = tr.top() as usize;
@@ -805,7 +825,7 @@ mod tests {
                 // Not moved, not recomputed.
                 let t = store.trapezoid(i).unwrap();
                 assert_eq!(t.left(), snapshot[i as usize].left());
-                assert_eq!(t.depth(), snapshot[i as usize].depth());
+                assert_eq!(t.fields(), snapshot[i as usize].fields());
                 assert_eq!(t.face(), snapshot[i as usize].face());
             }
         }

@@ -227,14 +227,20 @@ impl Entry {
         x1: 0,
     };
 
-    fn from(t: &Trapezoid) -> Entry {
+    /// Trapezoid `t` of `store` on its top row: its edges' steppers
+    /// rebuilt from their ends, its face's depth and colour.
+    #[inline]
+    fn from(t: &Trapezoid, store: &TrapezoidStore<'_>) -> Entry {
+        let (d, color) = store
+            .face(t.face)
+            .map_or((Default::default(), 0), |f| (f.depth(), f.color_bits()));
         Entry {
-            left: t.left,
-            right: t.right,
-            z: t.z,
-            zx: t.zx,
-            zy: t.zy,
-            color: t.color,
+            left: t.left(),
+            right: t.right(),
+            z: d.at(0, t.top()),
+            zx: d.zx,
+            zy: d.zy,
+            color,
             face: t.face,
             x0: t.x0,
             x1: t.x1,
@@ -626,7 +632,7 @@ impl Sweep {
                 }
                 nf -= 1;
                 let slot = act[nf].free;
-                act[slot as usize].entry = Entry::from(tr);
+                act[slot as usize].entry = Entry::from(tr, store);
                 act[k].hot.slot = slot;
                 k += 1;
                 t = tr.next_row;
@@ -703,7 +709,7 @@ impl Sweep {
                 nf -= 1;
                 let slot = act[nf].free;
                 let e = &mut act[slot as usize].entry;
-                *e = Entry::from(tr);
+                *e = Entry::from(tr, store);
                 let h = e.hot(slot);
                 act[k].hot = h;
                 k += 1;

@@ -134,7 +134,8 @@
 //!
 //! Each set-up costs three divisions per polygon (in `i64` when the numbers
 //! fit, which is the case for ordinary polygons, else in `i128`) and two
-//! per trapezoid (its edges); nothing is divided per row.
+//! per trapezoid each time it enters the active list (its edges, rebuilt
+//! from their ends: see [`Trapezoid`]); nothing is divided per row.
 
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
 use crate::raster::clip::ClipRect;
@@ -381,33 +382,38 @@ impl Depth {
 }
 
 /// One trapezoid: a left and a right edge over the rows `top..end`, the
-/// columns it may write (its clip window), its face and the face's depth.
+/// columns it may write (its clip window) and its face.
 ///
 /// On row `j` it covers `max(c_left, x0)..min(c_right, x1)` where `c` is
 /// each edge's pixel (see the [module](self) docs), possibly nothing.
 ///
-/// # Depth
-/// Stored as the plane's `Z̃` at column 0 of the top row, `∂Z/∂i` and
-/// `∂Z/∂j` (see [`Depth`]): a row down adds `zy`, and the depth of pixel
-/// `i` on the current row is one multiply-add, `z + i·zx`. The classic
-/// "z at the left edge" is [`Trapezoid::z_left`], and the classic step
-/// along the left edge is `zy + Δc·zx` for the edge's pixel step `Δc`;
-/// keeping the value at a fixed column instead saves that multiply per
-/// row and makes the depth of a pixel independent of the edge it is
-/// reached from, so the depth is the same function on every trapezoid of
-/// a face.
+/// # Edges
+/// Each edge is kept by its ends in Q12.4 (upper end first), the rows
+/// once for both. The exact [`Edge`] stepper is rebuilt from them with
+/// [`Edge::new`] over `top..end` when the trapezoid enters the active
+/// list ([`Trapezoid::left`], [`Trapezoid::right`]): one division per
+/// edge each time, none per row. It is the stepper of the side
+/// [`Polygon::cut`] handed over ([`Side::edge`]: the same call on the same
+/// ends and rows), field for field, so the pixels are those of the cut.
+///
+/// # Depth and colour
+/// Not here: they are the face's ([`Face`](crate::visible::store::Face)),
+/// the same for every trapezoid of it. The depth is the plane's [`Depth`],
+/// `Z̃(i, j) = z + i·zx + j·zy`; the active list starts a trapezoid at
+/// `Z̃(0, top)` and adds `zy` a row, so the depth of pixel `i` on the
+/// current row is one multiply-add, `z + i·zx`, the same function on every
+/// trapezoid of a face whatever edge a pixel is reached from.
 ///
 /// # Size
-/// 96 bytes: two [`Edge`]s of 32, four `i32` (depth, colour), seven
-/// `u16` (face, segment, columns, and the store's links).
+/// 34 bytes (alignment 2): two edges' ends of 8 (four `i16`), and nine
+/// `u16`: rows `top` and `end`, face, segment, columns `x0` and `x1`, and
+/// the store's three links.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Trapezoid {
-    pub(crate) left: Edge,
-    pub(crate) right: Edge,
-    pub(crate) z: i32,
-    pub(crate) zx: i32,
-    pub(crate) zy: i32,
-    pub(crate) color: u32,
+    pub(crate) left: Ends,
+    pub(crate) right: Ends,
+    pub(crate) top: u16,
+    pub(crate) end: u16,
     pub(crate) face: u16,
     pub(crate) segment: u16,
     pub(crate) x0: u16,
@@ -426,15 +432,50 @@ pub(crate) fn rgb_bits(c: Rgb888) -> u32 {
     (c.r() as u32) << 16 | (c.g() as u32) << 8 | c.b() as u32
 }
 
+/// One side of a trapezoid as [`Polygon::cut`] hands it over: the edge's
+/// ends (Q12.4, upper end first) and the trapezoid's rows `top..end`, a
+/// run of rows the edge crosses, inside the clip (so within `0..=4096`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Side {
+    ends: Ends,
+    top: u16,
+    end: u16,
+}
+
+impl Side {
+    /// The edge's ends, upper first.
+    pub fn ends(&self) -> (Vertex, Vertex) {
+        (self.ends.a(), self.ends.b())
+    }
+
+    /// The rows `top..end`.
+    pub fn rows(&self) -> (i32, i32) {
+        (self.top as i32, self.end as i32)
+    }
+
+    /// The exact stepper over the rows, as of the first.
+    pub fn edge(&self) -> Edge {
+        self.ends.stepper(self.rows())
+    }
+}
+
 impl Trapezoid {
     /// An unused slot.
     pub const EMPTY: Trapezoid = Trapezoid {
-        left: Edge::EMPTY,
-        right: Edge::EMPTY,
-        z: 0,
-        zx: 0,
-        zy: 0,
-        color: 0,
+        left: Ends {
+            x0: 0,
+            y0: 0,
+            x1: 0,
+            y1: 0,
+        },
+        right: Ends {
+            x0: 0,
+            y0: 0,
+            x1: 0,
+            y1: 0,
+        },
+        top: 0,
+        end: 0,
         face: NONE,
         segment: NONE,
         x0: 0,
@@ -444,24 +485,16 @@ impl Trapezoid {
         next_seg: NONE,
     };
 
-    /// The trapezoid between `left` and `right` (from [`Polygon::cut`],
-    /// same rows) of face `face` in colour `color` with depth `depth`,
-    /// writing only the columns of `clip`.
-    pub fn new(
-        left: Edge,
-        right: Edge,
-        depth: &Depth,
-        face: u16,
-        color: Rgb888,
-        clip: &ClipRect,
-    ) -> Self {
+    /// The trapezoid between `left` and `right` (from one call of
+    /// [`Polygon::cut`]'s `emit`: the same rows) of face `face`, writing
+    /// only the columns of `clip`.
+    pub fn new(left: Side, right: Side, face: u16, clip: &ClipRect) -> Self {
+        debug_assert_eq!(left.rows(), right.rows());
         Trapezoid {
-            left,
-            right,
-            z: depth.at(0, left.top()),
-            zx: depth.zx,
-            zy: depth.zy,
-            color: rgb_bits(color),
+            left: left.ends,
+            right: right.ends,
+            top: left.top,
+            end: left.end,
             face,
             segment: NONE,
             x0: clip.x0(),
@@ -473,26 +506,48 @@ impl Trapezoid {
     }
 
     /// First row.
+    #[inline(always)]
     pub fn top(&self) -> i32 {
-        self.left.top()
+        self.top as i32
     }
 
     /// One past the last row.
+    #[inline(always)]
     pub fn end(&self) -> i32 {
-        self.left.end()
+        self.end as i32
     }
 
-    /// The left edge, as of the top row.
-    pub fn left(&self) -> &Edge {
-        &self.left
+    /// The left edge's stepper, as of the top row (rebuilt from its ends).
+    #[inline]
+    pub fn left(&self) -> Edge {
+        self.left.stepper((self.top(), self.end()))
     }
 
-    /// The right edge, as of the top row.
-    pub fn right(&self) -> &Edge {
-        &self.right
+    /// The right edge's stepper, as of the top row (rebuilt from its ends).
+    #[inline]
+    pub fn right(&self) -> Edge {
+        self.right.stepper((self.top(), self.end()))
     }
 
-    /// The face (polygon) it belongs to.
+    /// The left edge as stored.
+    pub fn left_side(&self) -> Side {
+        Side {
+            ends: self.left,
+            top: self.top,
+            end: self.end,
+        }
+    }
+
+    /// The right edge as stored.
+    pub fn right_side(&self) -> Side {
+        Side {
+            ends: self.right,
+            top: self.top,
+            end: self.end,
+        }
+    }
+
+    /// The face (polygon) it belongs to: its depth and colour.
     pub fn face(&self) -> u16 {
         self.face
     }
@@ -502,38 +557,30 @@ impl Trapezoid {
         self.segment
     }
 
-    /// Its colour (the face's, kept here for the renderer).
-    pub fn color(&self) -> Rgb888 {
-        let c = self.color;
-        Rgb888::new((c >> 16) as u8, (c >> 8) as u8, c as u8)
-    }
-
     /// The columns `x0..x1` it may write.
     pub fn columns(&self) -> (u16, u16) {
         (self.x0, self.x1)
     }
 
-    /// The depth: `z` at column 0 of the **top row**, and the slopes.
-    pub fn depth(&self) -> Depth {
-        Depth {
-            z: self.z,
-            zx: self.zx,
-            zy: self.zy,
-        }
-    }
-
-    /// `Z̃` at the centre of pixel `(i, j)`.
-    pub fn z_at(&self, i: i32, j: i32) -> i32 {
-        self.z
-            .wrapping_add(self.zx.wrapping_mul(i))
-            .wrapping_add(self.zy.wrapping_mul(j.wrapping_sub(self.top())))
-    }
-
-    /// `Z̃` at the left edge's pixel on the top row.
-    pub fn z_left(&self) -> i32 {
-        let mut l = self.left;
-        l.load_pixel();
-        self.z_at(l.pixel(), self.top())
+    /// Every field but the store's links, as `i32`s: two trapezoids with
+    /// the same fields and faces of the same depth and colour draw the
+    /// same pixels.
+    pub(crate) fn fields(&self) -> [i32; 12] {
+        let (l, r) = (self.left, self.right);
+        [
+            l.x0 as i32,
+            l.y0 as i32,
+            l.x1 as i32,
+            l.y1 as i32,
+            r.x0 as i32,
+            r.y0 as i32,
+            r.x1 as i32,
+            r.y1 as i32,
+            self.top as i32,
+            self.end as i32,
+            self.x0 as i32,
+            self.x1 as i32,
+        ]
     }
 
     /// The pixels `l..r` it covers on row `j` (clipped to its columns;
@@ -543,7 +590,7 @@ impl Trapezoid {
         if j < self.top() || j >= self.end() {
             return None;
         }
-        let (mut l, mut r) = (self.left, self.right);
+        let (mut l, mut r) = (self.left(), self.right());
         for _ in self.top()..j {
             l.step();
             r.step();
@@ -556,7 +603,7 @@ impl Trapezoid {
 
 /// The ends of an edge in units, upper end first (`y0 < y1`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-struct Ends {
+pub(crate) struct Ends {
     x0: i16,
     y0: i16,
     x1: i16,
@@ -569,6 +616,14 @@ impl Ends {
     }
     fn b(&self) -> Vertex {
         Vertex::from_bits(self.x1, self.y1)
+    }
+    /// The exact stepper over `rows`, a run of rows the edge crosses (so
+    /// never `None`; [`Edge::EMPTY`], which crosses none, if it were).
+    #[inline]
+    fn stepper(&self, rows: (i32, i32)) -> Edge {
+        let e = Edge::new(self.a(), self.b(), rows);
+        debug_assert!(e.is_some_and(|e| (e.top(), e.end()) == rows));
+        e.unwrap_or(Edge::EMPTY)
     }
     /// The crossing with the centre line of row `j` as `num / den`,
     /// `den = dy > 0`: `num = x0·dy + (yc − y0)·dx`, below 2³³ for a row
@@ -816,11 +871,11 @@ impl<'s> Polygon<'s> {
     }
 
     /// Cuts the polygon into trapezoids, handing each one's left and right
-    /// edges (set up for its rows) to `emit`, top to bottom in the order
-    /// they close. Returns how many were emitted. Pairs that can never
+    /// edges (their ends and its rows: [`Side::edge`] sets up the stepper)
+    /// to `emit`, top to bottom in the order they close. Returns how many were emitted. Pairs that can never
     /// write a pixel in the clip columns (both edges the same, or wholly
     /// left or right of the columns) are not emitted.
-    pub fn cut<E>(self, mut emit: impl FnMut(Edge, Edge) -> Result<(), E>) -> Result<u32, E> {
+    pub fn cut<E>(self, mut emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
         let n = self.edges;
         let cols = self.cols;
         let slots = &mut self.slots[..n];
@@ -839,13 +894,13 @@ impl<'s> Polygon<'s> {
             if ceil_px(rmax - HALF) <= cols.0 || ceil_px(lmin - HALF) >= cols.1 {
                 return Ok(());
             }
-            let rows = (start, end);
-            if let (Some(le), Some(re)) =
-                (Edge::new(l.a(), l.b(), rows), Edge::new(r.a(), r.b(), rows))
-            {
-                emit(le, re)?;
-                count += 1;
-            }
+            // Both edges cross every row of `start..end` (they were active
+            // in its bands), inside the clip rows (so within 0..=4096):
+            // the steppers `Edge::new` makes over them are never `None`.
+            let (top, end) = (start as u16, end as u16);
+            let side = |ends: Ends| Side { ends, top, end };
+            emit(side(*l), side(*r))?;
+            count += 1;
             Ok(())
         };
         slots.sort_unstable_by_key(|e| e.top);
@@ -1011,10 +1066,9 @@ mod tests {
     ) -> ([u8; (W * H) as usize], u32) {
         let mut hit = [0u8; (W * H) as usize];
         let p = Polygon::load(slots, poly.iter().copied(), clip).unwrap();
-        let depth = p.plane().map(|p| p.depth()).unwrap_or_default();
         let n = p
             .cut(|l, r| {
-                let t = Trapezoid::new(l, r, &depth, 0, Rgb888::new(0, 0, 0), clip);
+                let t = Trapezoid::new(l, r, 0, clip);
                 for j in t.top()..t.end() {
                     let (a, b) = t.span_at(j).unwrap();
                     for i in a..b {
@@ -1153,6 +1207,13 @@ mod tests {
     #[test]
     fn an_edge_slot_is_32_bytes() {
         assert_eq!(core::mem::size_of::<EdgeSlot>(), 32);
+    }
+
+    /// `u16`s and `i16`s only: the same size on every target.
+    #[test]
+    fn a_trapezoid_is_34_bytes() {
+        assert_eq!(core::mem::size_of::<Trapezoid>(), 34);
+        assert_eq!(core::mem::align_of::<Trapezoid>(), 2);
     }
 
     #[test]
