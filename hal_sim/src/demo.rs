@@ -32,6 +32,7 @@
 
 use crate::dual_port::DualPortRam;
 use crate::error::{self, CliError};
+use crate::memory::{SceneHeap, Shortfall};
 use crate::refresh::{CoSimulation, Frame, RefreshController};
 use crate::timing::VideoTiming;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
@@ -40,12 +41,9 @@ use scanvert::fixed::Coord;
 use scanvert::geometry::{Angle, Light, Perspective, Pipeline, Point3, View, Viewport, Q16};
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::port::SpanTarget;
-use scanvert::scene::label::{Label, DEFAULT_FONT};
-use scanvert::scene::{Builder, Procedure, Scene, SceneError, SceneMemory, Update};
-use scanvert::visible::rle::Run;
-use scanvert::visible::store::{Face, Segment, StoreMemory};
-use scanvert::visible::sweep::{Active, Resolve};
-use scanvert::visible::trapezoid::{EdgeSlot, Trapezoid};
+use scanvert::scene::label::DEFAULT_FONT;
+use scanvert::scene::{Builder, Capacities, Procedure, Scene, SceneError, Update};
+use scanvert::visible::sweep::Resolve;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -332,77 +330,80 @@ fn view(orbit: i32) -> View {
     View::look_at(p(r * a.sin(), h, r * a.cos()), p(0.0, 3.0, 0.0)).expect("eye is not the target")
 }
 
-/// The caller's memory of the demo scene, sized with room to spare.
+/// The caller's memory of the demo scene at one size: as large as the
+/// frames it will show need, found by running them
+/// ([`SceneHeap::fit`]), and no larger.
 struct Memory {
     size: Size,
-    traps: Vec<Trapezoid>,
-    faces: Vec<Face>,
-    segments: Vec<Segment>,
-    rows: Vec<u16>,
-    edges: Vec<EdgeSlot>,
-    labels: Vec<Label>,
-    text: Vec<u8>,
-    /// The visible-surface pass: as many active entries as trapezoids
-    /// can overlap one row, a run per column.
-    active: Vec<Active>,
-    runs: Vec<Run>,
+    heap: SceneHeap,
 }
 
 impl Memory {
-    fn new(size: Size) -> Memory {
-        Memory {
+    /// Memory for the scene at `size` showing `steps` in turn.
+    fn new(size: Size, steps: &[Step]) -> Result<Memory, CliError> {
+        let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
+        let pipe = pipeline(size)?;
+        let start = Capacities {
+            segments: SEGMENTS.len(),
+            rows: size.height as usize,
+            runs: size.width as usize,
+            edges: N,
+            ..Capacities::default()
+        };
+        let caps = SceneHeap::fit(start, |mem| {
+            let mut scene = Scene::new(mem, pipe.clone())?;
+            let mut most = Capacities::default();
+            let mut last = None;
+            for &step in steps {
+                apply(&mut scene, last, step)?;
+                most = most.max(scene.usage()?);
+                last = Some(step);
+            }
+            Ok(most)
+        })
+        .map_err(|e| fail(&e))?;
+        Ok(Memory {
             size,
-            traps: vec![Trapezoid::EMPTY; 2048],
-            faces: vec![Face::EMPTY; 512],
-            segments: vec![Segment::EMPTY; SEGMENTS.len()],
-            rows: vec![0; size.height as usize],
-            edges: vec![EdgeSlot::EMPTY; N],
-            labels: vec![Label::EMPTY; 64],
-            text: vec![0; 1024],
-            active: vec![Active::EMPTY; 512],
-            runs: vec![Run::EMPTY; size.width as usize],
-        }
+            heap: SceneHeap::new(caps),
+        })
     }
 
     fn scene(&mut self) -> Result<DemoScene<'_>, CliError> {
-        let size = self.size;
-        let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
-        let window = Viewport::centred(size.width, size.height).map_err(|e| fail(&e))?;
-        let mut pipe = Pipeline::new(perspective(size)?, window);
-        pipe.set_light(light());
-        pipe.set_thickness(Coord::from_bits(THICKNESS));
-        let mem = SceneMemory {
-            store: StoreMemory {
-                trapezoids: &mut self.traps,
-                faces: &mut self.faces,
-                segments: &mut self.segments,
-                rows: &mut self.rows,
-                edges: &mut self.edges,
-            },
-            active: &mut self.active,
-            runs: &mut self.runs,
-            labels: &mut self.labels,
-            text: &mut self.text,
-        };
-        Scene::new(mem, pipe).map_err(|e| fail(&e))
+        let pipe = pipeline(self.size)?;
+        Scene::new(self.heap.memory(), pipe).map_err(|e| error::input(Path::new("demo"), e))
     }
+}
+
+/// The demo's pipeline at `size`: its projection, window, light and line
+/// thickness.
+fn pipeline(size: Size) -> Result<Pipeline<DEPTH, N>, CliError> {
+    let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
+    let window = Viewport::centred(size.width, size.height).map_err(|e| fail(&e))?;
+    let mut pipe = Pipeline::new(perspective(size)?, window);
+    pipe.set_light(light());
+    pipe.set_thickness(Coord::from_bits(THICKNESS));
+    Ok(pipe)
 }
 
 /// Rebuilds what `step` changed since `last` and returns what the update
 /// did.
 fn advance(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<Update, CliError> {
-    let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
+    apply(scene, last, step).map_err(|e| error::input(Path::new("demo"), e))
+}
+
+/// [`advance`], failing with what the scene says.
+fn apply(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<Update, Shortfall> {
     if last.map(|l| l.orbit) != Some(step.orbit) {
-        scene.set_view(&view(step.orbit)).map_err(|e| fail(&e))?;
+        scene.set_view(&view(step.orbit))?;
     }
     if last.map(|l| l.threshold) != Some(step.threshold) {
-        scene.invalidate(1).map_err(|e| fail(&e))?;
+        scene.invalidate(1)?;
     }
     let mut g = |s: &mut DemoBuilder<'_, '_>| ground(s);
     let mut b = |s: &mut DemoBuilder<'_, '_>| bars(s, step.threshold);
     let mut n = |s: &mut DemoBuilder<'_, '_>| names(s);
     let procs: &mut [&mut dyn Procedure<DEPTH, N>] = &mut [&mut g, &mut b, &mut n];
-    scene.update(procs).map_err(|e| fail(&e))
+    Ok(scene.update(procs)?)
 }
 
 fn draw<T>(scene: &mut DemoScene<'_>, target: &mut T) -> scanvert::scene::Frame
@@ -470,7 +471,8 @@ pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
 
 /// Runs the animation of `frames` frames through the simulator at `size`.
 pub fn animate_at(size: Size, frames: usize) -> Result<Vec<DemoFrame>, CliError> {
-    let mut mem = Memory::new(size);
+    let steps = steps(frames);
+    let mut mem = Memory::new(size, &steps)?;
     let mut scene = mem.scene()?;
     let (w, h) = (size.width, size.height);
     let mut ram = DualPortRam::double_buffered(w, h);
@@ -478,7 +480,7 @@ pub fn animate_at(size: Size, frames: usize) -> Result<Vec<DemoFrame>, CliError>
     let mut co = CoSimulation::new(&mut ram, &mut refresh);
     let mut out = Vec::new();
     let mut last = None;
-    for step in steps(frames) {
+    for step in steps {
         let update = advance(&mut scene, last, step)?;
         last = Some(step);
         let drawn = draw(&mut scene, &mut co);
@@ -512,7 +514,7 @@ pub fn reference_frame(step: Step) -> Result<Vec<Rgb565>, CliError> {
 
 /// [`reference_frame`] at `size`.
 pub fn reference_frame_at(size: Size, step: Step) -> Result<Vec<Rgb565>, CliError> {
-    let mut mem = Memory::new(size);
+    let mut mem = Memory::new(size, &[step])?;
     let mut scene = mem.scene()?;
     advance(&mut scene, None, step)?;
     let (w, h) = (size.width, size.height);
@@ -530,7 +532,12 @@ pub fn speeds() -> Result<(f64, f64, f64), CliError> {
 
 /// [`speeds`] at `size`.
 pub fn speeds_at(size: Size) -> Result<(f64, f64, f64), CliError> {
-    let mut mem = Memory::new(size);
+    // The camera turns a degree at a time and the threshold takes 30, 50
+    // and 70 at any angle: the memory is sized for all of them.
+    let all: Vec<Step> = (0..360)
+        .flat_map(|orbit| [30, 50, 70].map(|threshold| Step { threshold, orbit }))
+        .collect();
+    let mut mem = Memory::new(size, &all)?;
     let mut scene = mem.scene()?;
     let (w, h) = (size.width, size.height);
     let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
@@ -663,7 +670,7 @@ pub fn with_scene_at<R>(
     step: Step,
     f: impl FnOnce(&mut Scene<'_, DEPTH, N>, Rgb565) -> R,
 ) -> Result<R, CliError> {
-    let mut mem = Memory::new(size);
+    let mut mem = Memory::new(size, &[step])?;
     let mut scene = mem.scene()?;
     advance(&mut scene, None, step)?;
     Ok(f(&mut scene, Rgb565::from(BACKGROUND)))
@@ -695,10 +702,11 @@ pub fn drive_at(
     mut frame: impl FnMut(&mut Scene<'_, DEPTH, N>, Step, Update, Rgb565),
 ) -> Result<(), CliError> {
     let fail = |e: &dyn std::fmt::Display| crate::error::input(Path::new("demo"), e);
-    let mut mem = Memory::new(size);
+    let steps = steps(frames);
+    let mut mem = Memory::new(size, &steps)?;
     let mut scene = mem.scene()?;
     let mut last: Option<Step> = None;
-    for step in steps(frames) {
+    for step in steps {
         if last.map(|l| l.orbit) != Some(step.orbit) {
             scene.set_view(&view(step.orbit)).map_err(|e| fail(&e))?;
         }
