@@ -226,7 +226,7 @@ struct Threads {
 /// thread is woken once a call.
 const FRAMES2: u32 = 20;
 /// Timed calls of each, round-robin, in the two-thread measurement.
-const CALLS: usize = 300;
+const CALLS: usize = 500;
 
 /// The best seconds of one call of each of `fs`, over `calls` calls of
 /// each, round-robin: on a host other work shares, the calls that ran
@@ -559,15 +559,16 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          averages of 6 to 9 it gave 0.6 to 1.1×, and the demo's two threads, timed as this section\n\
          used to time them (the best mean over 150 ms runs of several calls), 0.98 to 1.09×: the\n\
          1.00× it showed before measured the load. The best single calls catch the moments when\n\
-         both cores are free, and the\n\
-         calibration, timed round-robin with them, says how free they were. Starting the second\n\
+         both cores are free, and the calibration, timed round-robin with them, says how free\n\
+         they were. Starting the second\n\
          thread for each call was not the cause (17 µs at best, 53 µs on average, against 2 ms\n\
          of work a call); nor is sharing: the scene is only read, and each thread writes only its\n\
          own workspace and band buffer. What is left is each worker's own work on rows it does\n\
          not draw: checking its workspace against the store and stepping its active list over\n\
          the other's rows, per frame (the instruction counts below). Splitting the frame into a\n\
          top and a bottom part costs the least of it: only the second worker steps over rows, once,\n\
-         instead of both at every other band; the split is where both parts take the same time.\n\
+         instead of both at every other band; the split is where both parts take the same time\n\
+         (over the demo's 12 frames it moves between rows 140 and 148).\n\
          Bands claimed from a shared counter would balance the load when a core is taken away,\n\
          but came out slower with both free: each worker still makes a pass over every frame and\n\
          steps over the other's bands, as with every other band, and where the rest of its time\n\
