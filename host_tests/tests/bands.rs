@@ -443,13 +443,12 @@ fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
                 assert_eq!(diff, 0, "{step:?} band rows {rows}");
             }
             // Two workers sharing the scene, each with its own workspace
-            // and pass: every other band of 16 rows each, the bands above
+            // and pass: every other band of 16 rows each, the rows above
             // a split and the others, and bands claimed from a counter.
             let scene = &*scene;
-            let bands = HEIGHT.div_ceil(16);
             let shares = [Share::Alternate, Share::Claim]
                 .into_iter()
-                .chain([1, bands / 2, bands - 1].map(Share::Split));
+                .chain([1, 16, 128, 140, HEIGHT - 1].map(Share::Split));
             for share in shares {
                 let whole = two_workers(scene, bg, share);
                 assert!(whole == px, "{step:?}: two workers, {share:?}");
@@ -464,7 +463,9 @@ fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
 enum Share {
     /// Every other band, worker `k` from band `k`.
     Alternate,
-    /// Worker 0 the bands before this one, worker 1 the others.
+    /// Worker 0 the rows above this one, worker 1 the others, each in
+    /// bands of 16 rows from its first row (the last of worker 0's cut at
+    /// the split).
     Split(u16),
     /// Each band claimed by the first worker to ask for it, from a shared
     /// counter (so in increasing order on each).
@@ -473,7 +474,7 @@ enum Share {
 
 /// The frame drawn by two threads sharing `scene`'s 16-row bands as
 /// `share` says, each in a workspace of its own, stepping over the other's
-/// bands; each band is drawn by exactly one of them.
+/// rows; each row is drawn by exactly one of them.
 fn two_workers<const D: usize, const M: usize>(
     scene: &scanvert::scene::Scene<'_, D, M>,
     bg: Rgb565,
@@ -495,22 +496,34 @@ fn two_workers<const D: usize, const M: usize>(
                         .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
                         .expect("pass");
                     let mut got = Vec::new();
-                    let mut draw = |b: u16| {
-                        let mut band = vec![Rgb565::BLACK; rows as usize * w];
-                        let n = pass.draw(b * rows, rows, &mut band).expect("band");
+                    let mut draw = |y: u16, n: u16| {
+                        let mut band = vec![Rgb565::BLACK; n as usize * w];
+                        let n = pass.draw(y, n, &mut band).expect("band");
                         band.truncate(n as usize * w);
-                        got.push((b * rows, band));
+                        got.push((y, band));
                     };
                     match share {
-                        Share::Alternate => (k..bands).step_by(2).for_each(&mut draw),
-                        Share::Split(at) if k == 0 => (0..at).for_each(&mut draw),
-                        Share::Split(at) => (at..bands).for_each(&mut draw),
+                        Share::Alternate => {
+                            for b in (k..bands).step_by(2) {
+                                draw(b * rows, rows);
+                            }
+                        }
+                        Share::Split(at) if k == 0 => {
+                            for y in (0..at).step_by(rows as usize) {
+                                draw(y, rows.min(at - y));
+                            }
+                        }
+                        Share::Split(at) => {
+                            for y in (at..HEIGHT).step_by(rows as usize) {
+                                draw(y, rows);
+                            }
+                        }
                         Share::Claim => loop {
                             let b = next.fetch_add(1, Ordering::Relaxed);
                             if b >= bands {
                                 break;
                             }
-                            draw(b);
+                            draw(b * rows, rows);
                         },
                     }
                     got
@@ -523,9 +536,12 @@ fn two_workers<const D: usize, const M: usize>(
             .collect()
     });
     let mut whole = vec![Rgb565::RED; w * HEIGHT as usize];
-    let mut drawn = vec![0u32; bands as usize];
+    let mut drawn = vec![0u32; HEIGHT as usize];
     for (y, band) in halves.into_iter().flatten() {
-        drawn[(y / rows) as usize] += 1;
+        let n = band.len() / w;
+        drawn[y as usize..y as usize + n]
+            .iter_mut()
+            .for_each(|d| *d += 1);
         whole[y as usize * w..y as usize * w + band.len()].copy_from_slice(&band);
     }
     assert!(drawn.iter().all(|&n| n == 1), "{share:?}: {drawn:?}");
