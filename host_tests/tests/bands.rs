@@ -4,7 +4,8 @@
 //! and lines with clip windows and several `clear`s, generated 2D lists
 //! with lines, 3D lists with labels,
 //! the repository's scenes, and the 3D demo scene, also drawn by two
-//! threads taking every other band); and the band path's typed errors.
+//! threads taking every other band, a part of the frame each, or bands
+//! claimed from a shared counter); and the band path's typed errors.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use proptest::prelude::*;
@@ -439,45 +440,110 @@ fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
                 let diff = px.iter().zip(&out.pixels).filter(|(a, b)| a != b).count();
                 assert_eq!(diff, 0, "{step:?} band rows {rows}");
             }
-            // Two workers, every other band of 16 rows each, sharing the
-            // scene, each with its own workspace.
+            // Two workers sharing the scene, each with its own workspace
+            // and pass: every other band of 16 rows each, the rows above
+            // a split and the others, and bands claimed from a counter.
             let scene = &*scene;
-            let rows = 16u16;
-            let halves: Vec<Vec<(u16, Vec<Rgb565>)>> = std::thread::scope(|s| {
-                let workers: Vec<_> = (0..2u16)
-                    .map(|k| {
-                        s.spawn(move || {
-                            let mut work = Work::new();
-                            let mut ws = work.workspace();
-                            let mut pass = scene
-                                .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
-                                .expect("pass");
-                            let mut got = Vec::new();
-                            let mut y = k * rows;
-                            while y < HEIGHT {
-                                let mut band = vec![Rgb565::BLACK; rows as usize * w];
-                                let n = pass.draw(y, rows, &mut band).expect("band");
-                                band.truncate(n as usize * w);
-                                got.push((y, band));
-                                y += 2 * rows;
-                            }
-                            got
-                        })
-                    })
-                    .collect();
-                workers
-                    .into_iter()
-                    .map(|h| h.join().expect("worker"))
-                    .collect()
-            });
-            let mut whole = vec![Rgb565::RED; w * HEIGHT as usize];
-            for (y, band) in halves.into_iter().flatten() {
-                whole[y as usize * w..y as usize * w + band.len()].copy_from_slice(&band);
+            let shares = [Share::Alternate, Share::Claim]
+                .into_iter()
+                .chain([1, 16, 128, 140, HEIGHT - 1].map(Share::Split));
+            for share in shares {
+                let whole = two_workers(scene, bg, share);
+                assert!(whole == px, "{step:?}: two workers, {share:?}");
             }
-            assert!(whole == px, "{step:?}: two workers");
         })
         .expect("demo scene");
     }
+}
+
+/// How two workers share the 16-row bands of a frame.
+#[derive(Clone, Copy, Debug)]
+enum Share {
+    /// Every other band, worker `k` from band `k`.
+    Alternate,
+    /// Worker 0 the rows above this one, worker 1 the others, each in
+    /// bands of 16 rows from its first row (the last of worker 0's cut at
+    /// the split).
+    Split(u16),
+    /// Each band claimed by the first worker to ask for it, from a shared
+    /// counter (so in increasing order on each).
+    Claim,
+}
+
+/// The frame drawn by two threads sharing `scene`'s 16-row bands as
+/// `share` says, each in a workspace of its own, stepping over the other's
+/// rows; each row is drawn by exactly one of them.
+fn two_workers<const D: usize, const M: usize>(
+    scene: &scanvert::scene::Scene<'_, D, M>,
+    bg: Rgb565,
+    share: Share,
+) -> Vec<Rgb565> {
+    use scanvert_sim::demo::{HEIGHT, WIDTH};
+    use std::sync::atomic::{AtomicU16, Ordering};
+    let (w, rows) = (WIDTH as usize, 16u16);
+    let bands = HEIGHT.div_ceil(rows);
+    let next = AtomicU16::new(0);
+    let halves: Vec<Vec<(u16, Vec<Rgb565>)>> = std::thread::scope(|s| {
+        let workers: Vec<_> = (0..2u16)
+            .map(|k| {
+                let next = &next;
+                s.spawn(move || {
+                    let mut work = Work::new();
+                    let mut ws = work.workspace();
+                    let mut pass = scene
+                        .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
+                        .expect("pass");
+                    let mut got = Vec::new();
+                    let mut draw = |y: u16, n: u16| {
+                        let mut band = vec![Rgb565::BLACK; n as usize * w];
+                        let n = pass.draw(y, n, &mut band).expect("band");
+                        band.truncate(n as usize * w);
+                        got.push((y, band));
+                    };
+                    match share {
+                        Share::Alternate => {
+                            for b in (k..bands).step_by(2) {
+                                draw(b * rows, rows);
+                            }
+                        }
+                        Share::Split(at) if k == 0 => {
+                            for y in (0..at).step_by(rows as usize) {
+                                draw(y, rows.min(at - y));
+                            }
+                        }
+                        Share::Split(at) => {
+                            for y in (at..HEIGHT).step_by(rows as usize) {
+                                draw(y, rows);
+                            }
+                        }
+                        Share::Claim => loop {
+                            let b = next.fetch_add(1, Ordering::Relaxed);
+                            if b >= bands {
+                                break;
+                            }
+                            draw(b * rows, rows);
+                        },
+                    }
+                    got
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .map(|h| h.join().expect("worker"))
+            .collect()
+    });
+    let mut whole = vec![Rgb565::RED; w * HEIGHT as usize];
+    let mut drawn = vec![0u32; HEIGHT as usize];
+    for (y, band) in halves.into_iter().flatten() {
+        let n = band.len() / w;
+        drawn[y as usize..y as usize + n]
+            .iter_mut()
+            .for_each(|d| *d += 1);
+        whole[y as usize * w..y as usize * w + band.len()].copy_from_slice(&band);
+    }
+    assert!(drawn.iter().all(|&n| n == 1), "{share:?}: {drawn:?}");
+    whole
 }
 
 /// A random 2D list in text form: clears, clip windows (some partly or
