@@ -88,9 +88,11 @@ struct Work {
 }
 
 impl Work {
-    fn new() -> Work {
+    /// A workspace for a scene with at most `most` trapezoids on a row
+    /// (`Scene::check`).
+    fn new(most: usize) -> Work {
         Work {
-            active: vec![Active::EMPTY; 512],
+            active: vec![Active::EMPTY; most],
             runs: vec![Run::EMPTY; scanvert_sim::demo::WIDTH as usize],
         }
     }
@@ -283,8 +285,9 @@ fn thread_times() -> Threads {
     let step = steps(1)[0];
     with_scene(step, |scene, bg| {
         let w = WIDTH as usize;
+        let most = scene.check().expect("the scene fits its workspace") as usize;
         // Each band buffer and workspace its thread's own, made once.
-        let mut mine = (Work::new(), vec![Rgb565::BLACK; ROWS2 as usize * w]);
+        let mut mine = (Work::new(most), vec![Rgb565::BLACK; ROWS2 as usize * w]);
         let row = balanced_split(scene, bg, &mut mine.0, &mut mine.1);
         // The counter on a cache line of its own.
         let next = Line(AtomicU32::new(0));
@@ -294,7 +297,7 @@ fn thread_times() -> Threads {
         std::thread::scope(|s| {
             let next = &next.0;
             s.spawn(move || {
-                let mut work = Work::new();
+                let mut work = Work::new(most);
                 let mut band = vec![Rgb565::BLACK; ROWS2 as usize * w];
                 while let Ok(t) = tasks.recv() {
                     let r = match t {
@@ -608,7 +611,8 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
 fn profile_demo(rows: u16, passes: u32) {
     use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
     with_scene(steps(1)[0], |scene, bg| {
-        let mut work = Work::new();
+        let most = scene.check().expect("the scene fits its workspace") as usize;
+        let mut work = Work::new(most);
         let mut fb = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
         let half = std::env::var("BANDS_SPLIT")
             .ok()

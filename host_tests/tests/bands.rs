@@ -397,9 +397,11 @@ struct Work {
 }
 
 impl Work {
-    fn new() -> Work {
+    /// A workspace for a scene with at most `most` trapezoids on a row
+    /// (`Scene::check`).
+    fn new(most: usize) -> Work {
         Work {
-            active: vec![Active::EMPTY; 512],
+            active: vec![Active::EMPTY; most],
             runs: vec![Run::EMPTY; scanvert_sim::demo::WIDTH as usize],
         }
     }
@@ -443,12 +445,13 @@ fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
             // Two workers sharing the scene, each with its own workspace
             // and pass: every other band of 16 rows each, the rows above
             // a split and the others, and bands claimed from a counter.
+            let most = scene.check().expect("fits") as usize;
             let scene = &*scene;
             let shares = [Share::Alternate, Share::Claim]
                 .into_iter()
                 .chain([1, 16, 128, 140, HEIGHT - 1].map(Share::Split));
             for share in shares {
-                let whole = two_workers(scene, bg, share);
+                let whole = two_workers(scene, most, bg, share);
                 assert!(whole == px, "{step:?}: two workers, {share:?}");
             }
         })
@@ -475,6 +478,7 @@ enum Share {
 /// rows; each row is drawn by exactly one of them.
 fn two_workers<const D: usize, const M: usize>(
     scene: &scanvert::scene::Scene<'_, D, M>,
+    most: usize,
     bg: Rgb565,
     share: Share,
 ) -> Vec<Rgb565> {
@@ -488,7 +492,7 @@ fn two_workers<const D: usize, const M: usize>(
             .map(|k| {
                 let next = &next;
                 s.spawn(move || {
-                    let mut work = Work::new();
+                    let mut work = Work::new(most);
                     let mut ws = work.workspace();
                     let mut pass = scene
                         .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
