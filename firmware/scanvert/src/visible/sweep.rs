@@ -1305,7 +1305,7 @@ fn prune_many(act: &mut [Active], lo: usize, nc: usize, f: &Cover) -> usize {
 
 /// Inserts `c` into `act[lo..nc].cover`, kept by increasing `r`: first
 /// when it ends first and there is room before, else from the end, moving
-/// up those that end later (found by a binary search past [`FAR`] of
+/// up those that end with it or later (found by a binary search past [`FAR`] of
 /// them). The array has a place for every trapezoid that enters the row
 /// (`nc` grows by one at most for each), so it never overflows.
 fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
@@ -1317,7 +1317,7 @@ fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
         act[*lo].cover = c;
         return;
     }
-    let q = if *nc - *lo > FAR && act[*nc - FAR].cover.r > c.r {
+    let q = if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
         place(act, *lo, *nc - FAR, c.r)
     } else {
         place_near(act, *lo, *nc, c.r)
@@ -1330,12 +1330,14 @@ fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
 const FAR: usize = 8;
 
 /// Where a cover ending at `r` goes in `act[lo..nc].cover` (by increasing
-/// `r`): after every cover that ends by `r`, by a binary search.
+/// `r`): before every cover that ends at `r` or after, by a binary search.
+/// (Before those that end with it: staggered faces that end on one pixel
+/// enter farthest first, and so stay a chain.)
 fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
     let (mut a, mut b) = (lo, nc.min(act.len()));
     while a < b {
         let m = a + (b - a) / 2;
-        if act[m].cover.r <= r {
+        if act[m].cover.r < r {
             a = m + 1;
         } else {
             b = m;
@@ -1347,7 +1349,7 @@ fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
 /// [`place`] by a scan from the end.
 fn place_near(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
     let mut q = nc.min(act.len());
-    while q > lo && act[q - 1].cover.r > r {
+    while q > lo && act[q - 1].cover.r >= r {
         q -= 1;
     }
     q
@@ -1534,7 +1536,7 @@ impl<O: RowOut> Ctx<'_, O> {
                 e.chain = e.chain && self.dominates(&c, &d, x, c.r.min(d.r) - 1);
             }
         } else if let Some(t) = act[..n].get(lo).map(|a| a.cover) {
-            // It ends before the first.
+            // It ends first (or with the first).
             if let Some(f) = f {
                 if self.dominates(f, &c, x, f.r.min(c.r) - 1) {
                     if c.r <= f.r {
