@@ -23,6 +23,7 @@ mod numbers;
 mod plot;
 mod report;
 mod visible3d;
+mod worst;
 
 use std::hint::black_box;
 use std::path::PathBuf;
@@ -224,6 +225,8 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
                             rewrites their section of the page and their plots
   --only bands              bands against the full frame (W3, the 3D scenes, the
                             demo, two threads); rewrites its section of the page
+  --only worst              the worst cases (staggered faces, 1,000 to 38,835);
+                            rewrites its section of the page and its plot
   --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
   --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind
   --profile-bands ROWS PASSES  W3 (or $BANDS_LIST: layered, tilted, demo) in
@@ -259,6 +262,9 @@ fn main() -> std::io::Result<()> {
     let only = (args.len() == 3 && args[1] == "--only").then(|| args[2].clone());
     if only.as_deref() == Some("depth") {
         return only_depth();
+    }
+    if only.as_deref() == Some("worst") {
+        return only_worst();
     }
     if only.as_deref() == Some("bands") {
         eprintln!("bands against the full frame (ms per frame, ratios):");
@@ -493,6 +499,28 @@ fn only_depth() -> std::io::Result<()> {
     eprintln!(
         "rewrote the depth section of docs/performance.md, docs/time-vs-depth.png and docs/p3-p4-vs-trapezoids.png in {seconds:.0} s"
     );
+    Ok(())
+}
+
+/// `--only worst`: the worst cases timed; their section of
+/// `docs/performance.md` (at the end of "Worst cases") and
+/// `docs/worst-case.png` rewritten.
+fn only_worst() -> std::io::Result<()> {
+    let machine = format!("load average {} before the run", load_average());
+    let rows = worst::measure(Duration::from_millis(300));
+    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
+    let md_path = docs.join("performance.md");
+    let old = std::fs::read_to_string(&md_path).unwrap_or_default();
+    let md = report::splice(
+        &old,
+        worst::BEGIN,
+        worst::END,
+        &worst::section(&rows, &machine),
+        "### Where the sweep's instructions go on the Cortex-M4",
+    );
+    std::fs::write(&md_path, md)?;
+    write_png(&docs.join("worst-case.png"), plot::render_worst(&rows))?;
+    eprintln!("rewrote the worst-case curve of docs/performance.md and docs/worst-case.png");
     Ok(())
 }
 

@@ -234,12 +234,20 @@ pub fn render_3d(rows: &[crate::visible3d::Row3]) -> (u32, u32, Vec<u8>) {
 struct Labels {
     title: &'static str,
     x: &'static str,
+    y: &'static str,
+    /// Whether the marks of the two versions are explained.
+    versions: bool,
 }
+
+/// The y axis of the plots of milliseconds per frame.
+const MS_PER_FRAME: &str = "milliseconds per frame, 512x256, this host (log scale)";
 
 /// The labels of the time-against-trapezoids plot.
 const TRAPEZOIDS: Labels = Labels {
     title: "3D scenes: time against trapezoids, 10 to 1000 faces",
     x: "trapezoids per frame (log scale)",
+    y: MS_PER_FRAME,
+    versions: true,
 };
 
 fn draw_3d(
@@ -304,12 +312,7 @@ fn draw_3d(
         Alignment::Center,
     )
     .draw(f)?;
-    Text::new(
-        "milliseconds per frame, 512x256, this host (log scale)",
-        Point::new(L - 60, T - 8),
-        text,
-    )
-    .draw(f)?;
+    Text::new(labels.y, Point::new(L - 60, T - 8), text).draw(f)?;
     Text::new(labels.title, Point::new(L - 60, T - 22), text).draw(f)?;
 
     // Lines first, then the marks over them.
@@ -351,6 +354,9 @@ fn draw_3d(
         y += 18;
     }
     y += 8;
+    if !labels.versions {
+        return Ok(());
+    }
     for (layered, what) in [
         (true, "2D version: faces parallel to the screen"),
         (false, "3D version: tilted, interpenetrating"),
@@ -440,6 +446,8 @@ pub fn render_depth(rows: &[crate::visible3d::DepthRow]) -> (u32, u32, Vec<u8>) 
         &Labels {
             title: "3D scenes of 170 faces: time against depth complexity",
             x: "depth complexity, measured (log scale)",
+            y: MS_PER_FRAME,
+            versions: true,
         },
     )
 }
@@ -465,6 +473,38 @@ pub fn render_split(rows: &[crate::visible3d::SplitRow]) -> (u32, u32, Vec<u8>) 
         &Labels {
             title: "P3 and P4 against trapezoids, 10 to 1000 faces",
             x: "trapezoids per frame (log scale)",
+            y: MS_PER_FRAME,
+            versions: true,
+        },
+    )
+}
+
+/// The worst cases: seconds against faces, one line an order, both log
+/// scales.
+pub fn render_worst(rows: &[crate::worst::WorstRow]) -> (u32, u32, Vec<u8>) {
+    use crate::worst::ORDERS;
+    let names: Vec<String> = ORDERS
+        .iter()
+        .map(|(_, n)| format!("staggered faces, {n}"))
+        .collect();
+    let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+    let mut series = Vec::new();
+    for r in rows {
+        push_point(
+            &mut series,
+            &refs,
+            refs[r.order],
+            true,
+            (r.faces as f64, r.seconds),
+        );
+    }
+    render_series(
+        &series,
+        &Labels {
+            title: "Worst cases: a 1024x1024 frame of staggered faces, time against faces",
+            x: "faces (log scale)",
+            y: "seconds a frame, this host (log scale)",
+            versions: false,
         },
     )
 }

@@ -339,7 +339,8 @@ pub fn markdown(run: &Run, old: &str) -> String {
          tests they name) exactly as it finds them. The depth-complexity\n\
          sweep and the P3/P4 split alone are rewritten by `-- --only depth`\n\
          (see [their section](#depth-complexity-and-p3-against-p4)), the bands\n\
-         by `-- --only bands`.\n",
+         by `-- --only bands`, and the worst cases' curve\n\
+         ([`worst-case.png`](worst-case.png)) only by `-- --only worst`.\n",
         run.seconds.max(1.0),
         run.seconds3
     );

@@ -44,10 +44,18 @@
 //! * stepping and entering: `O(a)`;
 //! * the sort: `O(a)` when the order is the last row's, at most
 //!   `O(64·a + a log a)` in any order;
-//! * the sweep: `O((a + s) · c)`: a trapezoid that starts costs two depth
-//!   compares behind a front, or its insertion into the cover array
-//!   (`O(c)`); a front found or a span resolved compares the covers once
-//!   (`O(c)`, and a subdivision `O(c)` per part).
+//! * the sweep, on a row of at most 64 live trapezoids ([`sweep`]):
+//!   `O((a + s) · c)`: a trapezoid that starts costs two depth compares
+//!   behind a front, or its insertion into the cover array (`O(c)`); a
+//!   front found or a span resolved compares the covers once (`O(c)`, and
+//!   a subdivision `O(c)` per part);
+//! * the sweep, on a longer row ([`sweep_many`]): a trapezoid that starts
+//!   costs `O(log c)` compares to find its place in the cover array (kept
+//!   by increasing `r`, so one that ends last is appended) and moves the
+//!   covers that end after it; a front costs no compare while the covers
+//!   form a *chain* (each in front of the next on their common pixels),
+//!   kept by at most six depth compares a trapezoid that starts, and
+//!   `O(c)` otherwise.
 //!
 //! A cover is a trapezoid that has started on the row and has neither
 //! ended nor been hidden: when a trapezoid that starts breaks the front,
@@ -57,8 +65,13 @@
 //! than the last so keep `c` at 2 however many overlap. What stays is
 //! `c` trapezoids that overlap in depth and outlast the front: faces each
 //! farther than the last, visible one sliver each, make `s` and `c` both
-//! of the order of `a`, and a row `O(a²)`. Per frame, the sum over rows;
-//! the figures are in `docs/performance.md`, "Worst cases".
+//! of the order of `a`, which would make a row `O(a²)`; but they form a
+//! chain, each entering behind the one before it and ending after it, so
+//! [`sweep_many`] appends each with two depth compares and finds each
+//! front with none: `O(a log a)` a row. A row whose covers overlap in depth
+//! without forming a chain (planes crossing each other everywhere) stays
+//! `O((a + s) · c)`. Per frame, the sum over rows; the figures are in
+//! `docs/performance.md`, "Worst cases".
 //!
 //! # Nearest, and why the classification is exact
 //!
@@ -512,7 +525,20 @@ fn resolve_into<O: RowOut>(
     mode: Resolve,
     out: O,
 ) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
+    resolve_many_from(active, store, mode, (MANY, CHAIN_FROM), out)
+}
+
+/// [`resolve_into`], rows with more than `many.0` live trapezoids taking
+/// [`sweep_many`], which looks for chains past `many.1` covers.
+fn resolve_many_from<O: RowOut>(
+    active: &mut [Active],
+    store: &TrapezoidStore<'_>,
+    mode: Resolve,
+    many: (usize, usize),
+    out: O,
+) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
     let mut s = Sweep::start(active, mode);
+    s.many = many;
     let out = s.rows(active, store, store.height(), out)?;
     Ok((s.stats, out))
 }
@@ -537,6 +563,9 @@ pub struct Sweep {
     /// The workspace's capacity when the sweep started.
     cap: usize,
     mode: Resolve,
+    /// Live trapezoids past which a row takes [`sweep_many`], and covers
+    /// past which it looks for a chain.
+    many: (usize, usize),
     stats: VisibleStats,
 }
 
@@ -560,6 +589,7 @@ impl Sweep {
             nf: cap,
             cap,
             mode,
+            many: (MANY, CHAIN_FROM),
             stats: VisibleStats::default(),
         }
     }
@@ -724,7 +754,11 @@ impl Sweep {
                 cx.stats.empty += 1;
             } else {
                 sort(&mut act[..k]);
-                sweep(act, k, width, &mut cx);
+                if k > self.many.0 {
+                    sweep_many(act, k, width, self.many.1, &mut cx);
+                } else {
+                    sweep(act, k, width, &mut cx);
+                }
             }
             cx.flush();
             cx.stats.rows += 1;
@@ -973,6 +1007,7 @@ struct Ctx<'s, O> {
 /// two comparisons. Where no front can be established (a plane crosses
 /// it before its end), the span up to the next `l` or `r` is resolved and
 /// subdivided as in [`span`].
+#[inline(always)]
 fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O>) {
     // act[..k].hot: the live trapezoids, by l; act[..nc].cover: the
     // covers, by decreasing r (nc ≤ k).
@@ -1014,6 +1049,7 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             x = t;
             continue;
         };
+        let f = *f;
         // The front holds from x until it ends or a trapezoid starts that
         // it does not dominate. Those that end behind it wait in the
         // cover array until the next front is sought.
@@ -1104,9 +1140,252 @@ fn insert(act: &mut [Active], nc: &mut usize, c: Cover) {
     *nc += 1;
 }
 
+/// Live trapezoids on a row past which it takes [`sweep_many`] instead of
+/// [`sweep`]: below, the simpler sweep costs less (on the Cortex-M4 as on
+/// the host), and the scenes with many overlapping faces need the other.
+const MANY: usize = 64;
+
+/// [`sweep`] for rows with many live trapezoids: the same fronts, spans
+/// and runs, with a cover array that keeps the quadratic terms out of
+/// long rows.
+///
+/// * The covers are kept by *increasing* `r`, in `act[lo..nc].cover`: those
+///   that end leave from the start, and one that enters ending last (as
+///   staggered faces do, each further right) is appended; one that goes
+///   elsewhere is placed by a binary search past [`FAR`] moves.
+/// * When a front is found, the covers before it (they end by its end,
+///   behind it on all their pixels left) leave.
+/// * A *chain*: covers each in front of the next on their common pixels
+///   from the sweep's position on (the first, which ends first, in front
+///   of the second, and so on). At each pixel *nearer* is a strict order,
+///   so by transitivity the first is then in front of every other on
+///   their common pixels: it is the front, found with no compare. A cover
+///   that enters keeps the chain when the one before its place is in front
+///   of it and it is in front of the one after: four depth compares (six
+///   when the chain ends there, to decide the front as [`sweep`] does).
+///   Faces each farther than the last make such a chain. When a front is
+///   found among more than [`CHAIN_FROM`] covers, those after it are
+///   checked for a chain once (again only when they have doubled in
+///   number); a cover that enters out of place ends it.
+#[inline(never)]
+#[cold]
+fn sweep_many<O: RowOut>(
+    act: &mut [Active],
+    k: usize,
+    width: i32,
+    chain_from: usize,
+    cx: &mut Ctx<'_, O>,
+) {
+    let k = k.min(act.len());
+    let (mut x, mut lo, mut nc, mut p) = (0i32, 0usize, 0usize, 0usize);
+    let (mut chain, mut try_from) = (false, chain_from);
+    let next_l = |act: &[Active], p: usize| {
+        if p < k {
+            act[p].hot.l.min(width)
+        } else {
+            width
+        }
+    };
+    while x < width {
+        // Leave the trapezoids ending here or before: the first ones.
+        while lo < nc && act[lo].cover.r <= x {
+            lo += 1;
+        }
+        if lo >= nc {
+            (lo, nc, chain, try_from) = (0, 0, false, chain_from);
+        }
+        // Enter the trapezoids starting here (l = x).
+        while p < k && act[p].hot.l <= x {
+            let c = cover_of(&act[p].hot);
+            p += 1;
+            if chain {
+                chain = cx.enter_chain(act, lo, &mut nc, c, x, None).chain;
+            } else {
+                insert_many(act, &mut lo, &mut nc, c);
+            }
+        }
+        let mut next = next_l(act, p);
+        if lo >= nc {
+            cx.stats.empty += 1;
+            cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+            x = next;
+            continue;
+        }
+        let f = if chain {
+            if nc - lo == 1 {
+                cx.stats.single += 1;
+            } else {
+                cx.stats.multiple += 1;
+            }
+            act[lo].cover
+        } else {
+            let cov = &act[lo..nc.min(k)];
+            let Some(f) = cx.establish(cov, x) else {
+                let t = next.min(cov.first().map_or(width, |a| a.cover.r));
+                span(cov, x, t, cx);
+                x = t;
+                continue;
+            };
+            let f = *f;
+            // The covers before the front end by its end, behind it.
+            while lo < nc && act[lo].cover.r <= f.r && act[lo].cover.face != f.face {
+                lo += 1;
+            }
+            if nc - lo > try_from {
+                chain = cx.is_chain(&act[lo..nc], x);
+                if !chain {
+                    try_from = 2 * (nc - lo);
+                }
+            }
+            f
+        };
+        // The front holds from x until it ends or a trapezoid starts that
+        // it does not dominate.
+        let start = x;
+        loop {
+            x = next.min(f.r);
+            if x >= f.r {
+                break;
+            }
+            // The first trapezoid that broke the front here, if any: one
+            // that starts with it, behind it on all its pixels, is hidden
+            // as well (staggered faces that start on one pixel, each in
+            // front of those before it).
+            let mut breaker: Option<Cover> = None;
+            while p < k && act[p].hot.l <= x {
+                let c = cover_of(&act[p].hot);
+                p += 1;
+                if chain {
+                    let e = cx.enter_chain(act, lo, &mut nc, c, x, Some(&f));
+                    chain = e.chain;
+                    if e.breaks && breaker.is_none() {
+                        breaker = Some(c);
+                    }
+                    continue;
+                }
+                if cx.dominates(&f, &c, x, f.r.min(c.r) - 1) {
+                    if c.r <= f.r {
+                        cx.stats.hidden += 1;
+                        continue;
+                    }
+                } else if let Some(b) = breaker {
+                    if c.r <= b.r && cx.dominates(&b, &c, x, c.r - 1) {
+                        cx.stats.hidden += 1;
+                        continue;
+                    }
+                } else {
+                    if nc - lo > PRUNE_FROM {
+                        lo = prune_many(act, lo, nc, &f);
+                    }
+                    breaker = Some(c);
+                }
+                insert_many(act, &mut lo, &mut nc, c);
+            }
+            let broken = breaker.is_some();
+            next = next_l(act, p);
+            if broken {
+                break;
+            }
+        }
+        cx.emit(x - start, f.face, f.color);
+    }
+}
+
+/// Covers past which [`sweep_many`] checks a front found for a chain.
+const CHAIN_FROM: usize = 8;
+
+/// [`prune`] for [`sweep_many`]: drops from `act[lo..nc].cover` (by
+/// increasing `r`) the covers that end by `f.r`, `f` among them, and puts
+/// `f` back first; the new `lo`.
+fn prune_many(act: &mut [Active], lo: usize, nc: usize, f: &Cover) -> usize {
+    let mut i = lo;
+    while i < nc && act[i].cover.r <= f.r {
+        i += 1;
+    }
+    if i == lo {
+        return lo;
+    }
+    act[i - 1].cover = *f;
+    i - 1
+}
+
+/// Inserts `c` into `act[lo..nc].cover`, kept by increasing `r`: first
+/// when it ends first and there is room before, else from the end, moving
+/// up those that end with it or later (found by a binary search past [`FAR`] of
+/// them). The array has a place for every trapezoid that enters the row
+/// (`nc` grows by one at most for each), so it never overflows.
+fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
+    if *nc >= act.len() {
+        return;
+    }
+    if *lo > 0 && (*lo >= *nc || c.r <= act[*lo].cover.r) {
+        *lo -= 1;
+        act[*lo].cover = c;
+        return;
+    }
+    let q = if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
+        place(act, *lo, *nc - FAR, c.r)
+    } else {
+        place_near(act, *lo, *nc, c.r)
+    };
+    insert_at(act, q, nc, c);
+}
+
+/// Moves past which [`insert_many`] looks for the place by a binary
+/// search.
+const FAR: usize = 8;
+
+/// Where a cover ending at `r` goes in `act[lo..nc].cover` (by increasing
+/// `r`): before every cover that ends at `r` or after, by a binary search.
+/// (Before those that end with it: staggered faces that end on one pixel
+/// enter farthest first, and so stay a chain.)
+fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
+    let (mut a, mut b) = (lo, nc.min(act.len()));
+    while a < b {
+        let m = a + (b - a) / 2;
+        if act[m].cover.r < r {
+            a = m + 1;
+        } else {
+            b = m;
+        }
+    }
+    a
+}
+
+/// [`place`] by a scan from the end.
+fn place_near(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
+    let mut q = nc.min(act.len());
+    while q > lo && act[q - 1].cover.r >= r {
+        q -= 1;
+    }
+    q
+}
+
+/// Inserts `c` at `q` of `act[..nc].cover`, moving those after it up.
+fn insert_at(act: &mut [Active], q: usize, nc: &mut usize, c: Cover) {
+    if *nc >= act.len() || q > *nc {
+        return;
+    }
+    let mut i = *nc;
+    while i > q {
+        act[i].cover = act[i - 1].cover;
+        i -= 1;
+    }
+    act[q].cover = c;
+    *nc += 1;
+}
+
+/// What a trapezoid entering a chain did (see [`Ctx::enter_chain`]).
+struct Entered {
+    /// The front no longer holds.
+    breaks: bool,
+    /// The covers are still a chain.
+    chain: bool,
+}
+
 /// Resolves the span `s..t` covered by `cov`; returns the nearest at its
 /// last pixel.
-#[inline]
+#[inline(always)]
 fn span<O: RowOut>(cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
     let Some((first, rest)) = cov.split_first() else {
         return Cover::EMPTY;
@@ -1196,13 +1475,14 @@ impl<O: RowOut> Ctx<'_, O> {
     /// The covering trapezoid nearest at pixel `x` when it is also in
     /// front of every other on all their common pixels (`x` to the end of
     /// the shorter), so on `x..r` of its own; `None` when another crosses
-    /// it there.
-    #[inline]
-    fn establish(&mut self, cov: &[Active], x: i32) -> Option<Cover> {
+    /// it there. (By reference: returned by value, the copy became a call
+    /// to `memmove` on the Cortex-M4.)
+    #[inline(always)]
+    fn establish<'v>(&mut self, cov: &'v [Active], x: i32) -> Option<&'v Cover> {
         let f = self.front(cov, x);
         if cov.len() == 1 {
             self.stats.single += 1;
-            return Some(*f);
+            return Some(f);
         }
         for c in cov.iter().map(|a| &a.cover) {
             if core::ptr::eq(c, f) {
@@ -1214,7 +1494,81 @@ impl<O: RowOut> Ctx<'_, O> {
             }
         }
         self.stats.multiple += 1;
-        Some(*f)
+        Some(f)
+    }
+
+    /// Enters `c` into the chain `act[lo..nc].cover` (by increasing `r`,
+    /// see [`sweep_many`]) at `x`. With the front `f` (the first cover,
+    /// unless a trapezoid that broke it entered since), `c` is left out
+    /// when a cover is in front of it on all its pixels left (*hidden*).
+    fn enter_chain(
+        &mut self,
+        act: &mut [Active],
+        lo: usize,
+        nc: &mut usize,
+        c: Cover,
+        x: i32,
+        f: Option<&Cover>,
+    ) -> Entered {
+        let n = (*nc).min(act.len());
+        let q = place(act, lo, n, c.r);
+        let mut e = Entered {
+            breaks: false,
+            chain: true,
+        };
+        if q > lo {
+            // It ends after the first.
+            let u = act[q - 1].cover;
+            if self.dominates(&u, &c, x, u.r.min(c.r) - 1) {
+                // So is the first (the front), by transitivity.
+                if f.is_some() && c.r <= u.r {
+                    self.stats.hidden += 1;
+                    return e;
+                }
+            } else {
+                e.chain = false;
+                if let Some(f) = f {
+                    if self.dominates(f, &c, x, f.r.min(c.r) - 1) {
+                        if c.r <= f.r {
+                            self.stats.hidden += 1;
+                            return e;
+                        }
+                    } else {
+                        e.breaks = true;
+                    }
+                }
+            }
+            if let Some(d) = act[..n].get(q).map(|a| a.cover) {
+                e.chain = e.chain && self.dominates(&c, &d, x, c.r.min(d.r) - 1);
+            }
+        } else if let Some(t) = act[..n].get(lo).map(|a| a.cover) {
+            // It ends first (or with the first).
+            if let Some(f) = f {
+                if self.dominates(f, &c, x, f.r.min(c.r) - 1) {
+                    if c.r <= f.r {
+                        self.stats.hidden += 1;
+                        return e;
+                    }
+                } else {
+                    e.breaks = true;
+                }
+            }
+            e.chain = self.dominates(&c, &t, x, c.r.min(t.r) - 1);
+        }
+        insert_at(act, q, nc, c);
+        e
+    }
+
+    /// `true` when each cover of `cov` (by increasing `r`) after the first
+    /// is in front of the next on their common pixels from `x`.
+    fn is_chain(&mut self, cov: &[Active], x: i32) -> bool {
+        for w in cov.windows(2).skip(1) {
+            let (a, b) = (&w[0].cover, &w[1].cover);
+            if !self.dominates(a, b, x, a.r.min(b.r) - 1) {
+                return false;
+            }
+        }
+        true
     }
 
     /// The covering trapezoid nearest at pixel `i`.
@@ -1383,6 +1737,17 @@ mod tests {
     }
 
     fn run_scene(polys: &[[Vertex3; 3]], mode: Resolve) -> VisibleStats {
+        // Every row through `sweep_many` as well, to the same pixels.
+        run_scene_many_from(polys, mode, (0, 0));
+        run_scene_many_from(polys, mode, (0, CHAIN_FROM));
+        run_scene_many_from(polys, mode, (MANY, CHAIN_FROM))
+    }
+
+    fn run_scene_many_from(
+        polys: &[[Vertex3; 3]],
+        mode: Resolve,
+        many: (usize, usize),
+    ) -> VisibleStats {
         let mut traps = [Trapezoid::EMPTY; 256];
         let mut faces = [Face::EMPTY; 64];
         let mut segs = [Segment::EMPTY; 1];
@@ -1412,10 +1777,13 @@ mod tests {
         let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
         let mut active = [Active::EMPTY; 64];
         let mut runs = [Run::EMPTY; W as usize];
-        let mut ws = Workspace::new(&mut active, &mut runs);
-        let most = ws.check(&store).unwrap();
-        let stats = ws
-            .resolve(&store, mode, |y, runs| {
+        let most = Workspace::new(&mut active, &mut runs)
+            .check(&store)
+            .unwrap();
+        let sink = ToSink {
+            out: RunWriter::new(&mut runs),
+            y: 0,
+            sink: |y, runs: &[Run]| {
                 let mut x = 0;
                 for r in runs {
                     let got = if r.is_background() {
@@ -1434,8 +1802,9 @@ mod tests {
                 }
                 assert_eq!(x, W as i32);
                 Ok::<(), ()>(())
-            })
-            .unwrap();
+            },
+        };
+        let (stats, _) = resolve_many_from(&mut active, &store, mode, many, sink).unwrap();
         assert_eq!(stats.max_active, most);
         stats
     }
@@ -1465,6 +1834,35 @@ mod tests {
             }
         }
         assert!(intersecting > 100, "the scenes must exercise subdivision");
+    }
+
+    #[test]
+    fn staggered_faces_in_every_order_are_exact() {
+        // Right triangles, each a little right of and below the last:
+        // nearer, farther and in an order of their own, parallel to the
+        // screen or tilted, so that dozens overlap a row and cover a pixel.
+        let mut rng = Rng(0x57a6_6e7d);
+        for order in 0..4 {
+            for tilt in [0, 3, -5] {
+                let polys: [[Vertex3; 3]; 60] = core::array::from_fn(|k| {
+                    let o = k as i32 * 7 - 40;
+                    let z = match order {
+                        0 => 1000 - 10 * k as i32,
+                        1 => -1000 + 10 * k as i32,
+                        2 => rng.below(4000) - 2000,
+                        _ => (k as i32 % 7) * 50,
+                    };
+                    [
+                        v(o, o, z),
+                        v(o, o + 500, z + tilt * 500),
+                        v(o + 500, o, z - tilt * 300),
+                    ]
+                });
+                for mode in [Resolve::Bisect, Resolve::Crossing] {
+                    run_scene(&polys, mode);
+                }
+            }
+        }
     }
 
     #[test]
