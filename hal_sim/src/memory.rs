@@ -25,15 +25,7 @@ use std::convert::Infallible;
 pub struct ListMemory {
     need: Needs,
     edges: Vec<Edge>,
-    trapezoids: Vec<Trapezoid>,
-    faces: Vec<Face>,
-    segments: Vec<Segment>,
-    rows: Vec<u16>,
-    slots: Vec<EdgeSlot>,
-    active: Vec<Active>,
-    runs: Vec<Run>,
-    labels: Vec<Label>,
-    text: Vec<u8>,
+    three: SceneHeap,
     table_polygons: Vec<TablePolygon>,
     table_index: Vec<u32>,
     table_edges: Vec<Edge>,
@@ -47,20 +39,22 @@ impl ListMemory {
     pub fn for_list(
         list: &DisplayList<'_>,
     ) -> Result<ListMemory, RenderError<core::convert::Infallible>> {
-        let mut slots = vec![EdgeSlot::EMPTY; edges_3d(list)];
-        let need = needs(list, &mut slots)?;
+        let slots = edges_3d(list);
+        let need = needs(list, &mut vec![EdgeSlot::EMPTY; slots])?;
         Ok(ListMemory {
             need,
             edges: vec![Edge::EMPTY; need.edges],
-            trapezoids: vec![Trapezoid::EMPTY; need.trapezoids],
-            faces: vec![Face::EMPTY; need.faces],
-            segments: vec![Segment::EMPTY; need.segments],
-            rows: vec![0; need.rows],
-            slots,
-            active: vec![Active::EMPTY; need.active],
-            runs: vec![Run::EMPTY; need.runs],
-            labels: vec![Label::EMPTY; need.labels],
-            text: vec![0; need.text],
+            three: SceneHeap::new(Capacities {
+                trapezoids: need.trapezoids,
+                faces: need.faces,
+                segments: need.segments,
+                rows: need.rows,
+                edges: slots,
+                active: need.active,
+                runs: need.runs,
+                labels: need.labels,
+                text: need.text,
+            }),
             table_polygons: Vec::new(),
             table_index: Vec::new(),
             table_edges: Vec::new(),
@@ -119,19 +113,7 @@ impl ListMemory {
     /// The rasteriser's edges, the 3D layer's memory and the edge
     /// table's.
     fn parts(&mut self) -> (&mut [Edge], SceneMemory<'_>, TableMemory<'_>) {
-        let three = SceneMemory {
-            store: StoreMemory {
-                trapezoids: &mut self.trapezoids,
-                faces: &mut self.faces,
-                segments: &mut self.segments,
-                rows: &mut self.rows,
-                edges: &mut self.slots,
-            },
-            active: &mut self.active,
-            runs: &mut self.runs,
-            labels: &mut self.labels,
-            text: &mut self.text,
-        };
+        let three = self.three.memory();
         let table = TableMemory {
             polygons: &mut self.table_polygons,
             index: &mut self.table_index,
