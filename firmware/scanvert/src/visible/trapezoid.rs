@@ -132,10 +132,18 @@
 //! above), in \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it.
 //! Tiny slopes round to zero within the same error bound.
 //!
-//! Each set-up costs three divisions per polygon (in `i64` when the numbers
-//! fit, which is the case for ordinary polygons, else in `i128`) and two
-//! per trapezoid each time it enters the active list (its edges, rebuilt
-//! from their ends: see [`Trapezoid`]); nothing is divided per row.
+//! Each set-up costs three divisions per polygon and two per trapezoid
+//! each time it enters the active list (its edges, rebuilt from their
+//! ends: see [`Trapezoid`]); nothing is divided per row. The polygon's
+//! three are in `i64` arithmetic whenever `|a|`, `|b|`, `c < 2³¹` (for a
+//! simple polygon they are at most twice the areas of its projections,
+//! so any up to 512 px across, whatever its depths: 2·2¹³·2¹⁶): one
+//! 32-bit division when the numbers fit, else a long division of two
+//! 16-bit digits (two 32-bit divisions) while the quotient fits in 32
+//! bits, and the library's 64-bit division (a loop of about 150
+//! instructions on a 32-bit core) only past that; `i128` only for larger
+//! normals. The plane keeps its first vertex, not `d`: every exact use
+//! works relative to it, so making a plane multiplies nothing in `i128`.
 
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
 use crate::raster::clip::ClipRect;
@@ -162,8 +170,9 @@ pub struct Plane {
     a: i64,
     b: i64,
     c: i64,
-    d: i128,
-    /// The point it was made through (the first vertex), in units.
+    /// The point it was made through (the first vertex), in units. The
+    /// right-hand side `d = a·x₀ + b·y₀ + c·z₀` is not kept: every use
+    /// works relative to this point ([`Plane::offset`] computes `d`).
     origin: (i16, i16, i16),
 }
 
@@ -202,15 +211,12 @@ impl PlaneSums {
             return None;
         }
         let f = self.first;
-        let (x, y, z) = (f.x.units(), f.y.units(), f.z.units());
         let sign = if self.c < 0 { -1 } else { 1 };
         let (a, b, c) = (sign * self.a, sign * self.b, sign * self.c);
-        let d = a as i128 * x as i128 + b as i128 * y as i128 + c as i128 * z as i128;
         Some(Plane {
             a,
             b,
             c,
-            d,
             origin: (f.x.to_bits(), f.y.to_bits(), f.z.to_bits()),
         })
     }
@@ -222,7 +228,6 @@ impl Plane {
         a: 0,
         b: 0,
         c: 1,
-        d: 0,
         origin: (0, 0, 0),
     };
 
@@ -248,20 +253,42 @@ impl Plane {
     /// `true` when `v` lies on the plane exactly: always for the vertices
     /// of a triangle, for all vertices of a planar polygon.
     pub fn contains(&self, v: Vertex3) -> bool {
+        let (x0, y0, z0) = self.origin_units();
         let (x, y, z) = (
-            v.x.units() as i128,
-            v.y.units() as i128,
-            v.z.units() as i128,
+            (v.x.units() - x0) as i128,
+            (v.y.units() - y0) as i128,
+            (v.z.units() - z0) as i128,
         );
-        // Each product below 2⁶³, the sum below 2⁶⁵.
-        self.a as i128 * x + self.b as i128 * y + self.c as i128 * z == self.d
+        // Each product below 2⁶⁵, the sum below 2⁶⁷.
+        self.a as i128 * x + self.b as i128 * y + self.c as i128 * z == 0
+    }
+
+    /// The first vertex, in units.
+    #[inline]
+    fn origin_units(&self) -> (i32, i32, i32) {
+        (
+            self.origin.0 as i32,
+            self.origin.1 as i32,
+            self.origin.2 as i32,
+        )
+    }
+
+    /// `d − a·x − b·y = a·(x₀ − x) + b·(y₀ − y) + c·z₀` for `x`, `y` in
+    /// units: `c` times the depth at `(x, y)`. Below 2⁶⁷ for `|x|, |y| <
+    /// 2¹⁷` (each of `a`, `b`, `c` is below 2⁴⁸: see [`PlaneSums::edge`]).
+    #[inline]
+    fn rhs_at(&self, x: i128, y: i128) -> i128 {
+        let (x0, y0, z0) = self.origin_units();
+        self.a as i128 * (x0 as i128 - x)
+            + self.b as i128 * (y0 as i128 - y)
+            + self.c as i128 * z0 as i128
     }
 
     /// `true` when the plane's depth at the point `(x, y)` (units, each
     /// within `i16`) lies in `lo..=hi` (units, each within `i16`).
     pub fn depth_within(&self, x: i32, y: i32, (lo, hi): (i32, i32)) -> bool {
-        // e < 2⁶⁷ (the table above), lo·c and hi·c below 2⁶³.
-        let e = self.d - self.a as i128 * x as i128 - self.b as i128 * y as i128;
+        // e < 2⁶⁷ (see `rhs_at`), lo·c and hi·c below 2⁶³.
+        let e = self.rhs_at(x as i128, y as i128);
         let c = self.c as i128;
         e >= lo as i128 * c && e <= hi as i128 * c
     }
@@ -272,17 +299,10 @@ impl Plane {
     fn flattened(&self, k: i64) -> Plane {
         // |a|·k < 2⁶⁴ in `i128`; the quotient is below |a|.
         let scale = |v: i64| (v as i128 * k as i128 / (1 << 16)) as i64;
-        let (a, b, c) = (scale(self.a), scale(self.b), self.c);
-        let (x, y, z) = (
-            self.origin.0 as i128,
-            self.origin.1 as i128,
-            self.origin.2 as i128,
-        );
         Plane {
-            a,
-            b,
-            c,
-            d: a as i128 * x + b as i128 * y + c as i128 * z,
+            a: scale(self.a),
+            b: scale(self.b),
+            c: self.c,
             origin: self.origin,
         }
     }
@@ -292,16 +312,17 @@ impl Plane {
         (self.a, self.b, self.c)
     }
 
-    /// The right-hand side `d`.
+    /// The right-hand side `d` (computed: the plane keeps its first
+    /// vertex instead).
     pub fn offset(&self) -> i128 {
-        self.d
+        self.rhs_at(0, 0)
     }
 
     /// The depth at the centre of pixel `(i, j)` as the fraction
     /// `num / den` of Q12.4 units, `den = c > 0`.
     pub fn depth_at(&self, i: i32, j: i32) -> (i128, i64) {
         let (px, py) = (16 * i as i128 + 8, 16 * j as i128 + 8);
-        (self.d - self.a as i128 * px - self.b as i128 * py, self.c)
+        (self.rhs_at(px, py), self.c)
     }
 
     /// Compares the exact depths of two planes at the centre of pixel
@@ -315,28 +336,50 @@ impl Plane {
 
     /// The fixed-point depth coefficients (see the [module](self) docs).
     pub fn depth(&self) -> Depth {
-        let (a, b, c) = (self.a as i128, self.b as i128, self.c);
-        let s = 1i128 << Z_FRAC_BITS;
-        // Numerators below 2⁸², so the doubling in `round_div` cannot
-        // overflow; wrapping to `i32` keeps the value modulo 2³².
-        let zx = round_div(-16 * s * a, c) as i32;
-        let zy = round_div(-16 * s * b, c) as i32;
-        // The depth is rounded at the anchor, the pixel of the first vertex
-        // (clamped to the pixel range), where the numerator is small:
-        // Z(i₀, j₀) = 2¹⁴·z₀ + 2¹⁴·(a·(x₀ − px) + b·(y₀ − py)) / c, below
-        // 2⁵² for an ordinary polygon inside the frame, so `i64` does.
-        let (x0, y0, z0) = (
-            self.origin.0 as i32,
-            self.origin.1 as i32,
-            self.origin.2 as i32,
-        );
+        let (x0, y0, z0) = self.origin_units();
+        // The anchor: the pixel of the first vertex, clamped to the pixel
+        // range. A vertex is within `i16`, so `i₀ ≤ 2047` and the clamp
+        // only raises a negative pixel to 0: |dx|, |dy| ≤ 2¹⁵ + 8.
         let (i0, j0) = ((x0 >> 4).clamp(0, 4095), (y0 >> 4).clamp(0, 4095));
-        let (dx, dy) = ((x0 - 16 * i0 - 8) as i128, (y0 - 16 * j0 - 8) as i128);
-        let at = (z0 as i128) * s + round_div(s * (a * dx + b * dy), c);
-        let z = (at as i32)
+        let (dx, dy) = (x0 - 16 * i0 - 8, y0 - 16 * j0 - 8);
+        let (zx, zy, at) = match (
+            i32::try_from(self.a),
+            i32::try_from(self.b),
+            u32::try_from(self.c),
+        ) {
+            // The usual case, in `i64`: |a|, |b| < 2³¹ and 0 < c < 2³²,
+            // so the slopes' numerators 2¹⁸·|a| are below 2⁴⁹, and the
+            // anchor's 2¹⁴·|a·dx + b·dy| at most 2¹⁴·2·2³¹·(2¹⁵ + 8) =
+            // 2⁶¹ + 2⁵⁰: within what `round_div64` takes.
+            (Ok(a), Ok(b), Ok(c)) if c < 1 << 31 => {
+                let (a, b) = (a as i64, b as i64);
+                let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c);
+                let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c);
+                let n = (a * dx as i64 + b * dy as i64) << Z_FRAC_BITS;
+                let at = ((z0 as i64) << Z_FRAC_BITS) + round_div64(n, c);
+                (zx as i32, zy as i32, at as i32)
+            }
+            _ => self.depth_wide(dx, dy),
+        };
+        // Wrapping to `i32` keeps every value modulo 2³².
+        let z = at
             .wrapping_sub(zx.wrapping_mul(i0))
             .wrapping_sub(zy.wrapping_mul(j0));
         Depth { z, zx, zy }
+    }
+
+    /// [`Plane::depth`]'s slopes and anchor depth (wrapped) in `i128`, for
+    /// any plane: numerators below 2⁸², so the doubling in `round_div`
+    /// cannot overflow.
+    fn depth_wide(&self, dx: i32, dy: i32) -> (i32, i32, i32) {
+        let (a, b, c) = (self.a as i128, self.b as i128, self.c);
+        let s = 1i128 << Z_FRAC_BITS;
+        let zx = round_div(-16 * s * a, c) as i32;
+        let zy = round_div(-16 * s * b, c) as i32;
+        // Z(i₀, j₀) = 2¹⁴·z₀ + 2¹⁴·(a·(x₀ − px) + b·(y₀ − py)) / c.
+        let z0 = self.origin.2 as i128;
+        let at = z0 * s + round_div(s * (a * dx as i128 + b * dy as i128), c);
+        (zx, zy, at as i32)
     }
 }
 
@@ -354,6 +397,80 @@ fn round_div(n: i128, c: i64) -> i128 {
         (Ok(n2), Ok(c2)) => n2.div_euclid(c2) as i128,
         _ => n2.div_euclid(c2),
     }
+}
+
+/// `n / c` rounded to the nearest integer (halves up), for
+/// `|n| ≤ 2⁶² − 2³¹` and `0 < c < 2³¹`: [`round_div`] in `i64`,
+/// `⌊(2n + c) / 2c⌋`, where `|2n + c| < 2⁶³` and `2c < 2³²`.
+#[inline]
+fn round_div64(n: i64, c: u32) -> i64 {
+    floor_div(2 * n + c as i64, 2 * c)
+}
+
+/// `⌊n / d⌋` for `d > 0` and `|n| < 2⁶³`: one 32-bit division when both
+/// fit in `i32`; else, when the quotient's magnitude fits in `u32`, two
+/// steps of 16-bit digits ([`div_64_32`]) instead of the library's
+/// 64-bit division (a loop of about 150 instructions on a 32-bit core).
+#[inline]
+fn floor_div(n: i64, d: u32) -> i64 {
+    if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
+        return n.div_euclid(d) as i64;
+    }
+    // ⌊n / d⌋ = −⌈−n / d⌉ = −⌊(−n + d − 1) / d⌋ for n < 0; |n| + d − 1
+    // is below 2⁶³ + 2³², within `u64`.
+    let m = if n < 0 {
+        n.unsigned_abs() + (d as u64 - 1)
+    } else {
+        n as u64
+    };
+    let q = if ((m >> 32) as u32) < d {
+        div_64_32(m, d) as u64
+    } else {
+        m / d as u64
+    };
+    if n < 0 {
+        -(q as i64)
+    } else {
+        q as i64
+    }
+}
+
+/// `u / v` for `v > 0` and `u < v·2³²` (so the quotient fits in `u32`),
+/// exactly, by long division in two 16-bit digits, each estimated with
+/// one 32-bit division and corrected at most twice (Knuth's algorithm D
+/// for a two-digit divisor, normalised so that its top bit is set).
+fn div_64_32(u: u64, v: u32) -> u32 {
+    debug_assert!(v > 0 && ((u >> 32) as u32) < v);
+    const B: u32 = 1 << 16;
+    let s = v.leading_zeros();
+    let v = v << s;
+    let (vn1, vn0) = (v >> 16, v & 0xffff);
+    // The dividend shifted left by s: u < v·2³² keeps it below
+    // (v·2ˢ)·2³² ≤ 2⁶⁴, so nothing is lost, and its top 32 bits `un32`
+    // are below the normalised v.
+    let un = u << s;
+    let (un32, un10) = ((un >> 32) as u32, un as u32);
+    let (un1, un0) = (un10 >> 16, un10 & 0xffff);
+    // A digit q̂ = ⌊top / vn1⌋ with remainder r̂, lowered while it is too
+    // big; r̂ < B keeps r̂·B + digit within `u32`, and q̂ < B (checked
+    // first) keeps q̂·vn0 within it.
+    let digit = |top: u32, next: u32| -> u32 {
+        let mut q = top / vn1;
+        let mut r = top - q * vn1;
+        while q >= B || q * vn0 > (r << 16 | next) {
+            q -= 1;
+            r += vn1;
+            if r >= B {
+                break;
+            }
+        }
+        q
+    };
+    let q1 = digit(un32, un1);
+    // The remainder after the first digit is below v: exact modulo 2³².
+    let un21 = (un32 << 16 | un1).wrapping_sub(q1.wrapping_mul(v));
+    let q0 = digit(un21, un0);
+    q1 << 16 | q0
 }
 
 /// The fixed-point depth of a plane: `Z̃(i, j) = z + i·zx + j·zy`
@@ -791,15 +908,17 @@ impl<'s> Polygon<'s> {
                     && p.depth_within(e.x1 as i32, e.y1 as i32, z)
             })
         };
-        // The usual case, in `i64`: with |a|, |b|, |c| < 2³¹, d is below
-        // 2⁴⁸, e = d − a·x − b·y below 2⁴⁹, z·c below 2⁴⁶, and each
-        // product is one 32 × 32 → 64-bit multiply.
+        // The usual case, in `i64`, relative to the first vertex
+        // (x₀, y₀, z₀): with |a|, |b|, |c| < 2³¹ and every coordinate
+        // difference below 2¹⁶, e = a·(x₀ − x) + b·(y₀ − y) is below 2⁴⁸,
+        // (z − z₀)·c below 2⁴⁷, and each product is one 32 × 32 → 64-bit
+        // multiply.
         let (a, b, c) = plane.normal();
         if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
-            let d = plane.offset() as i64;
-            let (lo, hi) = (z.0 as i64 * c, z.1 as i64 * c);
+            let (x0, y0, z0) = plane.origin_units();
+            let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
             let within = |x: i16, y: i16| {
-                let e = d - a as i64 * x as i64 - b as i64 * y as i64;
+                let e = a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64;
                 lo <= e && e <= hi
             };
             if slots
@@ -1200,6 +1319,132 @@ mod tests {
                     let want = covers(poly, i, j) as u8;
                     assert_eq!(hit[(j * W + i) as usize], want, "case {case} ({i}, {j})");
                 }
+            }
+        }
+    }
+
+    /// The 16-bit-digit division equals the library's, at the edges of
+    /// its range (quotients just below 2³², divisors of every length,
+    /// the corrections of each digit) and at random.
+    #[test]
+    fn long_division_is_exact() {
+        let mut rng = Rng(0x5151_7a7a);
+        let mut check = |u: u64, v: u32| {
+            if v > 0 && ((u >> 32) as u32) < v {
+                assert_eq!(div_64_32(u, v) as u64, u / v as u64, "{u} / {v}");
+            }
+        };
+        for sh in 0..32 {
+            for v in [
+                1u32 << sh,
+                (1 << sh) + 1,
+                (1u32 << sh).wrapping_sub(1),
+                u32::MAX >> sh,
+            ] {
+                for u in [
+                    0,
+                    1,
+                    v as u64,
+                    ((v as u64) << 32).wrapping_sub(1),
+                    (v as u64) << 31,
+                    u64::MAX,
+                ] {
+                    check(u, v);
+                    check(u.wrapping_sub((v as u64).wrapping_sub(1)), v);
+                }
+            }
+        }
+        for _ in 0..200_000 {
+            let v = (rng.next_u64() >> 32) as u32 >> rng.below(32);
+            let u = rng.next_u64() >> rng.below(64);
+            check(u, v);
+            // Quotients near 2³² and divisors with a second digit that
+            // needs correcting.
+            check(
+                ((v as u64) << 32).wrapping_sub(1 + rng.below(1 << 20) as u64),
+                v,
+            );
+            check(
+                ((v as u64) << 32).wrapping_sub((v as u64) * (1 + rng.below(70_000) as u64)),
+                v,
+            );
+            check(u, v | 0xffff);
+            check(u, v & 0xffff_0000);
+        }
+    }
+
+    /// `floor_div` is `div_euclid` by a positive divisor; `round_div64`
+    /// is `round_div` wherever it is used (|n| < 2⁶², 0 < c < 2³¹).
+    #[test]
+    fn narrow_divisions_equal_the_wide_ones() {
+        let mut rng = Rng(0x0ddb_a11e);
+        for _ in 0..100_000 {
+            let c = ((rng.next_u64() >> 32) as u32 >> (1 + rng.below(31))).max(1);
+            let big = rng.next_u64() >> (3 + rng.below(61));
+            for n in [big as i64, -(big as i64), 0, 1, -1, c as i64, -(c as i64)] {
+                assert_eq!(
+                    round_div64(n, c) as i128,
+                    round_div(n as i128, c as i64),
+                    "{n} / {c}"
+                );
+                let d = 2 * c;
+                let m = 2 * n + c as i64;
+                assert_eq!(floor_div(m, d), m.div_euclid(d as i64), "{m} / {d}");
+            }
+        }
+        // The edges: |n| at 2⁶² − 2³¹, c at both ends.
+        for c in [1u32, 2, 3, (1 << 31) - 1, 1 << 30, 12345] {
+            for n in [
+                (1i64 << 62) - (1 << 31),
+                -(1i64 << 62) + (1 << 31),
+                (1 << 32) - 1,
+                -(1 << 32),
+            ] {
+                assert_eq!(round_div64(n, c) as i128, round_div(n as i128, c as i64));
+            }
+        }
+    }
+
+    /// The `i64` path of [`Plane::depth`] gives the `i128` path's values
+    /// (modulo 2³²), over the whole Q12.4 range and for normals at the
+    /// edges of the `i64` path (|a|, |b|, c just below 2³¹).
+    #[test]
+    fn narrow_depth_equals_the_wide_one() {
+        let mut rng = Rng(0x600d_f00d);
+        let wide = |p: &Plane| {
+            let (x0, y0, _) = p.origin_units();
+            let (i0, j0) = ((x0 >> 4).clamp(0, 4095), (y0 >> 4).clamp(0, 4095));
+            let (zx, zy, at) = p.depth_wide(x0 - 16 * i0 - 8, y0 - 16 * j0 - 8);
+            let z = at
+                .wrapping_sub(zx.wrapping_mul(i0))
+                .wrapping_sub(zy.wrapping_mul(j0));
+            Depth { z, zx, zy }
+        };
+        let m = (1i64 << 31) - 1;
+        let ends = [-m, -m + 1, -1, 0, 1, m - 1, m, 1 << 20, -(1 << 20), 3];
+        let origins = [i16::MIN, -8, -1, 0, 7, 8, 4095, i16::MAX];
+        for &a in &ends {
+            for &b in &ends {
+                for c in [1, 2, 3, m - 1, m, 1 << 16, m + 1, 1 << 40] {
+                    let origin = (
+                        origins[rng.below(8) as usize],
+                        origins[rng.below(8) as usize],
+                        origins[rng.below(8) as usize],
+                    );
+                    let p = Plane { a, b, c, origin };
+                    assert_eq!(p.depth(), wide(&p), "{p:?}");
+                }
+            }
+        }
+        for _ in 0..20_000 {
+            let mut r = |m: u32| rng.below(2 * m) - m as i32;
+            let tri = [
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+            ];
+            if let Some(p) = Plane::of(tri) {
+                assert_eq!(p.depth(), wide(&p), "{tri:?}");
             }
         }
     }
