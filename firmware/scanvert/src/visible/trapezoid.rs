@@ -26,6 +26,15 @@
 //!    that is the same as in the band before continues its trapezoid;
 //!    other pairs close it and open new ones.
 //!
+//! A polygon whose edges set up are two chains, one down and one up, in
+//! the order loaded (every convex polygon) has exactly two active edges
+//! on every row. [`Polygon::cut`] walks its chains instead: the same
+//! bands, the same two crossings compared a band, the same trapezoids in
+//! the same order, with no sort and no slot moved. It checks the chains'
+//! rows before it emits anything, and hands over to the steps above
+//! where a band needs them (the two edges cross, or coincide), which
+//! then skip the trapezoids it has made (their first ones).
+//!
 //! The even-odd pairs of the exact crossings on a row are the pixel rule's
 //! spans, and sorting by the exact crossings keeps `c_left ≤ c_right` on
 //! every row of a trapezoid, so the trapezoids cover the rule's pixels and
@@ -994,34 +1003,36 @@ impl<'s> Polygon<'s> {
     /// to `emit`, top to bottom in the order they close. Returns how many were emitted. Pairs that can never
     /// write a pixel in the clip columns (both edges the same, or wholly
     /// left or right of the columns) are not emitted.
-    pub fn cut<E>(self, mut emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
+    pub fn cut<E>(self, emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
+        self.cut_with(true, emit)
+    }
+
+    /// [`Polygon::cut`], trying the two chains' walk first when `chains`
+    /// (the tests compare both ways).
+    fn cut_with<E>(
+        self,
+        chains: bool,
+        emit: impl FnMut(Side, Side) -> Result<(), E>,
+    ) -> Result<u32, E> {
         let n = self.edges;
-        let cols = self.cols;
         let slots = &mut self.slots[..n];
-        let mut count = 0u32;
         if n < 2 {
             return Ok(0);
         }
-        let mut close = |l: &Ends, op: &Open, end: i32| -> Result<(), E> {
-            let r = &op.right;
-            let start = op.start as i32;
-            if *l == *r || start >= end {
-                return Ok(());
-            }
-            let rmax = r.x0.max(r.x1) as i32;
-            let lmin = l.x0.min(l.x1) as i32;
-            if ceil_px(rmax - HALF) <= cols.0 || ceil_px(lmin - HALF) >= cols.1 {
-                return Ok(());
-            }
-            // Both edges cross every row of `start..end` (they were active
-            // in its bands), inside the clip rows (so within 0..=4096):
-            // the steppers `Edge::new` makes over them are never `None`.
-            let (top, end) = (start as u16, end as u16);
-            let side = |ends: Ends| Side { ends, top, end };
-            emit(side(*l), side(*r))?;
-            count += 1;
-            Ok(())
+        let mut c = Closer {
+            emit,
+            cols: self.cols,
+            count: 0,
+            skip: 0,
         };
+        if chains {
+            if cut_chains(slots, &mut c)? {
+                return Ok(c.count);
+            }
+            // The walk stopped where the sweep below is needed: what it
+            // emitted is what the sweep emits first, in the same order.
+            c.skip = c.count;
+        }
         slots.sort_unstable_by_key(|e| e.top);
         // As in `scan`: slots[..active] are active, slots[active..next]
         // finished, slots[next..] wait for their first row.
@@ -1069,7 +1080,7 @@ impl<'s> Polygon<'s> {
                 if let Some(op) = live[i].open {
                     let keep = i % 2 == 0 && live.get(i + 1).is_some_and(|r| r.id == op.right_id);
                     if !keep {
-                        close(&live[i].ends, &op, y)?;
+                        c.close(&live[i].ends, &op.right, op.start as i32, y)?;
                         live[i].open = None;
                     }
                 }
@@ -1089,7 +1100,7 @@ impl<'s> Polygon<'s> {
             while i < active {
                 if slots[i].end <= y {
                     if let Some(op) = slots[i].open.take() {
-                        close(&slots[i].ends, &op, y)?;
+                        c.close(&slots[i].ends, &op.right, op.start as i32, y)?;
                     }
                     active -= 1;
                     swap(slots, i, active);
@@ -1098,8 +1109,156 @@ impl<'s> Polygon<'s> {
                 }
             }
         }
-        Ok(count)
+        Ok(c.count)
     }
+}
+
+/// Where [`Polygon::cut`] hands its trapezoids: `emit`, less those that
+/// can write no pixel in the columns `cols`, and less the first `skip`
+/// (made already by [`cut_chains`] before it gave up).
+struct Closer<F> {
+    emit: F,
+    cols: (i32, i32),
+    count: u32,
+    skip: u32,
+}
+
+impl<F> Closer<F> {
+    /// The trapezoid between `l` and `r` over the rows `start..end`.
+    #[inline]
+    fn close<E>(&mut self, l: &Ends, r: &Ends, start: i32, end: i32) -> Result<(), E>
+    where
+        F: FnMut(Side, Side) -> Result<(), E>,
+    {
+        if *l == *r || start >= end {
+            return Ok(());
+        }
+        let rmax = r.x0.max(r.x1) as i32;
+        let lmin = l.x0.min(l.x1) as i32;
+        if ceil_px(rmax - HALF) <= self.cols.0 || ceil_px(lmin - HALF) >= self.cols.1 {
+            return Ok(());
+        }
+        if self.skip > 0 {
+            self.skip -= 1;
+            return Ok(());
+        }
+        // Both edges cross every row of `start..end` (they were active
+        // in its bands), inside the clip rows (so within 0..=4096): the
+        // steppers `Edge::new` makes over them are never `None`.
+        let (top, end) = (start as u16, end as u16);
+        let side = |ends: Ends| Side { ends, top, end };
+        (self.emit)(side(*l), side(*r))?;
+        self.count += 1;
+        Ok(())
+    }
+}
+
+/// The cut of a polygon whose edges set up (in polygon order, as loaded)
+/// are two chains, one down and one up, from the two edges that start on
+/// the first row to the two that end on the last: every convex polygon,
+/// and every other whose rows cross its boundary twice. Then exactly two
+/// edges are active on every row, one of each chain, and the sweep's bands
+/// are the runs of rows between the chains' vertices: this walk makes the
+/// sweep's trapezoids, in the sweep's order, without sorting or moving a
+/// slot (two crossings compared a band, the order on the band's first row,
+/// ties broken on its last, as [`sort_at`] does).
+///
+/// `Ok(false)` as soon as the polygon is not such (more than two edges
+/// start on the first row, or a chain breaks), or a band is not one the
+/// walk can decide as the sweep does (the two edges swap inside it, or
+/// coincide on its first and last rows): the trapezoids emitted until
+/// then are the sweep's first ones, which [`Closer::skip`] then passes
+/// over.
+fn cut_chains<F, E>(slots: &[EdgeSlot], c: &mut Closer<F>) -> Result<bool, E>
+where
+    F: FnMut(Side, Side) -> Result<(), E>,
+{
+    let n = slots.len();
+    let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+    // The first row, and the two edges that start on it, next to each
+    // other: `u` heads the chain up (walked backwards), `d` the chain down.
+    let (mut y, mut k, mut ties) = (i32::MAX, 0, 0);
+    for (i, e) in slots.iter().enumerate() {
+        if e.top < y {
+            (y, k, ties) = (e.top, i, 1);
+        } else if e.top == y {
+            ties += 1;
+        }
+    }
+    if ties != 2 {
+        return Ok(false);
+    }
+    let (mut u, mut d) = if slots[next(k)].top == y {
+        (k, next(k))
+    } else if slots[prev(k)].top == y {
+        (prev(k), k)
+    } else {
+        return Ok(false);
+    };
+    // The chains' next vertex: `None` at the last row, where they meet.
+    // Each edge after the first of its chain starts on the row where the
+    // one before it ends, and the chains use every edge.
+    let step = |d: usize, u: usize, y: i32| -> Result<Option<(usize, usize)>, ()> {
+        let (d_ends, u_ends) = (slots[d].end == y, slots[u].end == y);
+        if d_ends && u_ends && next(d) == u {
+            return Ok(None);
+        }
+        let d = if d_ends { next(d) } else { d };
+        let u = if u_ends { prev(u) } else { u };
+        if d == u || (d_ends && slots[d].top != y) || (u_ends && slots[u].top != y) {
+            return Err(());
+        }
+        Ok(Some((d, u)))
+    };
+    // The rows alone first: the walk below emits only for two chains.
+    let (mut d2, mut u2) = (d, u);
+    loop {
+        let y2 = slots[d2].end.min(slots[u2].end);
+        match step(d2, u2, y2) {
+            Ok(Some((nd, nu))) => (d2, u2) = (nd, nu),
+            Ok(None) => break,
+            Err(()) => return Ok(false),
+        }
+    }
+    // The trapezoid being built: left slot, right slot, first row.
+    let mut open: Option<(usize, usize, i32)> = None;
+    loop {
+        let (ed, eu) = (&slots[d], &slots[u]);
+        let stop = ed.end.min(eu.end);
+        let last = stop - 1;
+        let d_left = match cmp_x(ed, eu, y) {
+            Ordering::Less if !cmp_x(ed, eu, last).is_gt() => true,
+            Ordering::Greater if !cmp_x(ed, eu, last).is_lt() => false,
+            Ordering::Equal => match cmp_x(ed, eu, last) {
+                Ordering::Less => true,
+                Ordering::Greater => false,
+                Ordering::Equal => return Ok(false),
+            },
+            // They swap inside the band: the sweep splits it.
+            _ => return Ok(false),
+        };
+        let (l, r) = if d_left { (d, u) } else { (u, d) };
+        match open {
+            Some((ol, or, _)) if ol == l && or == r => {}
+            _ => {
+                if let Some((ol, or, start)) = open {
+                    c.close(&slots[ol].ends, &slots[or].ends, start, y)?;
+                }
+                open = Some((l, r, y));
+            }
+        }
+        y = stop;
+        match step(d, u, y) {
+            Ok(Some((nd, nu))) => (d, u) = (nd, nu),
+            // The rows were walked above: only the end.
+            _ => break,
+        }
+    }
+    if let Some((ol, or, start)) = open {
+        c.close(&slots[ol].ends, &slots[or].ends, start, y)?;
+    }
+    Ok(true)
 }
 
 /// Swaps slots `a` and `b` as two distinct places (`slice::swap` allows
@@ -1323,13 +1482,135 @@ mod tests {
         }
     }
 
+    /// The two chains' walk hands over exactly the sweep's trapezoids, in
+    /// the sweep's order, for every polygon: convex ones (the walk's
+    /// case), concave and self-intersecting ones (where it gives up part
+    /// way, and the sweep skips what it made), clipped or not, with
+    /// coincident vertices and shared rows (coarse grids).
+    #[test]
+    fn the_chains_walk_makes_the_sweeps_trapezoids() {
+        let mut rng = Rng(0x3c3c_5a5a);
+        let mut slots = [EdgeSlot::EMPTY; 16];
+        let (mut walked, mut total, mut gave_up_late) = (0, 0, 0);
+        for case in 0..20_000 {
+            let n = 3 + rng.below(9) as usize;
+            let mut poly = [Vertex3::default(); 16];
+            let grid = [1, 4, 8, 16, 64][case % 5];
+            if case % 3 == 0 {
+                // Convex: points on an ellipse, in angle order.
+                let (cx, cy) = (
+                    rng.below(W as u32 * 16) as i64,
+                    rng.below(H as u32 * 16) as i64,
+                );
+                let (rx, ry) = (1 + rng.below(800) as i64, 1 + rng.below(800) as i64);
+                let mut t = [0i64; 16];
+                for a in t.iter_mut().take(n) {
+                    *a = rng.below(3600) as i64;
+                }
+                t[..n].sort_unstable();
+                for (v, &a) in poly.iter_mut().zip(&t[..n]) {
+                    // cos and sin of a tenth of a degree, roughly, in integers.
+                    let (c, s) = approx_cos_sin(a);
+                    let x = (cx + rx * c / 1024) as i32 / grid * grid;
+                    let y = (cy + ry * s / 1024) as i32 / grid * grid;
+                    *v = v3(x, y, 0);
+                }
+            } else {
+                for v in poly.iter_mut().take(n) {
+                    let x = rng.below(((W + 8) * 16 / grid) as u32) * grid - 64;
+                    let y = rng.below(((H + 8) * 16 / grid) as u32) * grid - 64;
+                    *v = v3(x, y, 0);
+                }
+            }
+            let poly = &poly[..n];
+            let clip = if case % 4 == 0 {
+                let (x0, y0) = (rng.below(W as u32) as i16, rng.below(H as u32) as i16);
+                ClipRect::from_window(
+                    ClipWindow {
+                        x0,
+                        y0,
+                        x1: x0 + rng.below(W as u32) as i16,
+                        y1: y0 + rng.below(H as u32) as i16,
+                    },
+                    W as u16,
+                    H as u16,
+                )
+            } else {
+                ClipRect::full(W as u16, H as u16)
+            };
+            let run = |chains: bool, slots: &mut [EdgeSlot]| {
+                let mut out = [(
+                    Side {
+                        ends: Ends::default(),
+                        top: 0,
+                        end: 0,
+                    },
+                    Side {
+                        ends: Ends::default(),
+                        top: 0,
+                        end: 0,
+                    },
+                ); 128];
+                let mut k = 0;
+                let p = Polygon::load(slots, poly.iter().copied(), &clip).unwrap();
+                let got = p
+                    .cut_with(chains, |l, r| {
+                        out[k] = (l, r);
+                        k += 1;
+                        Ok::<(), ()>(())
+                    })
+                    .unwrap();
+                assert_eq!(got as usize, k);
+                (out, k)
+            };
+            let (want, nw) = run(false, &mut slots);
+            let (got, ng) = run(true, &mut slots);
+            assert_eq!(&got[..ng], &want[..nw], "case {case}: {poly:?} {clip:?}");
+            // How often the walk finishes alone.
+            let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+            if p.edges >= 2 {
+                total += 1;
+                let mut c = Closer {
+                    emit: |_: Side, _: Side| Ok::<(), ()>(()),
+                    cols: p.cols,
+                    count: 0,
+                    skip: 0,
+                };
+                if cut_chains(&p.slots[..p.edges], &mut c).unwrap() {
+                    walked += 1;
+                } else if c.count > 0 {
+                    gave_up_late += 1;
+                }
+            }
+        }
+        // The convex third at least, and some of the others.
+        assert!(walked * 3 > total, "{walked} of {total}");
+        // And the walk gave up after emitting, so the sweep skipped some.
+        assert!(gave_up_late > 50, "{gave_up_late}");
+    }
+
+    /// `(1024·cos, 1024·sin)` of `a` tenths of a degree, near enough for
+    /// points in convex position (a table of 10° and a linear blend).
+    fn approx_cos_sin(a: i64) -> (i64, i64) {
+        const C: [i64; 37] = [
+            1024, 1008, 962, 887, 784, 658, 512, 350, 178, 0, -178, -350, -512, -658, -784, -887,
+            -962, -1008, -1024, -1008, -962, -887, -784, -658, -512, -350, -178, 0, 178, 350, 512,
+            658, 784, 887, 962, 1008, 1024,
+        ];
+        let (i, f) = ((a / 100) as usize, a % 100);
+        let c = (C[i] * (100 - f) + C[i + 1] * f) / 100;
+        let j = (i + 27) % 36;
+        let s = -(C[j] * (100 - f) + C[j + 1] * f) / 100;
+        (c, s)
+    }
+
     /// The 16-bit-digit division equals the library's, at the edges of
     /// its range (quotients just below 2³², divisors of every length,
     /// the corrections of each digit) and at random.
     #[test]
     fn long_division_is_exact() {
         let mut rng = Rng(0x5151_7a7a);
-        let mut check = |u: u64, v: u32| {
+        let check = |u: u64, v: u32| {
             if v > 0 && ((u >> 32) as u32) < v {
                 assert_eq!(div_64_32(u, v) as u64, u / v as u64, "{u} / {v}");
             }
