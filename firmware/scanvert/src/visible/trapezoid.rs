@@ -1227,16 +1227,8 @@ where
         let (ed, eu) = (&slots[d], &slots[u]);
         let stop = ed.end.min(eu.end);
         let last = stop - 1;
-        let d_left = match cmp_x(ed, eu, y) {
-            Ordering::Less if !cmp_x(ed, eu, last).is_gt() => true,
-            Ordering::Greater if !cmp_x(ed, eu, last).is_lt() => false,
-            Ordering::Equal => match cmp_x(ed, eu, last) {
-                Ordering::Less => true,
-                Ordering::Greater => false,
-                Ordering::Equal => return Ok(false),
-            },
-            // They swap inside the band: the sweep splits it.
-            _ => return Ok(false),
+        let Some(d_left) = band_order(ed, eu, y, last) else {
+            return Ok(false);
         };
         let (l, r) = if d_left { (d, u) } else { (u, d) };
         match open {
@@ -1259,6 +1251,47 @@ where
         c.close(&slots[ol].ends, &slots[or].ends, start, y)?;
     }
     Ok(true)
+}
+
+/// `Some(true)` when `a` is left of `b` on the band of rows `y..=last`
+/// (both cross every row of it) as the sweep orders them: by the exact
+/// crossings on row `y`, ties broken on row `last`; `Some(false)` when
+/// `b` is; `None` when they swap inside the band (the sweep splits it) or
+/// coincide on both rows.
+///
+/// Edges from one upper end `(x₀, y₀)` (a top vertex) differ on the row
+/// centre `yc` by `(yc − y₀)·S / (dy_a·dy_b)`, `S = dx_a·dy_b − dx_b·dy_a`,
+/// and `yc ≥ y₀` on every row they cross: the order is the sign of `S`,
+/// one product each, no crossing worked out. Edges to one lower end
+/// (a bottom vertex) likewise, with `yc < y₁`: the opposite sign.
+#[inline]
+fn band_order(a: &EdgeSlot, b: &EdgeSlot, y: i32, last: i32) -> Option<bool> {
+    let (ea, eb) = (&a.ends, &b.ends);
+    let top = ea.x0 == eb.x0 && ea.y0 == eb.y0;
+    if top || (ea.x1 == eb.x1 && ea.y1 == eb.y1) {
+        let d = |e: &Ends| (e.x1 as i64 - e.x0 as i64, e.y1 as i64 - e.y0 as i64);
+        let ((dxa, dya), (dxb, dyb)) = (d(ea), d(eb));
+        // Each product below 2³², S below 2³³.
+        let s = dxa * dyb - dxb * dya;
+        // On the last row yc > y₀ unless the band is one row through the
+        // shared top: then both crossings are the vertex on both rows.
+        let flat = top && last * ONE + HALF == ea.y0 as i32;
+        return match s.cmp(&0) {
+            Ordering::Equal => None,
+            _ if flat => None,
+            o => Some(o.is_lt() == top),
+        };
+    }
+    match cmp_x(a, b, y) {
+        Ordering::Less if !cmp_x(a, b, last).is_gt() => Some(true),
+        Ordering::Greater if !cmp_x(a, b, last).is_lt() => Some(false),
+        Ordering::Equal => match cmp_x(a, b, last) {
+            Ordering::Less => Some(true),
+            Ordering::Greater => Some(false),
+            Ordering::Equal => None,
+        },
+        _ => None,
+    }
 }
 
 /// Swaps slots `a` and `b` as two distinct places (`slice::swap` allows
@@ -1602,6 +1635,74 @@ mod tests {
         let j = (i + 27) % 36;
         let s = -(C[j] * (100 - f) + C[j + 1] * f) / 100;
         (c, s)
+    }
+
+    /// The shortcut for edges from one vertex orders every band as the
+    /// crossings do, over the whole coordinate range, bands of one row
+    /// through the vertex included.
+    #[test]
+    fn edges_from_one_vertex_are_ordered_as_their_crossings() {
+        let mut rng = Rng(0x7e57_0bad);
+        let slot = |x0: i32, y0: i32, x1: i32, y1: i32| EdgeSlot {
+            ends: Ends {
+                x0: x0 as i16,
+                y0: y0 as i16,
+                x1: x1 as i16,
+                y1: y1 as i16,
+            },
+            ..EdgeSlot::EMPTY
+        };
+        let reference = |a: &EdgeSlot, b: &EdgeSlot, y: i32, last: i32| match cmp_x(a, b, y) {
+            Ordering::Less if !cmp_x(a, b, last).is_gt() => Some(true),
+            Ordering::Greater if !cmp_x(a, b, last).is_lt() => Some(false),
+            Ordering::Equal => match cmp_x(a, b, last) {
+                Ordering::Less => Some(true),
+                Ordering::Greater => Some(false),
+                Ordering::Equal => None,
+            },
+            _ => None,
+        };
+        let mut shared = 0;
+        for case in 0..200_000 {
+            let span = [32768, 4096, 64][case % 3];
+            let mut r = |lo: i32| lo + rng.below((32767 - lo).min(span) as u32 + 1);
+            let (x, y) = (r(-32768), r(-32768));
+            let (xa, ya, xb, yb) = (r(-32768), r(y + 1), r(-32768), r(y + 1));
+            if ya > 32767 || yb > 32767 || ya <= y || yb <= y {
+                continue;
+            }
+            let (a, b) = if case % 2 == 0 {
+                (slot(x, y, xa, ya), slot(x, y, xb, yb))
+            } else {
+                // The lower end shared: (x, y) as the bottom vertex.
+                let (y, ya, yb) = (ya.max(yb), y, y - (yb - ya).abs().min(y + 32768));
+                if ya >= y || yb >= y {
+                    continue;
+                }
+                (slot(xa, ya, x, y), slot(xb, yb, x, y))
+            };
+            // Rows both cross (centres in [y0, y1)), a random band of them.
+            let rows = |e: &EdgeSlot| {
+                (
+                    ceil_px(e.ends.y0 as i32 - HALF),
+                    ceil_px(e.ends.y1 as i32 - HALF),
+                )
+            };
+            let ((ta, ea), (tb, eb)) = (rows(&a), rows(&b));
+            let (top, end) = (ta.max(tb), ea.min(eb));
+            if top >= end {
+                continue;
+            }
+            let first = top + rng.below((end - top) as u32);
+            let last = first + rng.below((end - first) as u32);
+            shared += 1;
+            assert_eq!(
+                band_order(&a, &b, first, last),
+                reference(&a, &b, first, last),
+                "{a:?} {b:?} {first}..={last}"
+            );
+        }
+        assert!(shared > 50_000, "{shared}");
     }
 
     /// The 16-bit-digit division equals the library's, at the edges of
