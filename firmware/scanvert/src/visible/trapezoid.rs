@@ -30,10 +30,11 @@
 //! the order loaded (every convex polygon) has exactly two active edges
 //! on every row. [`Polygon::cut`] walks its chains instead: the same
 //! bands, the same two crossings compared a band, the same trapezoids in
-//! the same order, with no sort and no slot moved. It checks the chains'
-//! rows before it emits anything, and hands over to the steps above
-//! where a band needs them (the two edges cross, or coincide), which
-//! then skip the trapezoids it has made (their first ones).
+//! the same order, with no sort and no slot moved. It runs only when the
+//! edges' rows add up to twice the polygon's (so exactly two edges are
+//! active on every row), and hands over to the steps above where a band
+//! needs them (the two edges cross, or coincide) or a chain breaks,
+//! which then skip the trapezoids it has made (their first ones).
 //!
 //! The even-odd pairs of the exact crossings on a row are the pixel rule's
 //! spans, and sorting by the exact crossings keeps `c_left ≤ c_right` on
@@ -844,6 +845,21 @@ pub struct Polygon<'s> {
     edges: usize,
     plane: Option<Plane>,
     cols: (i32, i32),
+    /// The rows of the edges set up, for [`cut_chains`].
+    rows: Rows,
+}
+
+/// What [`Polygon::load`] notes of the edges' rows as it sets them up:
+/// the first row and the first edge that starts on it, how many do, the
+/// last row (one past), and the rows of all edges added up (each below
+/// 4097, at most 65535 edges: below 2²⁸).
+#[derive(Clone, Copy, Debug)]
+struct Rows {
+    first: i32,
+    first_edge: usize,
+    starting: u32,
+    end: i32,
+    sum: u32,
 }
 
 impl<'s> Polygon<'s> {
@@ -872,6 +888,13 @@ impl<'s> Polygon<'s> {
             edges: 0,
             plane: None,
             cols,
+            rows: Rows {
+                first: i32::MAX,
+                first_edge: 0,
+                starting: 0,
+                end: i32::MIN,
+                sum: 0,
+            },
         };
         let Some(first) = it.next() else {
             return Ok(poly);
@@ -983,6 +1006,14 @@ impl<'s> Polygon<'s> {
             id: self.edges as u16,
             open: None,
         };
+        let r = &mut self.rows;
+        if top < r.first {
+            (r.first, r.first_edge, r.starting) = (top, self.edges, 1);
+        } else if top == r.first {
+            r.starting += 1;
+        }
+        r.end = r.end.max(end);
+        r.sum += (end - top) as u32;
         self.edges += 1;
         Ok(())
     }
@@ -1026,7 +1057,7 @@ impl<'s> Polygon<'s> {
             skip: 0,
         };
         if chains {
-            if cut_chains(slots, &mut c)? {
+            if cut_chains(slots, self.rows, &mut c)? {
                 return Ok(c.count);
             }
             // The walk stopped where the sweep below is needed: what it
@@ -1169,26 +1200,26 @@ impl<F> Closer<F> {
 /// coincide on its first and last rows): the trapezoids emitted until
 /// then are the sweep's first ones, which [`Closer::skip`] then passes
 /// over.
-fn cut_chains<F, E>(slots: &[EdgeSlot], c: &mut Closer<F>) -> Result<bool, E>
+fn cut_chains<F, E>(slots: &[EdgeSlot], rows: Rows, c: &mut Closer<F>) -> Result<bool, E>
 where
     F: FnMut(Side, Side) -> Result<(), E>,
 {
     let n = slots.len();
     let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
-    // The first row, and the two edges that start on it, next to each
-    // other: `u` heads the chain up (walked backwards), `d` the chain down.
-    let (mut y, mut k, mut ties) = (i32::MAX, 0, 0);
-    for (i, e) in slots.iter().enumerate() {
-        if e.top < y {
-            (y, k, ties) = (e.top, i, 1);
-        } else if e.top == y {
-            ties += 1;
-        }
-    }
-    if ties != 2 {
+    // Every row from the first to the last is crossed by an even number
+    // of edges, at least two (the boundary is closed and connected, and
+    // the clip rows are an interval). So when the edges' rows add up to
+    // twice the rows, exactly two edges are active on every row: the
+    // sweep's bands are those of the walk below, which therefore emits
+    // the sweep's first trapezoids even where it stops.
+    let mut y = rows.first;
+    if rows.starting != 2 || rows.sum as i64 != 2 * (rows.end as i64 - y as i64) {
         return Ok(false);
     }
+    // The two edges that start on the first row, next to each other: `u`
+    // heads the chain up (walked backwards), `d` the chain down.
+    let k = rows.first_edge;
     let (mut u, mut d) = if slots[next(k)].top == y {
         (k, next(k))
     } else if slots[prev(k)].top == y {
@@ -1196,31 +1227,6 @@ where
     } else {
         return Ok(false);
     };
-    // The chains' next vertex: `None` at the last row, where they meet.
-    // Each edge after the first of its chain starts on the row where the
-    // one before it ends, and the chains use every edge.
-    let step = |d: usize, u: usize, y: i32| -> Result<Option<(usize, usize)>, ()> {
-        let (d_ends, u_ends) = (slots[d].end == y, slots[u].end == y);
-        if d_ends && u_ends && next(d) == u {
-            return Ok(None);
-        }
-        let d = if d_ends { next(d) } else { d };
-        let u = if u_ends { prev(u) } else { u };
-        if d == u || (d_ends && slots[d].top != y) || (u_ends && slots[u].top != y) {
-            return Err(());
-        }
-        Ok(Some((d, u)))
-    };
-    // The rows alone first: the walk below emits only for two chains.
-    let (mut d2, mut u2) = (d, u);
-    loop {
-        let y2 = slots[d2].end.min(slots[u2].end);
-        match step(d2, u2, y2) {
-            Ok(Some((nd, nu))) => (d2, u2) = (nd, nu),
-            Ok(None) => break,
-            Err(()) => return Ok(false),
-        }
-    }
     // The trapezoid being built: left slot, right slot, first row.
     let mut open: Option<(usize, usize, i32)> = None;
     loop {
@@ -1241,10 +1247,21 @@ where
             }
         }
         y = stop;
-        match step(d, u, y) {
-            Ok(Some((nd, nu))) => (d, u) = (nd, nu),
-            // The rows were walked above: only the end.
-            _ => break,
+        // The chains' next edges: each edge after the first of its chain
+        // starts on the row where the one before it ends; at the last
+        // row the chains meet.
+        let (d_ends, u_ends) = (slots[d].end == y, slots[u].end == y);
+        if d_ends && u_ends && next(d) == u {
+            break;
+        }
+        if d_ends {
+            d = next(d);
+        }
+        if u_ends {
+            u = prev(u);
+        }
+        if d == u || (d_ends && slots[d].top != y) || (u_ends && slots[u].top != y) {
+            return Ok(false);
         }
     }
     if let Some((ol, or, start)) = open {
@@ -1609,7 +1626,7 @@ mod tests {
                     count: 0,
                     skip: 0,
                 };
-                if cut_chains(&p.slots[..p.edges], &mut c).unwrap() {
+                if cut_chains(&p.slots[..p.edges], p.rows, &mut c).unwrap() {
                     walked += 1;
                 } else if c.count > 0 {
                     gave_up_late += 1;
