@@ -199,20 +199,22 @@ struct PlaneSums {
 }
 
 impl PlaneSums {
-    /// Adds the edge `p → q` (the first call names the first vertex). Each term is below
-    /// 2³², and there are at most 65535 of them.
+    /// Adds the edge `p → q` (the first call names the first vertex). Each
+    /// difference and sum of coordinates is below 2¹⁶ in magnitude, so
+    /// each term is one 32 × 32 → 64-bit multiply, below 2³², and there
+    /// are at most 65535 of them.
     #[inline]
     fn edge(&mut self, p: Vertex3, q: Vertex3) {
-        let (px, py, pz) = (p.x.units() as i64, p.y.units() as i64, p.z.units() as i64);
-        let (qx, qy, qz) = (q.x.units() as i64, q.y.units() as i64, q.z.units() as i64);
-        self.a += (py - qy) * (pz + qz);
-        self.b += (pz - qz) * (px + qx);
-        self.c += (px - qx) * (py + qy);
+        let (px, py, pz) = (p.x.units(), p.y.units(), p.z.units());
+        let (qx, qy, qz) = (q.x.units(), q.y.units(), q.z.units());
+        self.a += (py - qy) as i64 * (pz + qz) as i64;
+        self.b += (pz - qz) as i64 * (px + qx) as i64;
+        self.c += (px - qx) as i64 * (py + qy) as i64;
         if self.n == 0 {
             self.first = p;
-            self.z = (p.z.units(), p.z.units());
+            self.z = (pz, pz);
         }
-        self.z = (self.z.0.min(q.z.units()), self.z.1.max(q.z.units()));
+        self.z = (self.z.0.min(qz), self.z.1.max(qz));
         self.n += 1;
     }
 
