@@ -1287,7 +1287,8 @@ where
 /// centre `yc` by `(yc − y₀)·S / (dy_a·dy_b)`, `S = dx_a·dy_b − dx_b·dy_a`,
 /// and `yc ≥ y₀` on every row they cross: the order is the sign of `S`,
 /// one product each, no crossing worked out. Edges to one lower end
-/// (a bottom vertex) likewise, with `yc < y₁`: the opposite sign.
+/// (a bottom vertex) likewise, with `yc < y₁`: the opposite sign. Edges
+/// whose ends' x ranges are apart are ordered by them alone.
 #[inline]
 fn band_order(a: &EdgeSlot, b: &EdgeSlot, y: i32, last: i32) -> Option<bool> {
     let (ea, eb) = (&a.ends, &b.ends);
@@ -1305,6 +1306,16 @@ fn band_order(a: &EdgeSlot, b: &EdgeSlot, y: i32, last: i32) -> Option<bool> {
             _ if flat => None,
             o => Some(o.is_lt() == top),
         };
+    }
+    // An edge's crossings lie between its ends' x: edges whose x ranges
+    // do not meet are in that order on every row.
+    let range = |e: &Ends| (e.x0.min(e.x1), e.x0.max(e.x1));
+    let ((a0, a1), (b0, b1)) = (range(ea), range(eb));
+    if a1 < b0 {
+        return Some(true);
+    }
+    if b1 < a0 {
+        return Some(false);
     }
     match cmp_x(a, b, y) {
         Ordering::Less if !cmp_x(a, b, last).is_gt() => Some(true),
@@ -1661,9 +1672,9 @@ mod tests {
         (c, s)
     }
 
-    /// The shortcut for edges from one vertex orders every band as the
-    /// crossings do, over the whole coordinate range, bands of one row
-    /// through the vertex included.
+    /// The shortcuts (edges from one vertex, edges apart in x) order
+    /// every band as the crossings do, over the whole coordinate range,
+    /// bands of one row through a shared vertex included.
     #[test]
     fn edges_from_one_vertex_are_ordered_as_their_crossings() {
         let mut rng = Rng(0x7e57_0bad);
@@ -1727,6 +1738,44 @@ mod tests {
             );
         }
         assert!(shared > 50_000, "{shared}");
+        // And edges with no end in common: apart in x, or not.
+        let mut apart = 0;
+        for case in 0..200_000 {
+            let span = [32768, 512, 64][case % 3];
+            let mut r = |lo: i32| lo + rng.below((32767 - lo).min(span) as u32 + 1);
+            let (x0, y0) = (r(-32768), r(-32768));
+            let (a, b) = (
+                slot(x0, y0, r(x0 - span), r(y0 + 1)),
+                slot(r(x0 - span), r(y0 - span), r(x0 - span), r(y0 + 1)),
+            );
+            if a.ends.y1 <= a.ends.y0 || b.ends.y1 <= b.ends.y0 || a.ends == b.ends {
+                continue;
+            }
+            let rows = |e: &EdgeSlot| {
+                (
+                    ceil_px(e.ends.y0 as i32 - HALF),
+                    ceil_px(e.ends.y1 as i32 - HALF),
+                )
+            };
+            let ((ta, ea), (tb, eb)) = (rows(&a), rows(&b));
+            let (top, end) = (ta.max(tb), ea.min(eb));
+            if top >= end {
+                continue;
+            }
+            let first = top + rng.below((end - top) as u32);
+            let last = first + rng.below((end - first) as u32);
+            let (ra, rb) = (
+                (a.ends.x0.min(a.ends.x1), a.ends.x0.max(a.ends.x1)),
+                (b.ends.x0.min(b.ends.x1), b.ends.x0.max(b.ends.x1)),
+            );
+            apart += (ra.1 < rb.0 || rb.1 < ra.0) as u32;
+            assert_eq!(
+                band_order(&a, &b, first, last),
+                reference(&a, &b, first, last),
+                "{a:?} {b:?} {first}..={last}"
+            );
+        }
+        assert!(apart > 10_000, "{apart}");
     }
 
     /// The 16-bit-digit division equals the library's, at the edges of
