@@ -953,6 +953,10 @@ impl<'s> Polygon<'s> {
         // (z − z₀)·c below 2⁴⁷, and each product is one 32 × 32 → 64-bit
         // multiply.
         let (a, b, c) = plane.normal();
+        // Parallel to the screen: the depth is z₀ everywhere, a vertex's.
+        if a == 0 && b == 0 {
+            return plane;
+        }
         if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
             let (x0, y0, z0) = plane.origin_units();
             let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
