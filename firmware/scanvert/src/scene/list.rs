@@ -118,14 +118,18 @@ pub fn front_facing(v: &Vertices3<'_>) -> bool {
     let Some(first) = it.next() else {
         return false;
     };
+    // Each term one pair of 32 × 32 → 64-bit multiplies; the closing
+    // edge after the loop (chaining it in cost a check a vertex).
+    let term = |p: Vertex3, q: Vertex3| {
+        p.x.units() as i64 * q.y.units() as i64 - q.x.units() as i64 * p.y.units() as i64
+    };
     let mut s = 0i64;
     let mut prev = first;
-    for p in it.chain(core::iter::once(first)) {
-        s +=
-            prev.x.units() as i64 * p.y.units() as i64 - p.x.units() as i64 * prev.y.units() as i64;
+    for p in it {
+        s += term(prev, p);
         prev = p;
     }
-    s < 0
+    s + term(prev, first) < 0
 }
 
 /// The geometry stage a list starts with, for a `width × height` frame:
