@@ -39,7 +39,7 @@ use crate::visible::trapezoid::{EdgeSlot, Trapezoid};
 /// | const | pool | slot (32-bit targets) | limit, and what needs it |
 /// |---|---|---|---|
 /// | `TRAPEZOIDS` | trapezoids | 34 bytes | at most 65535 are used (a `u16` index, one value reserved); as many as the polygons are cut into |
-/// | `FACES` | faces | 72 bytes | at most 65535 used; one per polygon with a trapezoid |
+/// | `FACES` | faces | 56 bytes | at most 65535 used; one per polygon with a trapezoid |
 /// | `SEGMENTS` | segments | 28 bytes | at most 65535 used; a display list uses one |
 /// | `ROWS` | the scan-line index | 2 bytes | at least the frame's height (at most 4096) |
 /// | `EDGES` | edge slots | 32 bytes | scratch for one polygon: as many as its vertices (at most 65535) |
@@ -248,7 +248,7 @@ mod tests {
 const _: () = {
     use core::mem::size_of;
     assert!(size_of::<Trapezoid>() == 34);
-    assert!(size_of::<Face>() == 72);
+    assert!(size_of::<Face>() == 56);
     assert!(size_of::<Segment>() == 28);
     assert!(size_of::<EdgeSlot>() == 32);
     assert!(size_of::<Active>() == 136);

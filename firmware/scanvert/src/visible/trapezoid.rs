@@ -26,6 +26,16 @@
 //!    that is the same as in the band before continues its trapezoid;
 //!    other pairs close it and open new ones.
 //!
+//! A polygon whose edges set up are two chains, one down and one up, in
+//! the order loaded (every convex polygon) has exactly two active edges
+//! on every row. [`Polygon::cut`] walks its chains instead: the same
+//! bands, the same two crossings compared a band, the same trapezoids in
+//! the same order, with no sort and no slot moved. It runs only when the
+//! edges' rows add up to twice the polygon's (so exactly two edges are
+//! active on every row), and hands over to the steps above where a band
+//! needs them (the two edges cross, or coincide) or a chain breaks,
+//! which then skip the trapezoids it has made (their first ones).
+//!
 //! The even-odd pairs of the exact crossings on a row are the pixel rule's
 //! spans, and sorting by the exact crossings keeps `c_left ≤ c_right` on
 //! every row of a trapezoid, so the trapezoids cover the rule's pixels and
@@ -132,10 +142,18 @@
 //! above), in \[−2²⁹, 2²⁹) after scaling, and the wrapped sum equals it.
 //! Tiny slopes round to zero within the same error bound.
 //!
-//! Each set-up costs three divisions per polygon (in `i64` when the numbers
-//! fit, which is the case for ordinary polygons, else in `i128`) and two
-//! per trapezoid each time it enters the active list (its edges, rebuilt
-//! from their ends: see [`Trapezoid`]); nothing is divided per row.
+//! Each set-up costs three divisions per polygon and two per trapezoid
+//! each time it enters the active list (its edges, rebuilt from their
+//! ends: see [`Trapezoid`]); nothing is divided per row. The polygon's
+//! three are in `i64` arithmetic whenever `|a|`, `|b|`, `c < 2³¹` (for a
+//! simple polygon they are at most twice the areas of its projections,
+//! so any up to 512 px across, whatever its depths: 2·2¹³·2¹⁶): one
+//! 32-bit division when the numbers fit, else a long division of two
+//! 16-bit digits (two 32-bit divisions) while the quotient fits in 32
+//! bits, and the library's 64-bit division (a loop of about 150
+//! instructions on a 32-bit core) only past that; `i128` only for larger
+//! normals. The plane keeps its first vertex, not `d`: every exact use
+//! works relative to it, so making a plane multiplies nothing in `i128`.
 
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
 use crate::raster::clip::ClipRect;
@@ -162,8 +180,9 @@ pub struct Plane {
     a: i64,
     b: i64,
     c: i64,
-    d: i128,
-    /// The point it was made through (the first vertex), in units.
+    /// The point it was made through (the first vertex), in units. The
+    /// right-hand side `d = a·x₀ + b·y₀ + c·z₀` is not kept: every use
+    /// works relative to this point ([`Plane::offset`] computes `d`).
     origin: (i16, i16, i16),
 }
 
@@ -180,20 +199,22 @@ struct PlaneSums {
 }
 
 impl PlaneSums {
-    /// Adds the edge `p → q` (the first call names the first vertex). Each term is below
-    /// 2³², and there are at most 65535 of them.
+    /// Adds the edge `p → q` (the first call names the first vertex). Each
+    /// difference and sum of coordinates is below 2¹⁶ in magnitude, so
+    /// each term is one 32 × 32 → 64-bit multiply, below 2³², and there
+    /// are at most 65535 of them.
     #[inline]
     fn edge(&mut self, p: Vertex3, q: Vertex3) {
-        let (px, py, pz) = (p.x.units() as i64, p.y.units() as i64, p.z.units() as i64);
-        let (qx, qy, qz) = (q.x.units() as i64, q.y.units() as i64, q.z.units() as i64);
-        self.a += (py - qy) * (pz + qz);
-        self.b += (pz - qz) * (px + qx);
-        self.c += (px - qx) * (py + qy);
+        let (px, py, pz) = (p.x.units(), p.y.units(), p.z.units());
+        let (qx, qy, qz) = (q.x.units(), q.y.units(), q.z.units());
+        self.a += (py - qy) as i64 * (pz + qz) as i64;
+        self.b += (pz - qz) as i64 * (px + qx) as i64;
+        self.c += (px - qx) as i64 * (py + qy) as i64;
         if self.n == 0 {
             self.first = p;
-            self.z = (p.z.units(), p.z.units());
+            self.z = (pz, pz);
         }
-        self.z = (self.z.0.min(q.z.units()), self.z.1.max(q.z.units()));
+        self.z = (self.z.0.min(qz), self.z.1.max(qz));
         self.n += 1;
     }
 
@@ -202,15 +223,12 @@ impl PlaneSums {
             return None;
         }
         let f = self.first;
-        let (x, y, z) = (f.x.units(), f.y.units(), f.z.units());
         let sign = if self.c < 0 { -1 } else { 1 };
         let (a, b, c) = (sign * self.a, sign * self.b, sign * self.c);
-        let d = a as i128 * x as i128 + b as i128 * y as i128 + c as i128 * z as i128;
         Some(Plane {
             a,
             b,
             c,
-            d,
             origin: (f.x.to_bits(), f.y.to_bits(), f.z.to_bits()),
         })
     }
@@ -222,7 +240,6 @@ impl Plane {
         a: 0,
         b: 0,
         c: 1,
-        d: 0,
         origin: (0, 0, 0),
     };
 
@@ -248,20 +265,42 @@ impl Plane {
     /// `true` when `v` lies on the plane exactly: always for the vertices
     /// of a triangle, for all vertices of a planar polygon.
     pub fn contains(&self, v: Vertex3) -> bool {
+        let (x0, y0, z0) = self.origin_units();
         let (x, y, z) = (
-            v.x.units() as i128,
-            v.y.units() as i128,
-            v.z.units() as i128,
+            (v.x.units() - x0) as i128,
+            (v.y.units() - y0) as i128,
+            (v.z.units() - z0) as i128,
         );
-        // Each product below 2⁶³, the sum below 2⁶⁵.
-        self.a as i128 * x + self.b as i128 * y + self.c as i128 * z == self.d
+        // Each product below 2⁶⁵, the sum below 2⁶⁷.
+        self.a as i128 * x + self.b as i128 * y + self.c as i128 * z == 0
+    }
+
+    /// The first vertex, in units.
+    #[inline]
+    fn origin_units(&self) -> (i32, i32, i32) {
+        (
+            self.origin.0 as i32,
+            self.origin.1 as i32,
+            self.origin.2 as i32,
+        )
+    }
+
+    /// `d − a·x − b·y = a·(x₀ − x) + b·(y₀ − y) + c·z₀` for `x`, `y` in
+    /// units: `c` times the depth at `(x, y)`. Below 2⁶⁷ for `|x|, |y| <
+    /// 2¹⁷` (each of `a`, `b`, `c` is below 2⁴⁸: see [`PlaneSums::edge`]).
+    #[inline]
+    fn rhs_at(&self, x: i128, y: i128) -> i128 {
+        let (x0, y0, z0) = self.origin_units();
+        self.a as i128 * (x0 as i128 - x)
+            + self.b as i128 * (y0 as i128 - y)
+            + self.c as i128 * z0 as i128
     }
 
     /// `true` when the plane's depth at the point `(x, y)` (units, each
     /// within `i16`) lies in `lo..=hi` (units, each within `i16`).
     pub fn depth_within(&self, x: i32, y: i32, (lo, hi): (i32, i32)) -> bool {
-        // e < 2⁶⁷ (the table above), lo·c and hi·c below 2⁶³.
-        let e = self.d - self.a as i128 * x as i128 - self.b as i128 * y as i128;
+        // e < 2⁶⁷ (see `rhs_at`), lo·c and hi·c below 2⁶³.
+        let e = self.rhs_at(x as i128, y as i128);
         let c = self.c as i128;
         e >= lo as i128 * c && e <= hi as i128 * c
     }
@@ -272,17 +311,10 @@ impl Plane {
     fn flattened(&self, k: i64) -> Plane {
         // |a|·k < 2⁶⁴ in `i128`; the quotient is below |a|.
         let scale = |v: i64| (v as i128 * k as i128 / (1 << 16)) as i64;
-        let (a, b, c) = (scale(self.a), scale(self.b), self.c);
-        let (x, y, z) = (
-            self.origin.0 as i128,
-            self.origin.1 as i128,
-            self.origin.2 as i128,
-        );
         Plane {
-            a,
-            b,
-            c,
-            d: a as i128 * x + b as i128 * y + c as i128 * z,
+            a: scale(self.a),
+            b: scale(self.b),
+            c: self.c,
             origin: self.origin,
         }
     }
@@ -292,16 +324,17 @@ impl Plane {
         (self.a, self.b, self.c)
     }
 
-    /// The right-hand side `d`.
+    /// The right-hand side `d` (computed: the plane keeps its first
+    /// vertex instead).
     pub fn offset(&self) -> i128 {
-        self.d
+        self.rhs_at(0, 0)
     }
 
     /// The depth at the centre of pixel `(i, j)` as the fraction
     /// `num / den` of Q12.4 units, `den = c > 0`.
     pub fn depth_at(&self, i: i32, j: i32) -> (i128, i64) {
         let (px, py) = (16 * i as i128 + 8, 16 * j as i128 + 8);
-        (self.d - self.a as i128 * px - self.b as i128 * py, self.c)
+        (self.rhs_at(px, py), self.c)
     }
 
     /// Compares the exact depths of two planes at the centre of pixel
@@ -315,28 +348,50 @@ impl Plane {
 
     /// The fixed-point depth coefficients (see the [module](self) docs).
     pub fn depth(&self) -> Depth {
-        let (a, b, c) = (self.a as i128, self.b as i128, self.c);
-        let s = 1i128 << Z_FRAC_BITS;
-        // Numerators below 2⁸², so the doubling in `round_div` cannot
-        // overflow; wrapping to `i32` keeps the value modulo 2³².
-        let zx = round_div(-16 * s * a, c) as i32;
-        let zy = round_div(-16 * s * b, c) as i32;
-        // The depth is rounded at the anchor, the pixel of the first vertex
-        // (clamped to the pixel range), where the numerator is small:
-        // Z(i₀, j₀) = 2¹⁴·z₀ + 2¹⁴·(a·(x₀ − px) + b·(y₀ − py)) / c, below
-        // 2⁵² for an ordinary polygon inside the frame, so `i64` does.
-        let (x0, y0, z0) = (
-            self.origin.0 as i32,
-            self.origin.1 as i32,
-            self.origin.2 as i32,
-        );
+        let (x0, y0, z0) = self.origin_units();
+        // The anchor: the pixel of the first vertex, clamped to the pixel
+        // range. A vertex is within `i16`, so `i₀ ≤ 2047` and the clamp
+        // only raises a negative pixel to 0: |dx|, |dy| ≤ 2¹⁵ + 8.
         let (i0, j0) = ((x0 >> 4).clamp(0, 4095), (y0 >> 4).clamp(0, 4095));
-        let (dx, dy) = ((x0 - 16 * i0 - 8) as i128, (y0 - 16 * j0 - 8) as i128);
-        let at = (z0 as i128) * s + round_div(s * (a * dx + b * dy), c);
-        let z = (at as i32)
+        let (dx, dy) = (x0 - 16 * i0 - 8, y0 - 16 * j0 - 8);
+        let (zx, zy, at) = match (
+            i32::try_from(self.a),
+            i32::try_from(self.b),
+            u32::try_from(self.c),
+        ) {
+            // The usual case, in `i64`: |a|, |b| < 2³¹ and 0 < c < 2³²,
+            // so the slopes' numerators 2¹⁸·|a| are below 2⁴⁹, and the
+            // anchor's 2¹⁴·|a·dx + b·dy| at most 2¹⁴·2·2³¹·(2¹⁵ + 8) =
+            // 2⁶¹ + 2⁵⁰: within what `round_div64` takes.
+            (Ok(a), Ok(b), Ok(c)) if c < 1 << 31 => {
+                let (a, b) = (a as i64, b as i64);
+                let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c);
+                let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c);
+                let n = (a * dx as i64 + b * dy as i64) << Z_FRAC_BITS;
+                let at = ((z0 as i64) << Z_FRAC_BITS) + round_div64(n, c);
+                (zx as i32, zy as i32, at as i32)
+            }
+            _ => self.depth_wide(dx, dy),
+        };
+        // Wrapping to `i32` keeps every value modulo 2³².
+        let z = at
             .wrapping_sub(zx.wrapping_mul(i0))
             .wrapping_sub(zy.wrapping_mul(j0));
         Depth { z, zx, zy }
+    }
+
+    /// [`Plane::depth`]'s slopes and anchor depth (wrapped) in `i128`, for
+    /// any plane: numerators below 2⁸², so the doubling in `round_div`
+    /// cannot overflow.
+    fn depth_wide(&self, dx: i32, dy: i32) -> (i32, i32, i32) {
+        let (a, b, c) = (self.a as i128, self.b as i128, self.c);
+        let s = 1i128 << Z_FRAC_BITS;
+        let zx = round_div(-16 * s * a, c) as i32;
+        let zy = round_div(-16 * s * b, c) as i32;
+        // Z(i₀, j₀) = 2¹⁴·z₀ + 2¹⁴·(a·(x₀ − px) + b·(y₀ − py)) / c.
+        let z0 = self.origin.2 as i128;
+        let at = z0 * s + round_div(s * (a * dx as i128 + b * dy as i128), c);
+        (zx, zy, at as i32)
     }
 }
 
@@ -354,6 +409,80 @@ fn round_div(n: i128, c: i64) -> i128 {
         (Ok(n2), Ok(c2)) => n2.div_euclid(c2) as i128,
         _ => n2.div_euclid(c2),
     }
+}
+
+/// `n / c` rounded to the nearest integer (halves up), for
+/// `|n| ≤ 2⁶² − 2³¹` and `0 < c < 2³¹`: [`round_div`] in `i64`,
+/// `⌊(2n + c) / 2c⌋`, where `|2n + c| < 2⁶³` and `2c < 2³²`.
+#[inline]
+fn round_div64(n: i64, c: u32) -> i64 {
+    floor_div(2 * n + c as i64, 2 * c)
+}
+
+/// `⌊n / d⌋` for `d > 0` and `|n| < 2⁶³`: one 32-bit division when both
+/// fit in `i32`; else, when the quotient's magnitude fits in `u32`, two
+/// steps of 16-bit digits ([`div_64_32`]) instead of the library's
+/// 64-bit division (a loop of about 150 instructions on a 32-bit core).
+#[inline]
+fn floor_div(n: i64, d: u32) -> i64 {
+    if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
+        return n.div_euclid(d) as i64;
+    }
+    // ⌊n / d⌋ = −⌈−n / d⌉ = −⌊(−n + d − 1) / d⌋ for n < 0; |n| + d − 1
+    // is below 2⁶³ + 2³², within `u64`.
+    let m = if n < 0 {
+        n.unsigned_abs() + (d as u64 - 1)
+    } else {
+        n as u64
+    };
+    let q = if ((m >> 32) as u32) < d {
+        div_64_32(m, d) as u64
+    } else {
+        m / d as u64
+    };
+    if n < 0 {
+        -(q as i64)
+    } else {
+        q as i64
+    }
+}
+
+/// `u / v` for `v > 0` and `u < v·2³²` (so the quotient fits in `u32`),
+/// exactly, by long division in two 16-bit digits, each estimated with
+/// one 32-bit division and corrected at most twice (Knuth's algorithm D
+/// for a two-digit divisor, normalised so that its top bit is set).
+fn div_64_32(u: u64, v: u32) -> u32 {
+    debug_assert!(v > 0 && ((u >> 32) as u32) < v);
+    const B: u32 = 1 << 16;
+    let s = v.leading_zeros();
+    let v = v << s;
+    let (vn1, vn0) = (v >> 16, v & 0xffff);
+    // The dividend shifted left by s: u < v·2³² keeps it below
+    // (v·2ˢ)·2³² ≤ 2⁶⁴, so nothing is lost, and its top 32 bits `un32`
+    // are below the normalised v.
+    let un = u << s;
+    let (un32, un10) = ((un >> 32) as u32, un as u32);
+    let (un1, un0) = (un10 >> 16, un10 & 0xffff);
+    // A digit q̂ = ⌊top / vn1⌋ with remainder r̂, lowered while it is too
+    // big; r̂ < B keeps r̂·B + digit within `u32`, and q̂ < B (checked
+    // first) keeps q̂·vn0 within it.
+    let digit = |top: u32, next: u32| -> u32 {
+        let mut q = top / vn1;
+        let mut r = top - q * vn1;
+        while q >= B || q * vn0 > (r << 16 | next) {
+            q -= 1;
+            r += vn1;
+            if r >= B {
+                break;
+            }
+        }
+        q
+    };
+    let q1 = digit(un32, un1);
+    // The remainder after the first digit is below v: exact modulo 2³².
+    let un21 = (un32 << 16 | un1).wrapping_sub(q1.wrapping_mul(v));
+    let q0 = digit(un21, un0);
+    q1 << 16 | q0
 }
 
 /// The fixed-point depth of a plane: `Z̃(i, j) = z + i·zx + j·zy`
@@ -718,6 +847,21 @@ pub struct Polygon<'s> {
     edges: usize,
     plane: Option<Plane>,
     cols: (i32, i32),
+    /// The rows of the edges set up, for [`cut_chains`].
+    rows: Rows,
+}
+
+/// What [`Polygon::load`] notes of the edges' rows as it sets them up:
+/// the first row and the first edge that starts on it, how many do, the
+/// last row (one past), and the rows of all edges added up (each below
+/// 4097, at most 65535 edges: below 2²⁸).
+#[derive(Clone, Copy, Debug)]
+struct Rows {
+    first: i32,
+    first_edge: usize,
+    starting: u32,
+    end: i32,
+    sum: u32,
 }
 
 impl<'s> Polygon<'s> {
@@ -729,6 +873,11 @@ impl<'s> Polygon<'s> {
     ///
     /// Only edges inside the clip rows take a slot. A polygon whose box
     /// misses the clip columns loads no edge.
+    ///
+    /// Always inlined: returned by value from a call, the polygon (about
+    /// 80 bytes on 32-bit targets) was copied with `memcpy`, about 100
+    /// instructions a face on the Cortex-M4.
+    #[inline(always)]
     pub fn load<I>(
         slots: &'s mut [EdgeSlot],
         vertices: I,
@@ -746,6 +895,13 @@ impl<'s> Polygon<'s> {
             edges: 0,
             plane: None,
             cols,
+            rows: Rows {
+                first: i32::MAX,
+                first_edge: 0,
+                starting: 0,
+                end: i32::MIN,
+                sum: 0,
+            },
         };
         let Some(first) = it.next() else {
             return Ok(poly);
@@ -791,15 +947,21 @@ impl<'s> Polygon<'s> {
                     && p.depth_within(e.x1 as i32, e.y1 as i32, z)
             })
         };
-        // The usual case, in `i64`: with |a|, |b|, |c| < 2³¹, d is below
-        // 2⁴⁸, e = d − a·x − b·y below 2⁴⁹, z·c below 2⁴⁶, and each
-        // product is one 32 × 32 → 64-bit multiply.
+        // The usual case, in `i64`, relative to the first vertex
+        // (x₀, y₀, z₀): with |a|, |b|, |c| < 2³¹ and every coordinate
+        // difference below 2¹⁶, e = a·(x₀ − x) + b·(y₀ − y) is below 2⁴⁸,
+        // (z − z₀)·c below 2⁴⁷, and each product is one 32 × 32 → 64-bit
+        // multiply.
         let (a, b, c) = plane.normal();
+        // Parallel to the screen: the depth is z₀ everywhere, a vertex's.
+        if a == 0 && b == 0 {
+            return plane;
+        }
         if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
-            let d = plane.offset() as i64;
-            let (lo, hi) = (z.0 as i64 * c, z.1 as i64 * c);
+            let (x0, y0, z0) = plane.origin_units();
+            let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
             let within = |x: i16, y: i16| {
-                let e = d - a as i64 * x as i64 - b as i64 * y as i64;
+                let e = a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64;
                 lo <= e && e <= hi
             };
             if slots
@@ -855,6 +1017,14 @@ impl<'s> Polygon<'s> {
             id: self.edges as u16,
             open: None,
         };
+        let r = &mut self.rows;
+        if top < r.first {
+            (r.first, r.first_edge, r.starting) = (top, self.edges, 1);
+        } else if top == r.first {
+            r.starting += 1;
+        }
+        r.end = r.end.max(end);
+        r.sum += (end - top) as u32;
         self.edges += 1;
         Ok(())
     }
@@ -875,34 +1045,36 @@ impl<'s> Polygon<'s> {
     /// to `emit`, top to bottom in the order they close. Returns how many were emitted. Pairs that can never
     /// write a pixel in the clip columns (both edges the same, or wholly
     /// left or right of the columns) are not emitted.
-    pub fn cut<E>(self, mut emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
+    pub fn cut<E>(self, emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
+        self.cut_with(true, emit)
+    }
+
+    /// [`Polygon::cut`], trying the two chains' walk first when `chains`
+    /// (the tests compare both ways).
+    fn cut_with<E>(
+        self,
+        chains: bool,
+        emit: impl FnMut(Side, Side) -> Result<(), E>,
+    ) -> Result<u32, E> {
         let n = self.edges;
-        let cols = self.cols;
         let slots = &mut self.slots[..n];
-        let mut count = 0u32;
         if n < 2 {
             return Ok(0);
         }
-        let mut close = |l: &Ends, op: &Open, end: i32| -> Result<(), E> {
-            let r = &op.right;
-            let start = op.start as i32;
-            if *l == *r || start >= end {
-                return Ok(());
-            }
-            let rmax = r.x0.max(r.x1) as i32;
-            let lmin = l.x0.min(l.x1) as i32;
-            if ceil_px(rmax - HALF) <= cols.0 || ceil_px(lmin - HALF) >= cols.1 {
-                return Ok(());
-            }
-            // Both edges cross every row of `start..end` (they were active
-            // in its bands), inside the clip rows (so within 0..=4096):
-            // the steppers `Edge::new` makes over them are never `None`.
-            let (top, end) = (start as u16, end as u16);
-            let side = |ends: Ends| Side { ends, top, end };
-            emit(side(*l), side(*r))?;
-            count += 1;
-            Ok(())
+        let mut c = Closer {
+            emit,
+            cols: self.cols,
+            count: 0,
+            skip: 0,
         };
+        if chains {
+            if cut_chains(slots, self.rows, &mut c)? {
+                return Ok(c.count);
+            }
+            // The walk stopped where the sweep below is needed: what it
+            // emitted is what the sweep emits first, in the same order.
+            c.skip = c.count;
+        }
         slots.sort_unstable_by_key(|e| e.top);
         // As in `scan`: slots[..active] are active, slots[active..next]
         // finished, slots[next..] wait for their first row.
@@ -950,7 +1122,7 @@ impl<'s> Polygon<'s> {
                 if let Some(op) = live[i].open {
                     let keep = i % 2 == 0 && live.get(i + 1).is_some_and(|r| r.id == op.right_id);
                     if !keep {
-                        close(&live[i].ends, &op, y)?;
+                        c.close(&live[i].ends, &op.right, op.start as i32, y)?;
                         live[i].open = None;
                     }
                 }
@@ -970,7 +1142,7 @@ impl<'s> Polygon<'s> {
             while i < active {
                 if slots[i].end <= y {
                     if let Some(op) = slots[i].open.take() {
-                        close(&slots[i].ends, &op, y)?;
+                        c.close(&slots[i].ends, &op.right, op.start as i32, y)?;
                     }
                     active -= 1;
                     swap(slots, i, active);
@@ -979,7 +1151,185 @@ impl<'s> Polygon<'s> {
                 }
             }
         }
-        Ok(count)
+        Ok(c.count)
+    }
+}
+
+/// Where [`Polygon::cut`] hands its trapezoids: `emit`, less those that
+/// can write no pixel in the columns `cols`, and less the first `skip`
+/// (made already by [`cut_chains`] before it gave up).
+struct Closer<F> {
+    emit: F,
+    cols: (i32, i32),
+    count: u32,
+    skip: u32,
+}
+
+impl<F> Closer<F> {
+    /// The trapezoid between `l` and `r` over the rows `start..end`.
+    #[inline]
+    fn close<E>(&mut self, l: &Ends, r: &Ends, start: i32, end: i32) -> Result<(), E>
+    where
+        F: FnMut(Side, Side) -> Result<(), E>,
+    {
+        if *l == *r || start >= end {
+            return Ok(());
+        }
+        let rmax = r.x0.max(r.x1) as i32;
+        let lmin = l.x0.min(l.x1) as i32;
+        if ceil_px(rmax - HALF) <= self.cols.0 || ceil_px(lmin - HALF) >= self.cols.1 {
+            return Ok(());
+        }
+        if self.skip > 0 {
+            self.skip -= 1;
+            return Ok(());
+        }
+        // Both edges cross every row of `start..end` (they were active
+        // in its bands), inside the clip rows (so within 0..=4096): the
+        // steppers `Edge::new` makes over them are never `None`.
+        let (top, end) = (start as u16, end as u16);
+        let side = |ends: Ends| Side { ends, top, end };
+        (self.emit)(side(*l), side(*r))?;
+        self.count += 1;
+        Ok(())
+    }
+}
+
+/// The cut of a polygon whose edges set up (in polygon order, as loaded)
+/// are two chains, one down and one up, from the two edges that start on
+/// the first row to the two that end on the last: every convex polygon,
+/// and every other whose rows cross its boundary twice. Then exactly two
+/// edges are active on every row, one of each chain, and the sweep's bands
+/// are the runs of rows between the chains' vertices: this walk makes the
+/// sweep's trapezoids, in the sweep's order, without sorting or moving a
+/// slot (two crossings compared a band, the order on the band's first row,
+/// ties broken on its last, as [`sort_at`] does).
+///
+/// `Ok(false)` as soon as the polygon is not such (more than two edges
+/// start on the first row, or a chain breaks), or a band is not one the
+/// walk can decide as the sweep does (the two edges swap inside it, or
+/// coincide on its first and last rows): the trapezoids emitted until
+/// then are the sweep's first ones, which [`Closer::skip`] then passes
+/// over.
+fn cut_chains<F, E>(slots: &[EdgeSlot], rows: Rows, c: &mut Closer<F>) -> Result<bool, E>
+where
+    F: FnMut(Side, Side) -> Result<(), E>,
+{
+    let n = slots.len();
+    let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+    // Every row from the first to the last is crossed by an even number
+    // of edges, at least two (the boundary is closed and connected, and
+    // the clip rows are an interval). So when the edges' rows add up to
+    // twice the rows, exactly two edges are active on every row: the
+    // sweep's bands are those of the walk below, which therefore emits
+    // the sweep's first trapezoids even where it stops.
+    let mut y = rows.first;
+    if rows.starting != 2 || rows.sum as i64 != 2 * (rows.end as i64 - y as i64) {
+        return Ok(false);
+    }
+    // The two edges that start on the first row, next to each other: `u`
+    // heads the chain up (walked backwards), `d` the chain down.
+    let k = rows.first_edge;
+    let (mut u, mut d) = if slots[next(k)].top == y {
+        (k, next(k))
+    } else if slots[prev(k)].top == y {
+        (prev(k), k)
+    } else {
+        return Ok(false);
+    };
+    // The trapezoid being built: left slot, right slot, first row.
+    let mut open: Option<(usize, usize, i32)> = None;
+    loop {
+        let (ed, eu) = (&slots[d], &slots[u]);
+        let stop = ed.end.min(eu.end);
+        let last = stop - 1;
+        let Some(d_left) = band_order(ed, eu, y, last) else {
+            return Ok(false);
+        };
+        let (l, r) = if d_left { (d, u) } else { (u, d) };
+        match open {
+            Some((ol, or, _)) if ol == l && or == r => {}
+            _ => {
+                if let Some((ol, or, start)) = open {
+                    c.close(&slots[ol].ends, &slots[or].ends, start, y)?;
+                }
+                open = Some((l, r, y));
+            }
+        }
+        y = stop;
+        // The chains' next edges: each edge after the first of its chain
+        // starts on the row where the one before it ends; at the last
+        // row the chains meet.
+        let (d_ends, u_ends) = (slots[d].end == y, slots[u].end == y);
+        if d_ends && u_ends && next(d) == u {
+            break;
+        }
+        if d_ends {
+            d = next(d);
+        }
+        if u_ends {
+            u = prev(u);
+        }
+        if d == u || (d_ends && slots[d].top != y) || (u_ends && slots[u].top != y) {
+            return Ok(false);
+        }
+    }
+    if let Some((ol, or, start)) = open {
+        c.close(&slots[ol].ends, &slots[or].ends, start, y)?;
+    }
+    Ok(true)
+}
+
+/// `Some(true)` when `a` is left of `b` on the band of rows `y..=last`
+/// (both cross every row of it) as the sweep orders them: by the exact
+/// crossings on row `y`, ties broken on row `last`; `Some(false)` when
+/// `b` is; `None` when they swap inside the band (the sweep splits it) or
+/// coincide on both rows.
+///
+/// Edges from one upper end `(x₀, y₀)` (a top vertex) differ on the row
+/// centre `yc` by `(yc − y₀)·S / (dy_a·dy_b)`, `S = dx_a·dy_b − dx_b·dy_a`,
+/// and `yc ≥ y₀` on every row they cross: the order is the sign of `S`,
+/// one product each, no crossing worked out. Edges to one lower end
+/// (a bottom vertex) likewise, with `yc < y₁`: the opposite sign. Edges
+/// whose ends' x ranges are apart are ordered by them alone.
+#[inline]
+fn band_order(a: &EdgeSlot, b: &EdgeSlot, y: i32, last: i32) -> Option<bool> {
+    let (ea, eb) = (&a.ends, &b.ends);
+    let top = ea.x0 == eb.x0 && ea.y0 == eb.y0;
+    if top || (ea.x1 == eb.x1 && ea.y1 == eb.y1) {
+        let d = |e: &Ends| (e.x1 as i64 - e.x0 as i64, e.y1 as i64 - e.y0 as i64);
+        let ((dxa, dya), (dxb, dyb)) = (d(ea), d(eb));
+        // Each product below 2³², S below 2³³.
+        let s = dxa * dyb - dxb * dya;
+        // On the last row yc > y₀ unless the band is one row through the
+        // shared top: then both crossings are the vertex on both rows.
+        let flat = top && last * ONE + HALF == ea.y0 as i32;
+        return match s.cmp(&0) {
+            Ordering::Equal => None,
+            _ if flat => None,
+            o => Some(o.is_lt() == top),
+        };
+    }
+    // An edge's crossings lie between its ends' x: edges whose x ranges
+    // do not meet are in that order on every row.
+    let range = |e: &Ends| (e.x0.min(e.x1), e.x0.max(e.x1));
+    let ((a0, a1), (b0, b1)) = (range(ea), range(eb));
+    if a1 < b0 {
+        return Some(true);
+    }
+    if b1 < a0 {
+        return Some(false);
+    }
+    match cmp_x(a, b, y) {
+        Ordering::Less if !cmp_x(a, b, last).is_gt() => Some(true),
+        Ordering::Greater if !cmp_x(a, b, last).is_lt() => Some(false),
+        Ordering::Equal => match cmp_x(a, b, last) {
+            Ordering::Less => Some(true),
+            Ordering::Greater => Some(false),
+            Ordering::Equal => None,
+        },
+        _ => None,
     }
 }
 
@@ -1200,6 +1550,360 @@ mod tests {
                     let want = covers(poly, i, j) as u8;
                     assert_eq!(hit[(j * W + i) as usize], want, "case {case} ({i}, {j})");
                 }
+            }
+        }
+    }
+
+    /// The two chains' walk hands over exactly the sweep's trapezoids, in
+    /// the sweep's order, for every polygon: convex ones (the walk's
+    /// case), concave and self-intersecting ones (where it gives up part
+    /// way, and the sweep skips what it made), clipped or not, with
+    /// coincident vertices and shared rows (coarse grids).
+    #[test]
+    fn the_chains_walk_makes_the_sweeps_trapezoids() {
+        let mut rng = Rng(0x3c3c_5a5a);
+        let mut slots = [EdgeSlot::EMPTY; 16];
+        let (mut walked, mut total, mut gave_up_late) = (0, 0, 0);
+        for case in 0..20_000 {
+            let n = 3 + rng.below(9) as usize;
+            let mut poly = [Vertex3::default(); 16];
+            let grid = [1, 4, 8, 16, 64][case % 5];
+            if case % 3 == 0 {
+                // Convex: points on an ellipse, in angle order.
+                let (cx, cy) = (
+                    rng.below(W as u32 * 16) as i64,
+                    rng.below(H as u32 * 16) as i64,
+                );
+                let (rx, ry) = (1 + rng.below(800) as i64, 1 + rng.below(800) as i64);
+                let mut t = [0i64; 16];
+                for a in t.iter_mut().take(n) {
+                    *a = rng.below(3600) as i64;
+                }
+                t[..n].sort_unstable();
+                for (v, &a) in poly.iter_mut().zip(&t[..n]) {
+                    // cos and sin of a tenth of a degree, roughly, in integers.
+                    let (c, s) = approx_cos_sin(a);
+                    let x = (cx + rx * c / 1024) as i32 / grid * grid;
+                    let y = (cy + ry * s / 1024) as i32 / grid * grid;
+                    *v = v3(x, y, 0);
+                }
+            } else {
+                for v in poly.iter_mut().take(n) {
+                    let x = rng.below(((W + 8) * 16 / grid) as u32) * grid - 64;
+                    let y = rng.below(((H + 8) * 16 / grid) as u32) * grid - 64;
+                    *v = v3(x, y, 0);
+                }
+            }
+            let poly = &poly[..n];
+            let clip = if case % 4 == 0 {
+                let (x0, y0) = (rng.below(W as u32) as i16, rng.below(H as u32) as i16);
+                ClipRect::from_window(
+                    ClipWindow {
+                        x0,
+                        y0,
+                        x1: x0 + rng.below(W as u32) as i16,
+                        y1: y0 + rng.below(H as u32) as i16,
+                    },
+                    W as u16,
+                    H as u16,
+                )
+            } else {
+                ClipRect::full(W as u16, H as u16)
+            };
+            let run = |chains: bool, slots: &mut [EdgeSlot]| {
+                let mut out = [(
+                    Side {
+                        ends: Ends::default(),
+                        top: 0,
+                        end: 0,
+                    },
+                    Side {
+                        ends: Ends::default(),
+                        top: 0,
+                        end: 0,
+                    },
+                ); 128];
+                let mut k = 0;
+                let p = Polygon::load(slots, poly.iter().copied(), &clip).unwrap();
+                let got = p
+                    .cut_with(chains, |l, r| {
+                        out[k] = (l, r);
+                        k += 1;
+                        Ok::<(), ()>(())
+                    })
+                    .unwrap();
+                assert_eq!(got as usize, k);
+                (out, k)
+            };
+            let (want, nw) = run(false, &mut slots);
+            let (got, ng) = run(true, &mut slots);
+            assert_eq!(&got[..ng], &want[..nw], "case {case}: {poly:?} {clip:?}");
+            // How often the walk finishes alone.
+            let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+            if p.edges >= 2 {
+                total += 1;
+                let mut c = Closer {
+                    emit: |_: Side, _: Side| Ok::<(), ()>(()),
+                    cols: p.cols,
+                    count: 0,
+                    skip: 0,
+                };
+                if cut_chains(&p.slots[..p.edges], p.rows, &mut c).unwrap() {
+                    walked += 1;
+                } else if c.count > 0 {
+                    gave_up_late += 1;
+                }
+            }
+        }
+        // The convex third at least, and some of the others.
+        assert!(walked * 3 > total, "{walked} of {total}");
+        // And the walk gave up after emitting, so the sweep skipped some.
+        assert!(gave_up_late > 50, "{gave_up_late}");
+    }
+
+    /// `(1024·cos, 1024·sin)` of `a` tenths of a degree, near enough for
+    /// points in convex position (a table of 10° and a linear blend).
+    fn approx_cos_sin(a: i64) -> (i64, i64) {
+        const C: [i64; 37] = [
+            1024, 1008, 962, 887, 784, 658, 512, 350, 178, 0, -178, -350, -512, -658, -784, -887,
+            -962, -1008, -1024, -1008, -962, -887, -784, -658, -512, -350, -178, 0, 178, 350, 512,
+            658, 784, 887, 962, 1008, 1024,
+        ];
+        let (i, f) = ((a / 100) as usize, a % 100);
+        let c = (C[i] * (100 - f) + C[i + 1] * f) / 100;
+        let j = (i + 27) % 36;
+        let s = -(C[j] * (100 - f) + C[j + 1] * f) / 100;
+        (c, s)
+    }
+
+    /// The shortcuts (edges from one vertex, edges apart in x) order
+    /// every band as the crossings do, over the whole coordinate range,
+    /// bands of one row through a shared vertex included.
+    #[test]
+    fn edges_from_one_vertex_are_ordered_as_their_crossings() {
+        let mut rng = Rng(0x7e57_0bad);
+        let slot = |x0: i32, y0: i32, x1: i32, y1: i32| EdgeSlot {
+            ends: Ends {
+                x0: x0 as i16,
+                y0: y0 as i16,
+                x1: x1 as i16,
+                y1: y1 as i16,
+            },
+            ..EdgeSlot::EMPTY
+        };
+        let reference = |a: &EdgeSlot, b: &EdgeSlot, y: i32, last: i32| match cmp_x(a, b, y) {
+            Ordering::Less if !cmp_x(a, b, last).is_gt() => Some(true),
+            Ordering::Greater if !cmp_x(a, b, last).is_lt() => Some(false),
+            Ordering::Equal => match cmp_x(a, b, last) {
+                Ordering::Less => Some(true),
+                Ordering::Greater => Some(false),
+                Ordering::Equal => None,
+            },
+            _ => None,
+        };
+        let mut shared = 0;
+        for case in 0..200_000 {
+            let span = [32768, 4096, 64][case % 3];
+            let mut r = |lo: i32| lo + rng.below((32767 - lo).min(span) as u32 + 1);
+            let (x, y) = (r(-32768), r(-32768));
+            let (xa, ya, xb, yb) = (r(-32768), r(y + 1), r(-32768), r(y + 1));
+            if ya > 32767 || yb > 32767 || ya <= y || yb <= y {
+                continue;
+            }
+            let (a, b) = if case % 2 == 0 {
+                (slot(x, y, xa, ya), slot(x, y, xb, yb))
+            } else {
+                // The lower end shared: (x, y) as the bottom vertex.
+                let (y, ya, yb) = (ya.max(yb), y, y - (yb - ya).abs().min(y + 32768));
+                if ya >= y || yb >= y {
+                    continue;
+                }
+                (slot(xa, ya, x, y), slot(xb, yb, x, y))
+            };
+            // Rows both cross (centres in [y0, y1)), a random band of them.
+            let rows = |e: &EdgeSlot| {
+                (
+                    ceil_px(e.ends.y0 as i32 - HALF),
+                    ceil_px(e.ends.y1 as i32 - HALF),
+                )
+            };
+            let ((ta, ea), (tb, eb)) = (rows(&a), rows(&b));
+            let (top, end) = (ta.max(tb), ea.min(eb));
+            if top >= end {
+                continue;
+            }
+            let first = top + rng.below((end - top) as u32);
+            let last = first + rng.below((end - first) as u32);
+            shared += 1;
+            assert_eq!(
+                band_order(&a, &b, first, last),
+                reference(&a, &b, first, last),
+                "{a:?} {b:?} {first}..={last}"
+            );
+        }
+        assert!(shared > 50_000, "{shared}");
+        // And edges with no end in common: apart in x, or not.
+        let mut apart = 0;
+        for case in 0..200_000 {
+            let span = [32768, 512, 64][case % 3];
+            let mut r = |lo: i32| lo + rng.below((32767 - lo).min(span) as u32 + 1);
+            let (x0, y0) = (r(-32768), r(-32768));
+            let (a, b) = (
+                slot(x0, y0, r(x0 - span), r(y0 + 1)),
+                slot(r(x0 - span), r(y0 - span), r(x0 - span), r(y0 + 1)),
+            );
+            if a.ends.y1 <= a.ends.y0 || b.ends.y1 <= b.ends.y0 || a.ends == b.ends {
+                continue;
+            }
+            let rows = |e: &EdgeSlot| {
+                (
+                    ceil_px(e.ends.y0 as i32 - HALF),
+                    ceil_px(e.ends.y1 as i32 - HALF),
+                )
+            };
+            let ((ta, ea), (tb, eb)) = (rows(&a), rows(&b));
+            let (top, end) = (ta.max(tb), ea.min(eb));
+            if top >= end {
+                continue;
+            }
+            let first = top + rng.below((end - top) as u32);
+            let last = first + rng.below((end - first) as u32);
+            let (ra, rb) = (
+                (a.ends.x0.min(a.ends.x1), a.ends.x0.max(a.ends.x1)),
+                (b.ends.x0.min(b.ends.x1), b.ends.x0.max(b.ends.x1)),
+            );
+            apart += (ra.1 < rb.0 || rb.1 < ra.0) as u32;
+            assert_eq!(
+                band_order(&a, &b, first, last),
+                reference(&a, &b, first, last),
+                "{a:?} {b:?} {first}..={last}"
+            );
+        }
+        assert!(apart > 10_000, "{apart}");
+    }
+
+    /// The 16-bit-digit division equals the library's, at the edges of
+    /// its range (quotients just below 2³², divisors of every length,
+    /// the corrections of each digit) and at random.
+    #[test]
+    fn long_division_is_exact() {
+        let mut rng = Rng(0x5151_7a7a);
+        let check = |u: u64, v: u32| {
+            if v > 0 && ((u >> 32) as u32) < v {
+                assert_eq!(div_64_32(u, v) as u64, u / v as u64, "{u} / {v}");
+            }
+        };
+        for sh in 0..32 {
+            for v in [
+                1u32 << sh,
+                (1 << sh) + 1,
+                (1u32 << sh).wrapping_sub(1),
+                u32::MAX >> sh,
+            ] {
+                for u in [
+                    0,
+                    1,
+                    v as u64,
+                    ((v as u64) << 32).wrapping_sub(1),
+                    (v as u64) << 31,
+                    u64::MAX,
+                ] {
+                    check(u, v);
+                    check(u.wrapping_sub((v as u64).wrapping_sub(1)), v);
+                }
+            }
+        }
+        for _ in 0..200_000 {
+            let v = (rng.next_u64() >> 32) as u32 >> rng.below(32);
+            let u = rng.next_u64() >> rng.below(64);
+            check(u, v);
+            // Quotients near 2³² and divisors with a second digit that
+            // needs correcting.
+            check(
+                ((v as u64) << 32).wrapping_sub(1 + rng.below(1 << 20) as u64),
+                v,
+            );
+            check(
+                ((v as u64) << 32).wrapping_sub((v as u64) * (1 + rng.below(70_000) as u64)),
+                v,
+            );
+            check(u, v | 0xffff);
+            check(u, v & 0xffff_0000);
+        }
+    }
+
+    /// `floor_div` is `div_euclid` by a positive divisor; `round_div64`
+    /// is `round_div` wherever it is used (|n| < 2⁶², 0 < c < 2³¹).
+    #[test]
+    fn narrow_divisions_equal_the_wide_ones() {
+        let mut rng = Rng(0x0ddb_a11e);
+        for _ in 0..100_000 {
+            let c = ((rng.next_u64() >> 32) as u32 >> (1 + rng.below(31))).max(1);
+            let big = rng.next_u64() >> (3 + rng.below(61));
+            for n in [big as i64, -(big as i64), 0, 1, -1, c as i64, -(c as i64)] {
+                assert_eq!(
+                    round_div64(n, c) as i128,
+                    round_div(n as i128, c as i64),
+                    "{n} / {c}"
+                );
+                let d = 2 * c;
+                let m = 2 * n + c as i64;
+                assert_eq!(floor_div(m, d), m.div_euclid(d as i64), "{m} / {d}");
+            }
+        }
+        // The edges: |n| at 2⁶² − 2³¹, c at both ends.
+        for c in [1u32, 2, 3, (1 << 31) - 1, 1 << 30, 12345] {
+            for n in [
+                (1i64 << 62) - (1 << 31),
+                -(1i64 << 62) + (1 << 31),
+                (1 << 32) - 1,
+                -(1 << 32),
+            ] {
+                assert_eq!(round_div64(n, c) as i128, round_div(n as i128, c as i64));
+            }
+        }
+    }
+
+    /// The `i64` path of [`Plane::depth`] gives the `i128` path's values
+    /// (modulo 2³²), over the whole Q12.4 range and for normals at the
+    /// edges of the `i64` path (|a|, |b|, c just below 2³¹).
+    #[test]
+    fn narrow_depth_equals_the_wide_one() {
+        let mut rng = Rng(0x600d_f00d);
+        let wide = |p: &Plane| {
+            let (x0, y0, _) = p.origin_units();
+            let (i0, j0) = ((x0 >> 4).clamp(0, 4095), (y0 >> 4).clamp(0, 4095));
+            let (zx, zy, at) = p.depth_wide(x0 - 16 * i0 - 8, y0 - 16 * j0 - 8);
+            let z = at
+                .wrapping_sub(zx.wrapping_mul(i0))
+                .wrapping_sub(zy.wrapping_mul(j0));
+            Depth { z, zx, zy }
+        };
+        let m = (1i64 << 31) - 1;
+        let ends = [-m, -m + 1, -1, 0, 1, m - 1, m, 1 << 20, -(1 << 20), 3];
+        let origins = [i16::MIN, -8, -1, 0, 7, 8, 4095, i16::MAX];
+        for &a in &ends {
+            for &b in &ends {
+                for c in [1, 2, 3, m - 1, m, 1 << 16, m + 1, 1 << 40] {
+                    let origin = (
+                        origins[rng.below(8) as usize],
+                        origins[rng.below(8) as usize],
+                        origins[rng.below(8) as usize],
+                    );
+                    let p = Plane { a, b, c, origin };
+                    assert_eq!(p.depth(), wide(&p), "{p:?}");
+                }
+            }
+        }
+        for _ in 0..20_000 {
+            let mut r = |m: u32| rng.below(2 * m) - m as i32;
+            let tri = [
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+            ];
+            if let Some(p) = Plane::of(tri) {
+                assert_eq!(p.depth(), wide(&p), "{tri:?}");
             }
         }
     }
