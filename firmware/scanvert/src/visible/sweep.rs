@@ -44,12 +44,12 @@
 //! * stepping and entering: `O(a)`;
 //! * the sort: `O(a)` when the order is the last row's, at most
 //!   `O(64·a + a log a)` in any order;
-//! * the sweep, on a row of at most 64 live trapezoids ([`sweep`]):
+//! * the sweep, on a row of at most 64 live trapezoids (`sweep`):
 //!   `O((a + s) · c)`: a trapezoid that starts costs two depth compares
 //!   behind a front, or its insertion into the cover array (`O(c)`); a
 //!   front found or a span resolved compares the covers once (`O(c)`, and
 //!   a subdivision `O(c)` per part);
-//! * the sweep, on a longer row ([`sweep_many`]): a trapezoid that starts
+//! * the sweep, on a longer row (`sweep_many`): a trapezoid that starts
 //!   costs `O(log c)` compares to find its place in the cover array (kept
 //!   by increasing `r`, so one that ends last is appended) and moves the
 //!   covers that end after it; a front costs no compare while the covers
@@ -67,7 +67,7 @@
 //! farther than the last, visible one sliver each, make `s` and `c` both
 //! of the order of `a`, which would make a row `O(a²)`; but they form a
 //! chain, each entering behind the one before it and ending after it, so
-//! [`sweep_many`] appends each with two depth compares and finds each
+//! `sweep_many` appends each with two depth compares and finds each
 //! front with none: `O(a log a)` a row. A row whose covers overlap in depth
 //! without forming a chain (planes crossing each other everywhere) stays
 //! `O((a + s) · c)`. Per frame, the sum over rows; the figures are in
