@@ -20,7 +20,7 @@ use std::path::Path;
 /// Bytes of one slot on a 32-bit target.
 mod slot {
     pub const TRAPEZOID: usize = 34;
-    pub const FACE: usize = 72;
+    pub const FACE: usize = 56;
     pub const SEGMENT: usize = 28;
     pub const INDEX_ROW: usize = 2;
     pub const EDGE_SLOT: usize = 32;
@@ -380,9 +380,9 @@ fn ram_table() {
                 for (what, t, a, rows) in [
                     ("as measured", slot::TRAPEZOID, slot::ACTIVE, 16),
                     ("before: trapezoid 96 B, face 64 B", 96, slot::ACTIVE, 16),
-                    ("projection: active + cover 68 B", slot::TRAPEZOID, 68, 16),
+                    ("projection: an active slot of 68 B", slot::TRAPEZOID, 68, 16),
                     (
-                        "projection: active + cover 68 B, 8-row bands",
+                        "projection: an active slot of 68 B, 8-row bands",
                         slot::TRAPEZOID,
                         68,
                         8,
