@@ -713,23 +713,7 @@ impl Sweep {
             cx.y = yi;
             // Step the live trapezoids to this row, dropping those that
             // ended, and reload their pixels (in place, keeping the order).
-            let mut w = 0;
-            for p in 0..k {
-                let slot = act[p].hot.slot;
-                let e = &mut act[slot as usize].entry;
-                if e.left.end() <= yi {
-                    act[nf].free = slot;
-                    nf += 1;
-                    continue;
-                }
-                e.left.step();
-                e.right.step();
-                e.z = e.z.wrapping_add(e.zy);
-                let h = e.hot(slot);
-                act[w].hot = h;
-                w += 1;
-            }
-            k = w;
+            (k, nf) = step_live(act, k, nf, yi);
             // Enter the trapezoids whose top is this row.
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
@@ -769,6 +753,30 @@ impl Sweep {
         self.stats = cx.stats;
         Ok(cx.out)
     }
+}
+
+/// Steps the live trapezoids `act[..k]` to row `y`, dropping those that
+/// ended onto the free stack `act[..nf]`, and reloads their pixels (in
+/// place, keeping the order); the new `k` and `nf`.
+#[inline(never)]
+fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
+    let mut w = 0;
+    for p in 0..k {
+        let slot = act[p].hot.slot;
+        let e = &mut act[slot as usize].entry;
+        if e.left.end() <= y {
+            act[nf].free = slot;
+            nf += 1;
+            continue;
+        }
+        e.left.step();
+        e.right.step();
+        e.z = e.z.wrapping_add(e.zy);
+        let h = e.hot(slot);
+        act[w].hot = h;
+        w += 1;
+    }
+    (w, nf)
 }
 
 /// Where the resolved runs go, one row at a time.
