@@ -760,8 +760,24 @@ impl Sweep {
 /// place, keeping the order); the new `k` and `nf`.
 #[inline(never)]
 fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
+    // Up to the first that ended, each element stays where it is and only
+    // its `l`, `r` and `z` change.
     let mut w = 0;
-    for p in 0..k {
+    while w < k {
+        let slot = act[w].hot.slot;
+        let e = &mut act[slot as usize].entry;
+        if e.left.end() <= y {
+            break;
+        }
+        e.left.step();
+        e.right.step();
+        e.z = e.z.wrapping_add(e.zy);
+        let (l, r, z) = e.pixels();
+        let h = &mut act[w].hot;
+        (h.l, h.r, h.z) = (l, r, z);
+        w += 1;
+    }
+    for p in w..k {
         let slot = act[p].hot.slot;
         let e = &mut act[slot as usize].entry;
         if e.left.end() <= y {
