@@ -6,7 +6,9 @@
 //! 1. The trapezoids whose top is this row (the scan-line index) enter the
 //!    active list, a caller-owned array of [`Active`] slots.
 //! 2. Every active trapezoid knows its pixels `l..r` on the row: its edges'
-//!    pixels, stepped down a row with no division, cut to its columns.
+//!    pixels, stepped down a row with no division, cut to its columns
+//!    (`step_live`: up to the first that ends, only `l`, `r` and the
+//!    depth of each element of the sorted array are rewritten, in place).
 //! 3. The active list is sorted by `l` with an insertion sort over an
 //!    index array, which costs one compare per entry when the order is the
 //!    last row's (the usual case); an entry that would move more than 64
@@ -757,7 +759,9 @@ impl Sweep {
 
 /// Steps the live trapezoids `act[..k]` to row `y`, dropping those that
 /// ended onto the free stack `act[..nf]`, and reloads their pixels (in
-/// place, keeping the order); the new `k` and `nf`.
+/// place, keeping the order); the new `k` and `nf`. Not inlined: kept out
+/// of the row loop's registers, it costs fewer instructions on the
+/// Cortex-M4 (figures in `docs/performance.md`).
 #[inline(never)]
 fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
     // Up to the first that ended, each element stays where it is and only
@@ -777,7 +781,8 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
         (h.l, h.r, h.z) = (l, r, z);
         w += 1;
     }
-    for p in w..k {
+    let first = w;
+    for p in first..k {
         let slot = act[p].hot.slot;
         let e = &mut act[slot as usize].entry;
         if e.left.end() <= y {
