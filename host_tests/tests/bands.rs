@@ -774,3 +774,45 @@ fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
         assert!(!out.exists(), "no image for {bad:?}");
     }
 }
+
+/// After `Scene::check`, a pass in another workspace compares its
+/// capacity with the number the scene found: one slot short is the same
+/// typed error as before, and enough draws the same frame.
+#[test]
+fn a_checked_scene_sizes_other_workspaces_by_its_count() {
+    use scanvert::visible::VisibleError;
+    use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
+    with_scene(steps(1)[0], |scene, bg| {
+        let w = WIDTH as usize;
+        let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
+        let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
+        scene
+            .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
+            .expect("draws");
+        let most = scene.check().expect("fits") as usize;
+        let mut short = Work::new(most - 1);
+        let mut ws = short.workspace();
+        let r = scene.bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT);
+        assert!(
+            matches!(r, Err(VisibleError::Active { capacity }) if capacity == most - 1),
+            "one slot short"
+        );
+        let mut work = Work::new(most);
+        let mut ws = work.workspace();
+        let mut pass = scene
+            .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
+            .expect("pass");
+        let mut band = vec![Rgb565::BLACK; 16 * w];
+        let mut y = 0;
+        while y < HEIGHT {
+            let n = pass.draw(y, 16, &mut band).expect("band");
+            let at = y as usize * w;
+            assert!(
+                band[..n as usize * w] == px[at..at + n as usize * w],
+                "row {y}"
+            );
+            y += n;
+        }
+    })
+    .expect("demo scene");
+}

@@ -380,7 +380,12 @@ fn ram_table() {
                 for (what, t, a, rows) in [
                     ("as measured", slot::TRAPEZOID, slot::ACTIVE, 16),
                     ("before: trapezoid 96 B, face 64 B", 96, slot::ACTIVE, 16),
-                    ("projection: an active slot of 68 B", slot::TRAPEZOID, 68, 16),
+                    (
+                        "projection: an active slot of 68 B",
+                        slot::TRAPEZOID,
+                        68,
+                        16,
+                    ),
                     (
                         "projection: an active slot of 68 B, 8-row bands",
                         slot::TRAPEZOID,

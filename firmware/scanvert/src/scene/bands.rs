@@ -126,14 +126,17 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             store,
             labels,
             workspace,
+            most,
             ..
         } = self;
-        pass(store, labels, workspace, resolve, background, font)
+        pass(store, labels, workspace, *most, resolve, background, font)
     }
 
     /// [`bands`](Self::bands) in `workspace` instead of the scene's own,
     /// reading the scene only: another pass over the same scene at the
-    /// same time (another core's, taking other bands).
+    /// same time (another core's, taking other bands). After
+    /// [`Scene::check`] (and until a segment changes) the workspace's
+    /// capacity is only compared with the number it found.
     pub fn bands_in<'s, 'w, C: ListColor>(
         &'s self,
         workspace: &'s mut Workspace<'w>,
@@ -145,6 +148,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             &self.store,
             &self.labels,
             workspace,
+            self.most,
             resolve,
             background,
             font,
@@ -195,16 +199,34 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     }
 }
 
-/// A pass over `store` and `labels` in `workspace`.
+/// A pass over `store` and `labels` in `workspace`, whose most
+/// trapezoids on a row are `most` when known.
 fn pass<'s, 'a, 'w, C: ListColor>(
     store: &'s TrapezoidStore<'a>,
     labels: &'s LabelStore<'a>,
     workspace: &'s mut Workspace<'w>,
+    most: Option<u32>,
     resolve: Resolve,
     background: C,
     font: &'s MonoFont<'s>,
 ) -> Result<SceneBands<'s, 'a, 'w, C>, VisibleError<Infallible>> {
-    workspace.check(store)?;
+    match most {
+        Some(m) => {
+            if workspace.run_capacity() < store.width() as usize {
+                return Err(VisibleError::Runs {
+                    capacity: workspace.run_capacity(),
+                });
+            }
+            if workspace.capacity() < m as usize {
+                return Err(VisibleError::Active {
+                    capacity: workspace.capacity(),
+                });
+            }
+        }
+        None => {
+            workspace.check(store)?;
+        }
+    }
     let sweep = Sweep::new(workspace, resolve);
     Ok(SceneBands {
         store,

@@ -356,6 +356,11 @@ pub struct Scene<'a, const DEPTH: usize, const N: usize> {
     workspace: Workspace<'a>,
     pipeline: Pipeline<DEPTH, N>,
     clip: ClipRect,
+    /// The most trapezoids on one row, as [`Scene::check`] last found it
+    /// (`None` once a segment is emptied or rebuilt since): a pass in
+    /// another workspace ([`Scene::bands_in`]) then only compares its
+    /// capacity, instead of finding the number again.
+    most: Option<u32>,
 }
 
 impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
@@ -384,6 +389,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             workspace: Workspace::new(mem.active, mem.runs),
             pipeline,
             clip: ClipRect::full(width, height),
+            most: None,
         };
         scene.invalidate_all();
         Ok(scene)
@@ -509,6 +515,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// (what [`rebuild`](Self::rebuild) does around a procedure). The
     /// segment counts as built from here on.
     pub fn open(&mut self, s: usize) -> Result<Builder<'_, 'a, DEPTH, N>, SceneError> {
+        self.most = None;
         self.store.clear_segment(s)?;
         self.labels.clear_segment(s as u16);
         self.store.set_stale(s, false)?;
@@ -520,6 +527,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     }
 
     fn empty(&mut self, s: usize) {
+        self.most = None;
         let _ = self.store.clear_segment(s);
         self.labels.clear_segment(s as u16);
         let _ = self.store.set_stale(s, true);
@@ -527,9 +535,14 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
 
     /// Finds the most trapezoids that overlap one row and checks them
     /// against the active list, and the frame's width against the runs,
-    /// without drawing (see [`Workspace::check`]).
+    /// without drawing (see [`Workspace::check`]). The scene remembers
+    /// the number until a segment changes, so that passes in other
+    /// workspaces ([`Scene::bands_in`], one per core) need not find it
+    /// again.
     pub fn check(&mut self) -> Result<u32, VisibleError<core::convert::Infallible>> {
-        self.workspace.check(&self.store)
+        let most = self.workspace.check(&self.store)?;
+        self.most = Some(most);
+        Ok(most)
     }
 
     /// What the scene uses now, as [`SceneStorage`] capacities: the
