@@ -172,25 +172,25 @@ impl CostModel {
     /// and its error are the test `race_model` of `scanvert-sim`, which
     /// prints the coefficients when run with `--ignored`.
     ///
-    /// Against the 1,992 measured rows the model's error is 4.4 % on
-    /// average and 26.4 % at worst (the 3D lists' rows: 8.0 % and 7.1 % on
-    /// average; the 2D lists' 0.8 % to 5.1 %). Preparing a list is fitted
+    /// Against the 1,992 measured rows the model's error is 3.8 % on
+    /// average and 24.7 % at worst (the 3D lists' rows: 7.7 % and 6.9 % on
+    /// average; the 2D lists' 0.5 % to 4.0 %). Preparing a list is fitted
     /// to the eight lists' counts, within 14 %. Labels are in none of the
     /// measured lists, so `label` is 0 and a label costs its spans and
     /// pixels. One instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: -17537,
-        width: 310,
-        span: 1516,
-        pixel: 12,
-        run: 383,
-        entered: 3509,
-        resolved: 3298,
+        row: -11211,
+        width: 289,
+        span: -3053,
+        pixel: 26,
+        run: 313,
+        entered: 9998,
+        resolved: 6877,
         label: 0,
-        live: 4517,
-        frame: 111412,
-        command: 14141,
-        trapezoid: 24986,
+        live: 8439,
+        frame: 111567,
+        command: 13604,
+        trapezoid: 10062,
     };
 
     /// Instructions of a row of `work`, at least 1.

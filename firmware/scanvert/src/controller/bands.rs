@@ -144,14 +144,30 @@ impl ListBands<'_> {
                 sweep.skip(store, ws, y - self.next).map_err(layer_error)?;
             }
         }
-        ok(band.clear(C::from_rgb888(self.background)));
+        // With nothing 2D to draw under the 3D layer, and the layer as
+        // large as the frame, the sweep writes the background runs itself
+        // (every pixel once) instead of a fill that the faces overwrite.
+        let background = C::from_rgb888(self.background);
+        let layer_fills = self.table.is_empty()
+            && self.layer.as_ref().is_some_and(|(scene, ..)| {
+                (scene.store().width(), scene.store().height()) == (w, h)
+            });
+        if !layer_fills {
+            ok(band.clear(background));
+        }
         let c = ok(self.table.draw(band.end() as i32, &mut band));
         self.stats.spans += c.spans;
         self.stats.pixels += c.pixels as u64;
         if let Some((scene, sweep, _)) = self.layer.as_mut() {
             let (store, labels, ws) = scene.band_parts();
             let c = sweep
-                .draw(store, ws, band.rows(), &mut band, None)
+                .draw(
+                    store,
+                    ws,
+                    band.rows(),
+                    &mut band,
+                    layer_fills.then_some(background),
+                )
                 .map_err(layer_error)?;
             self.stats.visible = sweep.stats();
             self.stats.spans += c.spans;
