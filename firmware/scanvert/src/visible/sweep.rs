@@ -640,25 +640,9 @@ impl Sweep {
         let end = self.y.saturating_add(rows).min(store.height());
         let (mut k, mut nf) = (self.k, self.nf);
         for y in self.y..end {
-            let yi = y as i32;
-            let mut w = 0;
-            for p in 0..k {
-                let slot = act[p].hot.slot;
-                let e = &mut act[slot as usize].entry;
-                if e.left.end() <= yi {
-                    act[nf].free = slot;
-                    nf += 1;
-                    continue;
-                }
-                e.left.step();
-                e.right.step();
-                e.z = e.z.wrapping_add(e.zy);
-                // The whole element: the next row steps it in place.
-                let h = e.hot(slot);
-                act[w].hot = h;
-                w += 1;
-            }
-            k = w;
+            // As a drawn row steps them, so that the next row drawn finds
+            // every element whole.
+            (k, nf) = step_live(act, k, nf, y as i32);
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
                 if nf == 0 {
