@@ -42,7 +42,7 @@ use crate::port::{Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::Edge;
 use crate::raster::line::Line;
-use crate::raster::scan::{build_edges, emit_span as emit, insertion_sort};
+use crate::raster::scan::{build_edges, Walk};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -493,107 +493,30 @@ impl<'a> EdgeTable<'a> {
     }
 }
 
-/// Rows `p.y..y1` of one polygon, as
-/// [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill) steps them,
-/// drawn into `target` (or only stepped without one); its state is left
-/// for row `y1`.
+/// Rows `p.y..y1` of one polygon, walked as
+/// [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill) walks them
+/// (the same [`Walk`]), drawn into `target` (or only stepped without
+/// one); its state is left for row `y1`.
 #[inline]
 fn run<T: SpanTarget + ?Sized>(
     p: &mut TablePolygon,
     edges: &mut [Edge],
     y1: i32,
     color: Option<T::Color>,
-    mut target: Option<&mut T>,
+    target: Option<&mut T>,
     counts: &mut Counts,
 ) -> Result<(), T::Error> {
-    let n = edges.len();
-    let (mut active, mut next, mut y) = (p.active as usize, p.next as usize, p.y);
-    let cx = (p.x0 as i32, p.x1 as i32);
-    loop {
-        if active == 0 {
-            match edges.get(next) {
-                Some(e) => y = y.max(e.top()),
-                None => break,
-            }
-        }
-        if y >= y1 {
-            break;
-        }
-        while next < n && edges[next].top() <= y {
-            edges.swap(active, next);
-            active += 1;
-            next += 1;
-        }
-        let mut stop = edges.get(next).map_or(i32::MAX, |e| e.top()).min(y1);
-        for e in &edges[..active] {
-            stop = stop.min(e.end());
-        }
-        let live = &mut edges[..active];
-        match (target.as_deref_mut(), color) {
-            (Some(t), Some(color)) => {
-                if let [a, b] = live {
-                    let (mut a, mut b) = (*a, *b);
-                    loop {
-                        a.load_pixel();
-                        b.load_pixel();
-                        let (l, r) = if a.pixel() <= b.pixel() {
-                            (a.pixel(), b.pixel())
-                        } else {
-                            (b.pixel(), a.pixel())
-                        };
-                        emit(y, l, r, cx, color, t, counts)?;
-                        y += 1;
-                        if y >= stop {
-                            break;
-                        }
-                        a.step();
-                        b.step();
-                    }
-                    live[0] = a;
-                    live[1] = b;
-                } else {
-                    loop {
-                        for e in live.iter_mut() {
-                            e.load_pixel();
-                        }
-                        insertion_sort(live);
-                        for pair in live.chunks_exact(2) {
-                            emit(y, pair[0].pixel(), pair[1].pixel(), cx, color, t, counts)?;
-                        }
-                        y += 1;
-                        if y >= stop {
-                            break;
-                        }
-                        for e in live.iter_mut() {
-                            e.step();
-                        }
-                    }
-                }
-            }
-            _ => {
-                // Stepped only: to row stop − 1, as drawing would leave them.
-                for _ in y + 1..stop {
-                    for e in live.iter_mut() {
-                        e.step();
-                    }
-                }
-                y = stop;
-            }
-        }
-        let mut i = 0;
-        while i < active {
-            if edges[i].end() <= y {
-                active -= 1;
-                edges.swap(i, active);
-            } else {
-                edges[i].step();
-                i += 1;
-            }
-        }
-    }
-    p.active = active as u16;
-    p.next = next as u16;
-    p.y = y;
+    let mut walk = Walk {
+        active: p.active as usize,
+        next: p.next as usize,
+        y: p.y,
+    };
+    let paint = target.zip(color);
+    walk.run(edges, y1, (p.x0 as i32, p.x1 as i32), paint, counts)?;
+    // At most `n` (a `u16`).
+    p.active = walk.active as u16;
+    p.next = walk.next as u16;
+    p.y = walk.y;
     Ok(())
 }
 
