@@ -207,10 +207,10 @@ pub(super) fn build_edges<S: Stepper>(
 /// table, about 65-100 instructions a call on a Cortex-M4; the swap is a
 /// few loads and stores.
 #[inline(always)]
-fn copy_down<S: Copy>(edges: &mut [S], from: usize, to: usize) {
+fn copy_down<S: Stepper>(edges: &mut [S], from: usize, to: usize) {
     let (low, high) = edges.split_at_mut(from);
-    if let (Some(dst), Some(src)) = (low.get_mut(to), high.first_mut()) {
-        core::mem::swap(dst, src);
+    if let (Some(dst), Some(src)) = (low.get_mut(to), high.first()) {
+        dst.copy_from(src);
     }
 }
 
