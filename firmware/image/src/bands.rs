@@ -1,5 +1,5 @@
 //! Every embedded list rendered again band by band
-//! (`Controller::render_bands`), with no frame buffer: bands of 1, 16 and
+//! (`Controller::render_bands`), with no frame buffer: bands of 1, 8, 16 and
 //! 64 rows through one band buffer of RGB565 pixels (whatever the frame
 //! memory's cells), each band shipped into a running checksum.
 //! The checksum must equal the host's frame's; the instructions (of a
@@ -48,7 +48,7 @@ pub struct Table {
 }
 
 /// Band heights measured.
-const HEIGHTS: [u16; 3] = [1, 16, 64];
+const HEIGHTS: [u16; 4] = [1, 8, 16, 64];
 
 /// Ships bands into a running checksum, in order, or (`None`, for the
 /// timed run) nowhere.

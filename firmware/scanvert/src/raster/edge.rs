@@ -58,6 +58,13 @@ pub trait Stepper: Copy {
     fn is_vertical(&self) -> bool {
         false
     }
+    /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
+    /// copy field by field: a copy of a whole record between two slots
+    /// of one slice can become a call to `memmove`.
+    #[inline(always)]
+    fn copy_from(&mut self, other: &Self) {
+        *self = *other;
+    }
 }
 
 /// One polygon edge being stepped down the rows, in the form of the
@@ -217,6 +224,22 @@ impl Stepper for Edge {
     fn is_vertical(&self) -> bool {
         // x += 0 and err −= 0 every row.
         self.step == 0 && self.rem == 0
+    }
+    #[inline(always)]
+    fn copy_from(&mut self, other: &Self) {
+        // Field by field: loads and stores, never `memmove` or `memcpy`.
+        let Edge {
+            x,
+            err,
+            step,
+            rem,
+            dy,
+            top,
+            end,
+            px,
+        } = *other;
+        (self.x, self.err, self.step, self.rem) = (x, err, step, rem);
+        (self.dy, self.top, self.end, self.px) = (dy, top, end, px);
     }
 }
 

@@ -135,108 +135,15 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         edges.sort_unstable_by_key(|e| e.top());
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
-        // edges[..active] are active, edges[active..next] are finished,
-        // edges[next..] wait for their first row (sorted). An edge joins on
-        // its first row, so every active edge has `end > y`.
-        let (mut active, mut next) = (0usize, 0usize);
-        let mut y = edges[0].top();
-        loop {
-            if active == 0 {
-                match edges.get(next) {
-                    Some(e) => y = y.max(e.top()),
-                    None => break,
-                }
-            }
-            while next < n && edges[next].top() <= y {
-                // The slot at `active` is free (a finished edge, or the
-                // edge itself): a copy, not a swap.
-                if active != next {
-                    copy_down(edges, next, active);
-                }
-                active += 1;
-                next += 1;
-            }
-            // The active set holds for rows y..stop: until an edge ends or
-            // another starts. Within such a run no membership test is made.
-            let mut stop = edges.get(next).map_or(i32::MAX, |e| e.top());
-            for e in &edges[..active] {
-                stop = stop.min(e.end());
-            }
-            let live = &mut edges[..active];
-            if let [a, b] = live {
-                if a.is_vertical() && b.is_vertical() {
-                    // Two vertical edges (a rectangle's sides): one span,
-                    // the same on every row of the run; nothing to step.
-                    a.load_pixel();
-                    b.load_pixel();
-                    let (l, r) = (a.pixel().min(b.pixel()), a.pixel().max(b.pixel()));
-                    emit_rows(y, stop, l, r, (cx0, cx1), color, target, &mut counts)?;
-                    y = stop;
-                } else {
-                    // Two edges (every convex polygon, most rows of any other):
-                    // stepped in locals, one span a row, no sort.
-                    let (mut a, mut b) = (*a, *b);
-                    loop {
-                        a.load_pixel();
-                        b.load_pixel();
-                        let (l, r) = if a.pixel() <= b.pixel() {
-                            (a.pixel(), b.pixel())
-                        } else {
-                            (b.pixel(), a.pixel())
-                        };
-                        emit(y, l, r, (cx0, cx1), color, target, &mut counts)?;
-                        y += 1;
-                        if y >= stop {
-                            break;
-                        }
-                        a.step();
-                        b.step();
-                    }
-                    live[0] = a;
-                    live[1] = b;
-                }
-            } else {
-                loop {
-                    for e in live.iter_mut() {
-                        e.load_pixel();
-                    }
-                    insertion_sort(live);
-                    for pair in live.chunks_exact(2) {
-                        emit(
-                            y,
-                            pair[0].pixel(),
-                            pair[1].pixel(),
-                            (cx0, cx1),
-                            color,
-                            target,
-                            &mut counts,
-                        )?;
-                    }
-                    y += 1;
-                    if y >= stop {
-                        break;
-                    }
-                    for e in live.iter_mut() {
-                        e.step();
-                    }
-                }
-            }
-            // Now y == stop: retire the edges that end here (the last active
-            // edge takes the slot; what is left behind is never read), step
-            // the rest.
-            let mut i = 0;
-            while i < active {
-                if edges[i].end() <= y {
-                    active -= 1;
-                    if i != active {
-                        copy_down(edges, active, i);
-                    }
-                } else {
-                    edges[i].step();
-                    i += 1;
-                }
-            }
-        }
+        let mut walk = Walk::start(edges);
+        walk.run(
+            edges,
+            i32::MAX,
+            (cx0, cx1),
+            Some((target, color)),
+            &mut counts,
+        )
+        .map_err(FillError::Target)?;
         Ok(counts)
     }
 
@@ -292,30 +199,176 @@ pub(super) fn build_edges<S: Stepper>(
     Some(n)
 }
 
-/// Copies slot `from` into slot `to < from`. Through two disjoint borrows
-/// the copy is a few loads and stores; `edges[to] = edges[from]` was a
-/// call to `memmove` (the slots might overlap, as far as the compiler
-/// knows), about 100 instructions on a Cortex-M4.
+/// Moves `edges[from]` into the slot `to < from`, whose contents are
+/// never read again. Written as a swap of two disjoint halves of the
+/// slice: `edges[to] = edges[from]` was a call to `memmove` (the slots
+/// might overlap, as far as the compiler knows), and so was a plain copy
+/// between the halves where the walk is inlined into the band path's
+/// table, about 65-100 instructions a call on a Cortex-M4; the swap is a
+/// few loads and stores.
 #[inline(always)]
-fn copy_down<S: Copy>(edges: &mut [S], from: usize, to: usize) {
+fn copy_down<S: Stepper>(edges: &mut [S], from: usize, to: usize) {
     let (low, high) = edges.split_at_mut(from);
     if let (Some(dst), Some(src)) = (low.get_mut(to), high.first()) {
-        *dst = *src;
+        dst.copy_from(src);
     }
 }
 
-/// Writes the span `l..r` of row `y`, cut to the clip columns `cx`.
-#[inline(always)]
-fn emit<T: SpanTarget + ?Sized>(
-    y: i32,
-    l: i32,
-    r: i32,
-    cx: (i32, i32),
-    color: T::Color,
-    target: &mut T,
-    counts: &mut Counts,
-) -> Result<(), FillError<T::Error>> {
-    emit_span(y, l, r, cx, color, target, counts).map_err(FillError::Target)
+/// Where one polygon's walk down its rows stands: `edges[..active]` are
+/// active, `edges[active..next]` finished (never read again),
+/// `edges[next..]` wait for their first row (sorted by it), and `y` is
+/// the next row. An edge joins on its first row, so every active edge has
+/// `end > y`. The rasteriser walks a polygon in one call; the band path's
+/// table ([`table`](super::table)) keeps a walk per polygon and continues
+/// it band by band.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Walk {
+    pub(super) active: usize,
+    pub(super) next: usize,
+    pub(super) y: i32,
+}
+
+impl Walk {
+    /// The walk of `edges` (sorted by first row, at least one) from their
+    /// first row.
+    #[inline(always)]
+    pub(super) fn start<S: Stepper>(edges: &[S]) -> Walk {
+        Walk {
+            active: 0,
+            next: 0,
+            y: edges.first().map_or(0, |e| e.top()),
+        }
+    }
+
+    /// Walks rows `self.y..y1` of the polygon whose edges are `edges`,
+    /// writing its spans cut to the columns `cx` into the target of
+    /// `paint` (or, without one, only stepping), and leaves the walk at
+    /// row `y1` or past its last row.
+    #[inline(always)]
+    pub(super) fn run<S: Stepper, T: SpanTarget + ?Sized>(
+        &mut self,
+        edges: &mut [S],
+        y1: i32,
+        cx: (i32, i32),
+        mut paint: Option<(&mut T, T::Color)>,
+        counts: &mut Counts,
+    ) -> Result<(), T::Error> {
+        let n = edges.len();
+        let (mut active, mut next, mut y) = (self.active, self.next, self.y);
+        loop {
+            if active == 0 {
+                match edges.get(next) {
+                    Some(e) => y = y.max(e.top()),
+                    None => break,
+                }
+            }
+            if y >= y1 {
+                break;
+            }
+            while next < n && edges[next].top() <= y {
+                // The slot at `active` is free (a finished edge, or the
+                // edge itself): a copy, not a swap.
+                if active != next {
+                    copy_down(edges, next, active);
+                }
+                active += 1;
+                next += 1;
+            }
+            // The active set holds for rows y..stop: until an edge ends or
+            // another starts, or the walk's last row. Within such a run no
+            // membership test is made.
+            let mut stop = edges.get(next).map_or(i32::MAX, |e| e.top()).min(y1);
+            for e in &edges[..active] {
+                stop = stop.min(e.end());
+            }
+            let live = &mut edges[..active];
+            match (paint.as_mut(), live) {
+                (Some((target, color)), [a, b]) if a.is_vertical() && b.is_vertical() => {
+                    // Two vertical edges (a rectangle's sides): one span,
+                    // the same on every row of the run; nothing to step.
+                    a.load_pixel();
+                    b.load_pixel();
+                    let (l, r) = (a.pixel().min(b.pixel()), a.pixel().max(b.pixel()));
+                    emit_rows(y, stop, l, r, cx, *color, &mut **target, counts)?;
+                    y = stop;
+                }
+                (Some((target, color)), [a, b]) => {
+                    // Two edges (every convex polygon, most rows of any
+                    // other): stepped in locals, one span a row, no sort.
+                    let (mut ea, mut eb) = (*a, *b);
+                    loop {
+                        ea.load_pixel();
+                        eb.load_pixel();
+                        let (l, r) = if ea.pixel() <= eb.pixel() {
+                            (ea.pixel(), eb.pixel())
+                        } else {
+                            (eb.pixel(), ea.pixel())
+                        };
+                        emit_span(y, l, r, cx, *color, &mut **target, counts)?;
+                        y += 1;
+                        if y >= stop {
+                            break;
+                        }
+                        ea.step();
+                        eb.step();
+                    }
+                    *a = ea;
+                    *b = eb;
+                }
+                (Some((target, color)), live) => loop {
+                    for e in live.iter_mut() {
+                        e.load_pixel();
+                    }
+                    insertion_sort(live);
+                    for pair in live.chunks_exact(2) {
+                        emit_span(
+                            y,
+                            pair[0].pixel(),
+                            pair[1].pixel(),
+                            cx,
+                            *color,
+                            &mut **target,
+                            counts,
+                        )?;
+                    }
+                    y += 1;
+                    if y >= stop {
+                        break;
+                    }
+                    for e in live.iter_mut() {
+                        e.step();
+                    }
+                },
+                (None, live) => {
+                    // Stepped only: to row stop − 1, as drawing would
+                    // leave them.
+                    for _ in y + 1..stop {
+                        for e in live.iter_mut() {
+                            e.step();
+                        }
+                    }
+                    y = stop;
+                }
+            }
+            // Now y == stop: retire the edges that end here (the last
+            // active edge takes the slot; what is left behind is never
+            // read), step the rest.
+            let mut i = 0;
+            while i < active {
+                if edges[i].end() <= y {
+                    active -= 1;
+                    if i != active {
+                        copy_down(edges, active, i);
+                    }
+                } else {
+                    edges[i].step();
+                    i += 1;
+                }
+            }
+        }
+        (self.active, self.next, self.y) = (active, next, y);
+        Ok(())
+    }
 }
 
 /// Writes the span `l..r` of row `y`, cut to the clip columns `cx`, and
@@ -358,7 +411,7 @@ fn emit_rows<T: SpanTarget + ?Sized>(
     color: T::Color,
     target: &mut T,
     counts: &mut Counts,
-) -> Result<(), FillError<T::Error>> {
+) -> Result<(), T::Error> {
     let (x0, x1) = (l.max(cx.0), r.min(cx.1));
     if x0 < x1 && y < stop {
         // In 0..=4096 by the clip guarantee.
@@ -368,9 +421,7 @@ fn emit_rows<T: SpanTarget + ?Sized>(
             x1: x1 as u16,
         };
         let rows = (stop - y) as u32;
-        target
-            .fill_rect(span, rows as u16, color)
-            .map_err(FillError::Target)?;
+        target.fill_rect(span, rows as u16, color)?;
         counts.spans += rows;
         counts.pixels += rows * (x1 - x0) as u32;
     }
