@@ -768,8 +768,8 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
         if e.left.end() <= y {
             break;
         }
-        e.left.step();
-        e.right.step();
+        step_edge(&mut e.left);
+        step_edge(&mut e.right);
         e.z = e.z.wrapping_add(e.zy);
         let (l, r, z) = e.pixels();
         let h = &mut act[w].hot;
@@ -785,14 +785,28 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
             nf += 1;
             continue;
         }
-        e.left.step();
-        e.right.step();
+        step_edge(&mut e.left);
+        step_edge(&mut e.right);
         e.z = e.z.wrapping_add(e.zy);
         let h = e.hot(slot);
         act[w].hot = h;
         w += 1;
     }
     (w, nf)
+}
+
+/// Steps an active trapezoid's edge down a row. On the hosts' out-of-order
+/// cores by a mask ([`Edge::step_masked`]): the carries of many unrelated
+/// edges follow no pattern, and a branch there was mispredicted about
+/// every other step (a tenth of the frame's time at 1000 faces, figures
+/// in `docs/performance.md`). Elsewhere by the branch, which costs fewer
+/// instructions (on the Cortex-M4 it is conditional execution, no jump).
+#[inline(always)]
+fn step_edge(e: &mut Edge) {
+    #[cfg(any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64"))]
+    e.step_masked();
+    #[cfg(not(any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64")))]
+    e.step();
 }
 
 /// Where the resolved runs go, one row at a time.
