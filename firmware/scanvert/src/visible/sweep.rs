@@ -1439,12 +1439,19 @@ fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
         act[*lo].cover = c;
         return;
     }
-    let q = if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
-        place(act, *lo, *nc - FAR, c.r)
-    } else {
-        place_near(act, *lo, *nc, c.r)
-    };
-    insert_at(act, q, nc, c);
+    if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
+        let q = place(act, *lo, *nc - FAR, c.r);
+        insert_at(act, q, nc, c);
+        return;
+    }
+    // Near the end: found and made room for in one pass.
+    let mut q = *nc;
+    while q > *lo && act[q - 1].cover.r >= c.r {
+        act[q].cover = act[q - 1].cover;
+        q -= 1;
+    }
+    act[q].cover = c;
+    *nc += 1;
 }
 
 /// Moves past which [`insert_many`] looks for the place by a binary
@@ -1466,15 +1473,6 @@ fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
         }
     }
     a
-}
-
-/// [`place`] by a scan from the end.
-fn place_near(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
-    let mut q = nc.min(act.len());
-    while q > lo && act[q - 1].cover.r >= r {
-        q -= 1;
-    }
-    q
 }
 
 /// Inserts `c` at `q` of `act[..nc].cover`, moving those after it up.
