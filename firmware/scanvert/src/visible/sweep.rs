@@ -1694,9 +1694,16 @@ impl<O: RowOut> Ctx<'_, O> {
         let (mut best, mut bz) = (first, first.z_at(i));
         for c in rest.iter().map(|a| &a.cover) {
             let cz = c.z_at(i);
-            if self.nearer(c, cz, best, bz, i) {
-                (best, bz) = (c, cz);
-            }
+            let d = cz.wrapping_sub(bz);
+            // As `nearer`, the sign selecting without a branch where the
+            // fixed point decides.
+            let take = if d.unsigned_abs() <= DEPTH_TOLERANCE as u32 {
+                self.exact(c.face, best.face, i, d)
+            } else {
+                d < 0
+            };
+            best = if take { c } else { best };
+            bz = if take { cz } else { bz };
         }
         best
     }
