@@ -229,6 +229,8 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
                             rewrites its section of the page and its plot
   --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
   --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind
+                            ($PROFILE_FACES=N: of N faces; $PROFILE_VERSION=layered:
+                            the 2D version)
   --profile-bands ROWS PASSES  W3 (or $BANDS_LIST: layered, tilted, demo) in
                             bands of ROWS rows alone, for callgrind";
 

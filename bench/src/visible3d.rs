@@ -425,9 +425,18 @@ fn inks_565(scene: &Scene) -> Vec<Rgb565> {
 /// times every view, for counting instructions under callgrind. MODE is
 /// `crossing` or `bisect` (full frames), `crossing-alone` or
 /// `bisect-alone` (resolve + decode), `cut` (the cut alone), `z16` or
-/// `z32`.
+/// `z32`. `PROFILE_FACES=N` takes the scene of `N` faces instead of 170,
+/// and `PROFILE_VERSION=layered` the 2D version instead of the tilted one.
 pub fn profile(mode: &str, passes: u32) {
-    let scene = testkit::scenes3d::scene(Version::Tilted, 170);
+    let faces = std::env::var("PROFILE_FACES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(170);
+    let version = match std::env::var("PROFILE_VERSION").as_deref() {
+        Ok("layered") | Ok("2D") | Ok("2d") => Version::Layered,
+        _ => Version::Tilted,
+    };
+    let scene = testkit::scenes3d::scene(version, faces);
     let clip = ClipRect::full(W, H);
     let inks = inks_565(&scene);
     let cap = 8 * scene.faces + 64;

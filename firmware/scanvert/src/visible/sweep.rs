@@ -12,7 +12,11 @@
 //! 3. The active list is sorted by `l` with an insertion sort over an
 //!    index array, which costs one compare per entry when the order is the
 //!    last row's (the usual case); an entry that would move more than 64
-//!    places hands the row over to a heap sort.
+//!    places hands the row over to a heap sort. On a row of more than 64
+//!    (`sort_many`), the trapezoids that entered are sorted apart and
+//!    merged in, and the moves have a budget of 64 an entry in all, so
+//!    that one far out of place (new, or with pixels again after a row
+//!    with none) costs its moves and not a heap sort.
 //! 4. A sweep from left to right keeps a *front*: a covering trapezoid
 //!    known to be nearest from the sweep's position to its own `r`,
 //!    because it is in front of every other covering trapezoid at both ends
@@ -45,7 +49,8 @@
 //!
 //! * stepping and entering: `O(a)`;
 //! * the sort: `O(a)` when the order is the last row's, at most
-//!   `O(64·a + a log a)` in any order;
+//!   `O(64·a + a log a)` in any order; on a row of more than 64, `O(a)`
+//!   for the merge of those that entered, whatever their order;
 //! * the sweep, on a row of at most 64 live trapezoids (`sweep`):
 //!   `O((a + s) · c)`: a trapezoid that starts costs two depth compares
 //!   behind a front, or its insertion into the cover array (`O(c)`); a
@@ -710,6 +715,7 @@ impl Sweep {
             // ended, and reload their pixels (in place, keeping the order).
             (k, nf) = step_live(act, k, nf, yi);
             // Enter the trapezoids whose top is this row.
+            let stepped = k;
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
                 if nf == 0 {
@@ -732,10 +738,11 @@ impl Sweep {
                 cx.len = width;
                 cx.stats.empty += 1;
             } else {
-                sort(&mut act[..k]);
                 if k > self.many.0 {
+                    sort_many(act, stepped, k);
                     sweep_many(act, k, width, self.many.1, &mut cx);
                 } else {
+                    sort(&mut act[..k]);
                     sweep(act, k, width, &mut cx);
                 }
             }
@@ -766,8 +773,8 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
         if e.left.end() <= y {
             break;
         }
-        e.left.step();
-        e.right.step();
+        step_edge(&mut e.left);
+        step_edge(&mut e.right);
         e.z = e.z.wrapping_add(e.zy);
         let (l, r, z) = e.pixels();
         let h = &mut act[w].hot;
@@ -783,14 +790,28 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
             nf += 1;
             continue;
         }
-        e.left.step();
-        e.right.step();
+        step_edge(&mut e.left);
+        step_edge(&mut e.right);
         e.z = e.z.wrapping_add(e.zy);
         let h = e.hot(slot);
         act[w].hot = h;
         w += 1;
     }
     (w, nf)
+}
+
+/// Steps an active trapezoid's edge down a row. On the hosts' out-of-order
+/// cores by a mask ([`Edge::step_masked`]): the carries of many unrelated
+/// edges follow no pattern, and a branch there was mispredicted about
+/// every other step (a tenth of the frame's time at 1000 faces, figures
+/// in `docs/performance.md`). Elsewhere by the branch, which costs fewer
+/// instructions (on the Cortex-M4 it is conditional execution, no jump).
+#[inline(always)]
+fn step_edge(e: &mut Edge) {
+    #[cfg(any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64"))]
+    e.step_masked();
+    #[cfg(not(any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64")))]
+    e.step();
 }
 
 /// Where the resolved runs go, one row at a time.
@@ -953,6 +974,84 @@ fn sort(live: &mut [Active]) {
             q -= 1;
         }
         live[q].hot = h;
+    }
+}
+
+/// [`sort`] for a row of many live trapezoids, `act[..k]`, of which
+/// `act[stepped..k]` entered on this row: the stepped ones (in the last
+/// row's order but for the edges that crossed, and those that gained or
+/// lost their pixels) and the new ones are sorted apart, each with a
+/// budget of [`SORT_REACH`] moves an element before a heap sort, and
+/// merged ([`merge_entered`]).
+#[inline(never)]
+#[cold]
+fn sort_many(act: &mut [Active], stepped: usize, k: usize) {
+    let k = k.min(act.len());
+    let stepped = stepped.min(k);
+    sort_budget(&mut act[..stepped]);
+    if k > stepped {
+        sort_budget(&mut act[stepped..k]);
+        merge_entered(act, stepped, k);
+    }
+}
+
+/// Insertion sort of the live trapezoids by `l`, as [`sort`], but with
+/// a budget for the whole array instead of a reach for each element:
+/// an element may move far (one that gains its pixels comes from the
+/// end, where `l` is `i32::MAX`) as long as the moves stay within
+/// `SORT_REACH · n`; past that, a heap sort.
+fn sort_budget(live: &mut [Active]) {
+    let mut budget = SORT_REACH * live.len();
+    for p in 1..live.len() {
+        if live[p - 1].hot.l <= live[p].hot.l {
+            continue;
+        }
+        let h = live[p].hot;
+        let mut q = p;
+        while q > 0 && live[q - 1].hot.l > h.l {
+            live[q].hot = live[q - 1].hot;
+            q -= 1;
+        }
+        live[q].hot = h;
+        let Some(b) = budget.checked_sub(p - q) else {
+            heap_sort_hot(live);
+            return;
+        };
+        budget = b;
+    }
+}
+
+/// Merges the trapezoids that entered on a row, `act[old..k].hot`
+/// (sorted by `l`), into the live ones before them (`act[..old].hot`,
+/// sorted), from the end: each element moves once, `O(k)` a row however
+/// far left the new ones start (inserted one by one, each would move past
+/// all the live ones right of it). The new ones wait in the free array's
+/// unused end: `act[n - (k - old)..].free` and `.cover.r` with `n` the
+/// list's length, unused while `k` trapezoids are live (each holds a slot
+/// off the free stack).
+#[inline(never)]
+fn merge_entered(act: &mut [Active], old: usize, k: usize) {
+    let n = act.len();
+    let m = k - old;
+    if k > n || m == 0 {
+        return;
+    }
+    let stash = n - m;
+    for j in 0..m {
+        let h = act[old + j].hot;
+        let a = &mut act[stash + j];
+        (a.free, a.cover.r) = (h.slot, h.l);
+    }
+    let (mut i, mut w) = (old, k);
+    for j in (0..m).rev() {
+        let (slot, l) = (act[stash + j].free, act[stash + j].cover.r);
+        while i > 0 && act[i - 1].hot.l > l {
+            w -= 1;
+            i -= 1;
+            act[w].hot = act[i].hot;
+        }
+        w -= 1;
+        act[w].hot = act[slot as usize].entry.hot(slot);
     }
 }
 
@@ -1345,12 +1444,19 @@ fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
         act[*lo].cover = c;
         return;
     }
-    let q = if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
-        place(act, *lo, *nc - FAR, c.r)
-    } else {
-        place_near(act, *lo, *nc, c.r)
-    };
-    insert_at(act, q, nc, c);
+    if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
+        let q = place(act, *lo, *nc - FAR, c.r);
+        insert_at(act, q, nc, c);
+        return;
+    }
+    // Near the end: found and made room for in one pass.
+    let mut q = *nc;
+    while q > *lo && act[q - 1].cover.r >= c.r {
+        act[q].cover = act[q - 1].cover;
+        q -= 1;
+    }
+    act[q].cover = c;
+    *nc += 1;
 }
 
 /// Moves past which [`insert_many`] looks for the place by a binary
@@ -1372,15 +1478,6 @@ fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
         }
     }
     a
-}
-
-/// [`place`] by a scan from the end.
-fn place_near(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
-    let mut q = nc.min(act.len());
-    while q > lo && act[q - 1].cover.r >= r {
-        q -= 1;
-    }
-    q
 }
 
 /// Inserts `c` at `q` of `act[..nc].cover`, moving those after it up.
@@ -1602,9 +1699,16 @@ impl<O: RowOut> Ctx<'_, O> {
         let (mut best, mut bz) = (first, first.z_at(i));
         for c in rest.iter().map(|a| &a.cover) {
             let cz = c.z_at(i);
-            if self.nearer(c, cz, best, bz, i) {
-                (best, bz) = (c, cz);
-            }
+            let d = cz.wrapping_sub(bz);
+            // As `nearer`, the sign selecting without a branch where the
+            // fixed point decides.
+            let take = if d.unsigned_abs() <= DEPTH_TOLERANCE as u32 {
+                self.exact(c.face, best.face, i, d)
+            } else {
+                d < 0
+            };
+            best = if take { c } else { best };
+            bz = if take { cz } else { bz };
         }
         best
     }
@@ -1945,15 +2049,20 @@ mod tests {
     #[test]
     fn sort_falls_back_to_a_heap_and_moves_only_the_sorted_array() {
         let mut rng = Rng(0x5eed_1234);
+        let sorts: [fn(&mut [Active]); 2] = [sort, sort_budget];
         for n in [0usize, 1, 2, 3, 7, 40, 300] {
-            for pattern in 0..4 {
+            for (pattern, sort) in (0..10).zip(sorts.iter().cycle()) {
                 let mut live = [Active::EMPTY; 300];
                 let live = &mut live[..n];
                 for (p, a) in live.iter_mut().enumerate() {
-                    a.hot.l = match pattern {
+                    a.hot.l = match pattern / 2 {
                         0 => p as i32,
                         1 => (n - p) as i32,
                         2 => rng.below(8),
+                        // Sorted but for a few from the end (those that
+                        // gained their pixels).
+                        3 if p % 37 == 5 => rng.below(1000),
+                        3 => p as i32 * 3,
                         _ => rng.below(1000),
                     };
                     a.hot.slot = p as u16;
