@@ -553,17 +553,22 @@ impl<'a> TrapezoidStore<'a> {
         I: IntoIterator<Item = Vertex3>,
     {
         let seg = segment_at(self.segments, s)?;
-        // The clip cut to the store's frame (a clip is within 0..=4096).
-        let clip = ClipRect::from_window(
-            ClipWindow {
-                x0: clip.x0() as i16,
-                y0: clip.y0() as i16,
-                x1: clip.x1() as i16 - 1,
-                y1: clip.y1() as i16 - 1,
-            },
-            self.width,
-            self.height,
-        );
+        // The clip cut to the store's frame (a clip is within 0..=4096):
+        // itself when it lies inside, as a list's clip does.
+        let clip = if clip.x1() <= self.width && clip.y1() <= self.height {
+            *clip
+        } else {
+            ClipRect::from_window(
+                ClipWindow {
+                    x0: clip.x0() as i16,
+                    y0: clip.y0() as i16,
+                    x1: clip.x1() as i16 - 1,
+                    y1: clip.y1() as i16 - 1,
+                },
+                self.width,
+                self.height,
+            )
+        };
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
