@@ -891,7 +891,6 @@ impl<'s> Polygon<'s> {
     {
         let rows = (clip.y0() as i32, clip.y1() as i32);
         let cols = (clip.x0() as i32, clip.x1() as i32);
-        let mut sums = PlaneSums::default();
         let mut it = vertices.into_iter();
         let mut poly = Polygon {
             slots,
@@ -909,22 +908,42 @@ impl<'s> Polygon<'s> {
         let Some(first) = it.next() else {
             return Ok(poly);
         };
-        let (mut lo, mut hi) = (first.x.units(), first.x.units());
-        let mut prev = first;
+        // Newell's sums (see `PlaneSums::edge`), the depth and column
+        // ranges, kept in locals with the first vertex peeled.
+        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
+        let (mut px, mut py, mut pz) = (fx, fy, fz);
+        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
+        let (mut zlo, mut zhi) = (fz, fz);
+        let (mut lo, mut hi) = (fx, fx);
         let mut count = 1usize;
         for v in it {
             count += 1;
             if count > MAX_VERTICES {
                 return Err(LoadError::Vertices);
             }
-            sums.edge(prev, v);
-            poly.push(prev, v, rows)?;
-            lo = lo.min(v.x.units());
-            hi = hi.max(v.x.units());
-            prev = v;
+            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
+            sa += (py - y) as i64 * (pz + z) as i64;
+            sb += (pz - z) as i64 * (px + x) as i64;
+            sc += (px - x) as i64 * (py + y) as i64;
+            zlo = zlo.min(z);
+            zhi = zhi.max(z);
+            lo = lo.min(x);
+            hi = hi.max(x);
+            poly.push((px, py), (x, y), rows)?;
+            (px, py, pz) = (x, y, z);
         }
-        sums.edge(prev, first);
-        poly.push(prev, first, rows)?;
+        sa += (py - fy) as i64 * (pz + fz) as i64;
+        sb += (pz - fz) as i64 * (px + fx) as i64;
+        sc += (px - fx) as i64 * (py + fy) as i64;
+        poly.push((px, py), (fx, fy), rows)?;
+        let sums = PlaneSums {
+            a: sa,
+            b: sb,
+            c: sc,
+            first,
+            n: count as i64,
+            z: (zlo, zhi),
+        };
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
             poly.edges = 0;
@@ -991,12 +1010,11 @@ impl<'s> Polygon<'s> {
         plane.flattened(lo)
     }
 
-    fn push(&mut self, p: Vertex3, q: Vertex3, rows: (i32, i32)) -> Result<(), LoadError> {
-        let (mut a, mut b) = (p, q);
-        if a.y > b.y {
-            core::mem::swap(&mut a, &mut b);
-        }
-        let (y0, y1) = (a.y.units(), b.y.units());
+    /// Sets up the edge `p → q` (units, each within `i16`) when it
+    /// crosses a row centre inside `rows`.
+    #[inline(always)]
+    fn push(&mut self, p: (i32, i32), q: (i32, i32), rows: (i32, i32)) -> Result<(), LoadError> {
+        let ((ax, y0), (bx, y1)) = if p.1 > q.1 { (q, p) } else { (p, q) };
         // The rows of `Edge::new`: centres j·16 + 8 in [y0, y1).
         let top = ceil_px(y0 - HALF).max(rows.0);
         let end = ceil_px(y1 - HALF).min(rows.1);
@@ -1010,10 +1028,10 @@ impl<'s> Polygon<'s> {
             .ok_or(LoadError::Edges { capacity })?;
         *slot = EdgeSlot {
             ends: Ends {
-                x0: a.x.to_bits(),
-                y0: a.y.to_bits(),
-                x1: b.x.to_bits(),
-                y1: b.y.to_bits(),
+                x0: ax as i16,
+                y0: y0 as i16,
+                x1: bx as i16,
+                y1: y1 as i16,
             },
             top,
             end,
