@@ -85,12 +85,25 @@ pub enum Executed {
 /// counters.
 pub(crate) trait Out {
     /// A polygon of the layer in screen space, `clip` applied.
-    fn polygon<I: IntoIterator<Item = Vertex3>>(
+    fn polygon<I>(&mut self, vertices: I, color: Rgb888, clip: &ClipRect) -> Result<(), SceneError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+        I::IntoIter: Clone;
+    /// A `poly3`: its vertices as [`polygon`](Out::polygon) when they are
+    /// front-facing ([`front_facing`]); `Ok(false)`, nothing done, when
+    /// they are not.
+    fn poly3(
         &mut self,
-        vertices: I,
+        vertices: &Vertices3<'_>,
         color: Rgb888,
         clip: &ClipRect,
-    ) -> Result<(), SceneError>;
+    ) -> Result<bool, SceneError> {
+        let drawn = front_facing(vertices);
+        if drawn {
+            self.polygon(vertices.iter(), color, clip)?;
+        }
+        Ok(drawn)
+    }
     /// A label at whole pixels `at`.
     fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str) -> Result<bool, SceneError>;
     /// The camera, projection, light or thickness changed.
@@ -171,10 +184,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
         Command::Color(c) => st.color = c,
         Command::Clip(win) => st.clip = ClipRect::from_window(win, w, h),
         Command::Poly3(v) => {
-            let drawn = front_facing(&v);
-            if drawn {
-                out.polygon(v.iter(), st.color, &st.clip)?;
-            }
+            let drawn = out.poly3(&v, st.color, &st.clip)?;
             return Ok(Executed::Poly3 { drawn });
         }
         Command::Segment(_) => pipe.reset_stack(),

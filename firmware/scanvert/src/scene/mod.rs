@@ -630,15 +630,25 @@ struct SegmentOut<'s, 'a> {
 }
 
 impl list::Out for SegmentOut<'_, '_> {
-    fn polygon<I: IntoIterator<Item = Vertex3>>(
-        &mut self,
-        vertices: I,
-        color: Rgb888,
-        clip: &ClipRect,
-    ) -> Result<(), SceneError> {
+    fn polygon<I>(&mut self, vertices: I, color: Rgb888, clip: &ClipRect) -> Result<(), SceneError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+        I::IntoIter: Clone,
+    {
         self.store
             .add_polygon(self.segment, vertices, color, clip)
             .map(|_| ())
+            .map_err(SceneError::Store)
+    }
+
+    fn poly3(
+        &mut self,
+        vertices: &crate::display_list::Vertices3<'_>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<bool, SceneError> {
+        self.store
+            .add_poly3(self.segment, vertices, color, clip)
             .map_err(SceneError::Store)
     }
 

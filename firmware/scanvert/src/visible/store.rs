@@ -46,10 +46,12 @@
 //! the same depth at a pixel, the lower key is in front: the lower
 //! segment, then the earlier polygon.
 
+use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
+use crate::scene::list::front_facing;
 use crate::visible::trapezoid::{
-    rgb_bits, Depth, EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE,
+    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Trapezoid, NONE,
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -530,8 +532,53 @@ impl<'a> TrapezoidStore<'a> {
     ) -> Result<u32, StoreError>
     where
         I: IntoIterator<Item = Vertex3>,
+        I::IntoIter: Clone,
     {
-        match self.add_inner(s, vertices, color, clip) {
+        let it = vertices.into_iter();
+        let outline = Outline::of(it.clone()).map_err(StoreError::from);
+        self.add_outlined(s, it, outline, color, clip)
+    }
+
+    /// A `poly3`'s vertices into segment `s` as
+    /// [`add_polygon`](Self::add_polygon) when they are front-facing
+    /// ([`front_facing`]), which the first pass over them finds;
+    /// `Ok(false)`, and nothing done, when they are not.
+    pub(crate) fn add_poly3(
+        &mut self,
+        s: usize,
+        vertices: &Vertices3<'_>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<bool, StoreError> {
+        let it = vertices.iter();
+        match Outline::of(it.clone()) {
+            Ok(o) if !o.front() => Ok(false),
+            Ok(o) => self.add_outlined(s, it, Ok(o), color, clip).map(|_| true),
+            // Too many vertices: an error only for a drawn one.
+            Err(e) => match front_facing(vertices) {
+                true => self
+                    .add_outlined(s, it, Err(e.into()), color, clip)
+                    .map(|_| true),
+                false => Ok(false),
+            },
+        }
+    }
+
+    /// [`add_polygon`](Self::add_polygon) of the vertices `it` after
+    /// the first pass over them (`outline`).
+    #[inline(always)]
+    fn add_outlined<I>(
+        &mut self,
+        s: usize,
+        it: I,
+        outline: Result<Outline, StoreError>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        match self.add_inner(s, it, outline, color, clip) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -542,15 +589,17 @@ impl<'a> TrapezoidStore<'a> {
         }
     }
 
+    #[inline(always)]
     fn add_inner<I>(
         &mut self,
         s: usize,
         vertices: I,
+        outline: Result<Outline, StoreError>,
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError>
     where
-        I: IntoIterator<Item = Vertex3>,
+        I: Iterator<Item = Vertex3>,
     {
         let seg = segment_at(self.segments, s)?;
         // The clip cut to the store's frame (a clip is within 0..=4096):
@@ -572,7 +621,7 @@ impl<'a> TrapezoidStore<'a> {
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let poly = Polygon::load(self.edges, vertices, &clip)?;
+        let poly = Polygon::load_edges(self.edges, vertices, outline?, &clip)?;
         let Some(plane) = poly.plane().copied() else {
             return Ok(0);
         };
@@ -768,6 +817,60 @@ mod tests {
             )
             .unwrap()
         }
+    }
+
+    /// `add_poly3` draws a `poly3` exactly when `front_facing` does, as
+    /// `add_polygon` would (the same trapezoids and faces), and leaves
+    /// the store and the segment's counters alone when it culls.
+    #[test]
+    fn poly3_is_drawn_when_front_facing() {
+        use crate::display_list::{Command, DisplayList, Writer};
+        let mut rng = testkit::rng::Rng(0x7019_3fac);
+        let clip = ClipRect::full(64, 64);
+        let (mut drawn, mut culled) = (0, 0);
+        for case in 0..2000 {
+            let n = 3 + rng.below(6) as usize;
+            let mut poly = [Vertex3::default(); 8];
+            for p in poly.iter_mut().take(n) {
+                // Coarse grids make edge-on and degenerate ones likely.
+                let g = [1, 16, 128][case % 3];
+                let c = |r: &mut testkit::rng::Rng, span: u32| {
+                    (r.below(span / g) * g as i32 - 64) as i16
+                };
+                *p = Vertex3 {
+                    x: Coord::from_bits(c(&mut rng, 1152)),
+                    y: Coord::from_bits(c(&mut rng, 1152)),
+                    z: Coord::from_bits(c(&mut rng, 4096)),
+                };
+            }
+            let poly = &poly[..n];
+            let mut bytes = [0u8; 128];
+            let mut w = Writer::new(&mut bytes, 64, 64).unwrap();
+            w.poly3(poly.iter().copied()).unwrap();
+            let list = DisplayList::new_checked(w.finish()).unwrap();
+            let Some((_, Command::Poly3(v))) = list.commands().next() else {
+                panic!("no poly3");
+            };
+            let (mut a, mut b) = (Mem::<32, 4>::new(), Mem::<32, 4>::new());
+            let (mut sa, mut sb) = (a.store(), b.store());
+            let front = crate::scene::list::front_facing(&v);
+            let got = sa.add_poly3(1, &v, Rgb888::RED, &clip);
+            if front {
+                let want = sb.add_polygon(1, poly.iter().copied(), Rgb888::RED, &clip);
+                assert_eq!(got.map(|_| ()), want.map(|_| ()), "{poly:?}");
+                drawn += 1;
+            } else {
+                culled += 1;
+            }
+            assert_eq!(got.map_err(|_| ()), Ok(front), "{poly:?}");
+            assert_eq!(sa.len(), sb.len(), "{poly:?}");
+            assert_eq!(sa.face_count(), sb.face_count(), "{poly:?}");
+            assert_eq!(sa.segments(), sb.segments(), "{poly:?}");
+            let (ta, tb) = (sa.segment_trapezoids(1), sb.segment_trapezoids(1));
+            assert!(ta.map(|t| t.1.fields()).eq(tb.map(|t| t.1.fields())));
+            assert_eq!(sa.face(0), sb.face(0));
+        }
+        assert!(drawn > 500 && culled > 500, "{drawn} {culled}");
     }
 
     fn tri(k: i32) -> [Vertex3; 3] {

@@ -234,6 +234,76 @@ impl PlaneSums {
     }
 }
 
+/// The first pass of [`Polygon::load`] over a polygon's vertices:
+/// Newell's sums, the depth range and the columns' range, in units. Its
+/// `c` is twice the signed area, the shoelace sum of
+/// [`front_facing`](crate::scene::list::front_facing) exactly (the terms
+/// `xₖyₖ` it adds cancel round the polygon).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Outline {
+    /// `None`: no vertex.
+    sums: Option<PlaneSums>,
+    x: (i32, i32),
+}
+
+impl Outline {
+    /// The outline of the polygon through `it` (closed implicitly).
+    /// Fails when it has more than [`MAX_VERTICES`] vertices.
+    #[inline(always)]
+    pub(crate) fn of<I: Iterator<Item = Vertex3>>(mut it: I) -> Result<Outline, LoadError> {
+        let Some(first) = it.next() else {
+            return Ok(Outline {
+                sums: None,
+                x: (0, 0),
+            });
+        };
+        // Kept in locals with the first vertex peeled (see
+        // `PlaneSums::edge` for the bounds).
+        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
+        let (mut px, mut py, mut pz) = (fx, fy, fz);
+        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
+        let (mut zlo, mut zhi) = (fz, fz);
+        let (mut lo, mut hi) = (fx, fx);
+        let mut count = 1usize;
+        for v in it {
+            count += 1;
+            if count > MAX_VERTICES {
+                return Err(LoadError::Vertices);
+            }
+            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
+            sa += (py - y) as i64 * (pz + z) as i64;
+            sb += (pz - z) as i64 * (px + x) as i64;
+            sc += (px - x) as i64 * (py + y) as i64;
+            zlo = zlo.min(z);
+            zhi = zhi.max(z);
+            lo = lo.min(x);
+            hi = hi.max(x);
+            (px, py, pz) = (x, y, z);
+        }
+        sa += (py - fy) as i64 * (pz + fz) as i64;
+        sb += (pz - fz) as i64 * (px + fx) as i64;
+        sc += (px - fx) as i64 * (py + fy) as i64;
+        Ok(Outline {
+            sums: Some(PlaneSums {
+                a: sa,
+                b: sb,
+                c: sc,
+                first,
+                n: count as i64,
+                z: (zlo, zhi),
+            }),
+            x: (lo, hi),
+        })
+    }
+
+    /// `true` when the polygon is counter-clockwise as displayed (y
+    /// down): [`front_facing`](crate::scene::list::front_facing).
+    #[inline(always)]
+    pub(crate) fn front(&self) -> bool {
+        self.sums.is_some_and(|s| s.c < 0)
+    }
+}
+
 impl Plane {
     /// The plane `z = 0` (placeholder of unused slots).
     pub const FLAT: Plane = Plane {
@@ -888,10 +958,27 @@ impl<'s> Polygon<'s> {
     ) -> Result<Self, LoadError>
     where
         I: IntoIterator<Item = Vertex3>,
+        I::IntoIter: Clone,
+    {
+        let it = vertices.into_iter();
+        let outline = Outline::of(it.clone())?;
+        Self::load_edges(slots, it, outline, clip)
+    }
+
+    /// [`Polygon::load`] of the vertices `it` whose [`Outline`] is
+    /// `outline`: the second pass, over the edges.
+    #[inline(always)]
+    pub(crate) fn load_edges<I>(
+        slots: &'s mut [EdgeSlot],
+        mut it: I,
+        outline: Outline,
+        clip: &ClipRect,
+    ) -> Result<Self, LoadError>
+    where
+        I: Iterator<Item = Vertex3>,
     {
         let rows = (clip.y0() as i32, clip.y1() as i32);
         let cols = (clip.x0() as i32, clip.x1() as i32);
-        let mut it = vertices.into_iter();
         let mut poly = Polygon {
             slots,
             edges: 0,
@@ -905,52 +992,25 @@ impl<'s> Polygon<'s> {
                 sum: 0,
             },
         };
-        let Some(first) = it.next() else {
+        let (Some(sums), Some(first)) = (outline.sums, it.next()) else {
             return Ok(poly);
         };
-        // Newell's sums (see `PlaneSums::edge`), the depth and column
-        // ranges, kept in locals with the first vertex peeled.
-        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
-        let (mut px, mut py, mut pz) = (fx, fy, fz);
-        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
-        let (mut zlo, mut zhi) = (fz, fz);
-        let (mut lo, mut hi) = (fx, fx);
-        let mut count = 1usize;
+        let (fx, fy) = (first.x.units(), first.y.units());
+        let (mut px, mut py) = (fx, fy);
         for v in it {
-            count += 1;
-            if count > MAX_VERTICES {
-                return Err(LoadError::Vertices);
-            }
-            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
-            sa += (py - y) as i64 * (pz + z) as i64;
-            sb += (pz - z) as i64 * (px + x) as i64;
-            sc += (px - x) as i64 * (py + y) as i64;
-            zlo = zlo.min(z);
-            zhi = zhi.max(z);
-            lo = lo.min(x);
-            hi = hi.max(x);
+            let (x, y) = (v.x.units(), v.y.units());
             poly.push((px, py), (x, y), rows)?;
-            (px, py, pz) = (x, y, z);
+            (px, py) = (x, y);
         }
-        sa += (py - fy) as i64 * (pz + fz) as i64;
-        sb += (pz - fz) as i64 * (px + fx) as i64;
-        sc += (px - fx) as i64 * (py + fy) as i64;
         poly.push((px, py), (fx, fy), rows)?;
-        let sums = PlaneSums {
-            a: sa,
-            b: sb,
-            c: sc,
-            first,
-            n: count as i64,
-            z: (zlo, zhi),
-        };
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
+        let (lo, hi) = outline.x;
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
             poly.edges = 0;
         }
         // A triangle's plane passes through its three vertices: nothing to
         // check.
-        poly.plane = match count {
+        poly.plane = match sums.n {
             ..=3 => sums.finish(),
             _ => sums.finish().map(|p| poly.bounded(p, sums.z)),
         };
