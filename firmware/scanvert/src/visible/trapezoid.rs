@@ -920,14 +920,13 @@ pub struct Polygon<'s> {
     edges: usize,
     plane: Option<Plane>,
     cols: (i32, i32),
-    /// The rows of the edges set up, for [`cut_chains`].
-    rows: Rows,
 }
 
-/// What [`Polygon::load`] notes of the edges' rows as it sets them up:
-/// the first row and the first edge that starts on it, how many do, the
-/// last row (one past), and the rows of all edges added up (each below
-/// 4097, at most 65535 edges: below 2²⁸).
+/// What [`cut_chains`] needs of the rows of the edges set up: the first
+/// row and the first edge that starts on it, how many do, the last row
+/// (one past), and the rows of all edges added up (each below 4097, at
+/// most 65535 edges: below 2²⁸). Found in one pass over the slots
+/// ([`Rows::of`]), kept out of [`Polygon::load`]'s loop.
 #[derive(Clone, Copy, Debug)]
 struct Rows {
     first: i32,
@@ -984,13 +983,6 @@ impl<'s> Polygon<'s> {
             edges: 0,
             plane: None,
             cols,
-            rows: Rows {
-                first: i32::MAX,
-                first_edge: 0,
-                starting: 0,
-                end: i32::MIN,
-                sum: 0,
-            },
         };
         let (Some(sums), Some(first)) = (outline.sums, it.next()) else {
             return Ok(poly);
@@ -1098,14 +1090,6 @@ impl<'s> Polygon<'s> {
             id: self.edges as u16,
             open: None,
         };
-        let r = &mut self.rows;
-        if top < r.first {
-            (r.first, r.first_edge, r.starting) = (top, self.edges, 1);
-        } else if top == r.first {
-            r.starting += 1;
-        }
-        r.end = r.end.max(end);
-        r.sum += (end - top) as u32;
         self.edges += 1;
         Ok(())
     }
@@ -1149,7 +1133,7 @@ impl<'s> Polygon<'s> {
             skip: 0,
         };
         if chains {
-            if cut_chains(slots, self.rows, &mut c)? {
+            if cut_chains(slots, Rows::of(slots), &mut c)? {
                 return Ok(c.count);
             }
             // The walk stopped where the sweep below is needed: what it
@@ -1273,6 +1257,30 @@ impl<F> Closer<F> {
         (self.emit)(side(*l), side(*r))?;
         self.count += 1;
         Ok(())
+    }
+}
+
+impl Rows {
+    /// The rows of `slots`, the edges set up in the order loaded.
+    #[inline(always)]
+    fn of(slots: &[EdgeSlot]) -> Rows {
+        let mut r = Rows {
+            first: i32::MAX,
+            first_edge: 0,
+            starting: 0,
+            end: i32::MIN,
+            sum: 0,
+        };
+        for (k, e) in slots.iter().enumerate() {
+            if e.top < r.first {
+                (r.first, r.first_edge, r.starting) = (e.top, k, 1);
+            } else if e.top == r.first {
+                r.starting += 1;
+            }
+            r.end = r.end.max(e.end);
+            r.sum += (e.end - e.top) as u32;
+        }
+        r
     }
 }
 
@@ -1729,7 +1737,7 @@ mod tests {
                     count: 0,
                     skip: 0,
                 };
-                if cut_chains(&p.slots[..p.edges], p.rows, &mut c).unwrap() {
+                if cut_chains(&p.slots[..p.edges], Rows::of(&p.slots[..p.edges]), &mut c).unwrap() {
                     walked += 1;
                 } else if c.count > 0 {
                     gave_up_late += 1;
