@@ -939,9 +939,12 @@ struct Rows {
 impl<'s> Polygon<'s> {
     /// Sets up the edges of the polygon through `vertices` (closed
     /// implicitly) that cross a row centre inside `clip`, and its plane,
-    /// in one pass over the vertices, then one over the edges (a few for a
-    /// plane that leaves its vertices' depth range: see *Non-planar polygons* in the
-    /// [module](self) docs).
+    /// in two passes over the vertices (the plane's sums and the ranges,
+    /// `Outline`, then the edges; the first is also the cull of a
+    /// `poly3`, and with fewer values to keep in registers each loop
+    /// spills less on a 32-bit core), then one over the edges (a few for
+    /// a plane that leaves its vertices' depth range: see *Non-planar
+    /// polygons* in the [module](self) docs).
     ///
     /// Only edges inside the clip rows take a slot. A polygon whose box
     /// misses the clip columns loads no edge.
