@@ -51,7 +51,7 @@ use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
 use crate::scene::list::front_facing;
 use crate::visible::trapezoid::{
-    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Trapezoid, NONE,
+    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, NONE,
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -629,66 +629,125 @@ impl<'a> TrapezoidStore<'a> {
             return Ok(0);
         }
         // The face is taken with the first trapezoid, so that a polygon
-        // with none needs no face slot.
-        let depth = plane.depth();
-        let (traps, rows, faces) = (&mut *self.traps, &mut *self.rows, &mut *self.faces);
-        let (free, unused) = (&mut self.free_trap, &mut self.unused_trap);
-        let (free_face, unused_face) = (&mut self.free_face, &mut self.unused_face);
-        let (live, live_faces) = (&mut self.live, &mut self.live_faces);
-        let mut face = None;
-        let n = poly.cut(|l, r| {
-            let f = match face {
-                Some(f) => f,
-                None => {
-                    let cap = faces.len();
-                    let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next)
-                        .ok_or(StoreError::Faces { capacity: cap })?;
-                    faces[f as usize] = Face {
-                        plane,
-                        depth,
-                        color: rgb_bits(color),
-                        key,
-                        segment: s as u16,
-                        next: seg.faces,
-                    };
-                    seg.faces = f;
-                    seg.face_count += 1;
-                    *live_faces += 1;
-                    face = Some(f);
-                    f
-                }
-            };
-            let cap = traps.len();
-            let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
-                .ok_or(StoreError::Trapezoids { capacity: cap })?;
-            // Rows are inside the frame: the edges were cut to the clip.
-            let top = l.rows().0 as usize;
-            let head = rows.get(top).copied().unwrap_or(NONE);
-            if let Some(h) = traps.get_mut(head as usize) {
-                h.prev_row = t;
-            }
-            if let Some(h) = rows.get_mut(top) {
-                *h = t;
-            }
-            // Written in place, every field at once (built on the stack
-            // and copied, it cost about 10 instructions more a trapezoid
-            // on the Cortex-M4).
-            if let Some(slot) = traps.get_mut(t as usize) {
-                *slot = Trapezoid {
-                    segment: s as u16,
-                    next_row: head,
-                    prev_row: NONE,
-                    next_seg: seg.traps,
-                    ..Trapezoid::new(l, r, f, &clip)
+        // with none needs no face slot. What the cut's closure changes is
+        // in one place it reaches by one pointer (each pool and counter
+        // captured apart cost a store each to set up and a load more each
+        // to reach), and goes back to the store and the segment after,
+        // on an error too (the segment is then emptied through its links).
+        let proto = Face {
+            plane,
+            depth: plane.depth(),
+            color: rgb_bits(color),
+            key,
+            segment: s as u16,
+            next: NONE,
+        };
+        let mut add = Adding {
+            traps: &mut *self.traps,
+            rows: &mut *self.rows,
+            faces: &mut *self.faces,
+            free: self.free_trap,
+            unused: self.unused_trap,
+            free_face: self.free_face,
+            unused_face: self.unused_face,
+            seg_traps: seg.traps,
+            seg_faces: seg.faces,
+            added: 0,
+            face: NONE,
+            proto: &proto,
+            clip,
+        };
+        let n = poly.cut(|l, r| add.trapezoid(l, r));
+        (self.free_trap, self.unused_trap) = (add.free, add.unused);
+        (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
+        (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
+        seg.trapezoids += add.added;
+        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(add.added);
+        self.live += add.added;
+        if add.face != NONE {
+            seg.face_count += 1;
+            self.live_faces += 1;
+        }
+        n
+    }
+}
+
+/// The pools and a segment's chains while one polygon's trapezoids are
+/// added ([`TrapezoidStore::add_polygon`]).
+struct Adding<'p> {
+    traps: &'p mut [Trapezoid],
+    rows: &'p mut [u16],
+    faces: &'p mut [Face],
+    free: u16,
+    unused: u16,
+    free_face: u16,
+    unused_face: u16,
+    seg_traps: u16,
+    seg_faces: u16,
+    /// Trapezoids added.
+    added: u32,
+    /// The polygon's face, `NONE` until its first trapezoid.
+    face: u16,
+    /// The face, but for its link.
+    proto: &'p Face,
+    clip: ClipRect,
+}
+
+impl Adding<'_> {
+    /// Stores the trapezoid between `l` and `r` (and the face with the
+    /// first), and indexes it by its top row.
+    #[inline(always)]
+    fn trapezoid(&mut self, l: Side, r: Side) -> Result<(), StoreError> {
+        let Adding {
+            traps,
+            rows,
+            faces,
+            free,
+            unused,
+            free_face,
+            unused_face,
+            ..
+        } = self;
+        if self.face == NONE {
+            let cap = faces.len();
+            let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next)
+                .ok_or(StoreError::Faces { capacity: cap })?;
+            if let Some(slot) = faces.get_mut(f as usize) {
+                *slot = Face {
+                    next: self.seg_faces,
+                    ..*self.proto
                 };
             }
-            seg.traps = t;
-            seg.trapezoids += 1;
-            seg.work.trapezoids = seg.work.trapezoids.wrapping_add(1);
-            *live += 1;
-            Ok::<(), StoreError>(())
-        })?;
-        Ok(n)
+            self.seg_faces = f;
+            self.face = f;
+        }
+        let cap = traps.len();
+        let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
+            .ok_or(StoreError::Trapezoids { capacity: cap })?;
+        // Rows are inside the frame: the edges were cut to the clip.
+        let top = l.rows().0 as usize;
+        let head = rows.get(top).copied().unwrap_or(NONE);
+        if let Some(h) = traps.get_mut(head as usize) {
+            h.prev_row = t;
+        }
+        if let Some(h) = rows.get_mut(top) {
+            *h = t;
+        }
+        // Written in place, every field at once (built on the stack
+        // and copied, it cost about 10 instructions more a trapezoid
+        // on the Cortex-M4).
+        if let Some(slot) = traps.get_mut(t as usize) {
+            *slot = Trapezoid {
+                segment: self.proto.segment,
+                next_row: head,
+                prev_row: NONE,
+                next_seg: self.seg_traps,
+                ..Trapezoid::new(l, r, self.face, &self.clip)
+            };
+        }
+        self.seg_traps = t;
+        self.added += 1;
+        Ok(())
     }
 }
 
