@@ -419,11 +419,12 @@ struct Count<'e> {
 }
 
 impl Out for Count<'_> {
-    fn polygon<I>(&mut self, v: I, _: Rgb888, clip: &ClipRect) -> Result<(), SceneError>
-    where
-        I: IntoIterator<Item = crate::fixed::Vertex3>,
-        I::IntoIter: Clone,
-    {
+    fn polygon<I: IntoIterator<Item = crate::fixed::Vertex3>>(
+        &mut self,
+        v: I,
+        _: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
         let poly = Polygon::load(&mut *self.edges, v, clip)
             .map_err(|e| SceneError::Store(StoreError::from(e)))?;
         // As the store: no plane or fewer than two edges, no trapezoid.

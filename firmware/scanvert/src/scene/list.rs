@@ -85,10 +85,12 @@ pub enum Executed {
 /// counters.
 pub(crate) trait Out {
     /// A polygon of the layer in screen space, `clip` applied.
-    fn polygon<I>(&mut self, vertices: I, color: Rgb888, clip: &ClipRect) -> Result<(), SceneError>
-    where
-        I: IntoIterator<Item = Vertex3>,
-        I::IntoIter: Clone;
+    fn polygon<I: IntoIterator<Item = Vertex3>>(
+        &mut self,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError>;
     /// A `poly3`: its vertices as [`polygon`](Out::polygon) when they are
     /// front-facing ([`front_facing`]); `Ok(false)`, nothing done, when
     /// they are not.

@@ -630,11 +630,12 @@ struct SegmentOut<'s, 'a> {
 }
 
 impl list::Out for SegmentOut<'_, '_> {
-    fn polygon<I>(&mut self, vertices: I, color: Rgb888, clip: &ClipRect) -> Result<(), SceneError>
-    where
-        I: IntoIterator<Item = Vertex3>,
-        I::IntoIter: Clone,
-    {
+    fn polygon<I: IntoIterator<Item = Vertex3>>(
+        &mut self,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
         self.store
             .add_polygon(self.segment, vertices, color, clip)
             .map(|_| ())

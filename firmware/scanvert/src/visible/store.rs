@@ -532,11 +532,8 @@ impl<'a> TrapezoidStore<'a> {
     ) -> Result<u32, StoreError>
     where
         I: IntoIterator<Item = Vertex3>,
-        I::IntoIter: Clone,
     {
-        let it = vertices.into_iter();
-        let outline = Outline::of(it.clone()).map_err(StoreError::from);
-        self.add_outlined(s, it, outline, color, clip)
+        self.add_from(s, Source::Once(vertices.into_iter()), color, clip)
     }
 
     /// A `poly3`'s vertices into segment `s` as
@@ -553,32 +550,32 @@ impl<'a> TrapezoidStore<'a> {
         let it = vertices.iter();
         match Outline::of(it.clone()) {
             Ok(o) if !o.front() => Ok(false),
-            Ok(o) => self.add_outlined(s, it, Ok(o), color, clip).map(|_| true),
+            Ok(o) => self
+                .add_from(s, Source::Outlined(it, Ok(o)), color, clip)
+                .map(|_| true),
             // Too many vertices: an error only for a drawn one.
             Err(e) => match front_facing(vertices) {
                 true => self
-                    .add_outlined(s, it, Err(e.into()), color, clip)
+                    .add_from(s, Source::Outlined(it, Err(e.into())), color, clip)
                     .map(|_| true),
                 false => Ok(false),
             },
         }
     }
 
-    /// [`add_polygon`](Self::add_polygon) of the vertices `it` after
-    /// the first pass over them (`outline`).
+    /// [`add_polygon`](Self::add_polygon) of the vertices of `src`.
     #[inline(always)]
-    fn add_outlined<I>(
+    fn add_from<I>(
         &mut self,
         s: usize,
-        it: I,
-        outline: Result<Outline, StoreError>,
+        src: Source<I>,
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
     {
-        match self.add_inner(s, it, outline, color, clip) {
+        match self.add_inner(s, src, color, clip) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -593,8 +590,7 @@ impl<'a> TrapezoidStore<'a> {
     fn add_inner<I>(
         &mut self,
         s: usize,
-        vertices: I,
-        outline: Result<Outline, StoreError>,
+        src: Source<I>,
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError>
@@ -621,7 +617,10 @@ impl<'a> TrapezoidStore<'a> {
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let poly = Polygon::load_edges(self.edges, vertices, outline?, &clip)?;
+        let poly = match src {
+            Source::Once(it) => Polygon::load(self.edges, it, &clip)?,
+            Source::Outlined(it, o) => Polygon::load_edges(self.edges, it, o?, &clip)?,
+        };
         let Some(plane) = poly.plane().copied() else {
             return Ok(0);
         };
@@ -670,6 +669,13 @@ impl<'a> TrapezoidStore<'a> {
         }
         n
     }
+}
+
+/// A polygon's vertices as the store reads them: in one pass, or in a
+/// second after a first that found their [`Outline`] (or too many).
+enum Source<I> {
+    Once(I),
+    Outlined(I, Result<Outline, StoreError>),
 }
 
 /// The pools and a segment's chains while one polygon's trapezoids are

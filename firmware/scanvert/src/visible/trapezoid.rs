@@ -939,12 +939,9 @@ struct Rows {
 impl<'s> Polygon<'s> {
     /// Sets up the edges of the polygon through `vertices` (closed
     /// implicitly) that cross a row centre inside `clip`, and its plane,
-    /// in two passes over the vertices (the plane's sums and the ranges,
-    /// `Outline`, then the edges; the first is also the cull of a
-    /// `poly3`, and with fewer values to keep in registers each loop
-    /// spills less on a 32-bit core), then one over the edges (a few for
-    /// a plane that leaves its vertices' depth range: see *Non-planar
-    /// polygons* in the [module](self) docs).
+    /// in one pass over the vertices, then one over the edges (a few for a
+    /// plane that leaves its vertices' depth range: see *Non-planar polygons* in the
+    /// [module](self) docs).
     ///
     /// Only edges inside the clip rows take a slot. A polygon whose box
     /// misses the clip columns loads no edge.
@@ -960,15 +957,56 @@ impl<'s> Polygon<'s> {
     ) -> Result<Self, LoadError>
     where
         I: IntoIterator<Item = Vertex3>,
-        I::IntoIter: Clone,
     {
-        let it = vertices.into_iter();
-        let outline = Outline::of(it.clone())?;
-        Self::load_edges(slots, it, outline, clip)
+        let rows = (clip.y0() as i32, clip.y1() as i32);
+        let mut poly = Polygon::empty(slots, clip);
+        let mut it = vertices.into_iter();
+        let Some(first) = it.next() else {
+            return Ok(poly);
+        };
+        // `Outline::of` and the edges in one loop.
+        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
+        let (mut px, mut py, mut pz) = (fx, fy, fz);
+        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
+        let (mut zlo, mut zhi) = (fz, fz);
+        let (mut lo, mut hi) = (fx, fx);
+        let mut count = 1usize;
+        for v in it {
+            count += 1;
+            if count > MAX_VERTICES {
+                return Err(LoadError::Vertices);
+            }
+            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
+            sa += (py - y) as i64 * (pz + z) as i64;
+            sb += (pz - z) as i64 * (px + x) as i64;
+            sc += (px - x) as i64 * (py + y) as i64;
+            zlo = zlo.min(z);
+            zhi = zhi.max(z);
+            lo = lo.min(x);
+            hi = hi.max(x);
+            poly.push((px, py), (x, y), rows)?;
+            (px, py, pz) = (x, y, z);
+        }
+        sa += (py - fy) as i64 * (pz + fz) as i64;
+        sb += (pz - fz) as i64 * (px + fx) as i64;
+        sc += (px - fx) as i64 * (py + fy) as i64;
+        poly.push((px, py), (fx, fy), rows)?;
+        let sums = PlaneSums {
+            a: sa,
+            b: sb,
+            c: sc,
+            first,
+            n: count as i64,
+            z: (zlo, zhi),
+        };
+        poly.finish(&sums, (lo, hi), clip);
+        Ok(poly)
     }
 
-    /// [`Polygon::load`] of the vertices `it` whose [`Outline`] is
-    /// `outline`: the second pass, over the edges.
+    /// [`Polygon::load`] in two passes over the vertices: the second, over
+    /// the edges, of the vertices `it` whose first (their [`Outline`],
+    /// which is also a `poly3`'s cull) is `outline`. With fewer values to
+    /// keep in registers, each loop spills less on a 32-bit core.
     #[inline(always)]
     pub(crate) fn load_edges<I>(
         slots: &'s mut [EdgeSlot],
@@ -980,13 +1018,7 @@ impl<'s> Polygon<'s> {
         I: Iterator<Item = Vertex3>,
     {
         let rows = (clip.y0() as i32, clip.y1() as i32);
-        let cols = (clip.x0() as i32, clip.x1() as i32);
-        let mut poly = Polygon {
-            slots,
-            edges: 0,
-            plane: None,
-            cols,
-        };
+        let mut poly = Polygon::empty(slots, clip);
         let (Some(sums), Some(first)) = (outline.sums, it.next()) else {
             return Ok(poly);
         };
@@ -998,18 +1030,36 @@ impl<'s> Polygon<'s> {
             (px, py) = (x, y);
         }
         poly.push((px, py), (fx, fy), rows)?;
+        poly.finish(&sums, outline.x, clip);
+        Ok(poly)
+    }
+
+    /// No edge yet, no plane.
+    #[inline(always)]
+    fn empty(slots: &'s mut [EdgeSlot], clip: &ClipRect) -> Self {
+        Polygon {
+            slots,
+            edges: 0,
+            plane: None,
+            cols: (clip.x0() as i32, clip.x1() as i32),
+        }
+    }
+
+    /// After the edges: none when the polygon's columns (`x`, the least
+    /// and greatest vertex x in units) miss the clip's, and the plane.
+    #[inline(always)]
+    fn finish(&mut self, sums: &PlaneSums, (lo, hi): (i32, i32), clip: &ClipRect) {
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
-        let (lo, hi) = outline.x;
+        let cols = self.cols;
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
-            poly.edges = 0;
+            self.edges = 0;
         }
         // A triangle's plane passes through its three vertices: nothing to
         // check.
-        poly.plane = match sums.n {
+        self.plane = match sums.n {
             ..=3 => sums.finish(),
-            _ => sums.finish().map(|p| poly.bounded(p, sums.z)),
+            _ => sums.finish().map(|p| self.bounded(p, sums.z)),
         };
-        Ok(poly)
     }
 
     /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
