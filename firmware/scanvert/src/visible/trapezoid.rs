@@ -433,10 +433,16 @@ impl Plane {
             // so the slopes' numerators 2¹⁸·|a| are below 2⁴⁹, and the
             // anchor's 2¹⁴·|a·dx + b·dy| at most 2¹⁴·2·2³¹·(2¹⁵ + 8) =
             // 2⁶¹ + 2⁵⁰: within what `round_div64` takes.
-            // Parallel to the screen: both slopes zero, the depth z₀
-            // everywhere (each division below would be of zero).
-            (Ok(0), Ok(0), _) => (0, 0, z0 << Z_FRAC_BITS),
             (Ok(a), Ok(b), Ok(c)) if c < 1 << 31 => {
+                // Parallel to the screen: both slopes zero, the depth z₀
+                // everywhere (each division below would be of zero).
+                if a | b == 0 {
+                    return Depth {
+                        z: z0 << Z_FRAC_BITS,
+                        zx: 0,
+                        zy: 0,
+                    };
+                }
                 let (a, b) = (a as i64, b as i64);
                 let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c);
                 let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c);
