@@ -1093,14 +1093,7 @@ impl<'s> Polygon<'s> {
         if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
             let (x0, y0, z0) = plane.origin_units();
             let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
-            let within = |x: i16, y: i16| {
-                let e = a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64;
-                lo <= e && e <= hi
-            };
-            if slots
-                .iter()
-                .all(|s| within(s.ends.x0, s.ends.y0) && within(s.ends.x1, s.ends.y1))
-            {
+            if ends_within(slots, (a, b), (x0, y0), (lo, hi)) {
                 return plane;
             }
         } else if holds(&plane) {
@@ -1277,6 +1270,26 @@ impl<'s> Polygon<'s> {
         }
         Ok(c.count)
     }
+}
+
+/// `true` when `lo ≤ a·(x₀ − x) + b·(y₀ − y) ≤ hi` at both ends `(x, y)`
+/// of every slot ([`Polygon::bounded`]'s usual case). Out of line, so
+/// that `a` and `b` are `i32`s here and each product one 32 × 32 → 64-bit
+/// multiply (inlined, the compiler multiplied the `i64`s they came from).
+#[inline(never)]
+fn ends_within(
+    slots: &[EdgeSlot],
+    (a, b): (i32, i32),
+    (x0, y0): (i32, i32),
+    (lo, hi): (i64, i64),
+) -> bool {
+    let within = |x: i16, y: i16| {
+        let e = a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64;
+        lo <= e && e <= hi
+    };
+    slots
+        .iter()
+        .all(|s| within(s.ends.x0, s.ends.y0) && within(s.ends.x1, s.ends.y1))
 }
 
 /// Where [`Polygon::cut`] hands its trapezoids: `emit`, less those that
