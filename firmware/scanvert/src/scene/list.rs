@@ -91,6 +91,21 @@ pub(crate) trait Out {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<(), SceneError>;
+    /// A `poly3`: its vertices as [`polygon`](Out::polygon) when they are
+    /// front-facing ([`front_facing`]); `Ok(false)`, nothing done, when
+    /// they are not.
+    fn poly3(
+        &mut self,
+        vertices: &Vertices3<'_>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<bool, SceneError> {
+        let drawn = front_facing(vertices);
+        if drawn {
+            self.polygon(vertices.iter(), color, clip)?;
+        }
+        Ok(drawn)
+    }
     /// A label at whole pixels `at`.
     fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str) -> Result<bool, SceneError>;
     /// The camera, projection, light or thickness changed.
@@ -171,10 +186,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
         Command::Color(c) => st.color = c,
         Command::Clip(win) => st.clip = ClipRect::from_window(win, w, h),
         Command::Poly3(v) => {
-            let drawn = front_facing(&v);
-            if drawn {
-                out.polygon(v.iter(), st.color, &st.clip)?;
-            }
+            let drawn = out.poly3(&v, st.color, &st.clip)?;
             return Ok(Executed::Poly3 { drawn });
         }
         Command::Segment(_) => pipe.reset_stack(),

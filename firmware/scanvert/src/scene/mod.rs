@@ -642,6 +642,17 @@ impl list::Out for SegmentOut<'_, '_> {
             .map_err(SceneError::Store)
     }
 
+    fn poly3(
+        &mut self,
+        vertices: &crate::display_list::Vertices3<'_>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<bool, SceneError> {
+        self.store
+            .add_poly3(self.segment, vertices, color, clip)
+            .map_err(SceneError::Store)
+    }
+
     fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str) -> Result<bool, SceneError> {
         self.labels
             .add(self.segment as u16, at, color, text)

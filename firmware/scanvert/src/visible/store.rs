@@ -46,10 +46,12 @@
 //! the same depth at a pixel, the lower key is in front: the lower
 //! segment, then the earlier polygon.
 
+use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
+use crate::scene::list::front_facing;
 use crate::visible::trapezoid::{
-    rgb_bits, Depth, EdgeSlot, LoadError, Plane, Polygon, Trapezoid, NONE,
+    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, NONE,
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -531,7 +533,49 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        match self.add_inner(s, vertices, color, clip) {
+        self.add_from(s, Source::Once(vertices.into_iter()), color, clip)
+    }
+
+    /// A `poly3`'s vertices into segment `s` as
+    /// [`add_polygon`](Self::add_polygon) when they are front-facing
+    /// ([`front_facing`]), which the first pass over them finds;
+    /// `Ok(false)`, and nothing done, when they are not.
+    pub(crate) fn add_poly3(
+        &mut self,
+        s: usize,
+        vertices: &Vertices3<'_>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<bool, StoreError> {
+        let it = vertices.iter();
+        match Outline::of(it.clone()) {
+            Ok(o) if !o.front() => Ok(false),
+            Ok(o) => self
+                .add_from(s, Source::Outlined(it, Ok(o)), color, clip)
+                .map(|_| true),
+            // Too many vertices: an error only for a drawn one.
+            Err(e) => match front_facing(vertices) {
+                true => self
+                    .add_from(s, Source::Outlined(it, Err(e.into())), color, clip)
+                    .map(|_| true),
+                false => Ok(false),
+            },
+        }
+    }
+
+    /// [`add_polygon`](Self::add_polygon) of the vertices of `src`.
+    #[inline(always)]
+    fn add_from<I>(
+        &mut self,
+        s: usize,
+        src: Source<I>,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        match self.add_inner(s, src, color, clip) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -542,32 +586,41 @@ impl<'a> TrapezoidStore<'a> {
         }
     }
 
+    #[inline(always)]
     fn add_inner<I>(
         &mut self,
         s: usize,
-        vertices: I,
+        src: Source<I>,
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError>
     where
-        I: IntoIterator<Item = Vertex3>,
+        I: Iterator<Item = Vertex3>,
     {
         let seg = segment_at(self.segments, s)?;
-        // The clip cut to the store's frame (a clip is within 0..=4096).
-        let clip = ClipRect::from_window(
-            ClipWindow {
-                x0: clip.x0() as i16,
-                y0: clip.y0() as i16,
-                x1: clip.x1() as i16 - 1,
-                y1: clip.y1() as i16 - 1,
-            },
-            self.width,
-            self.height,
-        );
+        // The clip cut to the store's frame (a clip is within 0..=4096):
+        // itself when it lies inside, as a list's clip does.
+        let clip = if clip.x1() <= self.width && clip.y1() <= self.height {
+            *clip
+        } else {
+            ClipRect::from_window(
+                ClipWindow {
+                    x0: clip.x0() as i16,
+                    y0: clip.y0() as i16,
+                    x1: clip.x1() as i16 - 1,
+                    y1: clip.y1() as i16 - 1,
+                },
+                self.width,
+                self.height,
+            )
+        };
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let poly = Polygon::load(self.edges, vertices, &clip)?;
+        let poly = match src {
+            Source::Once(it) => Polygon::load(self.edges, it, &clip)?,
+            Source::Outlined(it, o) => Polygon::load_edges(self.edges, it, o?, &clip)?,
+        };
         let Some(plane) = poly.plane().copied() else {
             return Ok(0);
         };
@@ -575,66 +628,132 @@ impl<'a> TrapezoidStore<'a> {
             return Ok(0);
         }
         // The face is taken with the first trapezoid, so that a polygon
-        // with none needs no face slot.
-        let depth = plane.depth();
-        let (traps, rows, faces) = (&mut *self.traps, &mut *self.rows, &mut *self.faces);
-        let (free, unused) = (&mut self.free_trap, &mut self.unused_trap);
-        let (free_face, unused_face) = (&mut self.free_face, &mut self.unused_face);
-        let (live, live_faces) = (&mut self.live, &mut self.live_faces);
-        let mut face = None;
-        let n = poly.cut(|l, r| {
-            let f = match face {
-                Some(f) => f,
-                None => {
-                    let cap = faces.len();
-                    let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next)
-                        .ok_or(StoreError::Faces { capacity: cap })?;
-                    faces[f as usize] = Face {
-                        plane,
-                        depth,
-                        color: rgb_bits(color),
-                        key,
-                        segment: s as u16,
-                        next: seg.faces,
-                    };
-                    seg.faces = f;
-                    seg.face_count += 1;
-                    *live_faces += 1;
-                    face = Some(f);
-                    f
-                }
-            };
-            let cap = traps.len();
-            let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
-                .ok_or(StoreError::Trapezoids { capacity: cap })?;
-            // Rows are inside the frame: the edges were cut to the clip.
-            let top = l.rows().0 as usize;
-            let head = rows.get(top).copied().unwrap_or(NONE);
-            if let Some(h) = traps.get_mut(head as usize) {
-                h.prev_row = t;
-            }
-            if let Some(h) = rows.get_mut(top) {
-                *h = t;
-            }
-            // Written in place, every field at once (built on the stack
-            // and copied, it cost about 10 instructions more a trapezoid
-            // on the Cortex-M4).
-            if let Some(slot) = traps.get_mut(t as usize) {
-                *slot = Trapezoid {
-                    segment: s as u16,
-                    next_row: head,
-                    prev_row: NONE,
-                    next_seg: seg.traps,
-                    ..Trapezoid::new(l, r, f, &clip)
+        // with none needs no face slot. What the cut's closure changes is
+        // in one place it reaches by one pointer (each pool and counter
+        // captured apart cost a store each to set up and a load more each
+        // to reach), and goes back to the store and the segment after,
+        // on an error too (the segment is then emptied through its links).
+        let proto = Face {
+            plane,
+            depth: plane.depth(),
+            color: rgb_bits(color),
+            key,
+            segment: s as u16,
+            next: NONE,
+        };
+        let mut add = Adding {
+            traps: &mut *self.traps,
+            rows: &mut *self.rows,
+            faces: &mut *self.faces,
+            free: self.free_trap,
+            unused: self.unused_trap,
+            free_face: self.free_face,
+            unused_face: self.unused_face,
+            seg_traps: seg.traps,
+            seg_faces: seg.faces,
+            added: 0,
+            face: NONE,
+            proto: &proto,
+            clip,
+        };
+        let n = poly.cut(|l, r| add.trapezoid(l, r));
+        (self.free_trap, self.unused_trap) = (add.free, add.unused);
+        (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
+        (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
+        seg.trapezoids += add.added;
+        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(add.added);
+        self.live += add.added;
+        if add.face != NONE {
+            seg.face_count += 1;
+            self.live_faces += 1;
+        }
+        n
+    }
+}
+
+/// A polygon's vertices as the store reads them: in one pass, or in a
+/// second after a first that found their [`Outline`] (or too many).
+enum Source<I> {
+    Once(I),
+    Outlined(I, Result<Outline, StoreError>),
+}
+
+/// The pools and a segment's chains while one polygon's trapezoids are
+/// added ([`TrapezoidStore::add_polygon`]).
+struct Adding<'p> {
+    traps: &'p mut [Trapezoid],
+    rows: &'p mut [u16],
+    faces: &'p mut [Face],
+    free: u16,
+    unused: u16,
+    free_face: u16,
+    unused_face: u16,
+    seg_traps: u16,
+    seg_faces: u16,
+    /// Trapezoids added.
+    added: u32,
+    /// The polygon's face, `NONE` until its first trapezoid.
+    face: u16,
+    /// The face, but for its link.
+    proto: &'p Face,
+    clip: ClipRect,
+}
+
+impl Adding<'_> {
+    /// Stores the trapezoid between `l` and `r` (and the face with the
+    /// first), and indexes it by its top row.
+    #[inline(always)]
+    fn trapezoid(&mut self, l: Side, r: Side) -> Result<(), StoreError> {
+        let Adding {
+            traps,
+            rows,
+            faces,
+            free,
+            unused,
+            free_face,
+            unused_face,
+            ..
+        } = self;
+        if self.face == NONE {
+            let cap = faces.len();
+            let f = alloc(free_face, unused_face, cap, |i| faces[i as usize].next)
+                .ok_or(StoreError::Faces { capacity: cap })?;
+            if let Some(slot) = faces.get_mut(f as usize) {
+                *slot = Face {
+                    next: self.seg_faces,
+                    ..*self.proto
                 };
             }
-            seg.traps = t;
-            seg.trapezoids += 1;
-            seg.work.trapezoids = seg.work.trapezoids.wrapping_add(1);
-            *live += 1;
-            Ok::<(), StoreError>(())
-        })?;
-        Ok(n)
+            self.seg_faces = f;
+            self.face = f;
+        }
+        let cap = traps.len();
+        let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
+            .ok_or(StoreError::Trapezoids { capacity: cap })?;
+        // Rows are inside the frame: the edges were cut to the clip.
+        let top = l.rows().0 as usize;
+        let head = rows.get(top).copied().unwrap_or(NONE);
+        if let Some(h) = traps.get_mut(head as usize) {
+            h.prev_row = t;
+        }
+        if let Some(h) = rows.get_mut(top) {
+            *h = t;
+        }
+        // Written in place, every field at once (built on the stack
+        // and copied, it cost about 10 instructions more a trapezoid
+        // on the Cortex-M4).
+        if let Some(slot) = traps.get_mut(t as usize) {
+            *slot = Trapezoid {
+                segment: self.proto.segment,
+                next_row: head,
+                prev_row: NONE,
+                next_seg: self.seg_traps,
+                ..Trapezoid::new(l, r, self.face, &self.clip)
+            };
+        }
+        self.seg_traps = t;
+        self.added += 1;
+        Ok(())
     }
 }
 
@@ -763,6 +882,60 @@ mod tests {
             )
             .unwrap()
         }
+    }
+
+    /// `add_poly3` draws a `poly3` exactly when `front_facing` does, as
+    /// `add_polygon` would (the same trapezoids and faces), and leaves
+    /// the store and the segment's counters alone when it culls.
+    #[test]
+    fn poly3_is_drawn_when_front_facing() {
+        use crate::display_list::{Command, DisplayList, Writer};
+        let mut rng = testkit::rng::Rng(0x7019_3fac);
+        let clip = ClipRect::full(64, 64);
+        let (mut drawn, mut culled) = (0, 0);
+        for case in 0..2000 {
+            let n = 3 + rng.below(6) as usize;
+            let mut poly = [Vertex3::default(); 8];
+            for p in poly.iter_mut().take(n) {
+                // Coarse grids make edge-on and degenerate ones likely.
+                let g = [1, 16, 128][case % 3];
+                let c = |r: &mut testkit::rng::Rng, span: u32| {
+                    (r.below(span / g) * g as i32 - 64) as i16
+                };
+                *p = Vertex3 {
+                    x: Coord::from_bits(c(&mut rng, 1152)),
+                    y: Coord::from_bits(c(&mut rng, 1152)),
+                    z: Coord::from_bits(c(&mut rng, 4096)),
+                };
+            }
+            let poly = &poly[..n];
+            let mut bytes = [0u8; 128];
+            let mut w = Writer::new(&mut bytes, 64, 64).unwrap();
+            w.poly3(poly.iter().copied()).unwrap();
+            let list = DisplayList::new_checked(w.finish()).unwrap();
+            let Some((_, Command::Poly3(v))) = list.commands().next() else {
+                panic!("no poly3");
+            };
+            let (mut a, mut b) = (Mem::<32, 4>::new(), Mem::<32, 4>::new());
+            let (mut sa, mut sb) = (a.store(), b.store());
+            let front = crate::scene::list::front_facing(&v);
+            let got = sa.add_poly3(1, &v, Rgb888::RED, &clip);
+            if front {
+                let want = sb.add_polygon(1, poly.iter().copied(), Rgb888::RED, &clip);
+                assert_eq!(got.map(|_| ()), want.map(|_| ()), "{poly:?}");
+                drawn += 1;
+            } else {
+                culled += 1;
+            }
+            assert_eq!(got.map_err(|_| ()), Ok(front), "{poly:?}");
+            assert_eq!(sa.len(), sb.len(), "{poly:?}");
+            assert_eq!(sa.face_count(), sb.face_count(), "{poly:?}");
+            assert_eq!(sa.segments(), sb.segments(), "{poly:?}");
+            let (ta, tb) = (sa.segment_trapezoids(1), sb.segment_trapezoids(1));
+            assert!(ta.map(|t| t.1.fields()).eq(tb.map(|t| t.1.fields())));
+            assert_eq!(sa.face(0), sb.face(0));
+        }
+        assert!(drawn > 500 && culled > 500, "{drawn} {culled}");
     }
 
     fn tri(k: i32) -> [Vertex3; 3] {

@@ -234,6 +234,76 @@ impl PlaneSums {
     }
 }
 
+/// The first pass of [`Polygon::load`] over a polygon's vertices:
+/// Newell's sums, the depth range and the columns' range, in units. Its
+/// `c` is twice the signed area, the shoelace sum of
+/// [`front_facing`](crate::scene::list::front_facing) exactly (the terms
+/// `xₖyₖ` it adds cancel round the polygon).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Outline {
+    /// `None`: no vertex.
+    sums: Option<PlaneSums>,
+    x: (i32, i32),
+}
+
+impl Outline {
+    /// The outline of the polygon through `it` (closed implicitly).
+    /// Fails when it has more than [`MAX_VERTICES`] vertices.
+    #[inline(always)]
+    pub(crate) fn of<I: Iterator<Item = Vertex3>>(mut it: I) -> Result<Outline, LoadError> {
+        let Some(first) = it.next() else {
+            return Ok(Outline {
+                sums: None,
+                x: (0, 0),
+            });
+        };
+        // Kept in locals with the first vertex peeled (see
+        // `PlaneSums::edge` for the bounds).
+        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
+        let (mut px, mut py, mut pz) = (fx, fy, fz);
+        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
+        let (mut zlo, mut zhi) = (fz, fz);
+        let (mut lo, mut hi) = (fx, fx);
+        let mut count = 1usize;
+        for v in it {
+            count += 1;
+            if count > MAX_VERTICES {
+                return Err(LoadError::Vertices);
+            }
+            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
+            sa += (py - y) as i64 * (pz + z) as i64;
+            sb += (pz - z) as i64 * (px + x) as i64;
+            sc += (px - x) as i64 * (py + y) as i64;
+            zlo = zlo.min(z);
+            zhi = zhi.max(z);
+            lo = lo.min(x);
+            hi = hi.max(x);
+            (px, py, pz) = (x, y, z);
+        }
+        sa += (py - fy) as i64 * (pz + fz) as i64;
+        sb += (pz - fz) as i64 * (px + fx) as i64;
+        sc += (px - fx) as i64 * (py + fy) as i64;
+        Ok(Outline {
+            sums: Some(PlaneSums {
+                a: sa,
+                b: sb,
+                c: sc,
+                first,
+                n: count as i64,
+                z: (zlo, zhi),
+            }),
+            x: (lo, hi),
+        })
+    }
+
+    /// `true` when the polygon is counter-clockwise as displayed (y
+    /// down): [`front_facing`](crate::scene::list::front_facing).
+    #[inline(always)]
+    pub(crate) fn front(&self) -> bool {
+        self.sums.is_some_and(|s| s.c < 0)
+    }
+}
+
 impl Plane {
     /// The plane `z = 0` (placeholder of unused slots).
     pub const FLAT: Plane = Plane {
@@ -364,6 +434,15 @@ impl Plane {
             // anchor's 2¹⁴·|a·dx + b·dy| at most 2¹⁴·2·2³¹·(2¹⁵ + 8) =
             // 2⁶¹ + 2⁵⁰: within what `round_div64` takes.
             (Ok(a), Ok(b), Ok(c)) if c < 1 << 31 => {
+                // Parallel to the screen: both slopes zero, the depth z₀
+                // everywhere (each division below would be of zero).
+                if a | b == 0 {
+                    return Depth {
+                        z: z0 << Z_FRAC_BITS,
+                        zx: 0,
+                        zy: 0,
+                    };
+                }
                 let (a, b) = (a as i64, b as i64);
                 let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c);
                 let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c);
@@ -847,14 +926,13 @@ pub struct Polygon<'s> {
     edges: usize,
     plane: Option<Plane>,
     cols: (i32, i32),
-    /// The rows of the edges set up, for [`cut_chains`].
-    rows: Rows,
 }
 
-/// What [`Polygon::load`] notes of the edges' rows as it sets them up:
-/// the first row and the first edge that starts on it, how many do, the
-/// last row (one past), and the rows of all edges added up (each below
-/// 4097, at most 65535 edges: below 2²⁸).
+/// What [`cut_chains`] needs of the rows of the edges set up: the first
+/// row and the first edge that starts on it, how many do, the last row
+/// (one past), and the rows of all edges added up (each below 4097, at
+/// most 65535 edges: below 2²⁸). Found in one pass over the slots
+/// ([`Rows::of`]), kept out of [`Polygon::load`]'s loop.
 #[derive(Clone, Copy, Debug)]
 struct Rows {
     first: i32,
@@ -887,52 +965,107 @@ impl<'s> Polygon<'s> {
         I: IntoIterator<Item = Vertex3>,
     {
         let rows = (clip.y0() as i32, clip.y1() as i32);
-        let cols = (clip.x0() as i32, clip.x1() as i32);
-        let mut sums = PlaneSums::default();
+        let mut poly = Polygon::empty(slots, clip);
         let mut it = vertices.into_iter();
-        let mut poly = Polygon {
-            slots,
-            edges: 0,
-            plane: None,
-            cols,
-            rows: Rows {
-                first: i32::MAX,
-                first_edge: 0,
-                starting: 0,
-                end: i32::MIN,
-                sum: 0,
-            },
-        };
         let Some(first) = it.next() else {
             return Ok(poly);
         };
-        let (mut lo, mut hi) = (first.x.units(), first.x.units());
-        let mut prev = first;
+        // `Outline::of` and the edges in one loop.
+        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
+        let (mut px, mut py, mut pz) = (fx, fy, fz);
+        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
+        let (mut zlo, mut zhi) = (fz, fz);
+        let (mut lo, mut hi) = (fx, fx);
         let mut count = 1usize;
         for v in it {
             count += 1;
             if count > MAX_VERTICES {
                 return Err(LoadError::Vertices);
             }
-            sums.edge(prev, v);
-            poly.push(prev, v, rows)?;
-            lo = lo.min(v.x.units());
-            hi = hi.max(v.x.units());
-            prev = v;
+            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
+            sa += (py - y) as i64 * (pz + z) as i64;
+            sb += (pz - z) as i64 * (px + x) as i64;
+            sc += (px - x) as i64 * (py + y) as i64;
+            zlo = zlo.min(z);
+            zhi = zhi.max(z);
+            lo = lo.min(x);
+            hi = hi.max(x);
+            poly.push((px, py), (x, y), rows)?;
+            (px, py, pz) = (x, y, z);
         }
-        sums.edge(prev, first);
-        poly.push(prev, first, rows)?;
+        sa += (py - fy) as i64 * (pz + fz) as i64;
+        sb += (pz - fz) as i64 * (px + fx) as i64;
+        sc += (px - fx) as i64 * (py + fy) as i64;
+        poly.push((px, py), (fx, fy), rows)?;
+        let sums = PlaneSums {
+            a: sa,
+            b: sb,
+            c: sc,
+            first,
+            n: count as i64,
+            z: (zlo, zhi),
+        };
+        poly.finish(&sums, (lo, hi), clip);
+        Ok(poly)
+    }
+
+    /// [`Polygon::load`] in two passes over the vertices: the second, over
+    /// the edges, of the vertices `it` whose first (their [`Outline`],
+    /// which is also a `poly3`'s cull) is `outline`. With fewer values to
+    /// keep in registers, each loop spills less on a 32-bit core.
+    #[inline(always)]
+    pub(crate) fn load_edges<I>(
+        slots: &'s mut [EdgeSlot],
+        mut it: I,
+        outline: Outline,
+        clip: &ClipRect,
+    ) -> Result<Self, LoadError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        let rows = (clip.y0() as i32, clip.y1() as i32);
+        let mut poly = Polygon::empty(slots, clip);
+        let (Some(sums), Some(first)) = (outline.sums, it.next()) else {
+            return Ok(poly);
+        };
+        let (fx, fy) = (first.x.units(), first.y.units());
+        let (mut px, mut py) = (fx, fy);
+        for v in it {
+            let (x, y) = (v.x.units(), v.y.units());
+            poly.push((px, py), (x, y), rows)?;
+            (px, py) = (x, y);
+        }
+        poly.push((px, py), (fx, fy), rows)?;
+        poly.finish(&sums, outline.x, clip);
+        Ok(poly)
+    }
+
+    /// No edge yet, no plane.
+    #[inline(always)]
+    fn empty(slots: &'s mut [EdgeSlot], clip: &ClipRect) -> Self {
+        Polygon {
+            slots,
+            edges: 0,
+            plane: None,
+            cols: (clip.x0() as i32, clip.x1() as i32),
+        }
+    }
+
+    /// After the edges: none when the polygon's columns (`x`, the least
+    /// and greatest vertex x in units) miss the clip's, and the plane.
+    #[inline(always)]
+    fn finish(&mut self, sums: &PlaneSums, (lo, hi): (i32, i32), clip: &ClipRect) {
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
+        let cols = self.cols;
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
-            poly.edges = 0;
+            self.edges = 0;
         }
         // A triangle's plane passes through its three vertices: nothing to
         // check.
-        poly.plane = match count {
+        self.plane = match sums.n {
             ..=3 => sums.finish(),
-            _ => sums.finish().map(|p| poly.bounded(p, sums.z)),
+            _ => sums.finish().map(|p| self.bounded(p, sums.z)),
         };
-        Ok(poly)
     }
 
     /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
@@ -960,14 +1093,7 @@ impl<'s> Polygon<'s> {
         if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
             let (x0, y0, z0) = plane.origin_units();
             let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
-            let within = |x: i16, y: i16| {
-                let e = a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64;
-                lo <= e && e <= hi
-            };
-            if slots
-                .iter()
-                .all(|s| within(s.ends.x0, s.ends.y0) && within(s.ends.x1, s.ends.y1))
-            {
+            if ends_within(slots, (a, b), (x0, y0), (lo, hi)) {
                 return plane;
             }
         } else if holds(&plane) {
@@ -988,12 +1114,11 @@ impl<'s> Polygon<'s> {
         plane.flattened(lo)
     }
 
-    fn push(&mut self, p: Vertex3, q: Vertex3, rows: (i32, i32)) -> Result<(), LoadError> {
-        let (mut a, mut b) = (p, q);
-        if a.y > b.y {
-            core::mem::swap(&mut a, &mut b);
-        }
-        let (y0, y1) = (a.y.units(), b.y.units());
+    /// Sets up the edge `p → q` (units, each within `i16`) when it
+    /// crosses a row centre inside `rows`.
+    #[inline(always)]
+    fn push(&mut self, p: (i32, i32), q: (i32, i32), rows: (i32, i32)) -> Result<(), LoadError> {
+        let ((ax, y0), (bx, y1)) = if p.1 > q.1 { (q, p) } else { (p, q) };
         // The rows of `Edge::new`: centres j·16 + 8 in [y0, y1).
         let top = ceil_px(y0 - HALF).max(rows.0);
         let end = ceil_px(y1 - HALF).min(rows.1);
@@ -1007,24 +1132,16 @@ impl<'s> Polygon<'s> {
             .ok_or(LoadError::Edges { capacity })?;
         *slot = EdgeSlot {
             ends: Ends {
-                x0: a.x.to_bits(),
-                y0: a.y.to_bits(),
-                x1: b.x.to_bits(),
-                y1: b.y.to_bits(),
+                x0: ax as i16,
+                y0: y0 as i16,
+                x1: bx as i16,
+                y1: y1 as i16,
             },
             top,
             end,
             id: self.edges as u16,
             open: None,
         };
-        let r = &mut self.rows;
-        if top < r.first {
-            (r.first, r.first_edge, r.starting) = (top, self.edges, 1);
-        } else if top == r.first {
-            r.starting += 1;
-        }
-        r.end = r.end.max(end);
-        r.sum += (end - top) as u32;
         self.edges += 1;
         Ok(())
     }
@@ -1068,7 +1185,7 @@ impl<'s> Polygon<'s> {
             skip: 0,
         };
         if chains {
-            if cut_chains(slots, self.rows, &mut c)? {
+            if cut_chains(slots, Rows::of(slots), &mut c)? {
                 return Ok(c.count);
             }
             // The walk stopped where the sweep below is needed: what it
@@ -1155,6 +1272,26 @@ impl<'s> Polygon<'s> {
     }
 }
 
+/// `true` when `lo ≤ a·(x₀ − x) + b·(y₀ − y) ≤ hi` at both ends `(x, y)`
+/// of every slot ([`Polygon::bounded`]'s usual case). Out of line, so
+/// that `a` and `b` are `i32`s here and each product one 32 × 32 → 64-bit
+/// multiply (inlined, the compiler multiplied the `i64`s they came from).
+#[inline(never)]
+fn ends_within(
+    slots: &[EdgeSlot],
+    (a, b): (i32, i32),
+    (x0, y0): (i32, i32),
+    (lo, hi): (i64, i64),
+) -> bool {
+    let within = |x: i16, y: i16| {
+        let e = a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64;
+        lo <= e && e <= hi
+    };
+    slots
+        .iter()
+        .all(|s| within(s.ends.x0, s.ends.y0) && within(s.ends.x1, s.ends.y1))
+}
+
 /// Where [`Polygon::cut`] hands its trapezoids: `emit`, less those that
 /// can write no pixel in the columns `cols`, and less the first `skip`
 /// (made already by [`cut_chains`] before it gave up).
@@ -1192,6 +1329,30 @@ impl<F> Closer<F> {
         (self.emit)(side(*l), side(*r))?;
         self.count += 1;
         Ok(())
+    }
+}
+
+impl Rows {
+    /// The rows of `slots`, the edges set up in the order loaded.
+    #[inline(always)]
+    fn of(slots: &[EdgeSlot]) -> Rows {
+        let mut r = Rows {
+            first: i32::MAX,
+            first_edge: 0,
+            starting: 0,
+            end: i32::MIN,
+            sum: 0,
+        };
+        for (k, e) in slots.iter().enumerate() {
+            if e.top < r.first {
+                (r.first, r.first_edge, r.starting) = (e.top, k, 1);
+            } else if e.top == r.first {
+                r.starting += 1;
+            }
+            r.end = r.end.max(e.end);
+            r.sum += (e.end - e.top) as u32;
+        }
+        r
     }
 }
 
@@ -1648,7 +1809,7 @@ mod tests {
                     count: 0,
                     skip: 0,
                 };
-                if cut_chains(&p.slots[..p.edges], p.rows, &mut c).unwrap() {
+                if cut_chains(&p.slots[..p.edges], Rows::of(&p.slots[..p.edges]), &mut c).unwrap() {
                     walked += 1;
                 } else if c.count > 0 {
                     gave_up_late += 1;
