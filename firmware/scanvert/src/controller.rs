@@ -402,14 +402,19 @@ fn layer_pipeline(
     first: usize,
 ) -> Result<(ListPipeline, Option<SceneError>), RenderError<core::convert::Infallible>> {
     let (w, h) = (list.width(), list.height());
-    match list_pipeline(w, h) {
-        Ok(p) => Ok((p, None)),
-        // `poly3`s need no pipeline, so they are drawn whatever the
-        // frame; a scene command reports the default's error.
-        Err(e) => list_pipeline(w.clamp(16, WINDOW_MAX), h.clamp(16, WINDOW_MAX))
-            .map(|p| (p, Some(e)))
-            .map_err(|e| error_at(first, e)),
-    }
+    // The default's error, from a pipeline of the least capacities (its
+    // checks are those of the window and the projection alone), so that
+    // the list's pipeline is made once, in place: each one more is a copy
+    // of about 1 KB on the stack.
+    let window = list_pipeline::<1, 4>(w, h).err();
+    // `poly3`s need no pipeline, so they are drawn whatever the frame; a
+    // scene command reports the default's error.
+    let (pw, ph) = match window {
+        None => (w, h),
+        Some(_) => (w.clamp(16, WINDOW_MAX), h.clamp(16, WINDOW_MAX)),
+    };
+    let p = list_pipeline(pw, ph).map_err(|e| error_at(first, e))?;
+    Ok((p, window))
 }
 
 /// Counts what the 3D layer needs, cutting polygons without keeping them.

@@ -351,7 +351,23 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         color: Rgb888,
         sink: &mut S,
     ) -> Result<Outcome, PipelineError<S::Error>> {
-        if points.is_empty() {
+        self.polygon_from(points.iter().copied(), color, sink)
+    }
+
+    /// [`polygon`](Self::polygon) of points read as they come: a display
+    /// list's `face` is transformed straight from the list, with no copy
+    /// of its points on the stack.
+    pub(crate) fn polygon_from<I, S>(
+        &mut self,
+        points: I,
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>>
+    where
+        I: ExactSizeIterator<Item = Point3>,
+        S: PolygonSink,
+    {
+        if points.len() == 0 {
             return Ok(Outcome::Empty);
         }
         let s = &mut self.stats;
@@ -368,9 +384,9 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         r
     }
 
-    fn run<S: PolygonSink>(
+    fn run<I: ExactSizeIterator<Item = Point3>, S: PolygonSink>(
         &self,
-        points: &[Point3],
+        points: I,
         color: Rgb888,
         sink: &mut S,
     ) -> Result<Outcome, PipelineError<S::Error>> {
@@ -382,7 +398,8 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         let m = self.stack.current();
         // The depth range is gathered on the way, for the near clip.
         let mut depth = (i32::MAX, i32::MIN);
-        for &p in points {
+        let two_sided = points.len() < 3;
+        for p in points {
             let v = m.apply(p).map_err(|_| PipelineError::Range)?;
             depth = (depth.0.min(v[2]), depth.1.max(v[2]));
             work.current_mut()
@@ -390,7 +407,6 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
                 .map_err(|_| full())?;
         }
 
-        let two_sided = points.len() < 3;
         let mut color = color;
         if let [v0, v1, v2, ..] = *work.current().as_slice() {
             let n = cull::newell(work.current());

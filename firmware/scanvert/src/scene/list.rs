@@ -223,12 +223,13 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
         }
         Command::Scale(f) => pipe.stack_mut().scale(f.x, f.y, f.z)?,
         Command::Face(points) => {
-            let mut v: heapless::Vec<Point3, N> = heapless::Vec::new();
-            for p in points.iter() {
-                v.push(p)
-                    .map_err(|_| SceneError::Vertices { capacity: N })?;
-            }
-            return Ok(Executed::Face(face(pipe, out, &v, st.color, st.clip)?));
+            return Ok(Executed::Face(face(
+                pipe,
+                out,
+                points.iter(),
+                st.color,
+                st.clip,
+            )?));
         }
         Command::Label { at, text } => {
             return Ok(Executed::Label {
@@ -247,16 +248,17 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
 pub(crate) fn face<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
     out: &mut O,
-    points: &[Point3],
+    points: impl ExactSizeIterator<Item = Point3>,
     color: Rgb888,
     clip: ClipRect,
 ) -> Result<Outcome, SceneError> {
     let mut sink = Faces { out, clip };
-    pipe.polygon(points, color, &mut sink).map_err(|e| match e {
-        PipelineError::Range => SceneError::Range,
-        PipelineError::Capacity { capacity } => SceneError::Vertices { capacity },
-        PipelineError::Sink(e) => e,
-    })
+    pipe.polygon_from(points, color, &mut sink)
+        .map_err(|e| match e {
+            PipelineError::Range => SceneError::Range,
+            PipelineError::Capacity { capacity } => SceneError::Vertices { capacity },
+            PipelineError::Sink(e) => e,
+        })
 }
 
 /// A label at the model point `at` into `out`: `Ok(false)` when the point

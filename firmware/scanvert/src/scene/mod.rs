@@ -721,7 +721,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     pub fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<Outcome, SceneError> {
         let clip = self.scene.clip;
         let (pipeline, mut out) = self.split();
-        list::face(pipeline, &mut out, points, color, clip)
+        list::face(pipeline, &mut out, points.iter().copied(), color, clip)
     }
 
     /// A label whose first character's lower-left corner is at the model
