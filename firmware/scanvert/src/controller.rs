@@ -704,15 +704,17 @@ impl<'e> Controller<'e> {
             Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
             None => None,
         };
+        let mut built = None;
         let layer = match (three.as_mut(), first) {
             (Some(mem), Some(first)) => {
                 hook.stage(Stage::Start);
-                let mut scene =
-                    build_layer(mem.reborrow(), list, (w, h), first, &mut stats).map_err(widen)?;
+                let scene =
+                    build_layer(&mut built, mem.reborrow(), list, (w, h), first, &mut stats)
+                        .map_err(widen)?;
                 hook.stage(Stage::Cut);
                 scene.check().map_err(|e| widen(visible_error(first, e)))?;
                 hook.stage(Stage::Checked);
-                Some((scene, first))
+                Some(first)
             }
             _ => None,
         };
@@ -756,7 +758,7 @@ impl<'e> Controller<'e> {
             }
         }
         hook.stage(Stage::Painted);
-        if let Some((scene, first)) = layer {
+        if let (Some(scene), Some(first)) = (built.as_mut(), layer) {
             draw_layer(scene, first, *resolve, target, &mut stats, hook)?;
         }
         Ok(stats)
@@ -818,7 +820,7 @@ fn widen<E>(e: RenderError<core::convert::Infallible>) -> RenderError<E> {
 /// [`Controller::render`] compiles as it does without it.
 #[inline(never)]
 fn draw_layer<T, H>(
-    mut scene: ListScene<'_>,
+    scene: &mut ListScene<'_>,
     first: usize,
     resolve: Resolve,
     target: &mut T,
@@ -858,17 +860,22 @@ where
 
 /// Builds the 3D layer of `list` in `mem`, projected for the list's frame
 /// and cut to `w × h`: one segment, every 3D command through the scene's
-/// interpreter in list order.
+/// interpreter in list order, into `slot`.
 #[inline(never)]
-fn build_layer<'t>(
+fn build_layer<'s, 't>(
+    slot: &'s mut Option<ListScene<'t>>,
     mem: SceneMemory<'t>,
     list: &DisplayList<'_>,
     (w, h): (u16, u16),
     first: usize,
     stats: &mut RenderStats,
-) -> Result<ListScene<'t>, RenderError<core::convert::Infallible>> {
+) -> Result<&'s mut ListScene<'t>, RenderError<core::convert::Infallible>> {
     let (pipeline, window) = layer_pipeline(list, first)?;
-    let mut scene = Scene::with_frame(mem, pipeline, w, h).map_err(|e| error_at(first, e))?;
+    // Made in the caller's slot, not returned: the scene (about a
+    // kilobyte, most of it the pipeline) is then not copied again on its
+    // way out.
+    let scene =
+        slot.insert(Scene::with_frame(mem, pipeline, w, h).map_err(|e| error_at(first, e))?);
     let mut st = ListState::new(list.width(), list.height());
     let mut b = scene.open(0).map_err(|e| error_at(first, e))?;
     for (offset, cmd) in list.commands() {

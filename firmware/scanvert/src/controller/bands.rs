@@ -66,7 +66,9 @@ pub type ListBandsError<E> = BandsError<PrepareError, E>;
 pub struct ListBands<'t> {
     table: EdgeTable<'t>,
     /// The 3D layer, its pass, and the offset of its first command.
-    layer: Option<(ListScene<'t>, Sweep, usize)>,
+    layer: Option<ListScene<'t>>,
+    /// The layer's sweep and first command's offset.
+    sweep: Option<(Sweep, usize)>,
     background: Rgb888,
     size: (u16, u16),
     next: u16,
@@ -74,6 +76,20 @@ pub struct ListBands<'t> {
 }
 
 impl ListBands<'_> {
+    /// Bands of `list` with nothing prepared: what
+    /// [`Controller::prepare`] fills.
+    fn unprepared(list: &DisplayList<'_>) -> Self {
+        ListBands {
+            table: EdgeTable::empty(),
+            layer: None,
+            sweep: None,
+            background: Rgb888::BLACK,
+            size: (list.width(), list.height()),
+            next: 0,
+            stats: RenderStats::default(),
+        }
+    }
+
     /// Width and height of the frame.
     pub fn size(&self) -> (u16, u16) {
         self.size
@@ -125,7 +141,7 @@ impl ListBands<'_> {
         let mut band = Band::new(pixels, (w, h), y, rows)?;
         // The offset of the layer's first command, as the full frame
         // reports the layer's errors.
-        let first = self.layer.as_ref().map_or(0, |(.., first)| *first);
+        let first = self.sweep.as_ref().map_or(0, |(_, first)| *first);
         let layer_error = |e: VisibleError<Infallible>| match e {
             VisibleError::Sink(e) => match e {},
             // Checked when the layer was built: never.
@@ -139,7 +155,7 @@ impl ListBands<'_> {
         };
         if y > self.next {
             self.table.skip(y as i32);
-            if let Some((scene, sweep, _)) = self.layer.as_mut() {
+            if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
                 let (store, _, ws) = scene.band_parts();
                 sweep.skip(store, ws, y - self.next).map_err(layer_error)?;
             }
@@ -149,16 +165,17 @@ impl ListBands<'_> {
         // (every pixel once) instead of a fill that the faces overwrite.
         let background = C::from_rgb888(self.background);
         let layer_fills = self.table.is_empty()
-            && self.layer.as_ref().is_some_and(|(scene, ..)| {
-                (scene.store().width(), scene.store().height()) == (w, h)
-            });
+            && self
+                .layer
+                .as_ref()
+                .is_some_and(|scene| (scene.store().width(), scene.store().height()) == (w, h));
         if !layer_fills {
             ok(band.clear(background));
         }
         let c = ok(self.table.draw(band.end() as i32, &mut band));
         self.stats.spans += c.spans;
         self.stats.pixels += c.pixels as u64;
-        if let Some((scene, sweep, _)) = self.layer.as_mut() {
+        if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
             let (store, labels, ws) = scene.band_parts();
             let c = sweep
                 .draw(
@@ -193,9 +210,22 @@ impl<'e> Controller<'e> {
         list: &DisplayList<'_>,
         table: TableMemory<'t>,
     ) -> Result<ListBands<'t>, PrepareError> {
+        let mut bands = ListBands::unprepared(list);
+        self.prepare(list, table, &mut bands)?;
+        Ok(bands)
+    }
+
+    /// [`bands`](Self::bands) into `out` (from [`ListBands::unprepared`]),
+    /// which holds the 3D layer from the start: the scene, about a
+    /// kilobyte, is not moved from frame to frame on the stack.
+    fn prepare<'t>(
+        &'t mut self,
+        list: &DisplayList<'_>,
+        table: TableMemory<'t>,
+        out: &mut ListBands<'t>,
+    ) -> Result<(), PrepareError> {
         self.check(list).map_err(PrepareError::Render)?;
         let (w, h) = (list.width(), list.height());
-        let mut stats = RenderStats::default();
         let Controller { three, resolve, .. } = self;
         // The 3D layer as `render` builds and checks it, through the same
         // interpreter.
@@ -203,30 +233,23 @@ impl<'e> Controller<'e> {
             Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
             None => None,
         };
-        let layer = match (three.as_mut(), first) {
-            (Some(mem), Some(first)) => {
-                let mut scene = build_layer(mem.reborrow(), list, (w, h), first, &mut stats)
-                    .map_err(PrepareError::Render)?;
-                scene
-                    .check()
-                    .map_err(|e| PrepareError::Render(super::visible_error(first, e)))?;
-                let sweep = Sweep::new(scene.band_parts().2, *resolve);
-                Some((scene, sweep, first))
-            }
-            _ => None,
-        };
+        if let (Some(mem), Some(first)) = (three.as_mut(), first) {
+            layer_into(
+                (&mut out.layer, &mut out.sweep),
+                mem.reborrow(),
+                list,
+                first,
+                *resolve,
+                &mut out.stats,
+            )?;
+        }
         let table = EdgeTable::build(table, list, (w, h)).map_err(PrepareError::Table)?;
-        stats.commands = table.commands();
-        stats.polygons = (table.len() - table.lines()) as u32;
-        stats.clears = table.clear_color().is_some() as u32;
-        Ok(ListBands {
-            background: table.clear_color().unwrap_or(Rgb888::BLACK),
-            table,
-            layer,
-            size: (w, h),
-            next: 0,
-            stats,
-        })
+        out.stats.commands = table.commands();
+        out.stats.polygons = (table.len() - table.lines()) as u32;
+        out.stats.clears = table.clear_color().is_some() as u32;
+        out.background = table.clear_color().unwrap_or(Rgb888::BLACK);
+        out.table = table;
+        Ok(())
     }
 
     /// Renders `list` band by band, `rows` rows at a time, through the
@@ -258,7 +281,9 @@ impl<'e> Controller<'e> {
             }
             .into());
         }
-        let mut bands = self.bands(list, table).map_err(BandsError::Render)?;
+        let mut bands = ListBands::unprepared(list);
+        self.prepare(list, table, &mut bands)
+            .map_err(BandsError::Render)?;
         let mut y = 0;
         while y < h {
             let n = bands.draw(y, rows, band).map_err(|e| match e {
@@ -273,6 +298,25 @@ impl<'e> Controller<'e> {
         }
         Ok(bands.stats())
     }
+}
+
+/// The 3D layer of `list` built (as `render` builds it) and checked into
+/// `slot`, with its sweep at row 0.
+fn layer_into<'t>(
+    (slot, at): (&mut Option<ListScene<'t>>, &mut Option<(Sweep, usize)>),
+    mem: crate::scene::SceneMemory<'t>,
+    list: &DisplayList<'_>,
+    first: usize,
+    resolve: crate::visible::Resolve,
+    stats: &mut RenderStats,
+) -> Result<(), PrepareError> {
+    let (w, h) = (list.width(), list.height());
+    let scene = build_layer(slot, mem, list, (w, h), first, stats).map_err(PrepareError::Render)?;
+    scene
+        .check()
+        .map_err(|e| PrepareError::Render(super::visible_error(first, e)))?;
+    *at = Some((Sweep::new(scene.band_parts().2, resolve), first));
+    Ok(())
 }
 
 /// The value of a result that cannot fail.

@@ -234,6 +234,25 @@ pub struct EdgeTable<'a> {
 }
 
 impl<'a> EdgeTable<'a> {
+    /// A table of nothing, over no memory: the place a table is built
+    /// into.
+    pub(crate) fn empty() -> Self {
+        EdgeTable {
+            polygons: &mut [],
+            index: &mut [],
+            edges: &mut [],
+            lines: &mut [],
+            cap: 0,
+            count: 0,
+            nlines: 0,
+            entered: 0,
+            nlive: 0,
+            y: 0,
+            clear: None,
+            commands: 0,
+        }
+    }
+
     /// Enters every `poly` and `line` of `list` after its last `clear`,
     /// on a frame of `w × h` (the list's frame cut to the target's).
     pub fn build(
