@@ -250,7 +250,18 @@ impl Outline {
     /// The outline of the polygon through `it` (closed implicitly).
     /// Fails when it has more than [`MAX_VERTICES`] vertices.
     #[inline(always)]
-    pub(crate) fn of<I: Iterator<Item = Vertex3>>(mut it: I) -> Result<Outline, LoadError> {
+    pub(crate) fn of<I: Iterator<Item = Vertex3>>(it: I) -> Result<Outline, LoadError> {
+        Outline::walk(it, |_, _| Ok(()))
+    }
+
+    /// [`Outline::of`], handing each edge (its ends' `x` and `y` in units,
+    /// the closing edge last) to `edge` in the same loop.
+    #[inline(always)]
+    pub(crate) fn walk<I, F>(mut it: I, mut edge: F) -> Result<Outline, LoadError>
+    where
+        I: Iterator<Item = Vertex3>,
+        F: FnMut((i32, i32), (i32, i32)) -> Result<(), LoadError>,
+    {
         let Some(first) = it.next() else {
             return Ok(Outline {
                 sums: None,
@@ -278,11 +289,13 @@ impl Outline {
             zhi = zhi.max(z);
             lo = lo.min(x);
             hi = hi.max(x);
+            edge((px, py), (x, y))?;
             (px, py, pz) = (x, y, z);
         }
         sa += (py - fy) as i64 * (pz + fz) as i64;
         sb += (pz - fz) as i64 * (px + fx) as i64;
         sc += (px - fx) as i64 * (py + fy) as i64;
+        edge((px, py), (fx, fy))?;
         Ok(Outline {
             sums: Some(PlaneSums {
                 a: sa,
@@ -966,46 +979,11 @@ impl<'s> Polygon<'s> {
     {
         let rows = (clip.y0() as i32, clip.y1() as i32);
         let mut poly = Polygon::empty(slots, clip);
-        let mut it = vertices.into_iter();
-        let Some(first) = it.next() else {
-            return Ok(poly);
-        };
         // `Outline::of` and the edges in one loop.
-        let (fx, fy, fz) = (first.x.units(), first.y.units(), first.z.units());
-        let (mut px, mut py, mut pz) = (fx, fy, fz);
-        let (mut sa, mut sb, mut sc) = (0i64, 0i64, 0i64);
-        let (mut zlo, mut zhi) = (fz, fz);
-        let (mut lo, mut hi) = (fx, fx);
-        let mut count = 1usize;
-        for v in it {
-            count += 1;
-            if count > MAX_VERTICES {
-                return Err(LoadError::Vertices);
-            }
-            let (x, y, z) = (v.x.units(), v.y.units(), v.z.units());
-            sa += (py - y) as i64 * (pz + z) as i64;
-            sb += (pz - z) as i64 * (px + x) as i64;
-            sc += (px - x) as i64 * (py + y) as i64;
-            zlo = zlo.min(z);
-            zhi = zhi.max(z);
-            lo = lo.min(x);
-            hi = hi.max(x);
-            poly.push((px, py), (x, y), rows)?;
-            (px, py, pz) = (x, y, z);
+        let outline = Outline::walk(vertices.into_iter(), |p, q| poly.push(p, q, rows))?;
+        if let Some(sums) = outline.sums {
+            poly.finish(&sums, outline.x, clip);
         }
-        sa += (py - fy) as i64 * (pz + fz) as i64;
-        sb += (pz - fz) as i64 * (px + fx) as i64;
-        sc += (px - fx) as i64 * (py + fy) as i64;
-        poly.push((px, py), (fx, fy), rows)?;
-        let sums = PlaneSums {
-            a: sa,
-            b: sb,
-            c: sc,
-            first,
-            n: count as i64,
-            z: (zlo, zhi),
-        };
-        poly.finish(&sums, (lo, hi), clip);
         Ok(poly)
     }
 
