@@ -16,12 +16,61 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 /// at the end of the buffer, each polygon with at least 3 vertices (a face
 /// at least 1), every operand in its range. Nothing reachable from a
 /// `DisplayList` can fail or panic.
+///
+/// What the check learns on its walk is kept ([`summary`](Self::summary)),
+/// so that a reader need not walk the list again to learn it.
 #[derive(Clone, Copy, Debug)]
 pub struct DisplayList<'a> {
     bytes: &'a [u8],
     width: u16,
     height: u16,
     version: u16,
+    summary: Summary,
+}
+
+/// What [`DisplayList::new_checked`] learns of a list on its one walk.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub struct Summary {
+    /// Commands in the list.
+    pub commands: usize,
+    /// Byte offset of the first command of the 3D layer (see
+    /// [`Opcode::is_3d`]), if there is one.
+    pub first_3d: Option<usize>,
+    /// `true` when the list has a `clear`, a `poly` or a `line`: a
+    /// command that draws in painter's order.
+    pub draws_2d: bool,
+    /// Most vertices of one `poly` (0 without one).
+    pub poly: u16,
+    /// Most vertices of one `poly3` (0 without one).
+    pub poly3: u16,
+    /// Most vertices of one `face` (0 without one).
+    pub face: u16,
+}
+
+impl Summary {
+    /// Takes in the command `op` at `offset`, whose bytes start `b`.
+    fn add(&mut self, op: Opcode, offset: usize, b: &[u8]) {
+        self.commands += 1;
+        if op.is_3d() && self.first_3d.is_none() {
+            self.first_3d = Some(offset);
+        }
+        let most = match op {
+            Opcode::Clear | Opcode::Line => {
+                self.draws_2d = true;
+                return;
+            }
+            Opcode::Poly => {
+                self.draws_2d = true;
+                &mut self.poly
+            }
+            Opcode::Poly3 => &mut self.poly3,
+            Opcode::Face => &mut self.face,
+            _ => return,
+        };
+        *most = (*most).max(u16_at(b, Layout::COUNT));
+    }
 }
 
 #[inline(always)]
@@ -144,9 +193,13 @@ impl<'a> DisplayList<'a> {
         }
         let body = &bytes[HEADER_LEN..];
         let mut at = 0;
+        let mut summary = Summary::default();
         while at < body.len() {
             match command_len(body, at, version) {
-                Ok((_, len)) => at += len,
+                Ok((op, len)) => {
+                    summary.add(op, HEADER_LEN + at, &body[at..]);
+                    at += len;
+                }
                 Err(kind) => return Err(err(HEADER_LEN + at, kind)),
             }
         }
@@ -155,7 +208,14 @@ impl<'a> DisplayList<'a> {
             width,
             height,
             version,
+            summary,
         })
+    }
+
+    /// What the check learnt of the list: its commands, where its 3D
+    /// layer starts, whether it draws in 2D, its widest polygons.
+    pub fn summary(&self) -> &Summary {
+        &self.summary
     }
 
     /// Frame width in pixels (1..=4096).
@@ -624,6 +684,45 @@ mod tests {
         w.face([p(1, 2, 3)]).unwrap();
         w.label(p(4, 5, 6), "Hi!").unwrap();
         w.finish()
+    }
+
+    #[test]
+    fn the_summary_is_what_the_commands_say() {
+        let mut bytes = [0u8; 512];
+        let list = DisplayList::new_checked(every_command(&mut bytes)).unwrap();
+        let s = list.summary();
+        let first = list.commands().find(|(_, c)| c.is_3d()).map(|(o, _)| o);
+        assert_eq!(first, Some(HEADER_LEN + 4 + 9 + 4 + 15));
+        assert_eq!(
+            (s.commands, s.first_3d, s.draws_2d),
+            (list.commands().count(), first, true)
+        );
+        assert_eq!((s.poly, s.poly3, s.face), (3, 4, 1));
+        // Colour and clip draw nothing; a `poly3` is the 3D layer's.
+        let mut w = Writer::new(&mut bytes, 8, 8).unwrap();
+        w.color(Rgb888::new(1, 2, 3)).unwrap();
+        w.clip(ClipWindow {
+            x0: 0,
+            y0: 0,
+            x1: 3,
+            y1: 3,
+        })
+        .unwrap();
+        let v3 = |x| Vertex3 {
+            x: Coord::from_bits(x),
+            y: Coord::from_bits(x * x),
+            z: Coord::from_bits(0),
+        };
+        for n in [5, 3, 9, 4] {
+            w.poly3((0..n).map(v3)).unwrap();
+        }
+        let list = DisplayList::new_checked(w.finish()).unwrap();
+        let s = *list.summary();
+        assert_eq!((s.commands, s.first_3d, s.draws_2d), (6, Some(29), false));
+        assert_eq!((s.poly, s.poly3, s.face), (0, 9, 0));
+        // No command at all.
+        let list = DisplayList::new_checked(Writer::new(&mut bytes, 8, 8).unwrap().finish());
+        assert_eq!(*list.unwrap().summary(), Summary::default());
     }
 
     #[test]
