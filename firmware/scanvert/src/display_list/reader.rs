@@ -53,7 +53,7 @@ impl Summary {
     /// Takes in the command `op` at `offset`, whose bytes start `b`.
     fn add(&mut self, op: Opcode, offset: usize, b: &[u8]) {
         self.commands += 1;
-        if op.is_3d() && self.first_3d.is_none() {
+        if self.first_3d.is_none() && op.is_3d() {
             self.first_3d = Some(offset);
         }
         let most = match op {
@@ -107,16 +107,66 @@ fn vertex_at(b: &[u8], x: Field, y: Field) -> Vertex {
     }
 }
 
+/// What the check needs to know of an opcode: its
+/// [`version`](Opcode::version), its [`layout`](Opcode::layout), and
+/// whether an operand has a range to check; `op` is `None` for a byte
+/// that is not an opcode.
+#[derive(Clone, Copy)]
+struct Rule {
+    op: Option<Opcode>,
+    version: u16,
+    layout: Layout,
+    operands: bool,
+}
+
+/// The rules of the opcodes, and for each byte the index of its rule
+/// (0, no opcode, for the bytes that are not one): made at compile time
+/// from [`Opcode::from_byte`], [`Opcode::version`] and [`Opcode::layout`],
+/// so that checking a command looks its rule up once rather than matching
+/// its opcode for each of them.
+static RULES: ([u8; 256], [Rule; 20]) = {
+    let none = Rule {
+        op: None,
+        version: 0,
+        layout: Layout {
+            fixed: 0,
+            tail: Tail::None,
+        },
+        operands: false,
+    };
+    let (mut index, mut rules) = ([0u8; 256], [none; 20]);
+    let (mut byte, mut n) = (0, 1);
+    while byte < 256 {
+        if let Some(op) = Opcode::from_byte(byte as u8) {
+            rules[n] = Rule {
+                op: Some(op),
+                version: op.version(),
+                layout: op.layout(),
+                operands: matches!(
+                    op,
+                    Opcode::Rotate | Opcode::Light | Opcode::Thickness | Opcode::Label
+                ),
+            };
+            index[byte] = n as u8;
+            n += 1;
+        }
+        byte += 1;
+    }
+    (index, rules)
+};
+
 /// Size of the command starting at `at` in a list of `version`, or an
 /// error, by the command's [`layout`](Opcode::layout). Reads only inside
 /// `body`.
 fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), ErrorKind> {
-    let byte = body[at];
-    let op = Opcode::from_byte(byte)
-        .filter(|op| op.version() <= version)
-        .ok_or(ErrorKind::UnknownOpcode(byte))?;
     let rest = &body[at..];
-    let layout = op.layout();
+    let byte = rest[0];
+    let rule = &RULES.1[RULES.0[byte as usize] as usize];
+    let op = match rule.op {
+        Some(op) if rule.version <= version => op,
+        _ => return Err(ErrorKind::UnknownOpcode(byte)),
+    };
+    let layout = rule.layout;
     if rest.len() < layout.fixed {
         return Err(ErrorKind::Truncated);
     }
@@ -133,6 +183,9 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
     };
     if rest.len() < len {
         return Err(ErrorKind::Truncated);
+    }
+    if !rule.operands {
+        return Ok((op, len));
     }
     let bad = match op {
         Opcode::Rotate => rest[layout::rotate::AXIS] > 2,
