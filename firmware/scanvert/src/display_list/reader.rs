@@ -203,6 +203,30 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
     Ok((op, len))
 }
 
+/// Checks every command of `body`, a list's body of `version`, and
+/// summarises them. Out of line: inlined into a large caller, the loop's
+/// state was kept on the stack.
+#[inline(never)]
+fn walk(body: &[u8], version: u16) -> Result<Summary, Error> {
+    let mut at = 0;
+    let mut summary = Summary::default();
+    while at < body.len() {
+        match command_len(body, at, version) {
+            Ok((op, len)) => {
+                summary.add(op, HEADER_LEN + at, &body[at..]);
+                at += len;
+            }
+            Err(kind) => {
+                return Err(Error {
+                    offset: HEADER_LEN + at,
+                    kind,
+                })
+            }
+        }
+    }
+    Ok(summary)
+}
+
 impl<'a> DisplayList<'a> {
     /// Validates `bytes` as a display list.
     ///
@@ -244,18 +268,7 @@ impl<'a> DisplayList<'a> {
                 ErrorKind::LengthMismatch { declared, actual },
             ));
         }
-        let body = &bytes[HEADER_LEN..];
-        let mut at = 0;
-        let mut summary = Summary::default();
-        while at < body.len() {
-            match command_len(body, at, version) {
-                Ok((op, len)) => {
-                    summary.add(op, HEADER_LEN + at, &body[at..]);
-                    at += len;
-                }
-                Err(kind) => return Err(err(HEADER_LEN + at, kind)),
-            }
-        }
+        let summary = walk(&bytes[HEADER_LEN..], version)?;
         Ok(DisplayList {
             bytes,
             width,
