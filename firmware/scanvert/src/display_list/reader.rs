@@ -53,9 +53,6 @@ impl Summary {
     /// Takes in the command `op` at `offset`, whose bytes start `b`.
     fn add(&mut self, op: Opcode, offset: usize, b: &[u8]) {
         self.commands += 1;
-        if self.first_3d.is_none() && op.is_3d() {
-            self.first_3d = Some(offset);
-        }
         let most = match op {
             Opcode::Clear | Opcode::Line => {
                 self.draws_2d = true;
@@ -65,11 +62,22 @@ impl Summary {
                 self.draws_2d = true;
                 &mut self.poly
             }
-            Opcode::Poly3 => &mut self.poly3,
-            Opcode::Face => &mut self.face,
-            _ => return,
+            Opcode::Color | Opcode::Clip => return,
+            // The rest is the 3D layer's.
+            _ => {
+                debug_assert!(op.is_3d());
+                self.first_3d.get_or_insert(offset);
+                match op {
+                    Opcode::Poly3 => &mut self.poly3,
+                    Opcode::Face => &mut self.face,
+                    _ => return,
+                }
+            }
         };
-        *most = (*most).max(u16_at(b, Layout::COUNT));
+        // A packed command's fixed part, checked present.
+        if let Some(fixed) = b.first_chunk::<{ Layout::COUNT.end }>() {
+            *most = (*most).max(u16_at(fixed, Layout::COUNT));
+        }
     }
 }
 
