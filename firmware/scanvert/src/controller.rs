@@ -78,7 +78,7 @@
 //! [`Builder::command`]: crate::scene::Builder::command
 
 use crate::color::ListColor;
-use crate::display_list::{Command, DisplayList};
+use crate::display_list::{Command, DisplayList, Summary};
 use crate::geometry::project::WINDOW_MAX;
 use crate::geometry::{Outcome, Pipeline};
 use crate::port::SpanTarget;
@@ -609,6 +609,16 @@ impl<'e> Controller<'e> {
         &self,
         list: &DisplayList<'_>,
     ) -> Result<(), RenderError<core::convert::Infallible>> {
+        // The list is walked only to name the command at fault.
+        match self.fits(list.summary()) {
+            true => Ok(()),
+            false => self.fault(list),
+        }
+    }
+
+    /// [`check`](Self::check) by walking the list: the first command at
+    /// fault, in list order.
+    fn fault(&self, list: &DisplayList<'_>) -> Result<(), RenderError<core::convert::Infallible>> {
         let capacity = self.raster.capacity();
         for (offset, cmd) in list.commands() {
             match cmd {
@@ -651,6 +661,25 @@ impl<'e> Controller<'e> {
             }
         }
         Ok(())
+    }
+
+    /// `true` when [`check`](Self::check) finds nothing in a list of
+    /// `summary`: each of its limits holds for the list's widest polygons
+    /// (each limit is one on a polygon's vertices, and grows with them).
+    fn fits(&self, summary: &Summary) -> bool {
+        if summary.poly as usize > self.raster.capacity() {
+            return false;
+        }
+        if summary.first_3d.is_none() {
+            return true;
+        }
+        let Some(t) = &self.three else {
+            return false;
+        };
+        let (slots, face) = (t.store.edges.len(), summary.face as usize);
+        summary.poly3 as usize <= slots
+            && face <= LIST_VERTICES - 6
+            && (face == 0 || (face + 6).clamp(4, LIST_VERTICES) <= slots)
     }
 
     /// Executes `list` into `target`, starting with the clip registers on
@@ -701,7 +730,7 @@ impl<'e> Controller<'e> {
         // Without 3D storage, `check` has refused a 3D layer; the list is
         // not read again for it.
         let first = match three {
-            Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
+            Some(_) => list.summary().first_3d,
             None => None,
         };
         let mut built = None;
@@ -720,8 +749,14 @@ impl<'e> Controller<'e> {
         };
         let mut clip = ClipRect::full(w, h);
         let mut color = T::Color::from_rgb888(DEFAULT_COLOR);
-        for (offset, cmd) in list.commands() {
-            stats.commands += 1;
+        stats.commands = list.summary().commands as u32;
+        // A list with no `clear`, `poly` or `line` draws nothing here: it
+        // is not read again.
+        let painted = list.commands().take(match list.summary().draws_2d {
+            true => usize::MAX,
+            false => 0,
+        });
+        for (offset, cmd) in painted {
             match cmd {
                 Command::Clear(c) => {
                     target
@@ -1213,6 +1248,47 @@ mod tests {
                 }
             }
             assert!(covered > 0, "{tw}x{th}");
+        }
+    }
+
+    #[test]
+    fn the_summary_passes_a_list_exactly_when_the_walk_finds_no_fault() {
+        // Random lists of polygons around every limit, against
+        // controllers of every size: `check` (from the summary when it
+        // fits) gives what the walk gives, and the summary never passes
+        // a list the walk refuses.
+        let mut rng = testkit::rng::Rng(0x5ca7_7e11);
+        let mut bytes = [0u8; 8192];
+        for _ in 0..3000 {
+            let n = list(&mut bytes, |w| {
+                for _ in 0..rng.range(1, 6) {
+                    let k = rng.range(1, 61) as i16;
+                    match rng.below(7) {
+                        0 => w.poly((0..k.max(3)).map(|i| Vertex::from_bits(i, 2 * i))),
+                        1 => w.poly3((0..k.max(3)).map(|i| v(i, 2 * i, 1))),
+                        2 => w.face((0..k).map(|i| Point3::from_int(i, 1, -5))),
+                        3 => w.color(Rgb888::new(1, 2, 3)),
+                        4 => w.clear(Rgb888::new(4, 5, 6)),
+                        5 => w.push(),
+                        _ => w.line(Vertex::from_bits(0, 0), Vertex::from_bits(16, 16)),
+                    }
+                    .unwrap();
+                }
+            });
+            let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+            let mut edges = [Edge::EMPTY; 12];
+            let mut slots = [EdgeSlot::EMPTY; 72];
+            let mut three = Storage::new();
+            let cap = rng.range(3, 13) as usize;
+            let mut c = Controller::new(Rasterizer::new(&mut edges[..cap]));
+            if rng.below(4) > 0 {
+                let mut mem = three.as_memory();
+                mem.store.edges = &mut slots[..rng.range(0, 73) as usize];
+                c = c.with_3d(mem);
+            }
+            let walked = c.fault(&l);
+            assert_eq!(c.check(&l), walked);
+            assert!(!c.fits(l.summary()) || walked.is_ok());
         }
     }
 

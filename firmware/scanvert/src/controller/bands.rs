@@ -14,7 +14,7 @@
 //! draws into a black frame buffer. [`Controller::render_bands`] runs the
 //! whole frame through one buffer and a [`BandTarget`].
 
-use super::{build_layer, is_3d, Controller, ListScene, RenderError, RenderStats, Resource};
+use super::{build_layer, Controller, ListScene, RenderError, RenderStats, Resource};
 use crate::color::ListColor;
 use crate::display_list::DisplayList;
 use crate::port::band::{Band, BandError, BandTarget, BandsError};
@@ -230,7 +230,7 @@ impl<'e> Controller<'e> {
         // The 3D layer as `render` builds and checks it, through the same
         // interpreter.
         let first = match three {
-            Some(_) => list.commands().find(|(_, c)| is_3d(c)).map(|(o, _)| o),
+            Some(_) => list.summary().first_3d,
             None => None,
         };
         if let (Some(mem), Some(first)) = (three.as_mut(), first) {

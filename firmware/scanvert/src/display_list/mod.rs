@@ -57,6 +57,10 @@
 //! [`DisplayList::new_checked`] walks the whole list once and returns a
 //! typed [`Error`] with the byte offset of the first fault; after that, the
 //! [`Commands`] iterator and every accessor cannot fail and cannot panic.
+//! The iterator trusts the check (it does not check a command again), and
+//! what the check learns on its walk (the number of commands, where the 3D
+//! layer starts, the widest polygons: [`Summary`]) is kept with the list,
+//! so that the controller need not walk it again to learn it.
 //! [`Writer`] emits the same format into a caller-owned buffer.
 
 pub mod layout;
@@ -64,7 +68,7 @@ mod reader;
 mod writer;
 
 pub use reader::{
-    Axis, Command, Commands, DisplayList, FromBytes, Packed, Points, Vertices, Vertices3,
+    Axis, Command, Commands, DisplayList, FromBytes, Packed, Points, Summary, Vertices, Vertices3,
 };
 pub use writer::{WriteError, Writer};
 

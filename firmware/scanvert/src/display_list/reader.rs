@@ -16,12 +16,69 @@ use embedded_graphics_core::pixelcolor::Rgb888;
 /// at the end of the buffer, each polygon with at least 3 vertices (a face
 /// at least 1), every operand in its range. Nothing reachable from a
 /// `DisplayList` can fail or panic.
+///
+/// What the check learns on its walk is kept ([`summary`](Self::summary)),
+/// so that a reader need not walk the list again to learn it.
 #[derive(Clone, Copy, Debug)]
 pub struct DisplayList<'a> {
     bytes: &'a [u8],
     width: u16,
     height: u16,
     version: u16,
+    summary: Summary,
+}
+
+/// What [`DisplayList::new_checked`] learns of a list on its one walk.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[non_exhaustive]
+pub struct Summary {
+    /// Commands in the list.
+    pub commands: usize,
+    /// Byte offset of the first command of the 3D layer (see
+    /// [`Opcode::is_3d`]), if there is one.
+    pub first_3d: Option<usize>,
+    /// `true` when the list has a `clear`, a `poly` or a `line`: a
+    /// command that draws in painter's order.
+    pub draws_2d: bool,
+    /// Most vertices of one `poly` (0 without one).
+    pub poly: u16,
+    /// Most vertices of one `poly3` (0 without one).
+    pub poly3: u16,
+    /// Most vertices of one `face` (0 without one).
+    pub face: u16,
+}
+
+impl Summary {
+    /// Takes in the command `op` at `offset`, whose bytes start `b`.
+    fn add(&mut self, op: Opcode, offset: usize, b: &[u8]) {
+        self.commands += 1;
+        let most = match op {
+            Opcode::Clear | Opcode::Line => {
+                self.draws_2d = true;
+                return;
+            }
+            Opcode::Poly => {
+                self.draws_2d = true;
+                &mut self.poly
+            }
+            Opcode::Color | Opcode::Clip => return,
+            // The rest is the 3D layer's.
+            _ => {
+                debug_assert!(op.is_3d());
+                self.first_3d.get_or_insert(offset);
+                match op {
+                    Opcode::Poly3 => &mut self.poly3,
+                    Opcode::Face => &mut self.face,
+                    _ => return,
+                }
+            }
+        };
+        // A packed command's fixed part, checked present.
+        if let Some(fixed) = b.first_chunk::<{ Layout::COUNT.end }>() {
+            *most = (*most).max(u16_at(fixed, Layout::COUNT));
+        }
+    }
 }
 
 #[inline(always)]
@@ -58,16 +115,66 @@ fn vertex_at(b: &[u8], x: Field, y: Field) -> Vertex {
     }
 }
 
+/// What the check needs to know of an opcode: its
+/// [`version`](Opcode::version), its [`layout`](Opcode::layout), and
+/// whether an operand has a range to check; `op` is `None` for a byte
+/// that is not an opcode.
+#[derive(Clone, Copy)]
+struct Rule {
+    op: Option<Opcode>,
+    version: u16,
+    layout: Layout,
+    operands: bool,
+}
+
+/// The rules of the opcodes, and for each byte the index of its rule
+/// (0, no opcode, for the bytes that are not one): made at compile time
+/// from [`Opcode::from_byte`], [`Opcode::version`] and [`Opcode::layout`],
+/// so that checking a command looks its rule up once rather than matching
+/// its opcode for each of them.
+static RULES: ([u8; 256], [Rule; 20]) = {
+    let none = Rule {
+        op: None,
+        version: 0,
+        layout: Layout {
+            fixed: 0,
+            tail: Tail::None,
+        },
+        operands: false,
+    };
+    let (mut index, mut rules) = ([0u8; 256], [none; 20]);
+    let (mut byte, mut n) = (0, 1);
+    while byte < 256 {
+        if let Some(op) = Opcode::from_byte(byte as u8) {
+            rules[n] = Rule {
+                op: Some(op),
+                version: op.version(),
+                layout: op.layout(),
+                operands: matches!(
+                    op,
+                    Opcode::Rotate | Opcode::Light | Opcode::Thickness | Opcode::Label
+                ),
+            };
+            index[byte] = n as u8;
+            n += 1;
+        }
+        byte += 1;
+    }
+    (index, rules)
+};
+
 /// Size of the command starting at `at` in a list of `version`, or an
 /// error, by the command's [`layout`](Opcode::layout). Reads only inside
 /// `body`.
 fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), ErrorKind> {
-    let byte = body[at];
-    let op = Opcode::from_byte(byte)
-        .filter(|op| op.version() <= version)
-        .ok_or(ErrorKind::UnknownOpcode(byte))?;
     let rest = &body[at..];
-    let layout = op.layout();
+    let byte = rest[0];
+    let rule = &RULES.1[RULES.0[byte as usize] as usize];
+    let op = match rule.op {
+        Some(op) if rule.version <= version => op,
+        _ => return Err(ErrorKind::UnknownOpcode(byte)),
+    };
+    let layout = rule.layout;
     if rest.len() < layout.fixed {
         return Err(ErrorKind::Truncated);
     }
@@ -85,6 +192,9 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
     if rest.len() < len {
         return Err(ErrorKind::Truncated);
     }
+    if !rule.operands {
+        return Ok((op, len));
+    }
     let bad = match op {
         Opcode::Rotate => rest[layout::rotate::AXIS] > 2,
         Opcode::Light => rest[layout::light::PERCENT] > 100,
@@ -99,6 +209,30 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
         return Err(ErrorKind::BadOperand(op));
     }
     Ok((op, len))
+}
+
+/// Checks every command of `body`, a list's body of `version`, and
+/// summarises them. Out of line: inlined into a large caller, the loop's
+/// state was kept on the stack.
+#[inline(never)]
+fn walk(body: &[u8], version: u16) -> Result<Summary, Error> {
+    let mut at = 0;
+    let mut summary = Summary::default();
+    while at < body.len() {
+        match command_len(body, at, version) {
+            Ok((op, len)) => {
+                summary.add(op, HEADER_LEN + at, &body[at..]);
+                at += len;
+            }
+            Err(kind) => {
+                return Err(Error {
+                    offset: HEADER_LEN + at,
+                    kind,
+                })
+            }
+        }
+    }
+    Ok(summary)
 }
 
 impl<'a> DisplayList<'a> {
@@ -142,20 +276,20 @@ impl<'a> DisplayList<'a> {
                 ErrorKind::LengthMismatch { declared, actual },
             ));
         }
-        let body = &bytes[HEADER_LEN..];
-        let mut at = 0;
-        while at < body.len() {
-            match command_len(body, at, version) {
-                Ok((_, len)) => at += len,
-                Err(kind) => return Err(err(HEADER_LEN + at, kind)),
-            }
-        }
+        let summary = walk(&bytes[HEADER_LEN..], version)?;
         Ok(DisplayList {
             bytes,
             width,
             height,
             version,
+            summary,
         })
+    }
+
+    /// What the check learnt of the list: its commands, where its 3D
+    /// layer starts, whether it draws in 2D, its widest polygons.
+    pub fn summary(&self) -> &Summary {
+        &self.summary
     }
 
     /// Frame width in pixels (1..=4096).
@@ -183,7 +317,6 @@ impl<'a> DisplayList<'a> {
         Commands {
             body: &self.bytes[HEADER_LEN..],
             at: 0,
-            version: self.version,
         }
     }
 }
@@ -336,94 +469,171 @@ impl Axis {
 pub struct Commands<'a> {
     body: &'a [u8],
     at: usize,
-    version: u16,
 }
 
 impl<'a> Iterator for Commands<'a> {
     /// `(byte offset of the opcode, command)`.
     type Item = (usize, Command<'a>);
 
+    // Inlined into each reading loop, the command is decoded into the
+    // loop's own registers and match rather than returned through memory
+    // (Cortex-M4: about 46 instructions a command less).
+    #[inline(always)]
     fn next(&mut self) -> Option<Self::Item> {
-        if self.at >= self.body.len() {
-            return None;
-        }
-        // Checked by `new_checked`; an `Err` here cannot happen, and ends
-        // the iteration rather than panicking if it ever did.
-        let (op, len) = command_len(self.body, self.at, self.version).ok()?;
-        let b = self.body.get(self.at..self.at + len)?;
+        let rest = self.body.get(self.at..)?;
+        let (cmd, len) = decode(rest)?;
         let offset = HEADER_LEN + self.at;
         self.at += len;
-        let rgb = || {
-            use layout::rgb::{B, G, R};
-            Rgb888::new(b[R], b[G], b[B])
-        };
-        let cmd = match op {
-            Opcode::Clear => Command::Clear(rgb()),
-            Opcode::Color => Command::Color(rgb()),
-            Opcode::Clip => {
-                use layout::clip::{X0, X1, Y0, Y1};
-                Command::Clip(ClipWindow {
-                    x0: i16_at(b, X0),
-                    y0: i16_at(b, Y0),
-                    x1: i16_at(b, X1),
-                    y1: i16_at(b, Y1),
-                })
-            }
-            Opcode::Line => {
-                use layout::line::{X0, X1, Y0, Y1};
-                Command::Line(vertex_at(b, X0, Y0), vertex_at(b, X1, Y1))
-            }
-            Opcode::Poly => Command::Poly(Packed::new(&b[layout::poly::VERTICES..])),
-            Opcode::Poly3 => Command::Poly3(Packed::new(&b[layout::poly3::VERTICES..])),
-            Opcode::Segment => Command::Segment(u16_at(b, layout::segment::ID)),
-            Opcode::Perspective => {
-                use layout::perspective::{FAR, FOV, NEAR};
-                Command::Perspective {
-                    fov: Angle::from_bits(u16_at(b, FOV)),
-                    near: Q16::from_bits(i32_at(b, NEAR)),
-                    far: Q16::from_bits(i32_at(b, FAR)),
-                }
-            }
-            Opcode::Ortho => {
-                use layout::ortho::{FAR, NEAR, SCALE};
-                Command::Ortho {
-                    scale: Q16::from_bits(i32_at(b, SCALE)),
-                    near: Q16::from_bits(i32_at(b, NEAR)),
-                    far: Q16::from_bits(i32_at(b, FAR)),
-                }
-            }
-            Opcode::View => {
-                use layout::view::{EYE, PITCH, YAW};
-                Command::View {
-                    eye: point_at(b, EYE),
-                    yaw: Angle::from_bits(u16_at(b, YAW)),
-                    pitch: Angle::from_bits(u16_at(b, PITCH)),
-                }
-            }
-            Opcode::Light => Command::Light {
-                toward: point_at(b, layout::light::TOWARD),
-                percent: b[layout::light::PERCENT],
-            },
-            Opcode::Thickness => {
-                Command::Thickness(Coord::from_bits(i16_at(b, layout::thickness::T)))
-            }
-            Opcode::Push => Command::Push,
-            Opcode::Pop => Command::Pop,
-            Opcode::Translate => Command::Translate(point_at(b, layout::point::P)),
-            Opcode::Rotate => Command::Rotate(
-                Axis::from_byte(b[layout::rotate::AXIS])?,
-                Angle::from_bits(u16_at(b, layout::rotate::ANGLE)),
-            ),
-            Opcode::Scale => Command::Scale(point_at(b, layout::point::P)),
-            Opcode::Face => Command::Face(Packed::new(&b[layout::face::VERTICES..])),
-            Opcode::Label => Command::Label {
-                at: point_at(b, layout::label::AT),
-                // Printable ASCII, checked by `new_checked`.
-                text: core::str::from_utf8(&b[layout::label::TEXT..]).unwrap_or(""),
-            },
-        };
         Some((offset, cmd))
     }
+}
+
+/// The command at the start of `rest`, a checked list's body from a
+/// command on, and its size; `None` at the end of the body.
+///
+/// The list has passed [`DisplayList::new_checked`], so the opcode is
+/// known, the command complete and its operands in range: none of that
+/// is checked again. Each command's fixed part is taken as one array (one
+/// bounds check, then every field at a constant offset inside it), and a
+/// packed or text tail as one slice; a read outside `rest` (which a
+/// checked list never makes) ends the iteration rather than panicking.
+#[inline(always)]
+fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
+    /// The fixed part of a command of `N` bytes.
+    #[inline(always)]
+    fn fixed<const N: usize>(rest: &[u8]) -> Option<&[u8; N]> {
+        rest.first_chunk::<N>()
+    }
+    /// A packed command: its tail of `count` items of `stride` bytes
+    /// after its fixed part, and its size.
+    #[inline(always)]
+    fn packed<'a, V: FromBytes + 'a>(rest: &'a [u8], op: Opcode) -> Option<(Packed<'a, V>, usize)> {
+        let layout = op.layout();
+        let count = u16_at(fixed::<3>(rest)?, Layout::COUNT);
+        let len = layout.size(count as usize);
+        Some((Packed::new(rest.get(layout.fixed..len)?), len))
+    }
+    let rgb = |b: &[u8; layout::rgb::LEN]| {
+        use layout::rgb::{B, G, R};
+        Rgb888::new(b[R], b[G], b[B])
+    };
+    let op = Opcode::from_byte(*rest.first()?)?;
+    Some(match op {
+        Opcode::Clear => (Command::Clear(rgb(fixed(rest)?)), layout::rgb::LEN),
+        Opcode::Color => (Command::Color(rgb(fixed(rest)?)), layout::rgb::LEN),
+        Opcode::Clip => {
+            use layout::clip::{LEN, X0, X1, Y0, Y1};
+            let b = fixed::<LEN>(rest)?;
+            let win = ClipWindow {
+                x0: i16_at(b, X0),
+                y0: i16_at(b, Y0),
+                x1: i16_at(b, X1),
+                y1: i16_at(b, Y1),
+            };
+            (Command::Clip(win), LEN)
+        }
+        Opcode::Line => {
+            use layout::line::{LEN, X0, X1, Y0, Y1};
+            let b = fixed::<LEN>(rest)?;
+            (
+                Command::Line(vertex_at(b, X0, Y0), vertex_at(b, X1, Y1)),
+                LEN,
+            )
+        }
+        Opcode::Poly => {
+            let (v, len) = packed(rest, op)?;
+            (Command::Poly(v), len)
+        }
+        Opcode::Poly3 => {
+            let (v, len) = packed(rest, op)?;
+            (Command::Poly3(v), len)
+        }
+        Opcode::Face => {
+            let (p, len) = packed(rest, op)?;
+            (Command::Face(p), len)
+        }
+        Opcode::Segment => {
+            use layout::segment::{ID, LEN};
+            (Command::Segment(u16_at(fixed::<LEN>(rest)?, ID)), LEN)
+        }
+        Opcode::Perspective => {
+            use layout::perspective::{FAR, FOV, LEN, NEAR};
+            let b = fixed::<LEN>(rest)?;
+            let cmd = Command::Perspective {
+                fov: Angle::from_bits(u16_at(b, FOV)),
+                near: Q16::from_bits(i32_at(b, NEAR)),
+                far: Q16::from_bits(i32_at(b, FAR)),
+            };
+            (cmd, LEN)
+        }
+        Opcode::Ortho => {
+            use layout::ortho::{FAR, LEN, NEAR, SCALE};
+            let b = fixed::<LEN>(rest)?;
+            let cmd = Command::Ortho {
+                scale: Q16::from_bits(i32_at(b, SCALE)),
+                near: Q16::from_bits(i32_at(b, NEAR)),
+                far: Q16::from_bits(i32_at(b, FAR)),
+            };
+            (cmd, LEN)
+        }
+        Opcode::View => {
+            use layout::view::{EYE, LEN, PITCH, YAW};
+            let b = fixed::<LEN>(rest)?;
+            let cmd = Command::View {
+                eye: point_at(b, EYE),
+                yaw: Angle::from_bits(u16_at(b, YAW)),
+                pitch: Angle::from_bits(u16_at(b, PITCH)),
+            };
+            (cmd, LEN)
+        }
+        Opcode::Light => {
+            use layout::light::{LEN, PERCENT, TOWARD};
+            let b = fixed::<LEN>(rest)?;
+            let cmd = Command::Light {
+                toward: point_at(b, TOWARD),
+                percent: b[PERCENT],
+            };
+            (cmd, LEN)
+        }
+        Opcode::Thickness => {
+            use layout::thickness::{LEN, T};
+            let t = Coord::from_bits(i16_at(fixed::<LEN>(rest)?, T));
+            (Command::Thickness(t), LEN)
+        }
+        Opcode::Push => (Command::Push, layout::bare::LEN),
+        Opcode::Pop => (Command::Pop, layout::bare::LEN),
+        Opcode::Translate => {
+            use layout::point::{LEN, P};
+            (Command::Translate(point_at(fixed::<LEN>(rest)?, P)), LEN)
+        }
+        Opcode::Scale => {
+            use layout::point::{LEN, P};
+            (Command::Scale(point_at(fixed::<LEN>(rest)?, P)), LEN)
+        }
+        Opcode::Rotate => {
+            use layout::rotate::{ANGLE, AXIS, LEN};
+            let b = fixed::<LEN>(rest)?;
+            let cmd = Command::Rotate(
+                Axis::from_byte(b[AXIS])?,
+                Angle::from_bits(u16_at(b, ANGLE)),
+            );
+            (cmd, LEN)
+        }
+        Opcode::Label => {
+            use layout::label::{AT, TEXT, TEXT_LEN};
+            let b = fixed::<TEXT>(rest)?;
+            let len = op.layout().size(b[TEXT_LEN] as usize);
+            // Printable ASCII, checked by `new_checked`.
+            let text = core::str::from_utf8(rest.get(TEXT..len)?).ok()?;
+            (
+                Command::Label {
+                    at: point_at(b, AT),
+                    text,
+                },
+                len,
+            )
+        }
+    })
 }
 
 /// An item of a packed list in a command (a vertex of `poly`, `poly3`
@@ -504,3 +714,188 @@ pub type Vertices3<'a> = Packed<'a, Vertex3>;
 
 /// The vertices of a `face`: at least 1, each `(x, y, z)` in Q16.16.
 pub type Points<'a> = Packed<'a, Point3>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::display_list::Writer;
+
+    /// A list of every command, each once.
+    fn every_command(bytes: &mut [u8]) -> &[u8] {
+        let p = |x, y, z| Point3::from_bits(x, y, z);
+        let v = |x, y| Vertex {
+            x: Coord::from_bits(x),
+            y: Coord::from_bits(y),
+        };
+        let v3 = |x, y, z| Vertex3 {
+            x: Coord::from_bits(x),
+            y: Coord::from_bits(y),
+            z: Coord::from_bits(z),
+        };
+        let q = Q16::from_bits;
+        let mut w = Writer::new(bytes, 320, 200).unwrap();
+        w.clear(Rgb888::new(1, 2, 3)).unwrap();
+        w.clip(ClipWindow {
+            x0: -1,
+            y0: 2,
+            x1: 300,
+            y1: -4,
+        })
+        .unwrap();
+        w.color(Rgb888::new(4, 5, 6)).unwrap();
+        w.poly([v(1, 2), v(-3, 4), v(5, -6)]).unwrap();
+        w.poly3([v3(1, 2, 3), v3(4, 5, 6), v3(7, 8, 9), v3(-1, -2, -3)])
+            .unwrap();
+        w.line(v(7, 8), v(-9, 10)).unwrap();
+        w.segment(513).unwrap();
+        w.perspective(Angle::from_bits(1234), q(5), q(-6)).unwrap();
+        w.ortho(q(7), q(8), q(-9)).unwrap();
+        w.view(p(1, -2, 3), Angle::from_bits(40000), Angle::from_bits(5))
+            .unwrap();
+        w.light(p(-7, 8, 9), 100).unwrap();
+        w.thickness(Coord::from_bits(33)).unwrap();
+        w.push().unwrap();
+        w.pop().unwrap();
+        w.translate(p(i32::MIN, i32::MAX, 0)).unwrap();
+        w.rotate(Axis::Z, Angle::from_bits(65535)).unwrap();
+        w.scale(p(3, 2, 1)).unwrap();
+        w.face([p(1, 2, 3)]).unwrap();
+        w.label(p(4, 5, 6), "Hi!").unwrap();
+        w.finish()
+    }
+
+    #[test]
+    fn the_summary_is_what_the_commands_say() {
+        let mut bytes = [0u8; 512];
+        let list = DisplayList::new_checked(every_command(&mut bytes)).unwrap();
+        let s = list.summary();
+        let first = list.commands().find(|(_, c)| c.is_3d()).map(|(o, _)| o);
+        assert_eq!(first, Some(HEADER_LEN + 4 + 9 + 4 + 15));
+        assert_eq!(
+            (s.commands, s.first_3d, s.draws_2d),
+            (list.commands().count(), first, true)
+        );
+        assert_eq!((s.poly, s.poly3, s.face), (3, 4, 1));
+        // Colour and clip draw nothing; a `poly3` is the 3D layer's.
+        let mut w = Writer::new(&mut bytes, 8, 8).unwrap();
+        w.color(Rgb888::new(1, 2, 3)).unwrap();
+        w.clip(ClipWindow {
+            x0: 0,
+            y0: 0,
+            x1: 3,
+            y1: 3,
+        })
+        .unwrap();
+        let v3 = |x| Vertex3 {
+            x: Coord::from_bits(x),
+            y: Coord::from_bits(x * x),
+            z: Coord::from_bits(0),
+        };
+        for n in [5, 3, 9, 4] {
+            w.poly3((0..n).map(v3)).unwrap();
+        }
+        let list = DisplayList::new_checked(w.finish()).unwrap();
+        let s = *list.summary();
+        assert_eq!((s.commands, s.first_3d, s.draws_2d), (6, Some(29), false));
+        assert_eq!((s.poly, s.poly3, s.face), (0, 9, 0));
+        // No command at all.
+        let list = DisplayList::new_checked(Writer::new(&mut bytes, 8, 8).unwrap().finish());
+        assert_eq!(*list.unwrap().summary(), Summary::default());
+    }
+
+    #[test]
+    fn commands_read_what_was_written_with_the_checked_sizes() {
+        let mut bytes = [0u8; 512];
+        let list = DisplayList::new_checked(every_command(&mut bytes)).unwrap();
+        let body = &list.as_bytes()[HEADER_LEN..];
+        // The offsets are those of the checking walk, command by command.
+        let mut at = 0;
+        let mut n = 0;
+        for (offset, cmd) in list.commands() {
+            assert_eq!(offset, HEADER_LEN + at);
+            let (op, len) = command_len(body, at, list.version()).unwrap();
+            assert_eq!(cmd.opcode(), op);
+            at += len;
+            n += 1;
+        }
+        assert_eq!((at, n), (body.len(), 19));
+        let mut c = list.commands().map(|(_, c)| c);
+        let p = |x, y, z| Point3::from_bits(x, y, z);
+        assert!(matches!(c.next(), Some(Command::Clear(k)) if k == Rgb888::new(1, 2, 3)));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Clip(ClipWindow {
+                x0: -1,
+                y0: 2,
+                x1: 300,
+                y1: -4
+            }))
+        ));
+        assert!(matches!(c.next(), Some(Command::Color(k)) if k == Rgb888::new(4, 5, 6)));
+        let Some(Command::Poly(v)) = c.next() else {
+            panic!("poly")
+        };
+        let xy = |v: Vertex| (v.x.to_bits(), v.y.to_bits());
+        let mut it = v.iter().map(xy);
+        assert_eq!(v.len(), 3);
+        assert_eq!(
+            (it.next(), it.next(), it.next(), it.next()),
+            (Some((1, 2)), Some((-3, 4)), Some((5, -6)), None)
+        );
+        let Some(Command::Poly3(v)) = c.next() else {
+            panic!("poly3")
+        };
+        assert_eq!(v.len(), 4);
+        let last = v.iter().last().unwrap();
+        assert_eq!(
+            (last.x.to_bits(), last.y.to_bits(), last.z.to_bits()),
+            (-1, -2, -3)
+        );
+        let Some(Command::Line(a, b)) = c.next() else {
+            panic!("line")
+        };
+        assert_eq!((xy(a), xy(b)), ((7, 8), (-9, 10)));
+        assert!(matches!(c.next(), Some(Command::Segment(513))));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Perspective { fov, near, far })
+                if (fov.to_bits(), near.to_bits(), far.to_bits()) == (1234, 5, -6)
+        ));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Ortho { scale, near, far })
+                if (scale.to_bits(), near.to_bits(), far.to_bits()) == (7, 8, -9)
+        ));
+        assert!(matches!(
+            c.next(),
+            Some(Command::View { eye, yaw, pitch })
+                if (eye, yaw.to_bits(), pitch.to_bits()) == (p(1, -2, 3), 40000, 5)
+        ));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Light { toward, percent: 100 }) if toward == p(-7, 8, 9)
+        ));
+        assert!(matches!(c.next(), Some(Command::Thickness(t)) if t.to_bits() == 33));
+        assert!(matches!(c.next(), Some(Command::Push)));
+        assert!(matches!(c.next(), Some(Command::Pop)));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Translate(t)) if t == p(i32::MIN, i32::MAX, 0)
+        ));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Rotate(Axis::Z, a)) if a.to_bits() == 65535
+        ));
+        assert!(matches!(c.next(), Some(Command::Scale(s)) if s == p(3, 2, 1)));
+        let Some(Command::Face(f)) = c.next() else {
+            panic!("face")
+        };
+        assert_eq!((f.len(), f.iter().next()), (1, Some(p(1, 2, 3))));
+        assert!(matches!(
+            c.next(),
+            Some(Command::Label { at, text: "Hi!" }) if at == p(4, 5, 6)
+        ));
+        assert!(c.next().is_none());
+        assert!(c.next().is_none(), "stays at the end");
+    }
+}

@@ -120,13 +120,15 @@ pub struct TableNeeds {
 /// Counts the table memory of `list`: the `poly`s and `line`s after its
 /// last `clear`, the polygons' vertices (an upper bound of their edges).
 pub fn needs_table(list: &DisplayList<'_>) -> TableNeeds {
-    let last = last_clear(list);
     let mut n = TableNeeds::default();
-    for (offset, cmd) in list.commands() {
-        if last.is_some_and(|(c, _)| offset <= c) {
-            continue;
-        }
+    // One pass: a `clear` drops what came before it.
+    let painted = list.commands().take(match list.summary().draws_2d {
+        true => usize::MAX,
+        false => 0,
+    });
+    for (_, cmd) in painted {
         match cmd {
+            Command::Clear(_) => n = TableNeeds::default(),
             Command::Poly(v) => {
                 n.polygons += 1;
                 n.edges += v.len();
@@ -255,6 +257,10 @@ impl<'a> EdgeTable<'a> {
 
     /// Enters every `poly` and `line` of `list` after its last `clear`,
     /// on a frame of `w × h` (the list's frame cut to the target's).
+    ///
+    /// Kept out of line: it runs once a frame, and inlined into a band
+    /// render it changed how the render's pixel loops were compiled.
+    #[inline(never)]
     pub fn build(
         mem: TableMemory<'a>,
         list: &DisplayList<'_>,
@@ -269,14 +275,20 @@ impl<'a> EdgeTable<'a> {
         let cap = polygons.len().min(index.len() / 2);
         let mut clip = ClipRect::full(w, h);
         let mut color = crate::controller::DEFAULT_COLOR;
-        let (mut count, mut used, mut nlines, mut commands) = (0usize, 0usize, 0usize, 0u32);
+        let (mut count, mut used, mut nlines) = (0usize, 0usize, 0usize);
+        let commands = list.summary().commands as u32;
         // One pass: a `clear` empties the table (it covers everything
         // before it), and running out of memory counts only if no `clear`
         // follows.
         let mut clear = None;
         let mut full: Option<TableError> = None;
-        for (offset, cmd) in list.commands() {
-            commands += 1;
+        // A list with no `clear`, `poly` or `line` enters nothing: it is
+        // not read.
+        let painted = list.commands().take(match list.summary().draws_2d {
+            true => usize::MAX,
+            false => 0,
+        });
+        for (offset, cmd) in painted {
             match cmd {
                 Command::Clear(c) => {
                     (count, used, nlines, full, clear) = (0, 0, 0, None, Some(c));
@@ -625,6 +637,53 @@ fn run_line<T: SpanTarget + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::display_list::Writer;
+    use crate::fixed::Vertex;
+
+    #[test]
+    fn needs_count_what_follows_the_last_clear() {
+        // Random lists of `clear`, `poly`, `line`, `color` and `poly3`:
+        // the one pass counts what a count after `last_clear` counts.
+        let mut rng = testkit::rng::Rng(0x7ab1e);
+        let mut bytes = [0u8; 2048];
+        for _ in 0..500 {
+            let mut w = Writer::new(&mut bytes, 32, 32).unwrap();
+            for _ in 0..rng.range(0, 12) {
+                let k = rng.range(3, 9) as i16;
+                let v = (0..k).map(|i| Vertex::from_bits(16 * i, 3 * i * i));
+                match rng.below(5) {
+                    0 => w.clear(Rgb888::new(1, 2, 3)),
+                    1 => w.poly(v),
+                    2 => w.line(Vertex::from_bits(0, 0), Vertex::from_bits(k, 99)),
+                    3 => w.color(Rgb888::new(4, 5, 6)),
+                    _ => w.poly3(v.map(|v| crate::fixed::Vertex3 {
+                        x: v.x,
+                        y: v.y,
+                        z: v.x,
+                    })),
+                }
+                .unwrap();
+            }
+            let list = DisplayList::new_checked(w.finish()).unwrap();
+            let last = last_clear(&list).map(|(o, _)| o);
+            let mut want = TableNeeds::default();
+            for (offset, cmd) in list.commands() {
+                let counted = last.is_none_or(|c| offset > c);
+                match cmd {
+                    Command::Poly(v) if counted => {
+                        want.polygons += 1;
+                        want.edges += v.len();
+                    }
+                    Command::Line(..) if counted => {
+                        want.polygons += 1;
+                        want.lines += 1;
+                    }
+                    _ => {}
+                }
+            }
+            assert_eq!(needs_table(&list), want);
+        }
+    }
 
     #[test]
     fn entries_sort_as_a_comparison_sort_does() {
