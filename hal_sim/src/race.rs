@@ -172,25 +172,25 @@ impl CostModel {
     /// and its error are the test `race_model` of `scanvert-sim`, which
     /// prints the coefficients when run with `--ignored`.
     ///
-    /// Against the 1,992 measured rows the model's error is 3.8 % on
-    /// average and 24.7 % at worst (the 3D lists' rows: 7.7 % and 6.9 % on
-    /// average; the 2D lists' 0.5 % to 4.0 %). Preparing a list is fitted
-    /// to the eight lists' counts, within 14 %. Labels are in none of the
+    /// Against the 1,992 measured rows the model's error is 4.0 % on
+    /// average and 24.2 % at worst (the 3D lists' rows: 7.8 % and 7.0 % on
+    /// average; the 2D lists' 0.6 % to 4.8 %). Preparing a list is fitted
+    /// to the eight lists' counts, within 18 %. Labels are in none of the
     /// measured lists, so `label` is 0 and a label costs its spans and
     /// pixels. One instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: -11211,
-        width: 289,
-        span: -3053,
-        pixel: 26,
-        run: 313,
-        entered: 9998,
-        resolved: 6877,
+        row: -9821,
+        width: 283,
+        span: -1833,
+        pixel: 15,
+        run: 200,
+        entered: 10094,
+        resolved: 6116,
         label: 0,
-        live: 8439,
-        frame: 111567,
-        command: 13604,
-        trapezoid: 10062,
+        live: 7255,
+        frame: 113944,
+        command: 9887,
+        trapezoid: 5415,
     };
 
     /// Instructions of a row of `work`, at least 1.

@@ -151,7 +151,7 @@ fn the_m4_model_is_within_its_published_error() {
         100.0 * worst
     );
     // The figures published in CostModel::M4's docs and docs/performance.md.
-    assert!(mean <= 0.039, "mean relative error {mean}");
+    assert!(mean <= 0.041, "mean relative error {mean}");
     assert!(worst <= 0.25, "worst relative error {worst}");
 }
 
