@@ -1802,6 +1802,9 @@ where
 }
 
 #[cfg(test)]
+mod coherence;
+
+#[cfg(test)]
 mod tests {
     use super::*;
     use crate::fixed::{Coord, Vertex3};
