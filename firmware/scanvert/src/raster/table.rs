@@ -549,7 +549,7 @@ fn run<T: SpanTarget + ?Sized>(
         y: p.y,
     };
     let paint = target.zip(color);
-    walk.run(edges, y1, (p.x0 as i32, p.x1 as i32), paint, counts)?;
+    walk.run::<true, _, _>(edges, y1, (p.x0 as i32, p.x1 as i32), paint, counts)?;
     // At most `n` (a `u16`).
     p.active = walk.active as u16;
     p.next = walk.next as u16;
