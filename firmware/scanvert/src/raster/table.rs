@@ -10,7 +10,8 @@
 //! clip registers in force at its place. A polygon's edges are set up
 //! exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
 //! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
-//! first row), so it covers exactly the same pixels; a line is the
+//! first row; those of its first row are made active, as its walk's first
+//! step would), so it covers exactly the same pixels; a line is the
 //! [`Line`] generator [`draw_line`](crate::raster::line::draw_line) steps,
 //! cut to the same clip, so it writes exactly the same spans. The entries
 //! are then ordered by first row (an index array; the entries stay in list
@@ -23,18 +24,22 @@
 //! an earlier one on every row), found word by word, emits its spans on
 //! the band's rows and keeps its state (a polygon's active edges, a line's
 //! row), stepped to `y1`, for the next band; entries past their last row
-//! leave (their bit is cleared).
+//! leave (their bit is cleared). A polygon walks its rows with the full
+//! frame's own loop (`raster::scan`'s `Walk`); where a run of two edges
+//! meets the band's end and both go on, they are stepped to the next
+//! band's first row and the walk is left at once.
 //! [`EdgeTable::skip`] steps the same way without emitting anything.
 //! Nothing is set up again, and the list is not read again.
 //!
 //! # Memory
 //!
 //! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (24
-//! bytes on 32-bit targets) and two `u32`s (the order by first row, and
-//! the live set, which takes one bit per entry of them; `build` counts
-//! the entries by first row there) per entry, an [`Edge`] (32 bytes) per edge of the polygons
-//! and an `Option<`[`Line`]`>` (48 bytes) per line; [`needs_table`] counts them for a
-//! list, as an upper bound (one edge per vertex, every line entered).
+//! bytes on 32-bit targets) and two `u32`s per entry (the order by first
+//! row, and the live set, which takes one bit an entry of its half;
+//! `build` counts the entries by first row there first), an [`Edge`] (32
+//! bytes) per edge of the polygons and an `Option<`[`Line`]`>` (48 bytes)
+//! per line; [`needs_table`] counts them for a list, as an upper bound
+//! (one edge per vertex, every line entered).
 //! Running out is a [`TableError`] found by `build`, before anything is
 //! drawn.
 
@@ -318,12 +323,17 @@ impl<'a> EdgeTable<'a> {
                     }
                     let e = &mut room[..n];
                     e.sort_unstable_by_key(|e| e.top());
+                    // The edges of its first row active already (at least
+                    // two), as its walk's first step would make them: its
+                    // every visit then starts with active edges.
+                    let y = e[0].top();
+                    let m = e.iter().take_while(|e| e.top() <= y).count() as u16;
                     polygons[count] = TablePolygon {
                         first: used as u32,
                         n: n as u16,
-                        active: 0,
-                        next: 0,
-                        y: e[0].top(),
+                        active: m,
+                        next: m,
+                        y,
                         x0: clip.x0(),
                         x1: clip.x1(),
                         color,
