@@ -651,11 +651,11 @@ mod tests {
 
     #[test]
     fn bands_and_skips_over_many_entries_give_the_full_frames_rows() {
-        // Lists of up to 300 small triangles and lines (live sets across
-        // several words, entries leaving at every bit position), drawn in
-        // bands of random heights with rows skipped between some: every
-        // drawn row is the one the rasteriser and `draw_line` draw in
-        // list order.
+        // Lists of up to 300 small triangles, rectangles, hexagons and
+        // lines (live sets across several words, entries leaving at every
+        // bit position), drawn in bands of random heights with rows
+        // skipped between some: every drawn row is the one the rasteriser
+        // and `draw_line` draw in list order.
         use crate::port::framebuffer::FrameBuffer;
         use crate::raster::line::draw_line;
         use crate::raster::scan::Rasterizer;
@@ -671,21 +671,30 @@ mod tests {
                 w.color(Rgb888::new(k as u8, (k >> 8) as u8, 7)).unwrap();
                 let x = rng.range(0, W as i32 * 16) as i16 - 64;
                 let y = rng.range(0, H as i32 * 16) as i16 - 64;
-                let line = rng.below(8) == 0;
+                let kind = rng.below(8);
+                let (dx, dy) = (rng.range(0, 256) as i16, rng.range(0, 256) as i16);
                 let mut v = || {
                     Vertex::from_bits(x + rng.range(0, 256) as i16, y + rng.range(0, 256) as i16)
                 };
-                if line {
-                    w.line(v(), v()).unwrap();
-                } else {
-                    w.poly([v(), v(), v()]).unwrap();
+                match kind {
+                    0 => w.line(v(), v()),
+                    // A rectangle (two vertical edges) and a hexagon
+                    // (concave or crossing itself, more than two edges
+                    // active at once).
+                    1 => w.poly(
+                        [(0, 0), (dx, 0), (dx, dy), (0, dy)]
+                            .map(|(a, b)| Vertex::from_bits(x + a, y + b)),
+                    ),
+                    2 => w.poly([v(), v(), v(), v(), v(), v()]),
+                    _ => w.poly([v(), v(), v()]),
                 }
+                .unwrap();
             }
             let list = DisplayList::new_checked(w.finish()).unwrap();
             let clip = ClipRect::full(W, H);
             want.fill(Rgb888::new(0, 0, 0));
             let mut fb = FrameBuffer::new(&mut want, W, H).unwrap();
-            let mut slots = [Edge::EMPTY; 3];
+            let mut slots = [Edge::EMPTY; 6];
             let mut color = Rgb888::new(0, 0, 0);
             for (_, cmd) in list.commands() {
                 match cmd {
@@ -704,7 +713,7 @@ mod tests {
             let need = needs_table(&list);
             let mut polygons = [TablePolygon::EMPTY; 300];
             let mut index = [0u32; 600];
-            let mut edges = [Edge::EMPTY; 900];
+            let mut edges = [Edge::EMPTY; 1800];
             let mut lines = [None; 300];
             let mem = TableMemory {
                 polygons: &mut polygons[..need.polygons],
