@@ -581,12 +581,13 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          steps over the other's bands, as with every other band, and where the rest of its time\n\
          goes (the counter's cache line moves between the cores at every band) is not measured.\n\n\
          Where the time goes (profiles of `--profile-bands ROWS PASSES`, `BANDS_LIST=layered`\n\
-         for the `poly3` list): the fixed part (W3 in 64-row bands: 1.07× the instructions on\n\
-         x86-64, 1.13× on the M4) is entering the 10 000 polygons into the table (their edges\n\
+         for the `poly3` list): the fixed part (W3 in 64-row bands: 1.04× the instructions on\n\
+         x86-64, 1.10× on the M4) is entering the 10 000 polygons into the table (their edges\n\
          written out and read back, the order by first row); each further band revisits every\n\
          polygon it meets, reloading its state and edges, which is most of the cost at 1 row.\n\
-         A band walks a polygon with the full frame's own loop (`raster::scan`'s `Walk`), the\n\
-         polygons entering a band are put in list order by a radix sort, and the 3D layer runs\n\
+         A band walks a polygon with the full frame's own loop (`raster::scan`'s `Walk`), which\n\
+         leaves a run of two edges at once at the band's end; the live polygons are a bit set in\n\
+         list order (entering is setting a bit), and the 3D layer runs\n\
          the full frame's compiled sweep (`Sweep::draw` is not inlined).\n\
          The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
          each band with the background (they have no `clear`, and the full frame leaves what\n\
@@ -674,4 +675,4 @@ fn profile_demo(rows: u16, passes: u32) {
 /// on `--profile-bands ROWS PASSES` (`BANDS_LIST` = `w3`, `layered`,
 /// `tilted`, `demo`; ROWS 0 for the full frame): the count of 6 passes
 /// less that of 1, over 5. They do not move with the host's load.
-const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.20× | 1.20× | 1.13× | 1.07× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 3,018,468 | 2.27× | 1.15× | 1.07× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,230,836; every other band, 1,895,364 and 1,982,220 (a bound of 1.63× on the speed-up); rows 0–139 and 140–255, 1,698,542 and 1,898,522 (a bound of 1.70×). Each worker checks its workspace against the store every frame and steps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.20× its full frame, the `poly3` lists 1.08×, the 2D demo 1.06×.\n";
+const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 3,018,468 | 2.27× | 1.15× | 1.07× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,230,836; every other band, 1,895,364 and 1,982,220 (a bound of 1.63× on the speed-up); rows 0–139 and 140–255, 1,698,542 and 1,898,522 (a bound of 1.70×). Each worker checks its workspace against the store every frame and steps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.20× its full frame, the `poly3` lists 1.08×, the 2D demo 1.06×.\n";

@@ -136,7 +136,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
         let mut walk = Walk::start(edges);
-        walk.run(
+        walk.run::<false, _, _>(
             edges,
             i32::MAX,
             (cx0, cx1),
@@ -243,9 +243,13 @@ impl Walk {
     /// Walks rows `self.y..y1` of the polygon whose edges are `edges`,
     /// writing its spans cut to the columns `cx` into the target of
     /// `paint` (or, without one, only stepping), and leaves the walk at
-    /// row `y1` or past its last row.
+    /// row `y1` or past its last row. `BAND` is for a walk that stops at
+    /// band ends (the band path's table): two edges that both go on past
+    /// `y1` are stepped to it and the walk left at once, without the
+    /// general retire loop (fewer branches a predictor misses, at every
+    /// band a polygon crosses).
     #[inline(always)]
-    pub(super) fn run<S: Stepper, T: SpanTarget + ?Sized>(
+    pub(super) fn run<const BAND: bool, S: Stepper, T: SpanTarget + ?Sized>(
         &mut self,
         edges: &mut [S],
         y1: i32,
@@ -311,6 +315,15 @@ impl Walk {
                         }
                         ea.step();
                         eb.step();
+                    }
+                    if BAND && y >= y1 && ea.end() > y && eb.end() > y {
+                        // The band's end, not an edge's: on to the next
+                        // band's first row.
+                        ea.step();
+                        eb.step();
+                        *a = ea;
+                        *b = eb;
+                        break;
                     }
                     *a = ea;
                     *b = eb;

@@ -10,28 +10,36 @@
 //! clip registers in force at its place. A polygon's edges are set up
 //! exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
 //! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
-//! first row), so it covers exactly the same pixels; a line is the
+//! first row; those of its first row are made active, as its walk's first
+//! step would), so it covers exactly the same pixels; a line is the
 //! [`Line`] generator [`draw_line`](crate::raster::line::draw_line) steps,
 //! cut to the same clip, so it writes exactly the same spans. The entries
 //! are then ordered by first row (an index array; the entries stay in list
 //! order).
 //!
 //! [`EdgeTable::draw`] draws rows `y0..y1`: the entries whose first row
-//! has come join the live list, kept in list order; each live entry in
-//! that order (painter's order: the band holds all its rows, so a later
-//! entry covers an earlier one on every row) emits its spans on the band's
-//! rows and keeps its state (a polygon's active edges, a line's row),
-//! stepped to `y1`, for the next band; entries past their last row leave.
+//! has come join the live set, a bit per entry in list order (so joining
+//! is setting a bit: no sort, no merge); each live entry in that order
+//! (painter's order: the band holds all its rows, so a later entry covers
+//! an earlier one on every row), found word by word, emits its spans on
+//! the band's rows and keeps its state (a polygon's active edges, a line's
+//! row), stepped to `y1`, for the next band; entries past their last row
+//! leave (their bit is cleared). A polygon walks its rows with the full
+//! frame's own loop (`raster::scan`'s `Walk`); where a run of two edges
+//! meets the band's end and both go on, they are stepped to the next
+//! band's first row and the walk is left at once.
 //! [`EdgeTable::skip`] steps the same way without emitting anything.
 //! Nothing is set up again, and the list is not read again.
 //!
 //! # Memory
 //!
 //! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (24
-//! bytes on 32-bit targets) and two `u32`s (the live list and the order by
-//! first row) per entry, an [`Edge`] (32 bytes) per edge of the polygons
-//! and an `Option<`[`Line`]`>` (48 bytes) per line; [`needs_table`] counts them for a
-//! list, as an upper bound (one edge per vertex, every line entered).
+//! bytes on 32-bit targets) and two `u32`s per entry (the order by first
+//! row, and the live set, which takes one bit an entry of its half;
+//! `build` counts the entries by first row there first), an [`Edge`] (32
+//! bytes) per edge of the polygons and an `Option<`[`Line`]`>` (48 bytes)
+//! per line; [`needs_table`] counts them for a list, as an upper bound
+//! (one edge per vertex, every line entered).
 //! Running out is a [`TableError`] found by `build`, before anything is
 //! drawn.
 
@@ -95,8 +103,8 @@ impl TablePolygon {
 pub struct TableMemory<'a> {
     /// One entry per polygon and line after the last `clear`.
     pub polygons: &'a mut [TablePolygon],
-    /// The live list and the order by first row: twice as many as
-    /// `polygons`.
+    /// The live set (a bit an entry) and the order by first row: twice
+    /// as many as `polygons`.
     pub index: &'a mut [u32],
     /// Every edge of those polygons.
     pub edges: &'a mut [Edge],
@@ -217,7 +225,8 @@ impl core::error::Error for TableError {}
 #[derive(Debug)]
 pub struct EdgeTable<'a> {
     polygons: &'a mut [TablePolygon],
-    /// `index[..nlive]`: the live polygons, in list order;
+    /// `index[..count.div_ceil(32)]`: the live set, bit `k % 32` of word
+    /// `k / 32` for entry `k` (entries are in list order);
     /// `index[cap..cap + count]`: all of them by first row, of which the
     /// first `entered` have entered.
     index: &'a mut [u32],
@@ -228,7 +237,6 @@ pub struct EdgeTable<'a> {
     /// Of the `count` entries, lines.
     nlines: usize,
     entered: usize,
-    nlive: usize,
     /// The next row to draw or skip.
     y: i32,
     clear: Option<Rgb888>,
@@ -248,7 +256,6 @@ impl<'a> EdgeTable<'a> {
             count: 0,
             nlines: 0,
             entered: 0,
-            nlive: 0,
             y: 0,
             clear: None,
             commands: 0,
@@ -316,12 +323,17 @@ impl<'a> EdgeTable<'a> {
                     }
                     let e = &mut room[..n];
                     e.sort_unstable_by_key(|e| e.top());
+                    // The edges of its first row active already (at least
+                    // two), as its walk's first step would make them: its
+                    // every visit then starts with active edges.
+                    let y = e[0].top();
+                    let m = e.iter().take_while(|e| e.top() <= y).count() as u16;
                     polygons[count] = TablePolygon {
                         first: used as u32,
                         n: n as u16,
-                        active: 0,
-                        next: 0,
-                        y: e[0].top(),
+                        active: m,
+                        next: m,
+                        y,
                         x0: clip.x0(),
                         x1: clip.x1(),
                         color,
@@ -365,7 +377,7 @@ impl<'a> EdgeTable<'a> {
             return Err(e);
         }
         // The order by first row: a counting sort over the rows when the
-        // live list (unused yet) can hold a counter a row, else a sort.
+        // live set (unused yet) can hold a counter a row, else a sort.
         let (live, order) = index.split_at_mut(cap);
         let order = &mut order[..count];
         let rows = h as usize;
@@ -390,6 +402,8 @@ impl<'a> EdgeTable<'a> {
             }
             order.sort_unstable_by_key(|&k| polygons[k as usize].y);
         }
+        // The live set, empty: a bit an entry (count ≤ cap).
+        live[..count.div_ceil(32)].fill(0);
         Ok(EdgeTable {
             polygons,
             index,
@@ -399,7 +413,6 @@ impl<'a> EdgeTable<'a> {
             count,
             nlines,
             entered: 0,
-            nlive: 0,
             y: 0,
             clear,
             commands,
@@ -459,120 +472,71 @@ impl<'a> EdgeTable<'a> {
         T::Color: ListColor,
     {
         let mut counts = Counts::default();
-        if y1 <= self.y {
+        if y1 <= self.y || self.count == 0 {
+            self.y = self.y.max(y1);
             return Ok(counts);
         }
-        // Enter the polygons starting above y1: sorted by list order among
-        // themselves, then merged into the live list from its end.
-        let (cap, e0) = (self.cap, self.entered);
-        let mut e1 = e0;
-        while e1 < self.count && self.polygons[self.index[cap + e1] as usize].y < y1 {
-            e1 += 1;
-        }
-        if e1 > e0 {
-            let (live, order) = self.index.split_at_mut(cap);
-            let new = &mut order[e0..e1];
-            // The slots after the live list are free: nlive + (e1 − e0) ≤ cap.
-            sort_entries(new, &mut live[self.nlive..], self.count as u32);
-            // nlive + (e1 − e0) ≤ e1 ≤ count ≤ cap.
-            let (mut i, mut j) = (self.nlive, new.len());
-            let mut w = self.nlive + new.len();
-            while j > 0 {
-                w -= 1;
-                if i > 0 && live[i - 1] > new[j - 1] {
-                    i -= 1;
-                    live[w] = live[i];
-                } else {
-                    j -= 1;
-                    live[w] = new[j];
-                }
+        // Enter the polygons starting above y1: a bit each in the live set.
+        let (live, order) = self.index.split_at_mut(self.cap);
+        let entering = order.get(self.entered..self.count).unwrap_or(&[]);
+        for &k in entering {
+            match self.polygons.get(k as usize) {
+                Some(p) if p.y < y1 => {}
+                _ => break,
             }
-            self.nlive += e1 - e0;
-            self.entered = e1;
+            if let Some(word) = live.get_mut(k as usize / 32) {
+                *word |= 1 << (k % 32);
+            }
+            self.entered += 1;
         }
-        let mut kept = 0;
-        for q in 0..self.nlive {
-            let i = self.index[q] as usize;
-            let p = &mut self.polygons[i];
-            let color = target.as_ref().map(|_| T::Color::from_rgb888(p.color));
-            let done = if p.is_line() {
-                match self
-                    .lines
-                    .get_mut(p.first as usize)
-                    .and_then(Option::as_mut)
-                {
-                    Some(line) => {
-                        run_line(line, y1, color, target.as_deref_mut(), &mut counts)?;
-                        p.y = line.row();
-                        line.row() >= line.end()
+        // The live entries in list order: word by word, bit by bit; an
+        // entry past its last row leaves (its bit cleared, with no
+        // branch). A machine word at a time: two `u32`s on a 64-bit host,
+        // half the loop exits (the one branch a word costs that a
+        // predictor misses).
+        const K: usize = (usize::BITS / 32) as usize;
+        let words = self.count.div_ceil(32);
+        for (w, pair) in live[..words].chunks_mut(K).enumerate() {
+            let mut bits = 0usize;
+            for (j, &x) in pair.iter().enumerate() {
+                bits |= (x as usize) << (32 * j);
+            }
+            let mut keep = bits;
+            while bits != 0 {
+                let b = bits.trailing_zeros();
+                bits &= bits - 1;
+                let i = w * usize::BITS as usize + b as usize;
+                let Some(p) = self.polygons.get_mut(i) else {
+                    break;
+                };
+                let color = target.as_ref().map(|_| T::Color::from_rgb888(p.color));
+                let done = if p.is_line() {
+                    match self
+                        .lines
+                        .get_mut(p.first as usize)
+                        .and_then(Option::as_mut)
+                    {
+                        Some(line) => {
+                            run_line(line, y1, color, target.as_deref_mut(), &mut counts)?;
+                            p.y = line.row();
+                            line.row() >= line.end()
+                        }
+                        // Entered with its line: never.
+                        None => true,
                     }
-                    // Entered with its line: never.
-                    None => true,
-                }
-            } else {
-                let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
-                run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
-                p.done()
-            };
-            if !done {
-                self.index[kept] = i as u32;
-                kept += 1;
+                } else {
+                    let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
+                    run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
+                    p.done()
+                };
+                keep &= !((done as usize) << b);
+            }
+            for (j, x) in pair.iter_mut().enumerate() {
+                *x = (keep >> (32 * j)) as u32;
             }
         }
-        self.nlive = kept;
         self.y = y1;
         Ok(counts)
-    }
-}
-
-/// Sorts entry numbers, each below `bound`, through `scratch` (at least
-/// as long). The polygons entering on a band's rows come in one sorted
-/// run per row (the order by first row is stable), in no order between
-/// runs; a least-significant-digit radix sort of 6-bit digits costs a few
-/// instructions an entry a pass (three passes for 10 000 entries), where
-/// a comparison sort cost about 100 an entry on a Cortex-M4 (W3 in
-/// 16-row bands). Short runs take the comparison sort. The 64 counters
-/// live on the stack (256 bytes).
-fn sort_entries(keys: &mut [u32], scratch: &mut [u32], bound: u32) {
-    const BITS: u32 = 6;
-    let m = keys.len();
-    let Some(scratch) = scratch.get_mut(..m).filter(|_| m > 32) else {
-        keys.sort_unstable();
-        return;
-    };
-    let top = bound.saturating_sub(1);
-    let mut shift = 0;
-    let mut in_scratch = false;
-    loop {
-        let (src, dst): (&[u32], &mut [u32]) = if in_scratch {
-            (scratch, keys)
-        } else {
-            (keys, scratch)
-        };
-        let mut at = [0u32; 1 << BITS];
-        let digit = |k: u32| ((k >> shift) & ((1 << BITS) - 1)) as usize;
-        for &k in src.iter() {
-            at[digit(k)] += 1;
-        }
-        let mut sum = 0;
-        for c in at.iter_mut() {
-            (*c, sum) = (sum, sum + *c);
-        }
-        for &k in src.iter() {
-            let slot = &mut at[digit(k)];
-            if let Some(d) = dst.get_mut(*slot as usize) {
-                *d = k;
-            }
-            *slot += 1;
-        }
-        in_scratch = !in_scratch;
-        shift += BITS;
-        if shift >= 32 || top >> shift == 0 {
-            break;
-        }
-    }
-    if in_scratch {
-        keys.copy_from_slice(scratch);
     }
 }
 
@@ -595,7 +559,7 @@ fn run<T: SpanTarget + ?Sized>(
         y: p.y,
     };
     let paint = target.zip(color);
-    walk.run(edges, y1, (p.x0 as i32, p.x1 as i32), paint, counts)?;
+    walk.run::<true, _, _>(edges, y1, (p.x0 as i32, p.x1 as i32), paint, counts)?;
     // At most `n` (a `u16`).
     p.active = walk.active as u16;
     p.next = walk.next as u16;
@@ -686,36 +650,100 @@ mod tests {
     }
 
     #[test]
-    fn entries_sort_as_a_comparison_sort_does() {
-        // Sizes on both sides of the comparison sort's limit, bounds of
-        // one to three digits, keys in runs as the bands make them.
-        let mut seed = 0x2545_f491u32;
-        for (m, bound) in [
-            (0, 1),
-            (5, 7),
-            (33, 40),
-            (100, 64),
-            (600, 10_000),
-            (4096, 300_000),
-        ] {
-            let mut keys = [0u32; 4096];
-            let keys = &mut keys[..m];
-            for k in keys.iter_mut() {
-                seed ^= seed << 13;
-                seed ^= seed >> 17;
-                seed ^= seed << 5;
-                *k = seed % bound;
+    fn bands_and_skips_over_many_entries_give_the_full_frames_rows() {
+        // Lists of up to 300 small triangles, rectangles, hexagons and
+        // lines (live sets across several words, entries leaving at every
+        // bit position), drawn in bands of random heights with rows
+        // skipped between some: every drawn row is the one the rasteriser
+        // and `draw_line` draw in list order.
+        use crate::port::framebuffer::FrameBuffer;
+        use crate::raster::line::draw_line;
+        use crate::raster::scan::Rasterizer;
+        const W: u16 = 64;
+        const H: u16 = 48;
+        let mut rng = testkit::rng::Rng(0xb175);
+        let mut bytes = [0u8; 16384];
+        let mut want = [Rgb888::new(0, 0, 0); W as usize * H as usize];
+        let mut got = [Rgb888::new(0, 0, 0); W as usize * H as usize];
+        for _ in 0..40 {
+            let mut w = Writer::new(&mut bytes, W, H).unwrap();
+            for k in 0..rng.range(1, 300) {
+                w.color(Rgb888::new(k as u8, (k >> 8) as u8, 7)).unwrap();
+                let x = rng.range(0, W as i32 * 16) as i16 - 64;
+                let y = rng.range(0, H as i32 * 16) as i16 - 64;
+                let kind = rng.below(8);
+                let (dx, dy) = (rng.range(0, 256) as i16, rng.range(0, 256) as i16);
+                let mut v = || {
+                    Vertex::from_bits(x + rng.range(0, 256) as i16, y + rng.range(0, 256) as i16)
+                };
+                match kind {
+                    0 => w.line(v(), v()),
+                    // A rectangle (two vertical edges) and a hexagon
+                    // (concave or crossing itself, more than two edges
+                    // active at once).
+                    1 => w.poly(
+                        [(0, 0), (dx, 0), (dx, dy), (0, dy)]
+                            .map(|(a, b)| Vertex::from_bits(x + a, y + b)),
+                    ),
+                    2 => w.poly([v(), v(), v(), v(), v(), v()]),
+                    _ => w.poly([v(), v(), v()]),
+                }
+                .unwrap();
             }
-            for run in keys.chunks_mut(37) {
-                run.sort_unstable();
+            let list = DisplayList::new_checked(w.finish()).unwrap();
+            let clip = ClipRect::full(W, H);
+            want.fill(Rgb888::new(0, 0, 0));
+            let mut fb = FrameBuffer::new(&mut want, W, H).unwrap();
+            let mut slots = [Edge::EMPTY; 6];
+            let mut color = Rgb888::new(0, 0, 0);
+            for (_, cmd) in list.commands() {
+                match cmd {
+                    Command::Color(c) => color = c,
+                    Command::Poly(v) => {
+                        Rasterizer::new(&mut slots)
+                            .fill(v.iter(), &clip, color, &mut fb)
+                            .unwrap();
+                    }
+                    Command::Line(a, b) => {
+                        draw_line(a, b, &clip, color, &mut fb).unwrap();
+                    }
+                    _ => {}
+                }
             }
-            let mut want = [0u32; 4096];
-            let want = &mut want[..m];
-            want.copy_from_slice(keys);
-            want.sort_unstable();
-            let mut scratch = [0u32; 4096];
-            sort_entries(keys, &mut scratch[..m], bound);
-            assert_eq!(keys, want, "{m} keys below {bound}");
+            let need = needs_table(&list);
+            let mut polygons = [TablePolygon::EMPTY; 300];
+            let mut index = [0u32; 600];
+            let mut edges = [Edge::EMPTY; 1800];
+            let mut lines = [None; 300];
+            let mem = TableMemory {
+                polygons: &mut polygons[..need.polygons],
+                index: &mut index[..2 * need.polygons],
+                edges: &mut edges[..need.edges],
+                lines: &mut lines[..need.lines],
+            };
+            let mut table = EdgeTable::build(mem, &list, (W, H)).unwrap();
+            got.fill(Rgb888::new(0, 0, 0));
+            let mut fb = FrameBuffer::new(&mut got, W, H).unwrap();
+            let mut drawn = [false; H as usize];
+            let mut y = 0;
+            while y < H as i32 {
+                let y1 = (y + rng.range(1, 20)).min(H as i32);
+                if rng.below(4) == 0 {
+                    table.skip(y1);
+                } else {
+                    table.draw(y1, &mut fb).unwrap();
+                    for d in &mut drawn[y as usize..y1 as usize] {
+                        *d = true;
+                    }
+                }
+                y = y1;
+            }
+            for (row, d) in drawn.iter().enumerate() {
+                let r = row * W as usize..(row + 1) * W as usize;
+                if *d {
+                    assert_eq!(got[r.clone()], want[r], "row {row}");
+                }
+            }
         }
     }
 
