@@ -209,12 +209,15 @@ impl Edge {
         // `i32`, and a 32-bit division is one instruction on a 32-bit
         // core where a 64-bit one is a library call.
         let drop = n as i64 * self.rem as i64 - self.err as i64;
+        // ⌈drop/dy⌉ = (drop − 1)/dy + 1 for drop > 0 (not by the
+        // `fixed` helpers: more callers of those made the Cortex-M4 build
+        // stop inlining them into `Edge::new`).
         let carries = if drop <= 0 {
             0
         } else if let Ok(d) = i32::try_from(drop) {
-            ceil_div_i32(d, self.dy) as i64
+            ((d - 1) / self.dy + 1) as i64
         } else {
-            ceil_div_i64(drop, self.dy as i64)
+            (drop - 1) / self.dy as i64 + 1
         };
         self.err = (carries * self.dy as i64 - drop) as i32;
         self.x = self

@@ -638,8 +638,9 @@ impl Sweep {
     }
 
     /// Steps over the next `rows` rows of `store` (cut at its height)
-    /// without resolving them, by [`jump`]: the active list left as
-    /// stepping it row by row leaves it, at the cost of one jump per
+    /// without resolving them, at once: the active list left as stepping
+    /// it row by row leaves it (the same trapezoids in the same order,
+    /// edges moved by [`Edge::advance`]), at the cost of one jump per
     /// trapezoid live after the rows, not of a step per row.
     pub fn skip(
         &mut self,
@@ -754,6 +755,7 @@ impl Sweep {
 /// depth by a product; a trapezoid that starts and ends within the rows
 /// is never entered. The new `k` and `nf`; `None` when the free slots run
 /// out (a workspace smaller than the rows need).
+#[inline(never)]
 fn jump(
     act: &mut [Active],
     store: &TrapezoidStore<'_>,
