@@ -423,10 +423,10 @@ impl LabelStore<'_> {
             font.character_size.height as i32,
         );
         let (y0, y1) = (rows.0.max(0), rows.1.min(h as i32));
-        for (l, text) in self.iter() {
+        for l in &self.slots[..self.len] {
             // |x|, |y| ≤ 2²⁴, text ≤ 255 characters of a font below 2¹⁶
             // pixels: every sum below is far inside i32.
-            let right = l.x + (text.len() as i32 - 1) * pitch + cw;
+            let right = l.x + (l.len as i32 - 1) * pitch + cw;
             let top = l.y - ch;
             if right <= 0 || l.x >= w as i32 || l.y <= 0 || top >= h as i32 {
                 counts.off_frame += 1;
@@ -445,7 +445,10 @@ impl LabelStore<'_> {
             // The glyphs' rows on the band: rows `top + r0 .. top + r1`.
             let (r0, r1) = ((y0 - top).max(0), (y1 - top).min(ch));
             let mut x = l.x;
-            for c in text.chars() {
+            // Printable ASCII (checked when placed): a byte a character.
+            let text = &self.text[l.start as usize..l.start as usize + l.len as usize];
+            for &b in text {
+                let c = b as char;
                 if x >= w as i32 {
                     break;
                 }
