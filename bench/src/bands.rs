@@ -571,14 +571,16 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          thread for each call was not the cause (17 µs at best, 53 µs on average, against 2 ms\n\
          of work a call); nor is sharing: the scene is only read, and each thread writes only its\n\
          own workspace and band buffer. What is left is each worker's own work on rows it does\n\
-         not draw: checking its workspace against the store and stepping its active list over\n\
-         the other's rows, per frame (the instruction counts below). Splitting the frame into a\n\
-         top and a bottom part costs the least of it: only the second worker steps over rows, once,\n\
-         instead of both at every other band; the split is where both parts take the same time\n\
-         (over the demo's 12 frames it moves between rows 140 and 148).\n\
+         not draw, per frame (the instruction counts below): it compares its workspace's\n\
+         capacity with the most trapezoids on a row (found once, by `Scene::check`) and jumps its\n\
+         active list over the other's rows (`Sweep::skip`: one exact jump per trapezoid live\n\
+         after them, none for those that start and end within them), and draws again the\n\
+         labels cut by its first band's top. Splitting the frame into a top and a bottom part\n\
+         costs the least of it: only the second worker jumps, once, instead of both at every\n\
+         other band; the split is where both parts take the same time.\n\
          Bands claimed from a shared counter would balance the load when a core is taken away,\n\
          but came out slower with both free: each worker still makes a pass over every frame and\n\
-         steps over the other's bands, as with every other band, and where the rest of its time\n\
+         jumps over the other's bands, as with every other band, and where the rest of its time\n\
          goes (the counter's cache line moves between the cores at every band) is not measured.\n\n\
          Where the time goes (profiles of `--profile-bands ROWS PASSES`, `BANDS_LIST=layered`\n\
          for the `poly3` list): the fixed part (W3 in 64-row bands: 1.04× the instructions on\n\
@@ -591,8 +593,9 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          the full frame's compiled sweep (`Sweep::draw` is not inlined).\n\
          The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
          each band with the background (they have no `clear`, and the full frame leaves what\n\
-         was there). The demo draws each label in every band it reaches (a glyph pass of\n\
-         `embedded-graphics` per band), which dominates at 1 and 8 rows.\n\n\
+         was there). The demo draws each label in every band it reaches, reading from the\n\
+         font only the glyphs' rows on the band, but looking each glyph up again in every band:\n\
+         that is most of its cost at 1 and 8 rows.\n\n\
          Instructions per frame (x86-64, from `valgrind --tool=callgrind` on\n\
          `--profile-bands ROWS PASSES` with `BANDS_LIST` = `w3`, `layered`, `tilted` or `demo`,\n\
          ROWS 0 for the full frame; 6 passes less 1, over 5), which do not move with the load:\n\n{COUNTS}{END}\n"
@@ -675,4 +678,4 @@ fn profile_demo(rows: u16, passes: u32) {
 /// on `--profile-bands ROWS PASSES` (`BANDS_LIST` = `w3`, `layered`,
 /// `tilted`, `demo`; ROWS 0 for the full frame): the count of 6 passes
 /// less that of 1, over 5. They do not move with the host's load.
-const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 3,018,468 | 2.27× | 1.15× | 1.07× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,230,836; every other band, 1,895,364 and 1,982,220 (a bound of 1.63× on the speed-up); rows 0–139 and 140–255, 1,698,542 and 1,898,522 (a bound of 1.70×). Each worker checks its workspace against the store every frame and steps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.20× its full frame, the `poly3` lists 1.08×, the 2D demo 1.06×.\n";
+const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 2,972,118 | 1.30× | 1.04× | 1.02× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,030,484; every other band, 1,563,270 and 1,656,538 (a bound of 1.83× on the speed-up); rows 0–139 and 140–255, 1,566,135 and 1,500,285 (a bound of 1.93×; split at row 136, 1,491,845 and 1,578,482). Each worker compares its workspace's capacity with the scene's most trapezoids on a row every frame (the count itself is found once) and jumps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.20× its full frame, the `poly3` lists 1.08×, the 2D demo 1.06×.\n";

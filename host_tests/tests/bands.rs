@@ -816,3 +816,49 @@ fn a_checked_scene_sizes_other_workspaces_by_its_count() {
     })
     .expect("demo scene");
 }
+
+/// Long skips: one pass over the demo's frames drawing bands of 1 to 7
+/// rows with gaps of 1 to 255 rows between them (the active list jumped
+/// over each gap at once), and a pass drawing only the first and the last
+/// row: every band drawn is the full frame's rows.
+#[test]
+fn bands_after_long_skips_are_the_full_frames_rows() {
+    use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
+    let w = WIDTH as usize;
+    for step in steps(12).into_iter().step_by(4) {
+        with_scene(step, |scene, bg| {
+            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
+            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
+            scene
+                .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
+                .expect("draws");
+            let most = scene.check().expect("fits") as usize;
+            let mut work = Work::new(most);
+            let mut band = vec![Rgb565::BLACK; 7 * w];
+            let plans = [1u16, 2, 5, 16, 33, 64, 100, 150, 200]
+                .map(|gap| (gap, gap % 7 + 1))
+                .into_iter()
+                .chain([(HEIGHT - 2, 1)]);
+            for (gap, rows) in plans {
+                let mut ws = work.workspace();
+                let mut pass = scene
+                    .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
+                    .expect("pass");
+                // From row 0 when the gap is the frame's less 2: rows 0
+                // and HEIGHT - 1.
+                let mut y = if gap == HEIGHT - 2 { 0 } else { gap };
+                while y < HEIGHT {
+                    let n = pass.draw(y, rows, &mut band).expect("band");
+                    let at = y as usize * w;
+                    assert!(
+                        band[..n as usize * w] == px[at..at + n as usize * w],
+                        "{step:?}: gap {gap}, rows {y}..{}",
+                        y + n
+                    );
+                    y += n + gap;
+                }
+            }
+        })
+        .expect("demo scene");
+    }
+}

@@ -37,7 +37,8 @@
 //! starts above the last one's end (bands come from one top-to-bottom
 //! pass) or below the frame are [`BandError`]s, found before anything is
 //! drawn into the band. Rows between the last band and the next are
-//! skipped: stepped through without being resolved or drawn.
+//! skipped: passed over without being resolved or drawn (a scene's active
+//! list jumps over them at once).
 
 use crate::port::{Span, SpanTarget};
 use core::fmt;

@@ -196,6 +196,36 @@ impl Edge {
         self.err += self.dy & m;
     }
 
+    /// Moves `n` rows down at once: the same state as `n` calls of
+    /// [`Edge::step`] (or [`Edge::step_masked`]), with one division
+    /// instead of `n` steps. The carries over the `n` rows are
+    /// `⌈(n·rem − err) / dy⌉` when positive, else none. Meant for rows
+    /// inside the edge (`n` below its height); beyond them the position
+    /// wraps as the steps would.
+    #[inline]
+    pub fn advance(&mut self, n: u32) {
+        // n < 2³² and 0 ≤ err, rem < dy < 2³¹: |drop| < 2⁶³, and
+        // carries·dy ≤ drop + dy. On a frame of ordinary size it fits in
+        // `i32`, and a 32-bit division is one instruction on a 32-bit
+        // core where a 64-bit one is a library call.
+        let drop = n as i64 * self.rem as i64 - self.err as i64;
+        // ⌈drop/dy⌉ = (drop − 1)/dy + 1 for drop > 0 (not by the
+        // `fixed` helpers: more callers of those made the Cortex-M4 build
+        // stop inlining them into `Edge::new`).
+        let carries = if drop <= 0 {
+            0
+        } else if let Ok(d) = i32::try_from(drop) {
+            ((d - 1) / self.dy + 1) as i64
+        } else {
+            (drop - 1) / self.dy as i64 + 1
+        };
+        self.err = (carries * self.dy as i64 - drop) as i32;
+        self.x = self
+            .x
+            .wrapping_add((n as i32).wrapping_mul(self.step))
+            .wrapping_add(carries as i32);
+    }
+
     /// First row sampled.
     pub fn top(&self) -> i32 {
         self.top
@@ -291,6 +321,75 @@ mod tests {
             masked.step_masked();
             assert_eq!(masked, e, "step_masked, {a:?} {b:?} row {j}");
         }
+    }
+
+    /// [`Edge::advance`] by every `n` up to the edge's last row, from its
+    /// first row and from a third of the way down, against `n` steps.
+    fn check_advance(a: Vertex, b: Vertex) {
+        let Some(first) = Edge::new(a, b, (i32::MIN, i32::MAX)) else {
+            return;
+        };
+        let h = (first.end() - first.top()) as u32;
+        let mut mid = first;
+        mid.advance(h / 3);
+        for start in [first, mid] {
+            let mut stepped = start;
+            for n in 0..h - h / 3 {
+                let mut jumped = start;
+                jumped.advance(n);
+                assert_eq!(jumped, stepped, "{a:?} {b:?} n {n}");
+                stepped.step();
+            }
+        }
+    }
+
+    #[test]
+    fn advance_equals_steps() {
+        let mut s = 0x9e37_79b9u32;
+        let mut rnd = |m: i32| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s % (2 * m as u32)) as i32 - m
+        };
+        for _ in 0..400 {
+            let a = Vertex::from_bits(rnd(32767) as i16, rnd(32767) as i16);
+            let b = Vertex::from_bits(rnd(32767) as i16, rnd(32767) as i16);
+            check_advance(a, b);
+        }
+        for _ in 0..3000 {
+            let a = Vertex::from_bits(rnd(300) as i16, rnd(3000) as i16);
+            let b = Vertex::from_bits(rnd(300) as i16, rnd(3000) as i16);
+            check_advance(a, b);
+        }
+        // The range's corners: the longest edges, the steepest slopes.
+        let m = [i16::MIN, i16::MIN + 1, -1, 0, 1, i16::MAX - 1, i16::MAX];
+        for &ax in &m {
+            for &ay in &m {
+                for &bx in &m {
+                    for &by in &m {
+                        check_advance(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
+                    }
+                }
+            }
+        }
+        // Inside the range n·rem stays below 2²⁸; past the edge's rows it
+        // can leave the 32-bit path: 16·dx ≡ −1 (mod dy), the largest
+        // remainder.
+        let (a, b) = (
+            Vertex::from_bits(i16::MIN, i16::MIN),
+            Vertex::from_bits(28671, i16::MAX),
+        );
+        let e = Edge::new(a, b, (i32::MIN, i32::MAX)).unwrap();
+        assert_eq!(e.rem, e.dy - 1);
+        let n = 600_000;
+        assert!(e.rem as i64 * n as i64 > i32::MAX as i64);
+        let (mut stepped, mut jumped) = (e, e);
+        for _ in 0..n {
+            stepped.step();
+        }
+        jumped.advance(n);
+        assert_eq!(jumped, stepped);
     }
 
     #[test]

@@ -5,9 +5,13 @@
 //! sweep over the scene's store, in the scene's own workspace (its
 //! [`SceneMemory`](super::SceneMemory)'s active list and runs);
 //! [`SceneBands::draw`] fills a band's buffer with rows `y..y + rows`: the
-//! background, the visible faces, then the labels cut to the band. Rows
-//! between two bands are skipped (the active list stepped, nothing
-//! resolved). The scene is only read: [`Scene::bands_in`] runs a pass in
+//! background, the visible faces, then the labels cut to the band (only
+//! their glyphs' rows on it). Rows between two bands are skipped: the
+//! active list jumps over them at once ([`Sweep::skip`]: one exact jump
+//! per trapezoid live after them, nothing for those that start and end
+//! within them, nothing resolved), so a pass that draws only the bottom
+//! of the frame costs little more than those rows. The scene is only
+//! read: [`Scene::bands_in`] runs a pass in
 //! another [`Workspace`], so several passes may run over one scene at
 //! once, each drawing some bands and skipping the others (two cores taking
 //! every other band).

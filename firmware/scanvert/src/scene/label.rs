@@ -7,6 +7,13 @@
 //! and the store keeps the screen position, the colour and the text.
 //! [`LabelStore::draw`] then writes every label into a [`SpanTarget`] with
 //! an `embedded-graphics` mono font at its fixed scale, as horizontal spans.
+//! The glyphs are read from the font's image, the pixels
+//! `embedded-graphics` draws for the text (its `Text` with a
+//! `MonoTextStyle` in the label's colour: no background, underline or
+//! strikethrough; the tests compare the two for every font of its ASCII
+//! set), and only the rows asked are read: a band
+//! ([`LabelStore::draw_rows`]) costs the glyphs' rows on it, not the
+//! whole label.
 //!
 //! # Placement
 //!
@@ -31,13 +38,11 @@ use crate::color::ListColor;
 use crate::geometry::Anchor;
 use crate::port::{Counts, Span, SpanTarget};
 use core::fmt;
-use embedded_graphics::mono_font::{MonoFont, MonoTextStyle};
-use embedded_graphics::text::{Baseline, Text};
-use embedded_graphics::Drawable;
-use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics::image::GetPixel;
+use embedded_graphics::mono_font::MonoFont;
+use embedded_graphics::pixelcolor::BinaryColor::On;
 use embedded_graphics_core::geometry::{OriginDimensions, Point, Size};
 use embedded_graphics_core::pixelcolor::Rgb888;
-use embedded_graphics_core::Pixel;
 
 /// The font labels are drawn in unless another is given: 6 × 10 pixels,
 /// ASCII.
@@ -311,22 +316,22 @@ pub struct LabelCounts {
     pub written: Counts,
 }
 
-/// A [`DrawTarget`] over a [`SpanTarget`]: pixels that follow each other
-/// along a row become one span; pixels off the frame are dropped.
+/// Pixels that follow each other along a row, gathered into spans for a
+/// [`SpanTarget`].
 struct Spans<'t, T: SpanTarget + ?Sized> {
     target: &'t mut T,
-    size: (u16, u16),
-    /// The open run: row, first column, one past the last, colour.
-    run: Option<(u16, u16, u16, T::Color)>,
+    /// The open run: row, first column, one past the last.
+    run: Option<(u16, u16, u16)>,
+    color: T::Color,
     written: Counts,
     error: Option<T::Error>,
 }
 
 impl<T: SpanTarget + ?Sized> Spans<'_, T> {
     fn flush(&mut self) {
-        if let Some((y, x0, x1, c)) = self.run.take() {
+        if let Some((y, x0, x1)) = self.run.take() {
             if self.error.is_none() {
-                match self.target.fill_span(Span { y, x0, x1 }, c) {
+                match self.target.fill_span(Span { y, x0, x1 }, self.color) {
                     Ok(()) => {
                         self.written.span((x1 - x0) as u32);
                     }
@@ -335,46 +340,72 @@ impl<T: SpanTarget + ?Sized> Spans<'_, T> {
             }
         }
     }
-}
 
-impl<T: SpanTarget + ?Sized> OriginDimensions for Spans<'_, T> {
-    fn size(&self) -> Size {
-        Size::new(self.size.0 as u32, self.size.1 as u32)
-    }
-}
-
-impl<T: SpanTarget + ?Sized> DrawTarget for Spans<'_, T> {
-    type Color = T::Color;
-    type Error = core::convert::Infallible;
-
-    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
-    where
-        I: IntoIterator<Item = Pixel<Self::Color>>,
-    {
-        let (w, h) = self.size;
-        for Pixel(p, c) in pixels {
-            if p.x < 0 || p.y < 0 || p.x >= w as i32 || p.y >= h as i32 {
-                continue;
-            }
-            let (x, y) = (p.x as u16, p.y as u16);
-            match &mut self.run {
-                Some((ry, _, x1, rc)) if *ry == y && *x1 == x && *rc == c => *x1 += 1,
-                _ => {
-                    self.flush();
-                    self.run = Some((y, x, x + 1, c));
-                }
+    /// Pixel `(x, y)`, on the frame.
+    #[inline(always)]
+    fn pixel(&mut self, x: u16, y: u16) {
+        match &mut self.run {
+            Some((ry, _, x1)) if *ry == y && *x1 == x => *x1 += 1,
+            _ => {
+                self.flush();
+                self.run = Some((y, x, x + 1));
             }
         }
-        Ok(())
     }
+}
+
+/// Where a glyph lies in a mono font's image, as `embedded-graphics`
+/// places it (`MonoFont::glyph`): the top-left corner of its cell, or
+/// `None` when the font draws nothing for it (a cell of no width or
+/// height, an image narrower than a cell, a cell not wholly inside the
+/// image).
+fn glyph_cell(font: &MonoFont<'_>, c: char) -> Option<(i32, i32)> {
+    let (cw, ch) = (font.character_size.width, font.character_size.height);
+    let Size {
+        width: iw,
+        height: ih,
+    } = font.image.size();
+    if cw == 0 || ch == 0 || iw < cw {
+        return None;
+    }
+    let per_row = (iw / cw) as u64;
+    let index = font.glyph_mapping.index(c) as u64;
+    let (row, col) = (index / per_row, index % per_row);
+    let (gx, gy) = (col * cw as u64, row * ch as u64);
+    if gy + ch as u64 > ih as u64 {
+        return None;
+    }
+    Some((gx as i32, gy as i32))
 }
 
 impl LabelStore<'_> {
     /// Draws the labels that reach rows `rows.0..rows.1` as
-    /// [`draw`](Self::draw) does, for a band of those rows: the others
-    /// cost one test each. Labels wholly off the frame count as
-    /// `off_frame`; those on it that miss the rows are not counted.
+    /// [`draw`](Self::draw) does, for a band of those rows, and only their
+    /// pixels on those rows: the others cost one test each. Labels wholly
+    /// off the frame count as `off_frame`; those on it that miss the rows
+    /// are not counted.
+    #[inline]
     pub fn draw_rows<T>(
+        &self,
+        font: &MonoFont<'_>,
+        rows: (i32, i32),
+        target: &mut T,
+    ) -> Result<LabelCounts, T::Error>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        if self.is_empty() {
+            return Ok(LabelCounts::default());
+        }
+        self.draw_some_rows(font, rows, target)
+    }
+
+    /// [`draw_rows`](Self::draw_rows) with labels. Not inlined: inlined
+    /// into `ListBands::draw` it changed what the Cortex-M4 build made of
+    /// the 2D band path (1 to 2 % more instructions on some lists).
+    #[inline(never)]
+    fn draw_some_rows<T>(
         &self,
         font: &MonoFont<'_>,
         rows: (i32, i32),
@@ -392,10 +423,10 @@ impl LabelStore<'_> {
             font.character_size.height as i32,
         );
         let (y0, y1) = (rows.0.max(0), rows.1.min(h as i32));
-        for (l, text) in self.iter() {
+        for l in &self.slots[..self.len] {
             // |x|, |y| ≤ 2²⁴, text ≤ 255 characters of a font below 2¹⁶
             // pixels: every sum below is far inside i32.
-            let right = l.x + (text.len() as i32 - 1) * pitch + cw;
+            let right = l.x + (l.len as i32 - 1) * pitch + cw;
             let top = l.y - ch;
             if right <= 0 || l.x >= w as i32 || l.y <= 0 || top >= h as i32 {
                 counts.off_frame += 1;
@@ -406,15 +437,37 @@ impl LabelStore<'_> {
             }
             let mut adapter = Spans {
                 target: &mut *target,
-                size: (w, h),
                 run: None,
+                color: T::Color::from_rgb888(l.color),
                 written: Counts::default(),
                 error: None,
             };
-            let style = MonoTextStyle::new(font, T::Color::from_rgb888(l.color));
-            // The bottom row of the cell is the row above the anchor.
-            let at = Point::new(l.x, l.y - 1);
-            let _ = Text::with_baseline(text, at, style, Baseline::Bottom).draw(&mut adapter);
+            // The glyphs' rows on the band: rows `top + r0 .. top + r1`.
+            let (r0, r1) = ((y0 - top).max(0), (y1 - top).min(ch));
+            let mut x = l.x;
+            // Printable ASCII (checked when placed): a byte a character.
+            let text = &self.text[l.start as usize..l.start as usize + l.len as usize];
+            for &b in text {
+                let c = b as char;
+                if x >= w as i32 {
+                    break;
+                }
+                if x + cw > 0 {
+                    if let Some((gx, gy)) = glyph_cell(font, c) {
+                        // Columns of the cell on the frame.
+                        let (c0, c1) = ((-x).max(0), (w as i32 - x).min(cw));
+                        for r in r0..r1 {
+                            let y = (top + r) as u16;
+                            for i in c0..c1 {
+                                if font.image.pixel(Point::new(gx + i, gy + r)) == Some(On) {
+                                    adapter.pixel((x + i) as u16, y);
+                                }
+                            }
+                        }
+                    }
+                }
+                x += pitch;
+            }
             adapter.flush();
             counts.written += adapter.written;
             if let Some(e) = adapter.error {
@@ -513,6 +566,137 @@ mod tests {
             "{x0} {x1} {y0} {y1}"
         );
         assert!(c.written.pixels > 0 && c.written.spans < c.written.pixels);
+    }
+
+    /// A frame that `embedded-graphics` draws into, the reference.
+    struct Grid([Rgb565; 40 * 30]);
+
+    impl embedded_graphics_core::geometry::OriginDimensions for Grid {
+        fn size(&self) -> Size {
+            Size::new(40, 30)
+        }
+    }
+
+    impl embedded_graphics_core::draw_target::DrawTarget for Grid {
+        type Color = Rgb565;
+        type Error = core::convert::Infallible;
+        fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Self::Error>
+        where
+            I: IntoIterator<Item = embedded_graphics_core::Pixel<Rgb565>>,
+        {
+            for embedded_graphics_core::Pixel(p, c) in pixels {
+                if (0..40).contains(&p.x) && (0..30).contains(&p.y) {
+                    self.0[p.y as usize * 40 + p.x as usize] = c;
+                }
+            }
+            Ok(())
+        }
+    }
+
+    /// The glyphs read from the font's image are the pixels
+    /// `embedded-graphics` draws for the same text (`Text` with a
+    /// `MonoTextStyle`, baseline at the bottom), for every font of its
+    /// ASCII set, every printable character, labels cut by every edge of
+    /// the frame, and cut again to bands of 1, 3, 7 and 16 rows (each band
+    /// writing only its rows); and for a font whose cells run past its
+    /// image, which draws nothing for those.
+    #[test]
+    fn glyphs_are_those_embedded_graphics_draws() {
+        use embedded_graphics::mono_font::{ascii, mapping::StrGlyphMapping};
+        use embedded_graphics::mono_font::{DecorationDimensions, MonoTextStyle};
+        use embedded_graphics::text::{Baseline, Text};
+        use embedded_graphics::Drawable;
+        // 2 cells of 3 × 2 a row, one row: 'c' and the replacement's
+        // cells lie below the image.
+        const SMALL_DATA: [u8; 2] = [0b1010_1100, 0b0110_1000];
+        let small_map = StrGlyphMapping::new("abc", 5);
+        let small = MonoFont {
+            image: embedded_graphics::image::ImageRaw::new(&SMALL_DATA, 8),
+            glyph_mapping: &small_map,
+            character_size: Size::new(3, 2),
+            character_spacing: 0,
+            baseline: 1,
+            strikethrough: DecorationDimensions::new(0, 1),
+            underline: DecorationDimensions::new(1, 1),
+        };
+        let fonts = [
+            &ascii::FONT_4X6,
+            &ascii::FONT_5X7,
+            &ascii::FONT_5X8,
+            &ascii::FONT_6X9,
+            &ascii::FONT_6X10,
+            &ascii::FONT_6X12,
+            &ascii::FONT_6X13,
+            &ascii::FONT_6X13_BOLD,
+            &ascii::FONT_6X13_ITALIC,
+            &ascii::FONT_7X13,
+            &ascii::FONT_7X14,
+            &ascii::FONT_8X13,
+            &ascii::FONT_9X15,
+            &ascii::FONT_9X18,
+            &ascii::FONT_10X20,
+            &small,
+        ];
+        let printable: heapless::String<95> = (0x20u8..0x7f).map(|b| b as char).collect();
+        let texts = [
+            "abcab",
+            &printable[..32],
+            &printable[32..64],
+            &printable[64..],
+        ];
+        let anchors = [
+            (0, 12),
+            (-7, 9),
+            (3, 3),
+            (30, 31),
+            (25, 40),
+            (-100, 15),
+            (12, 29),
+            (-5, 20),
+            (-3, 22),
+            (-9, 26),
+            (-1, 17),
+            (37, 18),
+            (39, 8),
+        ];
+        for font in fonts {
+            for text in texts {
+                for at in anchors {
+                    let color = Rgb888::new(200, 100, 50);
+                    let mut want = Grid([Rgb565::BLACK; 40 * 30]);
+                    let style = MonoTextStyle::new(font, Rgb565::from_rgb888(color));
+                    let p = Point::new(at.0, at.1 - 1);
+                    let _ = Text::with_baseline(text, p, style, Baseline::Bottom).draw(&mut want);
+                    let (mut slots, mut bytes) = ([Label::EMPTY; 1], [0u8; 100]);
+                    let mut s = store(&mut slots, &mut bytes);
+                    s.add(0, at, color, text).unwrap();
+                    let mut px = [Rgb565::BLACK; 40 * 30];
+                    let mut fb = FrameBuffer::new(&mut px, 40, 30).unwrap();
+                    s.draw(font, &mut fb).unwrap();
+                    assert!(px == want.0, "{text:?} at {at:?}");
+                    for rows in [1, 3, 7, 16] {
+                        for y0 in (0..30).step_by(rows) {
+                            let mut px = [Rgb565::BLACK; 40 * 30];
+                            let mut fb = FrameBuffer::new(&mut px, 40, 30).unwrap();
+                            let y1 = y0 + rows as i32;
+                            s.draw_rows(font, (y0, y1), &mut fb).unwrap();
+                            for (i, (&got, &w)) in px.iter().zip(&want.0).enumerate() {
+                                let y = (i / 40) as i32;
+                                let w = if (y0..y1).contains(&y) {
+                                    w
+                                } else {
+                                    Rgb565::BLACK
+                                };
+                                assert_eq!(
+                                    got, w,
+                                    "{text:?} at {at:?}, rows {y0}..{y1}, pixel {i}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 
     #[test]
