@@ -77,7 +77,7 @@ fn list_times(bytes: &[u8]) -> (f64, Vec<f64>) {
             render(m, black_box(list), f, band);
         }));
     }
-    let t = time_fns(&mut fs, Duration::from_millis(150), 5);
+    let t = time_fns(&mut fs, LIST_RUN, LIST_ROUNDS);
     (t[0] * 1e3, t[1..].iter().map(|s| s * 1e3).collect())
 }
 
@@ -245,6 +245,14 @@ fn best_calls(fs: &mut [Box<dyn FnMut() + '_>], calls: usize) -> Vec<f64> {
     }
     best
 }
+/// Each frame's heights are timed in runs of this long, the same call
+/// again and again (so the full frame's buffer stays as warm as the band
+/// buffer)...
+const LIST_RUN: Duration = Duration::from_millis(10);
+/// ... round-robin, this many times: the best run of each is one no other
+/// work on the host interrupted.
+const LIST_ROUNDS: usize = 60;
+
 /// Steps of the calibration loop per timed call.
 const SPIN: u64 = 2_000_000;
 
@@ -420,7 +428,7 @@ fn demo_times() -> (f64, Vec<f64>) {
                     .expect("bands");
             }));
         }
-        let t = time_fns(&mut fs, Duration::from_millis(150), 5);
+        let t = time_fns(&mut fs, LIST_RUN, LIST_ROUNDS);
         let ms: Vec<f64> = t.iter().map(|s| s * 1e3).collect();
         (ms[0], ms[1..5].to_vec())
     })
@@ -556,10 +564,12 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          Written by `cargo run --release -p scanvert-bench -- --only bands` ({machine}); the full\n\
          run keeps it. Time of a frame rendered band by band (`Controller::render_bands`,\n\
          `Scene::draw_bands`) over the full-frame render of the same frame into a frame buffer\n\
-         (`Controller::render`, `Scene::draw`), best of 5 round-robin runs, in one process. Both\n\
+         (`Controller::render`, `Scene::draw`), the best of 60 runs of 10 ms of each, round-robin, in one process. Both\n\
          include the frame's preparation (the list checked, the 3D layer built; for bands the\n\
          edge table); the bands are shipped to a provider that only reads them, and each band is\n\
-         filled with the background first. On a loaded host these ratios move by ±0.2. The\n\
+         filled with the background first. Runs this short are often not interrupted by other\n\
+         work on the host; the best of 5 runs of 150 ms, as this section used to take, moved\n\
+         by ±0.2 with the load. The\n\
          targets are 1.25× for W3 in bands of 16 rows and 1.1× for the 3D frames.\n\n{table}\n\
          The two vCPUs of this host are shared with other work. With both free, the calibration\n\
          loop (the same on one and two threads, nothing shared) reaches about 1.9×; at load\n\
@@ -584,7 +594,7 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          goes (the counter's cache line moves between the cores at every band) is not measured.\n\n\
          Where the time goes (profiles of `--profile-bands ROWS PASSES`, `BANDS_LIST=layered`\n\
          for the `poly3` list): the fixed part (W3 in 64-row bands: 1.04× the instructions on\n\
-         x86-64, 1.10× on the M4) is entering the 10 000 polygons into the table (their edges\n\
+         x86-64, 1.11× on the M4) is entering the 10 000 polygons into the table (their edges\n\
          written out and read back, the order by first row); each further band revisits every\n\
          polygon it meets, reloading its state and edges, which is most of the cost at 1 row.\n\
          A band walks a polygon with the full frame's own loop (`raster::scan`'s `Walk`), which\n\
@@ -593,7 +603,9 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          the full frame's compiled sweep (`Sweep::draw` is not inlined).\n\
          The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
          each band with the background (they have no `clear`, and the full frame leaves what\n\
-         was there). The demo draws each label in every band it reaches, reading from the\n\
+         was there); they and the demo can come out below 1× on this host, as a 16-row band\n\
+         buffer (16 KiB) stays in the first-level data cache and the full frame's 256 KiB does\n\
+         not (callgrind counts fewer write misses in bands). The demo draws each label in every band it reaches, reading from the\n\
          font only the glyphs' rows on the band, but looking each glyph up again in every band:\n\
          that is most of its cost at 1 and 8 rows.\n\n\
          Instructions per frame (x86-64, from `valgrind --tool=callgrind` on\n\
@@ -678,4 +690,4 @@ fn profile_demo(rows: u16, passes: u32) {
 /// on `--profile-bands ROWS PASSES` (`BANDS_LIST` = `w3`, `layered`,
 /// `tilted`, `demo`; ROWS 0 for the full frame): the count of 6 passes
 /// less that of 1, over 5. They do not move with the host's load.
-const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 2,972,118 | 1.30× | 1.04× | 1.02× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,030,484; every other band, 1,563,270 and 1,656,538 (a bound of 1.83× on the speed-up); rows 0–139 and 140–255, 1,566,135 and 1,500,285 (a bound of 1.93×; split at row 136, 1,491,845 and 1,578,482). Each worker compares its workspace's capacity with the scene's most trapezoids on a row every frame (the count itself is found once) and jumps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.20× its full frame, the `poly3` lists 1.08×, the 2D demo 1.06×.\n";
+const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 2,972,118 | 1.30× | 1.04× | 1.02× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,030,484; every other band, 1,563,270 and 1,656,538 (a bound of 1.83× on the speed-up); rows 0–139 and 140–255, 1,566,135 and 1,500,285 (a bound of 1.93×; split at row 136, 1,491,845 and 1,578,482). Each worker compares its workspace's capacity with the scene's most trapezoids on a row every frame (the count itself is found once) and jumps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.16× its full frame, the `poly3` lists 1.08×, the 2D demo 1.05×.\n";
