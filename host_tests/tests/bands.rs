@@ -416,11 +416,7 @@ fn the_demo_scene_is_the_same_in_bands_and_on_two_threads() {
     let w = WIDTH as usize;
     for step in steps(12).into_iter().step_by(3) {
         with_scene(step, |scene, bg| {
-            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
-            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
-            scene
-                .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
-                .expect("draws");
+            let px = demo_full_frame(scene, bg);
             for rows in [1, 7, 16, 64, HEIGHT] {
                 let mut band = vec![Rgb565::BLACK; rows as usize * w];
                 let mut out = Collect {
@@ -667,11 +663,7 @@ fn partial_frames(exact: bool) {
                 .expect("partial frame");
             assert_eq!(rows, panel.rows);
             d.clear();
-            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
-            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
-            scene
-                .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
-                .expect("full");
+            let px = demo_full_frame(scene, bg);
             let diff = px.iter().zip(&panel.pixels).filter(|(a, b)| a != b).count();
             assert_eq!(diff, 0, "{step:?}: the panel differs from the full render");
             shipped.push((step, rows));
@@ -784,11 +776,7 @@ fn a_checked_scene_sizes_other_workspaces_by_its_count() {
     use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
     with_scene(steps(1)[0], |scene, bg| {
         let w = WIDTH as usize;
-        let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
-        let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
-        scene
-            .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
-            .expect("draws");
+        let px = demo_full_frame(scene, bg);
         let most = scene.check().expect("fits") as usize;
         let mut short = Work::new(most - 1);
         let mut ws = short.workspace();
@@ -827,11 +815,7 @@ fn bands_after_long_skips_are_the_full_frames_rows() {
     let w = WIDTH as usize;
     for step in steps(12).into_iter().step_by(4) {
         with_scene(step, |scene, bg| {
-            let mut px = vec![Rgb565::BLACK; w * HEIGHT as usize];
-            let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
-            scene
-                .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
-                .expect("draws");
+            let px = demo_full_frame(scene, bg);
             let most = scene.check().expect("fits") as usize;
             let mut work = Work::new(most);
             let mut band = vec![Rgb565::BLACK; 7 * w];
@@ -861,4 +845,18 @@ fn bands_after_long_skips_are_the_full_frames_rows() {
         })
         .expect("demo scene");
     }
+}
+
+/// The demo scene's full frame, drawn into a frame buffer.
+fn demo_full_frame<const D: usize, const M: usize>(
+    scene: &mut scanvert::Scene<'_, D, M>,
+    bg: Rgb565,
+) -> Vec<Rgb565> {
+    use scanvert_sim::demo::{HEIGHT, WIDTH};
+    let mut px = vec![Rgb565::BLACK; WIDTH as usize * HEIGHT as usize];
+    let mut fb = FrameBuffer::new(&mut px, WIDTH, HEIGHT).expect("fb");
+    scene
+        .draw(Resolve::default(), Some(bg), DEFAULT_FONT, &mut fb)
+        .expect("draws");
+    px
 }

@@ -289,6 +289,16 @@ impl Stepper for Edge {
 mod tests {
     use super::*;
 
+    /// A xorshift generator from `seed`: each call a value in `-m..m`.
+    fn xorshift(mut s: u32) -> impl FnMut(i32) -> i32 {
+        move |m| {
+            s ^= s << 13;
+            s ^= s >> 17;
+            s ^= s << 5;
+            (s % (2 * m as u32)) as i32 - m
+        }
+    }
+
     /// `⌈x − ½⌉` in pixels at row `j`, straight from the definition with
     /// rationals over a common denominator.
     fn direct(a: Vertex, b: Vertex, j: i32) -> i32 {
@@ -345,13 +355,7 @@ mod tests {
 
     #[test]
     fn advance_equals_steps() {
-        let mut s = 0x9e37_79b9u32;
-        let mut rnd = |m: i32| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            (s % (2 * m as u32)) as i32 - m
-        };
+        let mut rnd = xorshift(0x9e37_79b9u32);
         for _ in 0..400 {
             let a = Vertex::from_bits(rnd(32767) as i16, rnd(32767) as i16);
             let b = Vertex::from_bits(rnd(32767) as i16, rnd(32767) as i16);
@@ -394,13 +398,7 @@ mod tests {
 
     #[test]
     fn stepper_matches_direct_formula() {
-        let mut s = 0x1234_5678u32;
-        let mut rnd = |m: i32| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            (s % (2 * m as u32)) as i32 - m
-        };
+        let mut rnd = xorshift(0x1234_5678u32);
         for _ in 0..3000 {
             let a = Vertex::from_bits(rnd(3000) as i16, rnd(3000) as i16);
             let b = Vertex::from_bits(rnd(3000) as i16, rnd(3000) as i16);

@@ -1925,35 +1925,58 @@ mod tests {
         run_scene_many_from(polys, mode, (MANY, CHAIN_FROM))
     }
 
+    /// A store's arrays for the tests' scenes of up to 64 triangles.
+    struct StoreArrays {
+        traps: [Trapezoid; 256],
+        faces: [Face; 64],
+        segs: [Segment; 1],
+        rows: [u16; H as usize],
+        edges: [EdgeSlot; 4],
+    }
+
+    impl StoreArrays {
+        fn new() -> Self {
+            StoreArrays {
+                traps: [Trapezoid::EMPTY; 256],
+                faces: [Face::EMPTY; 64],
+                segs: [Segment::EMPTY; 1],
+                rows: [0; H as usize],
+                edges: [EdgeSlot::EMPTY; 4],
+            }
+        }
+
+        /// A `W` × `H` store holding `polys`, each a colour of its own so
+        /// that no two faces merge.
+        fn store(&mut self, polys: &[[Vertex3; 3]]) -> TrapezoidStore<'_> {
+            let mut store = TrapezoidStore::new(
+                StoreMemory {
+                    trapezoids: &mut self.traps,
+                    faces: &mut self.faces,
+                    segments: &mut self.segs,
+                    rows: &mut self.rows,
+                    edges: &mut self.edges,
+                },
+                W,
+                H,
+            )
+            .unwrap();
+            let clip = ClipRect::full(W, H);
+            for (k, p) in polys.iter().enumerate() {
+                store
+                    .add_polygon(0, *p, Rgb888::new(k as u8, 0, 1), &clip)
+                    .unwrap();
+            }
+            store
+        }
+    }
+
     fn run_scene_many_from(
         polys: &[[Vertex3; 3]],
         mode: Resolve,
         many: (usize, usize),
     ) -> VisibleStats {
-        let mut traps = [Trapezoid::EMPTY; 256];
-        let mut faces = [Face::EMPTY; 64];
-        let mut segs = [Segment::EMPTY; 1];
-        let mut rows = [0u16; H as usize];
-        let mut edges = [EdgeSlot::EMPTY; 4];
-        let mut store = TrapezoidStore::new(
-            StoreMemory {
-                trapezoids: &mut traps,
-                faces: &mut faces,
-                segments: &mut segs,
-                rows: &mut rows,
-                edges: &mut edges,
-            },
-            W,
-            H,
-        )
-        .unwrap();
-        let clip = ClipRect::full(W, H);
-        for (k, p) in polys.iter().enumerate() {
-            // Distinct colours, so that no two faces merge.
-            store
-                .add_polygon(0, *p, Rgb888::new(k as u8, 0, 1), &clip)
-                .unwrap();
-        }
+        let mut mem = StoreArrays::new();
+        let store = mem.store(polys);
         let want = brute(polys, &store);
         // Face slot → polygon number.
         let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
@@ -2224,29 +2247,8 @@ mod tests {
             let polys: [[Vertex3; 3]; 8] =
                 core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
             let polys = &polys[..n];
-            let mut traps = [Trapezoid::EMPTY; 256];
-            let mut faces = [Face::EMPTY; 64];
-            let mut segs = [Segment::EMPTY; 1];
-            let mut rows = [0u16; H as usize];
-            let mut edges = [EdgeSlot::EMPTY; 4];
-            let mut store = TrapezoidStore::new(
-                StoreMemory {
-                    trapezoids: &mut traps,
-                    faces: &mut faces,
-                    segments: &mut segs,
-                    rows: &mut rows,
-                    edges: &mut edges,
-                },
-                W,
-                H,
-            )
-            .unwrap();
-            let clip = ClipRect::full(W, H);
-            for (k, p) in polys.iter().enumerate() {
-                store
-                    .add_polygon(0, *p, Rgb888::new(k as u8, 0, 1), &clip)
-                    .unwrap();
-            }
+            let mut mem = StoreArrays::new();
+            let store = mem.store(polys);
             let (mut a1, mut a2) = ([Active::EMPTY; 64], [Active::EMPTY; 64]);
             let (mut r1, mut r2) = ([Run::EMPTY; W as usize], [Run::EMPTY; W as usize]);
             let mut ws = Workspace::new(&mut a1, &mut r1);
