@@ -1886,6 +1886,34 @@ mod tests {
 
     /// The winner at each pixel by brute force over the store's faces:
     /// the polygon with the smallest exact depth, ties to the lower key.
+    /// Asserts that row `y`'s `runs` show the polygons of `want` (the
+    /// faces' polygons by `poly_of`); returns the columns they cover.
+    fn assert_row(
+        y: u16,
+        runs: &[Run],
+        want: &[u16],
+        poly_of: impl Fn(u16) -> u16,
+        what: &dyn core::fmt::Debug,
+    ) -> i32 {
+        let mut x = 0;
+        for r in runs {
+            let got = if r.is_background() {
+                Run::BACKGROUND
+            } else {
+                poly_of(r.ink())
+            };
+            for i in x..x + r.len() as i32 {
+                assert_eq!(
+                    got,
+                    want[(y as i32 * W as i32 + i) as usize],
+                    "pixel ({i}, {y}) of {what:?}"
+                );
+            }
+            x += r.len() as i32;
+        }
+        x
+    }
+
     fn brute(polys: &[[Vertex3; 3]], store: &TrapezoidStore<'_>) -> [u16; (W * H) as usize] {
         let mut out = [Run::BACKGROUND; (W * H) as usize];
         for j in 0..H as i32 {
@@ -1986,22 +2014,7 @@ mod tests {
             .check(&store)
             .unwrap();
         let check = |y: u16, runs: &[Run]| {
-            let mut x = 0;
-            for r in runs {
-                let got = if r.is_background() {
-                    Run::BACKGROUND
-                } else {
-                    poly_of(r.ink())
-                };
-                for i in x..x + r.len() as i32 {
-                    assert_eq!(
-                        got,
-                        want[(y as i32 * W as i32 + i) as usize],
-                        "{mode:?} pixel ({i}, {y}) of {polys:?}"
-                    );
-                }
-                x += r.len() as i32;
-            }
+            let x = assert_row(y, runs, &want, poly_of, &(mode, polys));
             assert_eq!(x, W as i32);
             Ok::<(), ()>(())
         };
@@ -2284,18 +2297,7 @@ mod tests {
                 let mut sweep = Sweep::new(&mut ws, Resolve::Crossing);
                 sweep.skip(&store, &mut ws, from).unwrap();
                 let check = |y: u16, runs: &[Run]| {
-                    let mut x = 0;
-                    for r in runs {
-                        let got = if r.is_background() {
-                            Run::BACKGROUND
-                        } else {
-                            poly_of(r.ink())
-                        };
-                        for i in x..x + r.len() as i32 {
-                            assert_eq!(got, want[(y as i32 * W as i32 + i) as usize]);
-                        }
-                        x += r.len() as i32;
-                    }
+                    assert_row(y, runs, &want, poly_of, &(round, from));
                     Ok::<(), ()>(())
                 };
                 let mut band_runs = [Run::EMPTY; W as usize];
