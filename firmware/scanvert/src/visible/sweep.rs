@@ -920,6 +920,12 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     y: u16,
     x: u32,
     runs: u32,
+    /// The row's runs not handed to the target (the background left as
+    /// it is, past the target's width) and the pixels of those inside
+    /// it: the row's spans and pixels are counted from them in
+    /// [`RowOut::finish`], not run by run.
+    skipped: u32,
+    skipped_px: u32,
     counts: Counts,
     error: Option<T::Error>,
 }
@@ -936,6 +942,8 @@ impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
             y: 0,
             x: 0,
             runs: 0,
+            skipped: 0,
+            skipped_px: 0,
             counts: Counts::default(),
             error: None,
         }
@@ -954,6 +962,8 @@ where
         self.y = y;
         self.x = 0;
         self.runs = 0;
+        self.skipped = 0;
+        self.skipped_px = 0;
     }
 
     #[inline(always)]
@@ -964,13 +974,18 @@ where
         self.x += len as u32;
         let (w, h) = self.size;
         if self.y as u32 >= h || x0 >= w || self.error.is_some() {
+            self.skipped += 1;
             return;
         }
         let x1 = self.x.min(w);
         let c = if color == BACKGROUND {
             match self.background {
                 Some(c) => c,
-                None => return,
+                None => {
+                    self.skipped += 1;
+                    self.skipped_px += x1 - x0;
+                    return;
+                }
             }
         } else {
             T::Color::from_rgb888(Rgb888::new(
@@ -984,21 +999,25 @@ where
             x0: x0 as u16,
             x1: x1 as u16,
         };
-        match self.target.fill_span(span, c) {
-            Ok(()) => {
-                self.counts.spans += 1;
-                self.counts.pixels += x1 - x0;
-            }
-            Err(e) => self.error = Some(e),
+        if let Err(e) = self.target.fill_span(span, c) {
+            self.error = Some(e);
         }
     }
 
+    /// Counts the row's spans and pixels: every run that was not skipped
+    /// went to the target, and together they cover the row's pixels
+    /// inside the target but the skipped ones.
     #[inline]
     fn finish(&mut self) -> Result<u32, T::Error> {
-        match self.error.take() {
-            Some(e) => Err(e),
-            None => Ok(self.runs),
+        if let Some(e) = self.error.take() {
+            return Err(e);
         }
+        let (w, h) = self.size;
+        if (self.y as u32) < h {
+            self.counts.spans += self.runs - self.skipped;
+            self.counts.pixels += self.x.min(w) - self.skipped_px;
+        }
+        Ok(self.runs)
     }
 }
 
