@@ -2069,6 +2069,77 @@ mod tests {
         stats
     }
 
+    /// A target that checks the guarantees of every span it is handed,
+    /// counts them, and fails at its `fail_at`-th span.
+    struct Recorder {
+        size: (u16, u16),
+        counts: Counts,
+        fail_at: u32,
+    }
+
+    impl SpanTarget for Recorder {
+        type Color = Rgb888;
+        type Error = u32;
+
+        fn size(&self) -> (u16, u16) {
+            self.size
+        }
+
+        fn fill_span(&mut self, span: Span, _color: Rgb888) -> Result<(), u32> {
+            assert!(span.x0 < span.x1 && span.x1 <= self.size.0, "{span:?}");
+            assert!(span.y < self.size.1, "{span:?}");
+            if self.counts.spans + 1 == self.fail_at {
+                return Err(span.y as u32);
+            }
+            self.counts.span((span.x1 - span.x0) as u32);
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn draw_counts_the_spans_and_pixels_it_hands_the_target() {
+        let mut rng = Rng(0x5eed_0011);
+        let mut mem = StoreArrays::new();
+        let polys: [[Vertex3; 3]; 8] =
+            core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
+        let store = mem.store(&polys);
+        let sizes = [(W, H), (W - 7, H - 5), (1, 1), (W + 9, H + 2)];
+        for (size, background) in sizes
+            .into_iter()
+            .flat_map(|s| [(s, None), (s, Some(Rgb888::new(1, 2, 3)))])
+        {
+            let mut active = [Active::EMPTY; 64];
+            let mut runs = [Run::EMPTY; W as usize];
+            let mut ws = Workspace::new(&mut active, &mut runs);
+            let mut target = Recorder {
+                size,
+                counts: Counts::default(),
+                fail_at: 0,
+            };
+            let (_, counts) =
+                draw(&store, &mut ws, Resolve::Crossing, &mut target, background).unwrap();
+            assert_eq!(counts, target.counts, "{size:?} {background:?}");
+            assert!(counts.spans > 0 || size == (1, 1), "{size:?}");
+            if background.is_some() {
+                let (w, h) = (size.0.min(W) as u32, size.1.min(H) as u32);
+                assert_eq!(counts.pixels, w * h, "{size:?}");
+            }
+            if counts.spans == 0 {
+                continue;
+            }
+            // A target that fails part-way: the error, with the row.
+            let fail_at = counts.spans / 2 + 1;
+            let mut failing = Recorder {
+                size,
+                counts: Counts::default(),
+                fail_at,
+            };
+            let got = draw(&store, &mut ws, Resolve::Crossing, &mut failing, background);
+            assert!(matches!(got, Err(VisibleError::Sink(_))), "{got:?}");
+            assert_eq!(failing.counts.spans, fail_at - 1);
+        }
+    }
+
     fn random_tri(rng: &mut Rng, zs: (i32, i32)) -> [Vertex3; 3] {
         let mut t = [Vertex3::default(); 3];
         for p in t.iter_mut() {
