@@ -140,6 +140,7 @@ use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
 use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
+#[cfg(test)]
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How an intersecting span is subdivided.
@@ -187,6 +188,8 @@ struct Entry {
     z: i32,
     zx: i32,
     zy: i32,
+    /// The face's colour as a [`list_word`](crate::color::list_word),
+    /// converted to the target's pixel once per run without shifts.
     color: u32,
     face: u16,
     x0: u16,
@@ -251,9 +254,9 @@ impl Entry {
     /// rebuilt from their ends, its face's depth and colour.
     #[inline]
     fn from(t: &Trapezoid, store: &TrapezoidStore<'_>) -> Entry {
-        let (d, color) = store
-            .face(t.face)
-            .map_or((Default::default(), 0), |f| (f.depth(), f.color_bits()));
+        let (d, color) = store.face(t.face).map_or((Default::default(), 0), |f| {
+            (f.depth(), crate::color::list_word(f.color_bits()))
+        });
         Entry {
             left: t.left(),
             right: t.right(),
@@ -988,11 +991,7 @@ where
                 }
             }
         } else {
-            T::Color::from_rgb888(Rgb888::new(
-                (color >> 16) as u8,
-                (color >> 8) as u8,
-                color as u8,
-            ))
+            T::Color::from_list_word(color)
         };
         let span = Span {
             y: self.y,
