@@ -456,12 +456,7 @@ impl Plane {
                         zy: 0,
                     };
                 }
-                let (a, b) = (a as i64, b as i64);
-                let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c);
-                let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c);
-                let n = (a * dx as i64 + b * dy as i64) << Z_FRAC_BITS;
-                let at = ((z0 as i64) << Z_FRAC_BITS) + round_div64(n, c);
-                (zx as i32, zy as i32, at as i32)
+                depth_narrow((a, b, c), (dx, dy), z0)
             }
             _ => self.depth_wide(dx, dy),
         };
@@ -503,78 +498,136 @@ fn round_div(n: i128, c: i64) -> i128 {
     }
 }
 
+/// [`Plane::depth`]'s slopes and anchor depth (wrapped) in its usual
+/// case, `|a|, |b| < 2³¹` and `0 < c < 2³¹`: three divisions by `c` in
+/// `i64`, the divisor normalised once. Out of line, so that the planes
+/// parallel to the screen do not pay for its registers.
+#[inline(never)]
+fn depth_narrow((a, b, c): (i32, i32, u32), (dx, dy): (i32, i32), z0: i32) -> (i32, i32, i32) {
+    let (a, b) = (a as i64, b as i64);
+    let d = Divisor::new(2 * c);
+    let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c, &d);
+    let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c, &d);
+    let n = (a * dx as i64 + b * dy as i64) << Z_FRAC_BITS;
+    let at = ((z0 as i64) << Z_FRAC_BITS) + round_div64(n, c, &d);
+    (zx as i32, zy as i32, at as i32)
+}
+
 /// `n / c` rounded to the nearest integer (halves up), for
 /// `|n| ≤ 2⁶² − 2³¹` and `0 < c < 2³¹`: [`round_div`] in `i64`,
-/// `⌊(2n + c) / 2c⌋`, where `|2n + c| < 2⁶³` and `2c < 2³²`.
-#[inline]
-fn round_div64(n: i64, c: u32) -> i64 {
-    floor_div(2 * n + c as i64, 2 * c)
+/// `⌊(2n + c) / 2c⌋`, where `|2n + c| < 2⁶³` and `2c < 2³²`. `d` is
+/// [`Divisor::new`]`(2c)`, made once for the several divisions by one `c`.
+#[inline(always)]
+fn round_div64(n: i64, c: u32, d: &Divisor) -> i64 {
+    d.floor_div(2 * n + c as i64)
 }
 
-/// `⌊n / d⌋` for `d > 0` and `|n| < 2⁶³`: one 32-bit division when both
-/// fit in `i32`; else, when the quotient's magnitude fits in `u32`, two
-/// steps of 16-bit digits ([`div_64_32`]) instead of the library's
-/// 64-bit division (a loop of about 150 instructions on a 32-bit core).
-#[inline]
+/// `⌊n / d⌋` for `d > 0` and `|n| < 2⁶³` ([`Divisor::floor_div`]).
+#[cfg(test)]
 fn floor_div(n: i64, d: u32) -> i64 {
-    if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
-        return n.div_euclid(d) as i64;
-    }
-    // ⌊n / d⌋ = −⌈−n / d⌉ = −⌊(−n + d − 1) / d⌋ for n < 0; |n| + d − 1
-    // is below 2⁶³ + 2³², within `u64`.
-    let m = if n < 0 {
-        n.unsigned_abs() + (d as u64 - 1)
-    } else {
-        n as u64
-    };
-    let q = if ((m >> 32) as u32) < d {
-        div_64_32(m, d) as u64
-    } else {
-        m / d as u64
-    };
-    if n < 0 {
-        -(q as i64)
-    } else {
-        q as i64
-    }
+    Divisor::new(d).floor_div(n)
 }
 
-/// `u / v` for `v > 0` and `u < v·2³²` (so the quotient fits in `u32`),
-/// exactly, by long division in two 16-bit digits, each estimated with
-/// one 32-bit division and corrected at most twice (Knuth's algorithm D
-/// for a two-digit divisor, normalised so that its top bit is set).
+/// `u / v` for `v > 0` and `u < v·2³²` ([`Divisor::div_64_32`]).
+#[cfg(test)]
 fn div_64_32(u: u64, v: u32) -> u32 {
-    debug_assert!(v > 0 && ((u >> 32) as u32) < v);
-    const B: u32 = 1 << 16;
-    let s = v.leading_zeros();
-    let v = v << s;
-    let (vn1, vn0) = (v >> 16, v & 0xffff);
-    // The dividend shifted left by s: u < v·2³² keeps it below
-    // (v·2ˢ)·2³² ≤ 2⁶⁴, so nothing is lost, and its top 32 bits `un32`
-    // are below the normalised v.
-    let un = u << s;
-    let (un32, un10) = ((un >> 32) as u32, un as u32);
-    let (un1, un0) = (un10 >> 16, un10 & 0xffff);
-    // A digit q̂ = ⌊top / vn1⌋ with remainder r̂, lowered while it is too
-    // big; r̂ < B keeps r̂·B + digit within `u32`, and q̂ < B (checked
-    // first) keeps q̂·vn0 within it.
-    let digit = |top: u32, next: u32| -> u32 {
-        let mut q = top / vn1;
-        let mut r = top - q * vn1;
-        while q >= B || q * vn0 > (r << 16 | next) {
-            q -= 1;
-            r += vn1;
-            if r >= B {
-                break;
-            }
+    Divisor::new(v).div_64_32(u)
+}
+
+/// A divisor `d > 0`, normalised once (shifted left until its top bit is
+/// set, and split into 16-bit digits) for several long divisions by it.
+#[derive(Clone, Copy, Debug)]
+struct Divisor {
+    d: u32,
+    /// The shift that normalises `d`.
+    s: u32,
+    /// `d << s`, and its high and low 16-bit digits.
+    v: u32,
+    vn1: u32,
+    vn0: u32,
+}
+
+impl Divisor {
+    #[inline(always)]
+    fn new(d: u32) -> Divisor {
+        debug_assert!(d > 0);
+        let s = d.leading_zeros();
+        let v = d << s;
+        Divisor {
+            d,
+            s,
+            v,
+            vn1: v >> 16,
+            vn0: v & 0xffff,
         }
-        q
-    };
-    let q1 = digit(un32, un1);
-    // The remainder after the first digit is below v: exact modulo 2³².
-    let un21 = (un32 << 16 | un1).wrapping_sub(q1.wrapping_mul(v));
-    let q0 = digit(un21, un0);
-    q1 << 16 | q0
+    }
+
+    /// `⌊n / d⌋` for `|n| < 2⁶³`: one 32-bit division when both fit in
+    /// `i32`; else, when the quotient's magnitude fits in `u32`, two steps
+    /// of 16-bit digits ([`Divisor::div_64_32`]) instead of the library's
+    /// 64-bit division (a loop of about 150 instructions on a 32-bit
+    /// core).
+    #[inline(always)]
+    fn floor_div(&self, n: i64) -> i64 {
+        let d = self.d;
+        if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
+            return n.div_euclid(d) as i64;
+        }
+        // ⌊n / d⌋ = −⌈−n / d⌉ = −⌊(−n + d − 1) / d⌋ for n < 0; |n| + d − 1
+        // is below 2⁶³ + 2³², within `u64`.
+        let m = if n < 0 {
+            n.unsigned_abs() + (d as u64 - 1)
+        } else {
+            n as u64
+        };
+        let q = if ((m >> 32) as u32) < d {
+            self.div_64_32(m) as u64
+        } else {
+            m / d as u64
+        };
+        if n < 0 {
+            -(q as i64)
+        } else {
+            q as i64
+        }
+    }
+
+    /// `u / d` for `u < d·2³²` (so the quotient fits in `u32`), exactly,
+    /// by long division in two 16-bit digits, each estimated with one
+    /// 32-bit division and corrected at most twice (Knuth's algorithm D
+    /// for a two-digit divisor, normalised so that its top bit is set).
+    #[inline(always)]
+    fn div_64_32(&self, u: u64) -> u32 {
+        debug_assert!(((u >> 32) as u32) < self.d);
+        const B: u32 = 1 << 16;
+        let (s, v, vn1, vn0) = (self.s, self.v, self.vn1, self.vn0);
+        // The dividend shifted left by s: u < d·2³² keeps it below
+        // (d·2ˢ)·2³² ≤ 2⁶⁴, so nothing is lost, and its top 32 bits `un32`
+        // are below the normalised v.
+        let un = u << s;
+        let (un32, un10) = ((un >> 32) as u32, un as u32);
+        let (un1, un0) = (un10 >> 16, un10 & 0xffff);
+        // A digit q̂ = ⌊top / vn1⌋ with remainder r̂, lowered while it is too
+        // big; r̂ < B keeps r̂·B + digit within `u32`, and q̂ < B (checked
+        // first) keeps q̂·vn0 within it.
+        let digit = |top: u32, next: u32| -> u32 {
+            let mut q = top / vn1;
+            let mut r = top - q * vn1;
+            while q >= B || q * vn0 > (r << 16 | next) {
+                q -= 1;
+                r += vn1;
+                if r >= B {
+                    break;
+                }
+            }
+            q
+        };
+        let q1 = digit(un32, un1);
+        // The remainder after the first digit is below v: exact modulo 2³².
+        let un21 = (un32 << 16 | un1).wrapping_sub(q1.wrapping_mul(v));
+        let q0 = digit(un21, un0);
+        q1 << 16 | q0
+    }
 }
 
 /// The fixed-point depth of a plane: `Z̃(i, j) = z + i·zx + j·zy`
@@ -1981,7 +2034,7 @@ mod tests {
             let big = rng.next_u64() >> (3 + rng.below(61));
             for n in [big as i64, -(big as i64), 0, 1, -1, c as i64, -(c as i64)] {
                 assert_eq!(
-                    round_div64(n, c) as i128,
+                    round_div64(n, c, &Divisor::new(2 * c)) as i128,
                     round_div(n as i128, c as i64),
                     "{n} / {c}"
                 );
@@ -1998,7 +2051,10 @@ mod tests {
                 (1 << 32) - 1,
                 -(1 << 32),
             ] {
-                assert_eq!(round_div64(n, c) as i128, round_div(n as i128, c as i64));
+                assert_eq!(
+                    round_div64(n, c, &Divisor::new(2 * c)) as i128,
+                    round_div(n as i128, c as i64)
+                );
             }
         }
     }
