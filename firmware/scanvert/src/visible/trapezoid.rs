@@ -470,7 +470,9 @@ impl Plane {
 
     /// [`Plane::depth`]'s slopes and anchor depth (wrapped) in `i128`, for
     /// any plane: numerators below 2⁸², so the doubling in `round_div`
-    /// cannot overflow.
+    /// cannot overflow. Out of line: inlined, its `i128` work gave
+    /// [`Plane::depth`] a frame of nearly 400 bytes and more to save.
+    #[inline(never)]
     fn depth_wide(&self, dx: i32, dy: i32) -> (i32, i32, i32) {
         let (a, b, c) = (self.a as i128, self.b as i128, self.c);
         let s = 1i128 << Z_FRAC_BITS;
