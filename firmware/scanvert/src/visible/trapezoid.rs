@@ -147,12 +147,13 @@
 //! ends: see [`Trapezoid`]); nothing is divided per row. The polygon's
 //! three are in `i64` arithmetic whenever `|a|`, `|b|`, `c < 2³¹` (for a
 //! simple polygon they are at most twice the areas of its projections,
-//! so any up to 512 px across, whatever its depths: 2·2¹³·2¹⁶): one
-//! 32-bit division when the numbers fit, else a long division of two
-//! 16-bit digits (two 32-bit divisions) while the quotient fits in 32
-//! bits, and the library's 64-bit division (a loop of about 150
-//! instructions on a 32-bit core) only past that; `i128` only for larger
-//! normals. The plane keeps its first vertex, not `d`: every exact use
+//! so any up to 512 px across, whatever its depths: 2·2¹³·2¹⁶): the
+//! divisor `2c` is normalised once and its reciprocal found by one long
+//! division of two 16-bit digits (two 32-bit divisions), after which each
+//! of the three, while its quotient fits in 32 bits, is one 32 × 32 →
+//! 64-bit multiply-add and at most two corrections; the library's 64-bit
+//! division (a loop of about 150 instructions on a 32-bit core) only past
+//! that; `i128` only for larger normals. The plane keeps its first vertex, not `d`: every exact use
 //! works relative to it, so making a plane multiplies nothing in `i128`.
 
 use crate::fixed::{ceil_px, Vertex, Vertex3, HALF, ONE};
@@ -456,12 +457,7 @@ impl Plane {
                         zy: 0,
                     };
                 }
-                let (a, b) = (a as i64, b as i64);
-                let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c);
-                let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c);
-                let n = (a * dx as i64 + b * dy as i64) << Z_FRAC_BITS;
-                let at = ((z0 as i64) << Z_FRAC_BITS) + round_div64(n, c);
-                (zx as i32, zy as i32, at as i32)
+                depth_narrow((a, b, c), (dx, dy), z0)
             }
             _ => self.depth_wide(dx, dy),
         };
@@ -474,7 +470,9 @@ impl Plane {
 
     /// [`Plane::depth`]'s slopes and anchor depth (wrapped) in `i128`, for
     /// any plane: numerators below 2⁸², so the doubling in `round_div`
-    /// cannot overflow.
+    /// cannot overflow. Out of line: inlined, its `i128` work gave
+    /// [`Plane::depth`] a frame of nearly 400 bytes and more to save.
+    #[inline(never)]
     fn depth_wide(&self, dx: i32, dy: i32) -> (i32, i32, i32) {
         let (a, b, c) = (self.a as i128, self.b as i128, self.c);
         let s = 1i128 << Z_FRAC_BITS;
@@ -503,72 +501,157 @@ fn round_div(n: i128, c: i64) -> i128 {
     }
 }
 
+/// [`Plane::depth`]'s slopes and anchor depth (wrapped) in its usual
+/// case, `|a|, |b| < 2³¹` and `0 < c < 2³¹`: three divisions by `c` in
+/// `i64`, the divisor normalised once. Out of line, so that the planes
+/// parallel to the screen do not pay for its registers.
+#[inline(never)]
+fn depth_narrow((a, b, c): (i32, i32, u32), (dx, dy): (i32, i32), z0: i32) -> (i32, i32, i32) {
+    let (a, b) = (a as i64, b as i64);
+    let d = Divisor::new(2 * c);
+    let zx = round_div64(-(a << (Z_FRAC_BITS + 4)), c, &d);
+    let zy = round_div64(-(b << (Z_FRAC_BITS + 4)), c, &d);
+    let n = (a * dx as i64 + b * dy as i64) << Z_FRAC_BITS;
+    let at = ((z0 as i64) << Z_FRAC_BITS) + round_div64(n, c, &d);
+    (zx as i32, zy as i32, at as i32)
+}
+
 /// `n / c` rounded to the nearest integer (halves up), for
 /// `|n| ≤ 2⁶² − 2³¹` and `0 < c < 2³¹`: [`round_div`] in `i64`,
-/// `⌊(2n + c) / 2c⌋`, where `|2n + c| < 2⁶³` and `2c < 2³²`.
-#[inline]
-fn round_div64(n: i64, c: u32) -> i64 {
-    floor_div(2 * n + c as i64, 2 * c)
+/// `⌊(2n + c) / 2c⌋`, where `|2n + c| < 2⁶³` and `2c < 2³²`. `d` is
+/// [`Divisor::new`]`(2c)`, made once for the several divisions by one `c`.
+#[inline(always)]
+fn round_div64(n: i64, c: u32, d: &Divisor) -> i64 {
+    d.floor_div(2 * n + c as i64)
 }
 
-/// `⌊n / d⌋` for `d > 0` and `|n| < 2⁶³`: one 32-bit division when both
-/// fit in `i32`; else, when the quotient's magnitude fits in `u32`, two
-/// steps of 16-bit digits ([`div_64_32`]) instead of the library's
-/// 64-bit division (a loop of about 150 instructions on a 32-bit core).
-#[inline]
+/// `⌊n / d⌋` for `d > 0` and `|n| < 2⁶³` ([`Divisor::floor_div`]).
+#[cfg(test)]
 fn floor_div(n: i64, d: u32) -> i64 {
-    if let (Ok(n), Ok(d)) = (i32::try_from(n), i32::try_from(d)) {
-        return n.div_euclid(d) as i64;
+    Divisor::new(d).floor_div(n)
+}
+
+/// `u / v` for `v > 0` and `u < v·2³²` ([`Divisor::div_64_32`]).
+#[cfg(test)]
+fn div_64_32(u: u64, v: u32) -> u32 {
+    Divisor::new(v).div_64_32(u)
+}
+
+/// A divisor `d > 0` made ready once for several long divisions by it:
+/// normalised (shifted left by `s` until its top bit is set, `v`), with
+/// its reciprocal `inv = ⌊(2⁶⁴ − 1) / v⌋ − 2³²`, so that each division
+/// is a multiply and at most two corrections ([`Divisor::div_64_32`]).
+#[derive(Clone, Copy, Debug)]
+struct Divisor {
+    d: u32,
+    s: u32,
+    v: u32,
+    inv: u32,
+}
+
+impl Divisor {
+    #[inline(always)]
+    fn new(d: u32) -> Divisor {
+        debug_assert!(d > 0);
+        let s = d.leading_zeros() & 31;
+        let v = d << s;
+        // 2⁶⁴ − 1 − 2³²·v = (2³² − 1 − v)·2³² + 2³² − 1, whose top word
+        // !v is below v (v ≥ 2³¹): the quotient by v fits in `u32`.
+        let inv = knuth_64_32(u64::from(!v) << 32 | 0xffff_ffff, v);
+        Divisor { d, s, v, inv }
     }
-    // ⌊n / d⌋ = −⌈−n / d⌉ = −⌊(−n + d − 1) / d⌋ for n < 0; |n| + d − 1
-    // is below 2⁶³ + 2³², within `u64`.
-    let m = if n < 0 {
-        n.unsigned_abs() + (d as u64 - 1)
-    } else {
-        n as u64
-    };
-    let q = if ((m >> 32) as u32) < d {
-        div_64_32(m, d) as u64
-    } else {
-        m / d as u64
-    };
-    if n < 0 {
-        -(q as i64)
-    } else {
-        q as i64
+
+    /// `⌊n / d⌋` for `|n| < 2⁶³`: when the quotient's magnitude fits in
+    /// `u32`, one step of [`Divisor::div_64_32`]; else the library's
+    /// 64-bit division (a loop of about 150 instructions on a 32-bit
+    /// core), for quotients past 2³² (planes nearly edge-on).
+    #[inline(always)]
+    fn floor_div(&self, n: i64) -> i64 {
+        let d = self.d;
+        // ⌊n / d⌋ = −⌈−n / d⌉ = −⌊(−n + d − 1) / d⌋ for n < 0; |n| + d − 1
+        // is below 2⁶³ + 2³², within `u64`.
+        let m = if n < 0 {
+            n.unsigned_abs() + (d as u64 - 1)
+        } else {
+            n as u64
+        };
+        let q = if ((m >> 32) as u32) < d {
+            self.div_64_32(m) as u64
+        } else {
+            m / d as u64
+        };
+        if n < 0 {
+            -(q as i64)
+        } else {
+            q as i64
+        }
+    }
+
+    /// `u / d` for `u < d·2³²` (so the quotient fits in `u32`), exactly:
+    /// `u` shifted by `s` (nothing lost, and its top word `u₁` below `v`),
+    /// the quotient estimated as the top word of `inv·u₁ + u`, plus one,
+    /// then corrected by the remainder: down once when it wrapped above
+    /// the estimate's low word, up once when it is still `v` or more. The
+    /// estimate is never more than one away after the first step, so the
+    /// two steps make it exact (division by an invariant integer with a
+    /// precomputed reciprocal).
+    #[inline(always)]
+    fn div_64_32(&self, u: u64) -> u32 {
+        debug_assert!(((u >> 32) as u32) < self.d);
+        let (s, v) = (self.s, self.v);
+        let (hi, lo) = ((u >> 32) as u32, u as u32);
+        // `u << s` word by word: `lo >> 1 >> (31 − s)` is `lo >> (32 − s)`
+        // for 0 < s < 32 and 0 for s = 0.
+        let u1 = hi << s | (lo >> 1) >> (31 - s);
+        let u0 = lo << s;
+        // inv·u₁ + u₁·2³² + u₀ = u₁·⌊(2⁶⁴ − 1) / v⌋ + u₀ < 2⁶⁴ for u₁ < v.
+        let q = (self.inv as u64 * u1 as u64).wrapping_add((u1 as u64) << 32 | u0 as u64);
+        let (mut q1, q0) = (((q >> 32) as u32).wrapping_add(1), q as u32);
+        let mut r = u0.wrapping_sub(q1.wrapping_mul(v));
+        if r > q0 {
+            q1 = q1.wrapping_sub(1);
+            r = r.wrapping_add(v);
+        }
+        if r >= v {
+            q1 = q1.wrapping_add(1);
+        }
+        q1
     }
 }
 
-/// `u / v` for `v > 0` and `u < v·2³²` (so the quotient fits in `u32`),
-/// exactly, by long division in two 16-bit digits, each estimated with
-/// one 32-bit division and corrected at most twice (Knuth's algorithm D
-/// for a two-digit divisor, normalised so that its top bit is set).
-fn div_64_32(u: u64, v: u32) -> u32 {
-    debug_assert!(v > 0 && ((u >> 32) as u32) < v);
+/// `u / v` for `v ≥ 2³¹` (normalised) and `u < v·2³²` (so the quotient
+/// fits in `u32`), exactly, by long division in two 16-bit digits, each
+/// estimated with one 32-bit division and corrected at most twice (Knuth's
+/// algorithm D for a two-digit divisor): [`Divisor::new`]'s reciprocal.
+/// Out of line: inlined, its correction loop was unrolled into more
+/// work than it saves.
+#[inline(never)]
+fn knuth_64_32(u: u64, v: u32) -> u32 {
+    debug_assert!(v >= 1 << 31 && ((u >> 32) as u32) < v);
     const B: u32 = 1 << 16;
-    let s = v.leading_zeros();
-    let v = v << s;
-    let (vn1, vn0) = (v >> 16, v & 0xffff);
-    // The dividend shifted left by s: u < v·2³² keeps it below
-    // (v·2ˢ)·2³² ≤ 2⁶⁴, so nothing is lost, and its top 32 bits `un32`
-    // are below the normalised v.
-    let un = u << s;
-    let (un32, un10) = ((un >> 32) as u32, un as u32);
+    // v's top digit, nonzero: v ≥ 2³¹.
+    let vn1 = core::num::NonZeroU32::new(v >> 16).unwrap_or(core::num::NonZeroU32::MIN);
+    let vn0 = v & 0xffff;
+    let (un32, un10) = ((u >> 32) as u32, u as u32);
     let (un1, un0) = (un10 >> 16, un10 & 0xffff);
     // A digit q̂ = ⌊top / vn1⌋ with remainder r̂, lowered while it is too
-    // big; r̂ < B keeps r̂·B + digit within `u32`, and q̂ < B (checked
-    // first) keeps q̂·vn0 within it.
+    // big, which with v normalised is at most twice; r̂ < B keeps r̂·B +
+    // digit within `u32`, and q̂ < B (checked first) keeps q̂·vn0 within
+    // it. (Written as a loop, the compiler unrolled it into products
+    // for four steps made before the first.)
     let digit = |top: u32, next: u32| -> u32 {
-        let mut q = top / vn1;
-        let mut r = top - q * vn1;
-        while q >= B || q * vn0 > (r << 16 | next) {
-            q -= 1;
-            r += vn1;
-            if r >= B {
-                break;
-            }
+        let too_big = |q: u32, r: u32| q >= B || q * vn0 > (r << 16 | next);
+        let q = top / vn1;
+        let r = top - q * vn1.get();
+        if !too_big(q, r) {
+            return q;
         }
-        q
+        let (q, r) = (q - 1, r + vn1.get());
+        if r < B && too_big(q, r) {
+            q - 1
+        } else {
+            q
+        }
     };
     let q1 = digit(un32, un1);
     // The remainder after the first digit is below v: exact modulo 2³².
@@ -1981,7 +2064,7 @@ mod tests {
             let big = rng.next_u64() >> (3 + rng.below(61));
             for n in [big as i64, -(big as i64), 0, 1, -1, c as i64, -(c as i64)] {
                 assert_eq!(
-                    round_div64(n, c) as i128,
+                    round_div64(n, c, &Divisor::new(2 * c)) as i128,
                     round_div(n as i128, c as i64),
                     "{n} / {c}"
                 );
@@ -1998,7 +2081,10 @@ mod tests {
                 (1 << 32) - 1,
                 -(1 << 32),
             ] {
-                assert_eq!(round_div64(n, c) as i128, round_div(n as i128, c as i64));
+                assert_eq!(
+                    round_div64(n, c, &Divisor::new(2 * c)) as i128,
+                    round_div(n as i128, c as i64)
+                );
             }
         }
     }
