@@ -172,25 +172,28 @@ impl CostModel {
     /// and its error are the test `race_model` of `scanvert-sim`, which
     /// prints the coefficients when run with `--ignored`.
     ///
-    /// Against the 1,992 measured rows the model's error is 4.0 % on
-    /// average and 24.2 % at worst (the 3D lists' rows: 7.8 % and 7.0 % on
-    /// average; the 2D lists' 0.6 % to 4.8 %). Preparing a list is fitted
-    /// to the eight lists' counts, within 18 %. Labels are in none of the
+    /// Against the 1,992 measured rows the model's error is 3.3 % on
+    /// average and 31.6 % at worst (the 3D lists' rows: 7.9 % and 7.0 % on
+    /// average; the 2D lists' 0.1 % to 3.1 %; the worst are W3's first and
+    /// last rows, with 2 to 7 polygons live, which also pay a pass over the
+    /// band table's live bits for its 10,000 polygons, a cost the model has
+    /// no term for). Preparing a list is fitted to the eight lists' counts,
+    /// within 17 %. Labels are in none of the
     /// measured lists, so `label` is 0 and a label costs its spans and
     /// pixels. One instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: -9821,
-        width: 283,
-        span: -1833,
-        pixel: 15,
-        run: 200,
-        entered: 10094,
-        resolved: 6116,
+        row: -10529,
+        width: 287,
+        span: -1896,
+        pixel: 30,
+        run: 461,
+        entered: 10266,
+        resolved: 5327,
         label: 0,
-        live: 7255,
-        frame: 113944,
-        command: 9887,
-        trapezoid: 5415,
+        live: 6227,
+        frame: 113807,
+        command: 10331,
+        trapezoid: 4673,
     };
 
     /// Instructions of a row of `work`, at least 1.
