@@ -140,8 +140,6 @@ use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
 use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
-#[cfg(test)]
-use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How an intersecting span is subdivided.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

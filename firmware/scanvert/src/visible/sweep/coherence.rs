@@ -24,7 +24,7 @@ use crate::raster::clip::ClipRect;
 use crate::visible::store::{Face, Segment, StoreMemory};
 use crate::visible::trapezoid::EdgeSlot;
 use core::convert::Infallible;
-use embedded_graphics_core::pixelcolor::RgbColor;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use std::collections::HashMap;
 use std::vec;
 use std::vec::Vec;
