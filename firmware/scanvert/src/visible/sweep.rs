@@ -111,9 +111,10 @@
 //!
 //! # Memory
 //!
-//! An [`Active`] slot is 136 bytes: one trapezoid's stepping state (two
+//! An [`Active`] slot is 132 bytes: one trapezoid's stepping state (two
 //! edges, depth) and one element each of the sorted, cover and free
-//! arrays. The list needs as many slots as trapezoids overlap one row
+//! arrays (a cover is 16 bytes: its `r` and depth, and the position of its
+//! trapezoid in the sorted array, where its face and colour are read). The list needs as many slots as trapezoids overlap one row
 //! ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
 //!
@@ -160,7 +161,7 @@ pub enum Resolve {
     Crossing,
 }
 
-/// One slot of the workspace's active list (136 bytes on 32-bit
+/// One slot of the workspace's active list (132 bytes on 32-bit
 /// targets): the caller provides as many as trapezoids may overlap one
 /// row, filled with [`Active::EMPTY`], and nothing else but the runs.
 ///
@@ -173,7 +174,7 @@ pub enum Resolve {
 pub struct Active {
     entry: Entry,
     hot: Hot,
-    cover: Cover,
+    cover: Covered,
     free: u16,
 }
 
@@ -208,8 +209,38 @@ struct Hot {
     slot: u16,
 }
 
-/// One element of the cover array (20 bytes, in each [`Active`] slot): a
-/// trapezoid that has started on the row and may still show.
+/// One element of the cover array (16 bytes, in each [`Active`] slot): a
+/// trapezoid that has started on the row and may still show, as its `r`
+/// and depth (read by the leave checks and the depth compares without
+/// going to the trapezoid) and its position `p` in the array sorted by
+/// `l`, `act[..k].hot`, which does not change while the row is swept: its
+/// colour and face are read there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Covered {
+    r: i32,
+    z: i32,
+    zx: i32,
+    p: u16,
+}
+
+impl Covered {
+    /// An unused element.
+    const EMPTY: Covered = Covered {
+        r: 0,
+        z: 0,
+        zx: 0,
+        p: 0,
+    };
+
+    #[inline(always)]
+    fn z_at(&self, i: i32) -> i32 {
+        self.z.wrapping_add(self.zx.wrapping_mul(i))
+    }
+}
+
+/// A cover by value, for the computations on it (the front, a span's
+/// nearest): its element of the cover array and what it reads of its
+/// trapezoid.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Cover {
     r: i32,
@@ -217,17 +248,30 @@ struct Cover {
     zx: i32,
     color: u32,
     face: u16,
+    p: u16,
 }
 
 impl Cover {
-    /// An unused element.
+    /// An unused cover.
     const EMPTY: Cover = Cover {
         r: 0,
         z: 0,
         zx: 0,
         color: 0,
         face: NONE,
+        p: 0,
     };
+
+    /// Its element of the cover array.
+    #[inline(always)]
+    fn element(&self) -> Covered {
+        Covered {
+            r: self.r,
+            z: self.z,
+            zx: self.zx,
+            p: self.p,
+        }
+    }
 
     #[inline(always)]
     fn z_at(&self, i: i32) -> i32 {
@@ -307,7 +351,7 @@ impl Active {
             face: NONE,
             slot: 0,
         },
-        cover: Cover::EMPTY,
+        cover: Covered::EMPTY,
         free: 0,
     };
 }
@@ -1214,7 +1258,13 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
         while p < k && act[p].hot.l <= x {
-            let c = cover_of(&act[p].hot);
+            let h = &act[p].hot;
+            let c = Covered {
+                r: h.r,
+                z: h.z,
+                zx: h.zx,
+                p: p as u16,
+            };
             p += 1;
             insert(act, &mut nc, c);
         }
@@ -1233,13 +1283,13 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             x = next;
             continue;
         };
-        let Some(f) = cx.establish(cov, x) else {
+        let Some(f) = cx.establish(act, cov, x) else {
             let t = next.min(last.cover.r);
-            span(cov, x, t, cx);
+            span(act, cov, x, t, cx);
             x = t;
             continue;
         };
-        let f = *f;
+        let f = cover_of(act, f as usize);
         // The front holds from x until it ends or a trapezoid starts that
         // it does not dominate. Those that end behind it wait in the
         // cover array until the next front is sought.
@@ -1251,13 +1301,19 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             }
             let mut broken = false;
             while p < k && act[p].hot.l <= x {
-                let c = cover_of(&act[p].hot);
+                let h = &act[p].hot;
+                let c = Covered {
+                    r: h.r,
+                    z: h.z,
+                    zx: h.zx,
+                    p: p as u16,
+                };
                 p += 1;
                 // The front is in front of the new one on all their
                 // common pixels: when those are all of its pixels, it is
                 // hidden (the front is in the cover array, so this holds
                 // even after the front has lost its place).
-                if cx.dominates(&f, &c, x, f.r.min(c.r) - 1) {
+                if cx.dominates_el(act, &f, &c, x, f.r.min(c.r) - 1) {
                     if c.r <= f.r {
                         cx.stats.hidden += 1;
                         continue;
@@ -1296,28 +1352,30 @@ fn prune(act: &mut [Active], mut nc: usize, f: &Cover) -> usize {
         nc -= 1;
     }
     if let Some(a) = act.get_mut(nc) {
-        a.cover = *f;
+        a.cover = f.element();
         nc += 1;
     }
     nc
 }
 
-/// The cover element of a live trapezoid.
+/// The cover of the live trapezoid `act[p].hot`, by value.
 #[inline(always)]
-fn cover_of(h: &Hot) -> Cover {
+fn cover_of(act: &[Active], p: usize) -> Cover {
+    let h = &act[p].hot;
     Cover {
         r: h.r,
         z: h.z,
         zx: h.zx,
         color: h.color,
         face: h.face,
+        p: p as u16,
     }
 }
 
 /// Inserts `c` into `act[..nc].cover`, kept by decreasing `r`. The array
 /// has a place for every live trapezoid, so it never overflows.
 #[inline(always)]
-fn insert(act: &mut [Active], nc: &mut usize, c: Cover) {
+fn insert(act: &mut [Active], nc: &mut usize, c: Covered) {
     if *nc >= act.len() {
         return;
     }
@@ -1386,12 +1444,12 @@ fn sweep_many<O: RowOut>(
         }
         // Enter the trapezoids starting here (l = x).
         while p < k && act[p].hot.l <= x {
-            let c = cover_of(&act[p].hot);
+            let c = cover_of(act, p);
             p += 1;
             if chain {
                 chain = cx.enter_chain(act, lo, &mut nc, c, x, None).chain;
             } else {
-                insert_many(act, &mut lo, &mut nc, c);
+                insert_many(act, &mut lo, &mut nc, c.element());
             }
         }
         let mut next = next_l(act, p);
@@ -1407,22 +1465,22 @@ fn sweep_many<O: RowOut>(
             } else {
                 cx.stats.multiple += 1;
             }
-            act[lo].cover
+            cover_of(act, act[lo].cover.p as usize)
         } else {
             let cov = &act[lo..nc.min(k)];
-            let Some(f) = cx.establish(cov, x) else {
+            let Some(f) = cx.establish(act, cov, x) else {
                 let t = next.min(cov.first().map_or(width, |a| a.cover.r));
-                span(cov, x, t, cx);
+                span(act, cov, x, t, cx);
                 x = t;
                 continue;
             };
-            let f = *f;
+            let f = cover_of(act, f as usize);
             // The covers before the front end by its end, behind it.
-            while lo < nc && act[lo].cover.r <= f.r && act[lo].cover.face != f.face {
+            while lo < nc && act[lo].cover.r <= f.r && act[lo].cover.p != f.p {
                 lo += 1;
             }
             if nc - lo > try_from {
-                chain = cx.is_chain(&act[lo..nc], x);
+                chain = cx.is_chain(act, &act[lo..nc], x);
                 if !chain {
                     try_from = 2 * (nc - lo);
                 }
@@ -1443,7 +1501,7 @@ fn sweep_many<O: RowOut>(
             // front of those before it).
             let mut breaker: Option<Cover> = None;
             while p < k && act[p].hot.l <= x {
-                let c = cover_of(&act[p].hot);
+                let c = cover_of(act, p);
                 p += 1;
                 if chain {
                     let e = cx.enter_chain(act, lo, &mut nc, c, x, Some(&f));
@@ -1469,7 +1527,7 @@ fn sweep_many<O: RowOut>(
                     }
                     breaker = Some(c);
                 }
-                insert_many(act, &mut lo, &mut nc, c);
+                insert_many(act, &mut lo, &mut nc, c.element());
             }
             let broken = breaker.is_some();
             next = next_l(act, p);
@@ -1495,7 +1553,7 @@ fn prune_many(act: &mut [Active], lo: usize, nc: usize, f: &Cover) -> usize {
     if i == lo {
         return lo;
     }
-    act[i - 1].cover = *f;
+    act[i - 1].cover = f.element();
     i - 1
 }
 
@@ -1504,7 +1562,7 @@ fn prune_many(act: &mut [Active], lo: usize, nc: usize, f: &Cover) -> usize {
 /// up those that end with it or later (found by a binary search past [`FAR`] of
 /// them). The array has a place for every trapezoid that enters the row
 /// (`nc` grows by one at most for each), so it never overflows.
-fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Cover) {
+fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Covered) {
     if *nc >= act.len() {
         return;
     }
@@ -1550,7 +1608,7 @@ fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
 }
 
 /// Inserts `c` at `q` of `act[..nc].cover`, moving those after it up.
-fn insert_at(act: &mut [Active], q: usize, nc: &mut usize, c: Cover) {
+fn insert_at(act: &mut [Active], q: usize, nc: &mut usize, c: Covered) {
     if *nc >= act.len() || q > *nc {
         return;
     }
@@ -1571,18 +1629,19 @@ struct Entered {
     chain: bool,
 }
 
-/// Resolves the span `s..t` covered by `cov`; returns the nearest at its
-/// last pixel.
+/// Resolves the span `s..t` covered by `cov` (covers of the live
+/// trapezoids `act[..k].hot`); returns the nearest at its last pixel.
 #[inline(always)]
-fn span<O: RowOut>(cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
+fn span<O: RowOut>(act: &[Active], cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover {
     let Some((first, rest)) = cov.split_first() else {
         return Cover::EMPTY;
     };
     let first = &first.cover;
     if rest.is_empty() {
+        let f = cover_of(act, first.p as usize);
         cx.stats.single += 1;
-        cx.emit(t - s, first.face, first.color);
-        return *first;
+        cx.emit(t - s, f.face, f.color);
+        return f;
     }
     // The nearest at both ends in one pass.
     let e = t - 1;
@@ -1590,26 +1649,30 @@ fn span<O: RowOut>(cov: &[Active], s: i32, t: i32, cx: &mut Ctx<'_, O>) -> Cover
     let (mut b, mut zb) = (first, first.z_at(e));
     for c in rest.iter().map(|a| &a.cover) {
         let (zs, ze) = (c.z_at(s), c.z_at(e));
-        if cx.nearer(c, zs, a, za, s) {
+        if cx.nearer_in(act, c, zs, a, za, s) {
             (a, za) = (c, zs);
         }
-        if cx.nearer(c, ze, b, zb, e) {
+        if cx.nearer_in(act, c, ze, b, zb, e) {
             (b, zb) = (c, ze);
         }
     }
-    if core::ptr::eq(a, b) {
+    if a.p == b.p {
+        let f = cover_of(act, a.p as usize);
         cx.stats.multiple += 1;
-        cx.emit(t - s, a.face, a.color);
-        return *a;
+        cx.emit(t - s, f.face, f.color);
+        return f;
     }
     cx.stats.intersecting += 1;
-    split(cov, s, t, a, b, true, cx);
-    *b
+    let (a, b) = (cover_of(act, a.p as usize), cover_of(act, b.p as usize));
+    split(act, cov, s, t, &a, &b, true, cx);
+    b
 }
 
 /// Subdivides `s..t` (at least 2 pixels), whose nearest covering
 /// trapezoids at the ends are `a` and `b ≠ a`.
+#[allow(clippy::too_many_arguments)]
 fn split<O: RowOut>(
+    act: &[Active],
     cov: &[Active],
     s: i32,
     t: i32,
@@ -1628,17 +1691,19 @@ fn split<O: RowOut>(
     // Parts longer than half the span are bisected next, so the depth of
     // the recursion stays within 2·log₂(t − s).
     let half = (t - s) / 2;
-    let ma = cx.front(cov, m - 1);
-    if core::ptr::eq(ma, a) {
+    let ma = cx.front(act, cov, m - 1).p;
+    if ma == a.p {
         cx.emit(m - s, a.face, a.color);
     } else {
-        split(cov, s, m, a, ma, !crossing || m - s <= half, cx);
+        let ma = cover_of(act, ma as usize);
+        split(act, cov, s, m, a, &ma, !crossing || m - s <= half, cx);
     }
-    let mb = cx.front(cov, m);
-    if core::ptr::eq(mb, b) {
+    let mb = cx.front(act, cov, m).p;
+    if mb == b.p {
         cx.emit(t - m, b.face, b.color);
     } else {
-        split(cov, m, t, mb, b, !crossing || t - m <= half, cx);
+        let mb = cover_of(act, mb as usize);
+        split(act, cov, m, t, &mb, b, !crossing || t - m <= half, cx);
     }
 }
 
@@ -1671,26 +1736,27 @@ impl<O: RowOut> Ctx<'_, O> {
     /// The covering trapezoid nearest at pixel `x` when it is also in
     /// front of every other on all their common pixels (`x` to the end of
     /// the shorter), so on `x..r` of its own; `None` when another crosses
-    /// it there. (By reference: returned by value, the copy became a call
-    /// to `memmove` on the Cortex-M4.)
+    /// it there. Its position in the live trapezoids `act[..k].hot`.
     #[inline(always)]
-    fn establish<'v>(&mut self, cov: &'v [Active], x: i32) -> Option<&'v Cover> {
-        let f = self.front(cov, x);
+    fn establish(&mut self, act: &[Active], cov: &[Active], x: i32) -> Option<u16> {
+        let f = self.front(act, cov, x);
         if cov.len() == 1 {
             self.stats.single += 1;
-            return Some(f);
+            return Some(f.p);
         }
+        // The front is told from the others by its place in `cov` (each
+        // trapezoid is there once), which costs no load, not by `p`.
         for c in cov.iter().map(|a| &a.cover) {
             if core::ptr::eq(c, f) {
                 continue;
             }
             let e = f.r.min(c.r) - 1;
-            if !self.nearer(f, f.z_at(e), c, c.z_at(e), e) {
+            if !self.nearer_in(act, f, f.z_at(e), c, c.z_at(e), e) {
                 return None;
             }
         }
         self.stats.multiple += 1;
-        Some(f)
+        Some(f.p)
     }
 
     /// Enters `c` into the chain `act[lo..nc].cover` (by increasing `r`,
@@ -1714,7 +1780,7 @@ impl<O: RowOut> Ctx<'_, O> {
         };
         if q > lo {
             // It ends after the first.
-            let u = act[q - 1].cover;
+            let u = cover_of(act, act[q - 1].cover.p as usize);
             if self.dominates(&u, &c, x, u.r.min(c.r) - 1) {
                 // So is the first (the front), by transitivity.
                 if f.is_some() && c.r <= u.r {
@@ -1734,10 +1800,10 @@ impl<O: RowOut> Ctx<'_, O> {
                     }
                 }
             }
-            if let Some(d) = act[..n].get(q).map(|a| a.cover) {
+            if let Some(d) = act[..n].get(q).map(|a| cover_of(act, a.cover.p as usize)) {
                 e.chain = e.chain && self.dominates(&c, &d, x, c.r.min(d.r) - 1);
             }
-        } else if let Some(t) = act[..n].get(lo).map(|a| a.cover) {
+        } else if let Some(t) = act[..n].get(lo).map(|a| cover_of(act, a.cover.p as usize)) {
             // It ends first (or with the first).
             if let Some(f) = f {
                 if self.dominates(f, &c, x, f.r.min(c.r) - 1) {
@@ -1751,24 +1817,26 @@ impl<O: RowOut> Ctx<'_, O> {
             }
             e.chain = self.dominates(&c, &t, x, c.r.min(t.r) - 1);
         }
-        insert_at(act, q, nc, c);
+        insert_at(act, q, nc, c.element());
         e
     }
 
     /// `true` when each cover of `cov` (by increasing `r`) after the first
     /// is in front of the next on their common pixels from `x`.
-    fn is_chain(&mut self, cov: &[Active], x: i32) -> bool {
+    fn is_chain(&mut self, act: &[Active], cov: &[Active], x: i32) -> bool {
         for w in cov.windows(2).skip(1) {
-            let (a, b) = (&w[0].cover, &w[1].cover);
-            if !self.dominates(a, b, x, a.r.min(b.r) - 1) {
+            let a = cover_of(act, w[0].cover.p as usize);
+            let b = cover_of(act, w[1].cover.p as usize);
+            if !self.dominates(&a, &b, x, a.r.min(b.r) - 1) {
                 return false;
             }
         }
         true
     }
 
-    /// The covering trapezoid nearest at pixel `i`.
-    fn front<'v>(&mut self, cov: &'v [Active], i: i32) -> &'v Cover {
+    /// The covering trapezoid nearest at pixel `i` (`cov` covers of the
+    /// live trapezoids `act[..k].hot`).
+    fn front<'v>(&mut self, act: &[Active], cov: &'v [Active], i: i32) -> &'v Covered {
         let (first, rest) = match cov.split_first() {
             Some((f, r)) => (&f.cover, r),
             None => return &NO_COVER,
@@ -1780,7 +1848,7 @@ impl<O: RowOut> Ctx<'_, O> {
             // As `nearer`, the sign selecting without a branch where the
             // fixed point decides.
             let take = if d.unsigned_abs() <= DEPTH_TOLERANCE as u32 {
-                self.exact(c.face, best.face, i, d)
+                self.exact_in(act, c, best, i, d)
             } else {
                 d < 0
             };
@@ -1790,17 +1858,37 @@ impl<O: RowOut> Ctx<'_, O> {
         best
     }
 
+    /// [`dominates`](Self::dominates) for an element of the cover array
+    /// `g`, whose face is read from `act[..k].hot` only when the fixed
+    /// point does not decide.
+    #[inline(always)]
+    fn dominates_el(&mut self, act: &[Active], f: &Cover, g: &Covered, s: i32, e: i32) -> bool {
+        let mut nearer = |i: i32| {
+            let d = f.z_at(i).wrapping_sub(g.z_at(i));
+            if d < -(DEPTH_TOLERANCE as i32) {
+                return true;
+            }
+            if d > DEPTH_TOLERANCE as i32 {
+                return false;
+            }
+            let gf = act.get(g.p as usize).map_or(NONE, |a| a.hot.face);
+            self.exact(f.face, gf, i, d)
+        };
+        nearer(s) && nearer(e)
+    }
+
     /// `true` when `f` is in front of `g` at pixels `s` and `e`, so on
     /// every pixel between (both cover them all).
     #[inline]
     fn dominates(&mut self, f: &Cover, g: &Cover, s: i32, e: i32) -> bool {
-        self.nearer(f, f.z_at(s), g, g.z_at(s), s) && self.nearer(f, f.z_at(e), g, g.z_at(e), e)
+        self.nearer(f.face, f.z_at(s), g.face, g.z_at(s), s)
+            && self.nearer(f.face, f.z_at(e), g.face, g.z_at(e), e)
     }
 
-    /// `true` when `c` (depth `cz` at pixel `i`) is in front of `b` (depth
-    /// `bz`).
+    /// `true` when face `c` (depth `cz` at pixel `i`) is in front of face
+    /// `b` (depth `bz`).
     #[inline(always)]
-    fn nearer(&mut self, c: &Cover, cz: i32, b: &Cover, bz: i32, i: i32) -> bool {
+    fn nearer(&mut self, c: u16, cz: i32, b: u16, bz: i32, i: i32) -> bool {
         // Both depths are below 2³⁰ in magnitude where they are meaningful
         // (see `trapezoid`), so the difference does not wrap.
         let d = cz.wrapping_sub(bz);
@@ -1810,7 +1898,38 @@ impl<O: RowOut> Ctx<'_, O> {
         if d > DEPTH_TOLERANCE as i32 {
             return false;
         }
-        self.exact(c.face, b.face, i, d)
+        self.exact(c, b, i, d)
+    }
+
+    /// [`nearer`](Self::nearer) for two elements of the cover array, whose
+    /// faces are read from the live trapezoids `act[..k].hot` only when
+    /// the fixed point does not decide.
+    #[inline(always)]
+    fn nearer_in(
+        &mut self,
+        act: &[Active],
+        c: &Covered,
+        cz: i32,
+        b: &Covered,
+        bz: i32,
+        i: i32,
+    ) -> bool {
+        let d = cz.wrapping_sub(bz);
+        if d < -(DEPTH_TOLERANCE as i32) {
+            return true;
+        }
+        if d > DEPTH_TOLERANCE as i32 {
+            return false;
+        }
+        self.exact_in(act, c, b, i, d)
+    }
+
+    /// [`exact`](Self::exact) for two elements of the cover array.
+    #[inline(never)]
+    fn exact_in(&mut self, act: &[Active], c: &Covered, b: &Covered, i: i32, d: i32) -> bool {
+        let cf = act.get(c.p as usize).map_or(NONE, |a| a.hot.face);
+        let bf = act.get(b.p as usize).map_or(NONE, |a| a.hot.face);
+        self.exact(cf, bf, i, d)
     }
 
     /// The exact comparison, for depths too close for fixed point.
@@ -1856,7 +1975,7 @@ impl<O: RowOut> Ctx<'_, O> {
 const BACKGROUND: u32 = u32::MAX;
 
 /// What [`Ctx::front`] returns for an empty cover (never asked).
-static NO_COVER: Cover = Cover::EMPTY;
+static NO_COVER: Covered = Covered::EMPTY;
 
 /// Resolves `store` and writes it into `target`: each face in its colour,
 /// the background filled with `background` or left as it is (`None`), so
