@@ -113,8 +113,9 @@
 //!
 //! An [`Active`] slot is 132 bytes: one trapezoid's stepping state (two
 //! edges, depth) and one element each of the sorted, cover and free
-//! arrays (a cover is 16 bytes: its `r` and depth, and the position of its
-//! trapezoid in the sorted array, where its face and colour are read). The list needs as many slots as trapezoids overlap one row
+//! arrays (a cover is 16 bytes: its `r` and depth, and the position of
+//! its trapezoid in the sorted array, where its face and colour are
+//! read). The list needs as many slots as trapezoids overlap one row
 //! ([`Workspace::check`] finds the number before anything is drawn). A
 //! row of runs needs at most the frame's width of [`Run`]s.
 //!
