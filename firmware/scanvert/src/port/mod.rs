@@ -111,6 +111,19 @@ pub trait SpanTarget {
     /// Writes `color` to every pixel of `span`.
     fn fill_span(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error>;
 
+    /// Writes `color` to every pixel of `span`, which the caller has
+    /// already clipped to the target: `span.y < height` and
+    /// `span.x0 < span.x1 <= width`. The default is
+    /// [`fill_span`](Self::fill_span); a frame buffer overrides it to skip
+    /// the checks that `fill_span` would repeat (the 3D sweep's run writer
+    /// clips each run itself). A span that breaks the condition must still
+    /// not panic nor write outside the target's memory, but may write
+    /// pixels other than its own.
+    #[inline(always)]
+    fn fill_span_inside(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error> {
+        self.fill_span(span, color)
+    }
+
     /// Writes `color` to every pixel. The default fills the rows one span
     /// each; memory-mapped targets override it with one fill.
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
@@ -158,6 +171,10 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     #[inline]
     fn fill_span(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error> {
         (**self).fill_span(span, color)
+    }
+    #[inline(always)]
+    fn fill_span_inside(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error> {
+        (**self).fill_span_inside(span, color)
     }
     #[inline]
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {

@@ -212,6 +212,22 @@ where
         Ok(())
     }
 
+    /// Without `fill_span`'s checks: the row and the end are the
+    /// caller's. A span past the frame writes other pixels of the words
+    /// (the next row's), never past the slice, and never panics.
+    #[inline(always)]
+    fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Infallible> {
+        let c = bits(color);
+        let row = span.y as usize * self.width as usize;
+        fill_pixels(
+            self.words,
+            row + span.x0 as usize,
+            row + span.x1 as usize,
+            c | c << 16,
+        );
+        Ok(())
+    }
+
     // Not inlined: called once a rectangle, and kept out of the scan
     // converter's loops, whose registers it would crowd.
     #[inline(never)]
@@ -390,6 +406,54 @@ mod tests {
         let mut short = [0u32; 7];
         assert!(PackedFrameBuffer::<Rgb565>::new(&mut short, 3, 5).is_none());
         assert!(PackedFrameBuffer::<Rgb565>::new(&mut words, 0, 5).is_none());
+    }
+
+    /// Every span inside a few frames, odd widths too: `fill_span_inside`
+    /// writes what `fill_span` writes, and nothing else.
+    #[test]
+    fn spans_inside_write_what_fill_span_writes() {
+        for (w, h) in [(1u16, 3u16), (2, 2), (5, 3), (8, 2), (13, 3)] {
+            let n = PackedFrameBuffer::<Rgb565>::words_len(w, h);
+            let mut k = 0u16;
+            for y in 0..h {
+                for x0 in 0..w {
+                    for x1 in x0 + 1..=w {
+                        k = k.wrapping_mul(31).wrapping_add(7);
+                        let c = px(k);
+                        let span = Span { y, x0, x1 };
+                        let mut inside = [0x5a5a_a5a5u32; 24];
+                        let mut checked = inside;
+                        PackedFrameBuffer::new(&mut inside[..n + 2], w, h)
+                            .unwrap()
+                            .fill_span_inside(span, c)
+                            .unwrap();
+                        PackedFrameBuffer::new(&mut checked[..n + 2], w, h)
+                            .unwrap()
+                            .fill_span(span, c)
+                            .unwrap();
+                        assert_eq!(inside, checked, "{w}x{h} span {span:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A span that breaks `fill_span_inside`'s condition never panics.
+    #[test]
+    fn spans_outside_never_panic() {
+        for (w, h) in [(1u16, 3u16), (5, 3), (8, 2)] {
+            let n = PackedFrameBuffer::<Rgb565>::words_len(w, h);
+            for y in [0, h - 1, h, h + 1, u16::MAX] {
+                for (x0, x1) in [(0, w + 3), (w, w + 1), (3, 1), (u16::MAX - 1, u16::MAX)] {
+                    let mut words = [0x5a5a_a5a5u32; 24];
+                    PackedFrameBuffer::new(&mut words[..n], w, h)
+                        .unwrap()
+                        .fill_span_inside(Span { y, x0, x1 }, px(9))
+                        .unwrap();
+                    assert_eq!(words[n..], [0x5a5a_a5a5; 24][n..]);
+                }
+            }
+        }
     }
 
     #[test]

@@ -1041,7 +1041,8 @@ where
             x0: x0 as u16,
             x1: x1 as u16,
         };
-        if let Err(e) = self.target.fill_span(span, c) {
+        // Clipped above: the frame need not check it again.
+        if let Err(e) = self.target.fill_span_inside(span, c) {
             self.error = Some(e);
         }
     }
