@@ -251,6 +251,23 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
         Ok(())
     }
 
+    /// Without `fill_span`'s clipping of the end: the row is still
+    /// checked against the band's (the target's size is the frame's).
+    #[inline(always)]
+    fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Self::Error> {
+        let Some(row) = span.y.checked_sub(self.y0).filter(|&r| r < self.rows) else {
+            return Ok(());
+        };
+        let base = row as usize * self.width as usize;
+        if let Some(run) = self
+            .pixels
+            .get_mut(base + span.x0 as usize..base + span.x1 as usize)
+        {
+            crate::port::framebuffer::fill_run(run, color);
+        }
+        Ok(())
+    }
+
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
         self.pixels.fill(color);
         Ok(())
@@ -260,6 +277,36 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every span of a frame clipped to its width, into bands of every
+    /// start and height: `fill_span_inside` writes what `fill_span` writes.
+    #[test]
+    fn spans_inside_write_what_fill_span_writes() {
+        use embedded_graphics_core::pixelcolor::Gray8;
+        let (w, h) = (7u16, 6u16);
+        for y0 in 0..h {
+            for rows in 1..=h - y0 {
+                for y in 0..h {
+                    for x0 in 0..w {
+                        for x1 in x0 + 1..=w {
+                            let span = Span { y, x0, x1 };
+                            let mut inside = [Gray8::new(0); 42];
+                            let mut checked = inside;
+                            Band::new(&mut inside, (w, h), y0, rows)
+                                .unwrap()
+                                .fill_span_inside(span, Gray8::new(9))
+                                .unwrap();
+                            Band::new(&mut checked, (w, h), y0, rows)
+                                .unwrap()
+                                .fill_span(span, Gray8::new(9))
+                                .unwrap();
+                            assert_eq!(inside, checked, "band {y0}+{rows}, {span:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn a_band_takes_only_its_rows() {

@@ -129,6 +129,21 @@ impl<C: PixelColor> SpanTarget for FrameBuffer<'_, C> {
         Ok(())
     }
 
+    /// Without `fill_span`'s checks: the row and the end are the
+    /// caller's. A span past the frame writes other pixels (the next
+    /// row's) or nothing, never past the slice, and never panics.
+    #[inline(always)]
+    fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Infallible> {
+        let base = span.y as usize * self.width as usize;
+        if let Some(run) = self
+            .pixels
+            .get_mut(base + span.x0 as usize..base + span.x1 as usize)
+        {
+            fill_run(run, color);
+        }
+        Ok(())
+    }
+
     fn fill_rect(&mut self, span: Span, height: u16, color: C) -> Result<(), Infallible> {
         let y1 = (span.y as usize + height as usize).min(self.height as usize);
         let x1 = span.x1.min(self.width);
@@ -159,6 +174,46 @@ impl<C: PixelColor> SpanTarget for FrameBuffer<'_, C> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every span inside a few frames: `fill_span_inside` writes what
+    /// `fill_span` writes; spans outside never panic nor leave the slice.
+    #[test]
+    fn spans_inside_write_what_fill_span_writes() {
+        let px = |k: u16| Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(k));
+        for (w, h) in [(1u16, 3u16), (2, 2), (5, 3), (13, 3)] {
+            let n = w as usize * h as usize;
+            let mut k = 0u16;
+            for y in 0..h {
+                for x0 in 0..w {
+                    for x1 in x0 + 1..=w {
+                        k = k.wrapping_mul(31).wrapping_add(7);
+                        let span = Span { y, x0, x1 };
+                        let mut inside = [px(0x5a5a); 40];
+                        let mut checked = inside;
+                        FrameBuffer::new(&mut inside[..n], w, h)
+                            .unwrap()
+                            .fill_span_inside(span, px(k))
+                            .unwrap();
+                        FrameBuffer::new(&mut checked[..n], w, h)
+                            .unwrap()
+                            .fill_span(span, px(k))
+                            .unwrap();
+                        assert_eq!(inside, checked, "{w}x{h} span {span:?}");
+                    }
+                }
+            }
+            for y in [0, h - 1, h, u16::MAX] {
+                for (x0, x1) in [(0, w + 3), (w, w + 1), (3, 1), (u16::MAX - 1, u16::MAX)] {
+                    let mut pixels = [px(0x5a5a); 40];
+                    FrameBuffer::new(&mut pixels[..n], w, h)
+                        .unwrap()
+                        .fill_span_inside(Span { y, x0, x1 }, px(9))
+                        .unwrap();
+                    assert_eq!(pixels[n..], [px(0x5a5a); 40][n..]);
+                }
+            }
+        }
+    }
 
     #[test]
     fn fill_run_writes_exactly_its_run() {
