@@ -628,19 +628,14 @@ impl<'a> TrapezoidStore<'a> {
             return Ok(0);
         }
         // The face is taken with the first trapezoid, so that a polygon
-        // with none needs no face slot. What the cut's closure changes is
-        // in one place it reaches by one pointer (each pool and counter
-        // captured apart cost a store each to set up and a load more each
-        // to reach), and goes back to the store and the segment after,
-        // on an error too (the segment is then emptied through its links).
-        let proto = Face {
-            plane,
-            depth: plane.depth(),
-            color: rgb_bits(color),
-            key,
-            segment: s as u16,
-            next: NONE,
-        };
+        // with none needs no face slot, and written there in place, its
+        // depth worked out then (built on the stack and copied, it cost
+        // about 40 instructions more a face on the Cortex-M4). What the
+        // cut's closure changes is in one place it reaches by one pointer
+        // (each pool and counter captured apart cost a store each to set
+        // up and a load more each to reach), and goes back to the store
+        // and the segment after, on an error too (the segment is then
+        // emptied through its links).
         let mut add = Adding {
             traps: &mut *self.traps,
             rows: &mut *self.rows,
@@ -653,7 +648,10 @@ impl<'a> TrapezoidStore<'a> {
             seg_faces: seg.faces,
             added: 0,
             face: NONE,
-            proto: &proto,
+            plane: &plane,
+            color: rgb_bits(color),
+            key,
+            segment: s as u16,
             clip,
         };
         let n = poly.cut(|l, r| add.trapezoid(l, r));
@@ -694,8 +692,11 @@ struct Adding<'p> {
     added: u32,
     /// The polygon's face, `NONE` until its first trapezoid.
     face: u16,
-    /// The face, but for its link.
-    proto: &'p Face,
+    /// The face's plane, colour, key and segment.
+    plane: &'p Plane,
+    color: u32,
+    key: u32,
+    segment: u16,
     clip: ClipRect,
 }
 
@@ -720,8 +721,12 @@ impl Adding<'_> {
                 .ok_or(StoreError::Faces { capacity: cap })?;
             if let Some(slot) = faces.get_mut(f as usize) {
                 *slot = Face {
+                    plane: *self.plane,
+                    depth: self.plane.depth(),
+                    color: self.color,
+                    key: self.key,
+                    segment: self.segment,
                     next: self.seg_faces,
-                    ..*self.proto
                 };
             }
             self.seg_faces = f;
@@ -744,7 +749,7 @@ impl Adding<'_> {
         // on the Cortex-M4).
         if let Some(slot) = traps.get_mut(t as usize) {
             *slot = Trapezoid {
-                segment: self.proto.segment,
+                segment: self.segment,
                 next_row: head,
                 prev_row: NONE,
                 next_seg: self.seg_traps,
