@@ -250,9 +250,78 @@ pub(crate) struct Outline {
 impl Outline {
     /// The outline of the polygon through `it` (closed implicitly).
     /// Fails when it has more than [`MAX_VERTICES`] vertices.
+    ///
+    /// A triangle's or a quadrilateral's (as its iterator's size hint
+    /// says) is worked out from its vertices at once: Newell's sums are
+    /// twice its vector area, `Σ vₖ × vₖ₊₁`, which is `(v₁ − v₀) × (v₂ − v₀)`
+    /// for three vertices and `(v₂ − v₀) × (v₃ − v₁)` for four, exactly
+    /// (the same integers; each difference below 2¹⁶, each product one
+    /// 32 × 32 → 64-bit multiply). Six multiplies instead of nine or
+    /// twelve, and no loop.
     #[inline(always)]
-    pub(crate) fn of<I: Iterator<Item = Vertex3>>(it: I) -> Result<Outline, LoadError> {
+    pub(crate) fn of<I: Iterator<Item = Vertex3> + Clone>(it: I) -> Result<Outline, LoadError> {
+        let mut q = it.clone();
+        match q.size_hint() {
+            (3, Some(3)) => {
+                if let (Some(p0), Some(p1), Some(p2)) = (q.next(), q.next(), q.next()) {
+                    let u = Outline::units(p0);
+                    let (v1, v2) = (Outline::units(p1), Outline::units(p2));
+                    let d1 = (v1.0 - u.0, v1.1 - u.1, v1.2 - u.2);
+                    let d2 = (v2.0 - u.0, v2.1 - u.1, v2.2 - u.2);
+                    return Ok(Outline::of_cross(p0, 3, d1, d2, [u, v1, v2, v2]));
+                }
+            }
+            (4, Some(4)) => {
+                if let (Some(p0), Some(p1), Some(p2), Some(p3)) =
+                    (q.next(), q.next(), q.next(), q.next())
+                {
+                    let u = Outline::units(p0);
+                    let (v1, v2, v3) = (Outline::units(p1), Outline::units(p2), Outline::units(p3));
+                    let d1 = (v2.0 - u.0, v2.1 - u.1, v2.2 - u.2);
+                    let d2 = (v3.0 - v1.0, v3.1 - v1.1, v3.2 - v1.2);
+                    return Ok(Outline::of_cross(p0, 4, d1, d2, [u, v1, v2, v3]));
+                }
+            }
+            _ => {}
+        }
         Outline::walk(it, |_, _| Ok(()))
+    }
+
+    /// A vertex in units.
+    #[inline(always)]
+    fn units(v: Vertex3) -> (i32, i32, i32) {
+        (v.x.units(), v.y.units(), v.z.units())
+    }
+
+    /// The outline of `n` (3 or 4) vertices `v` (a triangle's third
+    /// repeated), the first `first`, whose Newell sums are `p × q`.
+    #[inline(always)]
+    fn of_cross(
+        first: Vertex3,
+        n: i64,
+        p: (i32, i32, i32),
+        q: (i32, i32, i32),
+        v: [(i32, i32, i32); 4],
+    ) -> Outline {
+        let m = |a: i32, b: i32| a as i64 * b as i64;
+        let (mut zlo, mut zhi, mut lo, mut hi) = (v[0].2, v[0].2, v[0].0, v[0].0);
+        for w in &v[1..] {
+            zlo = zlo.min(w.2);
+            zhi = zhi.max(w.2);
+            lo = lo.min(w.0);
+            hi = hi.max(w.0);
+        }
+        Outline {
+            sums: Some(PlaneSums {
+                a: m(p.1, q.2) - m(p.2, q.1),
+                b: m(p.2, q.0) - m(p.0, q.2),
+                c: m(p.0, q.1) - m(p.1, q.0),
+                first,
+                n,
+                z: (zlo, zhi),
+            }),
+            x: (lo, hi),
+        }
     }
 
     /// [`Outline::of`], handing each edge (its ends' `x` and `y` in units,
@@ -1651,6 +1720,36 @@ mod tests {
             })
             .unwrap();
         (hit, n)
+    }
+
+    /// A triangle's and a quadrilateral's outline, worked out at once,
+    /// equals the general walk's: Newell's sums, depth and column ranges,
+    /// first vertex and count, over coordinates to both ends of `i16`.
+    #[test]
+    fn outline_of_three_or_four_vertices_is_the_walks() {
+        let mut rng = Rng(0x0a11_7e55);
+        for case in 0..20000 {
+            let n = 3 + case % 2;
+            let span = [16, 4096, 65536][case % 3];
+            let mut poly = [Vertex3::default(); 4];
+            for v in poly.iter_mut() {
+                let mut c = || (rng.below(span as u32) - span / 2).clamp(-32768, 32767);
+                *v = v3(c(), c(), c());
+            }
+            if case % 7 == 0 {
+                poly[1] = poly[0];
+            }
+            let fast = Outline::of(poly[..n].iter().copied()).unwrap();
+            let walk = Outline::walk(poly[..n].iter().copied(), |_, _| Ok(())).unwrap();
+            let (f, w) = (fast.sums.unwrap(), walk.sums.unwrap());
+            assert_eq!(
+                (f.a, f.b, f.c, f.first, f.n, f.z, fast.x),
+                (w.a, w.b, w.c, w.first, w.n, w.z, walk.x),
+                "{:?}",
+                &poly[..n]
+            );
+            assert_eq!(fast.front(), walk.front());
+        }
     }
 
     #[test]
