@@ -197,6 +197,11 @@ struct PlaneSums {
     n: i64,
     /// The vertices' least and greatest depth, in units.
     z: (i32, i32),
+    /// Found that the plane's depth stays within `z` at every vertex, as
+    /// [`Polygon::bounded`]'s usual case checks at the edges' ends (which
+    /// are vertices): the plane needs no check then. `false` when not
+    /// looked at.
+    within: bool,
 }
 
 impl PlaneSums {
@@ -311,14 +316,38 @@ impl Outline {
             lo = lo.min(w.0);
             hi = hi.max(w.0);
         }
+        let (a, b, c) = (
+            m(p.1, q.2) - m(p.2, q.1),
+            m(p.2, q.0) - m(p.0, q.2),
+            m(p.0, q.1) - m(p.1, q.0),
+        );
+        // A quadrilateral's depth check at its vertices, as
+        // `Polygon::bounded`'s usual case makes it at the edges' ends
+        // (same bounds), on the plane as `PlaneSums::finish` turns it.
+        // Parallel to the screen: the depth is z₀ everywhere.
+        let within = n == 4
+            && (a | b == 0 && c != 0
+                || match (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
+                    (Ok(a), Ok(b), Ok(c)) if c != 0 => {
+                        let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
+                        let (x0, y0, z0) = v[0];
+                        let (zl, zh) = ((zlo - z0) as i64 * c as i64, (zhi - z0) as i64 * c as i64);
+                        v[1..].iter().all(|w| {
+                            let e = m(a, x0 - w.0) + m(b, y0 - w.1);
+                            zl <= e && e <= zh
+                        })
+                    }
+                    _ => false,
+                });
         Outline {
             sums: Some(PlaneSums {
-                a: m(p.1, q.2) - m(p.2, q.1),
-                b: m(p.2, q.0) - m(p.0, q.2),
-                c: m(p.0, q.1) - m(p.1, q.0),
+                a,
+                b,
+                c,
                 first,
                 n,
                 z: (zlo, zhi),
+                within,
             }),
             x: (lo, hi),
         }
@@ -374,6 +403,7 @@ impl Outline {
                 first,
                 n: count as i64,
                 z: (zlo, zhi),
+                within: false,
             }),
             x: (lo, hi),
         })
@@ -1194,6 +1224,7 @@ impl<'s> Polygon<'s> {
         // check.
         self.plane = match sums.n {
             ..=3 => sums.finish(),
+            _ if sums.within => sums.finish(),
             _ => sums.finish().map(|p| self.bounded(p, sums.z)),
         };
     }
@@ -1728,6 +1759,7 @@ mod tests {
     #[test]
     fn outline_of_three_or_four_vertices_is_the_walks() {
         let mut rng = Rng(0x0a11_7e55);
+        let mut within = 0;
         for case in 0..20000 {
             let n = 3 + case % 2;
             let span = [16, 4096, 65536][case % 3];
@@ -1749,7 +1781,26 @@ mod tests {
                 &poly[..n]
             );
             assert_eq!(fast.front(), walk.front());
+            // Found within at the vertices: the general load's plane (which
+            // checks the edges' ends) is not flattened.
+            if f.within {
+                let mut slots = [EdgeSlot::EMPTY; 4];
+                let clip = ClipRect::from_window(
+                    ClipWindow {
+                        x0: 0,
+                        y0: 0,
+                        x1: 4095,
+                        y1: 4095,
+                    },
+                    4096,
+                    4096,
+                );
+                let p = Polygon::load(&mut slots, poly[..n].iter().copied(), &clip).unwrap();
+                assert_eq!(p.plane().copied(), f.finish(), "{:?}", &poly[..n]);
+                within += 1;
+            }
         }
+        assert!(within > 1000, "{within}");
     }
 
     #[test]
