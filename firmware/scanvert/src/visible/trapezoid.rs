@@ -87,7 +87,9 @@
 //!   of those edges' crossings, so in their ends' convex hull, where the
 //!   plane's depth is between its values at the ends: inside
 //!   `[z_min, z_max]` too. Every planar polygon passes (its plane is its
-//!   vertices' depth there), unchanged;
+//!   vertices' depth there), unchanged. (A quadrilateral is checked first
+//!   at its vertices, in the pass that finds its plane: when it passes
+//!   there it passes at those ends, which are vertices.);
 //! * otherwise the plane is *flattened*: its slopes are scaled by
 //!   `k / 2¹⁶` (`a` and `b` times `k / 2¹⁶`, rounded toward zero; `c` and
 //!   the first vertex kept) with `k` found by bisection so that the depth
