@@ -184,10 +184,11 @@ pub struct Active {
 struct Entry {
     left: Edge,
     right: Edge,
-    /// `Z̃` at column 0 of the current row.
+    /// `Z̃` at column 0 of the current row; `zy` next to it, as
+    /// [`step_live`] reads both (one double-word load on the Cortex-M4).
     z: i32,
-    zx: i32,
     zy: i32,
+    zx: i32,
     /// The face's colour as a [`list_word`](crate::color::list_word),
     /// converted to the target's pixel once per run without shifts.
     color: u32,
@@ -864,7 +865,9 @@ fn jump(
 #[inline(never)]
 fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
     // Up to the first that ended, each element stays where it is and only
-    // its `l`, `r` and `z` change.
+    // its `l`, `r` and `z` change. `k` bounded by the slice: no bound
+    // check on `act[w]` in the loop (`k ≤ act.len()` as the sweep keeps it).
+    let k = k.min(act.len());
     let mut w = 0;
     while w < k {
         let slot = act[w].hot.slot;
