@@ -184,10 +184,11 @@ pub struct Active {
 struct Entry {
     left: Edge,
     right: Edge,
-    /// `Z̃` at column 0 of the current row.
+    /// `Z̃` at column 0 of the current row; `zy` next to it, as
+    /// [`step_live`] reads both (one double-word load on the Cortex-M4).
     z: i32,
-    zx: i32,
     zy: i32,
+    zx: i32,
     /// The face's colour as a [`list_word`](crate::color::list_word),
     /// converted to the target's pixel once per run without shifts.
     color: u32,
@@ -863,24 +864,9 @@ fn jump(
 /// Cortex-M4 (figures in `docs/performance.md`).
 #[inline(never)]
 fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
-    // Up to the first that ended, each element stays where it is and only
-    // its `l`, `r` and `z` change.
-    let mut w = 0;
-    while w < k {
-        let slot = act[w].hot.slot;
-        let e = &mut act[slot as usize].entry;
-        if e.left.end() <= y {
-            break;
-        }
-        step_edge(&mut e.left);
-        step_edge(&mut e.right);
-        e.z = e.z.wrapping_add(e.zy);
-        let (l, r, z) = e.pixels();
-        let h = &mut act[w].hot;
-        (h.l, h.r, h.z) = (l, r, z);
-        w += 1;
-    }
-    let first = w;
+    let k = k.min(act.len());
+    let first = step_in_place(act, k, y);
+    let mut w = first;
     for p in first..k {
         let slot = act[p].hot.slot;
         let e = &mut act[slot as usize].entry;
@@ -897,6 +883,34 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
         w += 1;
     }
     (w, nf)
+}
+
+/// The in-place part of [`step_live`]: steps the live trapezoids
+/// `act[..k]` (`k ≤ act.len()`) to row `y` up to the first that ended,
+/// each element staying where it is with only its `l`, `r` and `z`
+/// changed; the position of that first (`k` if none). Not inlined: with
+/// registers of its own, its loop needs no moves between them on the
+/// Cortex-M4 (figures in `docs/performance.md`).
+#[inline(never)]
+fn step_in_place(act: &mut [Active], k: usize, y: i32) -> usize {
+    // `k` bounded by the slice: no bound check on `act[w]` in the loop.
+    let k = k.min(act.len());
+    let mut w = 0;
+    while w < k {
+        let slot = act[w].hot.slot;
+        let e = &mut act[slot as usize].entry;
+        if e.left.end() <= y {
+            break;
+        }
+        step_edge(&mut e.left);
+        step_edge(&mut e.right);
+        e.z = e.z.wrapping_add(e.zy);
+        let (l, r, z) = e.pixels();
+        let h = &mut act[w].hot;
+        (h.l, h.r, h.z) = (l, r, z);
+        w += 1;
+    }
+    w
 }
 
 /// Steps an active trapezoid's edge down a row. On the hosts' out-of-order
