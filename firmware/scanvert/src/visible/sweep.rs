@@ -478,12 +478,20 @@ impl<'a> Workspace<'a> {
         let mut k = 0usize;
         let mut most = 0usize;
         for y in 0..store.height() {
+            // A trapezoid starting on the row takes the place of one that
+            // ended (as often when a face's second trapezoid follows its
+            // first): one sift instead of two.
+            let mut t = store.row_head(y as usize);
             while k > 0 && heap[0].cover.r <= y as i32 {
-                k -= 1;
-                heap[0].cover.r = heap[k].cover.r;
+                if let Some(tr) = store.trapezoid(t) {
+                    heap[0].cover.r = tr.end();
+                    t = tr.next_row;
+                } else {
+                    k -= 1;
+                    heap[0].cover.r = heap[k].cover.r;
+                }
                 sift_down(&mut heap[..k]);
             }
-            let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
                 if k >= cap {
                     return Err(VisibleError::Active { capacity: cap });
@@ -2277,6 +2285,49 @@ mod tests {
             let got = draw(&store, &mut ws, Resolve::Crossing, &mut failing, background);
             assert!(matches!(got, Err(VisibleError::Sink(_))), "{got:?}");
             assert_eq!(failing.counts.spans, fail_at - 1);
+        }
+    }
+
+    #[test]
+    fn check_counts_the_most_trapezoids_on_a_row_as_brute_force_does() {
+        // Random stores of large triangles, and of small ones on whole rows
+        // so that many trapezoids start and end on the same rows; the count
+        // by rows one by one, and the capacity just below and at it.
+        let mut rng = Rng(0x5eed_c4ec);
+        for round in 0..300 {
+            let n = 1 + rng.below(50) as usize;
+            let polys: [[Vertex3; 3]; 50] = core::array::from_fn(|_| {
+                if round % 2 == 0 {
+                    random_tri(&mut rng, (-2000, 2000))
+                } else {
+                    let (x, y) = (rng.below(W as u32) - 4, rng.below(H as u32) - 4);
+                    let mut c = || (x + rng.below(9), y + rng.below(9));
+                    let (a, b, d) = (c(), c(), c());
+                    [
+                        v(a.0 * 16, a.1 * 16, 100),
+                        v(b.0 * 16, b.1 * 16, 200),
+                        v(d.0 * 16, d.1 * 16, 300),
+                    ]
+                }
+            });
+            let mut mem = StoreArrays::new();
+            let store = mem.store(&polys[..n]);
+            let mut want = 0;
+            for y in 0..H as i32 {
+                let on_row = (0..H)
+                    .flat_map(|top| store.starting_at(top))
+                    .filter(|(_, t)| (t.top as i32) <= y && y < t.end as i32)
+                    .count();
+                want = want.max(on_row);
+            }
+            let mut active = [Active::EMPTY; 64];
+            let mut runs = [Run::EMPTY; W as usize];
+            let got = Workspace::new(&mut active[..want.max(1)], &mut runs).check(&store);
+            assert_eq!(got, Ok(want as u32), "round {round}");
+            if want > 0 {
+                let got = Workspace::new(&mut active[..want - 1], &mut runs).check(&store);
+                assert_eq!(got, Err(VisibleError::Active { capacity: want - 1 }));
+            }
         }
     }
 
