@@ -234,6 +234,17 @@ impl Covered {
         p: 0,
     };
 
+    /// The element of the live trapezoid `h`, at `p` in the sorted array.
+    #[inline(always)]
+    fn of(h: &Hot, p: usize) -> Covered {
+        Covered {
+            r: h.r,
+            z: h.z,
+            zx: h.zx,
+            p: p as u16,
+        }
+    }
+
     #[inline(always)]
     fn z_at(&self, i: i32) -> i32 {
         self.z.wrapping_add(self.zx.wrapping_mul(i))
@@ -1282,13 +1293,7 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
         while p < k && act[p].hot.l <= x {
-            let h = &act[p].hot;
-            let c = Covered {
-                r: h.r,
-                z: h.z,
-                zx: h.zx,
-                p: p as u16,
-            };
+            let c = Covered::of(&act[p].hot, p);
             p += 1;
             insert(act, &mut nc, c);
         }
@@ -1325,13 +1330,7 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             }
             let mut broken = false;
             while p < k && act[p].hot.l <= x {
-                let h = &act[p].hot;
-                let c = Covered {
-                    r: h.r,
-                    z: h.z,
-                    zx: h.zx,
-                    p: p as u16,
-                };
+                let c = Covered::of(&act[p].hot, p);
                 p += 1;
                 // The front is in front of the new one on all their
                 // common pixels: when those are all of its pixels, it is
