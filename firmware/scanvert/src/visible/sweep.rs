@@ -1927,6 +1927,10 @@ impl<O: RowOut> Ctx<'_, O> {
     /// [`nearer`](Self::nearer) for two elements of the cover array, whose
     /// faces are read from the live trapezoids `act[..k].hot` only when
     /// the fixed point does not decide.
+    ///
+    /// Its fixed-point test repeats `nearer`'s (and `dominates_el`'s):
+    /// one helper returning `Option<bool>` for the three cost the 170-face
+    /// lists about 3 % more on the Cortex-M4 (`docs/performance.md`).
     #[inline(always)]
     fn nearer_in(
         &mut self,
