@@ -14,7 +14,10 @@
 //!   covers where they start are the same trapezoids, and with the same
 //!   ends of trapezoids in between in the same order, as a run of the row
 //!   above (a test per run), and of those the runs that also show the
-//!   same face.
+//!   same face;
+//! * *trapezoid-rows*: live trapezoids with pixels on a row, those of them
+//!   whose face shows on the row, and the trapezoids that never show;
+//! * the rows with an intersecting span.
 
 extern crate std;
 
@@ -75,6 +78,10 @@ struct Counts {
     spans_same: u32,
     runs_shape: u32,
     runs_face: u32,
+    trapezoid_rows: u32,
+    trapezoid_rows_shown: u32,
+    never_shown: u32,
+    rows_crossed: u32,
 }
 
 fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
@@ -112,6 +119,7 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
     let mut c = Counts::default();
     let (mut last_ends, mut last_live, mut last_crossed) = (Vec::new(), Vec::new(), true);
     let mut last_runs: HashMap<Shape, u32> = HashMap::new();
+    let mut shown = vec![false; tr.len()];
     for y in 0..h as i32 {
         let (mut live, mut ends) = (Vec::new(), Vec::new());
         for (t, tp) in tr.iter().enumerate() {
@@ -155,6 +163,24 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
                 c.spans_same += spans;
             }
         }
+        // A trapezoid shows on the row when a span of its face's colour
+        // (each face has its own) overlaps its pixels.
+        for &(l, _, t) in ends.iter().filter(|e| e.1 == 1) {
+            let r = ends
+                .iter()
+                .find(|e| e.1 == 0 && e.2 == t)
+                .map_or(l, |e| e.0);
+            let colour = store.face(tr[t].face).map_or(0, |f| f.color_bits());
+            c.trapezoid_rows += 1;
+            if rec
+                .spans
+                .iter()
+                .any(|&(a, b, k)| k == colour && a < r && b > l)
+            {
+                c.trapezoid_rows_shown += 1;
+                shown[t] = true;
+            }
+        }
         let mut shapes = HashMap::new();
         for &(a, b, colour) in &rec.spans {
             let at = |x: i32| -> Vec<usize> {
@@ -189,7 +215,9 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
         last_runs = shapes;
         (last_ends, last_live) = (ends, live);
         last_crossed = after.intersecting > before.intersecting;
+        c.rows_crossed += last_crossed as u32;
     }
+    c.never_shown = shown.iter().filter(|s| !**s).count() as u32;
     c
 }
 
@@ -238,11 +266,11 @@ fn coherence_between_rows() {
             scenes.push((std::format!("{} {n}", v.short()), faces, w, h));
         }
     }
-    std::println!("scene | rows | spans | runs | rows, same live set | rows as above | their spans | runs shaped as above | of those, same face");
+    std::println!("scene | rows | spans | runs | rows, same live set | rows as above | their spans | runs shaped as above | of those, same face | trapezoid-rows | shown | trapezoids never shown | rows with an intersecting span");
     for (name, faces, w, h) in &scenes {
         let c = count(faces, *w, *h);
         std::println!(
-            "{name} | {} | {} | {} | {} | {} | {} ({}‰) | {} ({}‰) | {} ({}‰)",
+            "{name} | {} | {} | {} | {} | {} | {} ({}‰) | {} ({}‰) | {} ({}‰) | {} | {} | {} | {}",
             c.rows,
             c.spans,
             c.runs,
@@ -254,6 +282,10 @@ fn coherence_between_rows() {
             per_mille(c.runs_shape, c.runs),
             c.runs_face,
             per_mille(c.runs_face, c.runs),
+            c.trapezoid_rows,
+            c.trapezoid_rows_shown,
+            c.never_shown,
+            c.rows_crossed,
         );
     }
 }
