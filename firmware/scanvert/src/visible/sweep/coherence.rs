@@ -121,7 +121,7 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
     let mut last_runs: HashMap<Shape, u32> = HashMap::new();
     let mut shown = vec![false; tr.len()];
     for y in 0..h as i32 {
-        let (mut live, mut ends) = (Vec::new(), Vec::new());
+        let (mut live, mut ends, mut pixels) = (Vec::new(), Vec::new(), Vec::new());
         for (t, tp) in tr.iter().enumerate() {
             if y < tp.top() || y >= tp.end() {
                 edges[t] = None;
@@ -137,6 +137,7 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
             let (l, r) = (l.max(x0 as i32), r.min(x1 as i32));
             live.push(t);
             if l < r {
+                pixels.push((l, r, t));
                 ends.push((l, 1u8, t));
                 ends.push((r, 0u8, t));
             }
@@ -165,11 +166,7 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
         }
         // A trapezoid shows on the row when a span of its face's colour
         // (each face has its own) overlaps its pixels.
-        for &(l, _, t) in ends.iter().filter(|e| e.1 == 1) {
-            let r = ends
-                .iter()
-                .find(|e| e.1 == 0 && e.2 == t)
-                .map_or(l, |e| e.0);
+        for &(l, r, t) in &pixels {
             let colour = store.face(tr[t].face).map_or(0, |f| f.color_bits());
             c.trapezoid_rows += 1;
             if rec
