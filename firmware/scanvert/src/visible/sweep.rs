@@ -1029,6 +1029,42 @@ impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
     }
 }
 
+impl<T> ToTarget<'_, T>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    /// Writes pixels `x0..x1` (`x0 < x1`) of the current row in `color`
+    /// (`BACKGROUND` for the background), out of the order of a row's
+    /// runs, and counts them: for the priority resolve (`priority`).
+    #[cfg(test)]
+    fn fill(&mut self, x0: i32, x1: i32, color: u32) {
+        let (w, h) = self.size;
+        if self.y as u32 >= h || x0 as u32 >= w || self.error.is_some() {
+            return;
+        }
+        let x1 = (x1 as u32).min(w);
+        let c = if color == BACKGROUND {
+            match self.background {
+                Some(c) => c,
+                None => return,
+            }
+        } else {
+            T::Color::from_list_word(color)
+        };
+        let span = Span {
+            y: self.y,
+            x0: x0 as u16,
+            x1: x1 as u16,
+        };
+        self.counts.spans += 1;
+        self.counts.pixels += x1 - x0 as u32;
+        if let Err(e) = self.target.fill_span_inside(span, c) {
+            self.error = Some(e);
+        }
+    }
+}
+
 impl<T> RowOut for ToTarget<'_, T>
 where
     T: SpanTarget + ?Sized,
@@ -1963,14 +1999,7 @@ impl<O: RowOut> Ctx<'_, O> {
     #[inline(never)]
     fn exact(&mut self, c: u16, b: u16, i: i32, d: i32) -> bool {
         self.stats.exact += 1;
-        match (self.store.face(c), self.store.face(b)) {
-            (Some(fc), Some(fb)) => fc
-                .plane()
-                .cmp_at(fb.plane(), i, self.y)
-                .then(fc.key().cmp(&fb.key()))
-                .is_lt(),
-            _ => d < 0,
-        }
+        exact_nearer(self.store, c, b, (i, self.y), d)
     }
 
     /// Appends `len` pixels of `ink` (a face, or the background) in
@@ -1995,6 +2024,21 @@ impl<O: RowOut> Ctx<'_, O> {
             self.out.run(self.len, self.ink, self.color);
         }
         self.len = 0;
+    }
+}
+
+/// `true` when face `c` is in front of face `b` at the centre of pixel
+/// `(i, j)`, exactly: the nearer plane, at equal depth the lower key.
+/// `d`, the difference of their fixed-point depths, decides only for a
+/// face missing from the store (never in a store as built).
+fn exact_nearer(store: &TrapezoidStore<'_>, c: u16, b: u16, (i, j): (i32, i32), d: i32) -> bool {
+    match (store.face(c), store.face(b)) {
+        (Some(fc), Some(fb)) => fc
+            .plane()
+            .cmp_at(fb.plane(), i, j)
+            .then(fc.key().cmp(&fb.key()))
+            .is_lt(),
+        _ => d < 0,
     }
 }
 
@@ -2026,6 +2070,8 @@ where
 
 #[cfg(test)]
 mod coherence;
+#[cfg(test)]
+mod priority;
 
 #[cfg(test)]
 mod tests {

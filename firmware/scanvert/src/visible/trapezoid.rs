@@ -462,7 +462,7 @@ impl Plane {
 
     /// The first vertex, in units.
     #[inline]
-    fn origin_units(&self) -> (i32, i32, i32) {
+    pub(crate) fn origin_units(&self) -> (i32, i32, i32) {
         (
             self.origin.0 as i32,
             self.origin.1 as i32,
@@ -965,6 +965,20 @@ impl Trapezoid {
     /// The columns `x0..x1` it may write.
     pub fn columns(&self) -> (u16, u16) {
         (self.x0, self.x1)
+    }
+
+    /// Columns `lo..hi` that hold every pixel it covers on any of its
+    /// rows (possibly more): its edges' extreme ends, cut to its columns.
+    /// For the priority resolve (a prototype in `visible::sweep`'s tests).
+    #[cfg(test)]
+    pub(crate) fn column_bounds(&self) -> (i32, i32) {
+        let (l, r) = (self.left, self.right);
+        // A pixel i on a row is covered only if its centre 16·i + 8 is at
+        // or right of the left crossing, so i ≥ ⌊(x − 8)/16⌋ for the
+        // least x of the left edge, and left of the right crossing.
+        let lo = ((l.x0.min(l.x1) as i32 - HALF) >> 4).max(self.x0 as i32);
+        let hi = (((r.x0.max(r.x1) as i32 - HALF) >> 4) + 1).min(self.x1 as i32);
+        (lo, hi)
     }
 
     /// Every field but the store's links, as `i32`s: two trapezoids with
