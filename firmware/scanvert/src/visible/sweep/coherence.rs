@@ -84,30 +84,54 @@ struct Counts {
     rows_crossed: u32,
 }
 
-fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
-    let n = polys.len();
-    let mut traps = vec![Trapezoid::EMPTY; 16 * n + 64];
-    let mut faces = vec![Face::EMPTY; n + 1];
-    let mut segs = [Segment::EMPTY; 1];
-    let mut rows = vec![0u16; h as usize];
-    let mut slots = vec![EdgeSlot::EMPTY; 64];
-    let mut store = TrapezoidStore::new(
-        StoreMemory {
-            trapezoids: &mut traps,
-            faces: &mut faces,
-            segments: &mut segs,
-            rows: &mut rows,
-            edges: &mut slots,
-        },
-        w,
-        h,
-    )
-    .unwrap();
-    let clip = ClipRect::full(w, h);
-    for (k, p) in polys.iter().enumerate() {
-        let c = Rgb888::new((k >> 8) as u8 + 1, k as u8, 7);
-        store.add_polygon(0, p.iter().copied(), c, &clip).unwrap();
+/// The pools of a store for a test scene.
+pub(super) struct Pools {
+    traps: Vec<Trapezoid>,
+    faces: Vec<Face>,
+    segs: [Segment; 1],
+    rows: Vec<u16>,
+    slots: Vec<EdgeSlot>,
+}
+
+impl Pools {
+    /// Pools for `n` faces on `h` rows.
+    pub(super) fn new(n: usize, h: u16) -> Pools {
+        Pools {
+            traps: vec![Trapezoid::EMPTY; 16 * n + 64],
+            faces: vec![Face::EMPTY; n + 1],
+            segs: [Segment::EMPTY; 1],
+            rows: vec![0u16; h as usize],
+            slots: vec![EdgeSlot::EMPTY; 64],
+        }
     }
+
+    /// A `w × h` store of `polys`, in segment 0, face `k` in a colour of
+    /// its own.
+    pub(super) fn store(&mut self, polys: &[Vec<Vertex3>], w: u16, h: u16) -> TrapezoidStore<'_> {
+        let mut store = TrapezoidStore::new(
+            StoreMemory {
+                trapezoids: &mut self.traps,
+                faces: &mut self.faces,
+                segments: &mut self.segs,
+                rows: &mut self.rows,
+                edges: &mut self.slots,
+            },
+            w,
+            h,
+        )
+        .unwrap();
+        let clip = ClipRect::full(w, h);
+        for (k, p) in polys.iter().enumerate() {
+            let c = Rgb888::new((k >> 8) as u8 + 1, k as u8, 7);
+            store.add_polygon(0, p.iter().copied(), c, &clip).unwrap();
+        }
+        store
+    }
+}
+
+fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
+    let mut pools = Pools::new(polys.len(), h);
+    let store = pools.store(polys, w, h);
     let tr: Vec<Trapezoid> = (0..store.len() as u16)
         .map(|t| *store.trapezoid(t).unwrap())
         .collect();
@@ -219,14 +243,13 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
 }
 
 /// `part` of `all` in per mille.
-fn per_mille(part: u32, all: u32) -> u32 {
-    part * 1000 / all.max(1)
-}
+/// A named scene: its faces and its frame.
+pub(super) type Named = (std::string::String, Vec<Vec<Vertex3>>, u16, u16);
 
-#[test]
-#[ignore]
-fn coherence_between_rows() {
-    let mut scenes: Vec<(std::string::String, Vec<Vec<Vertex3>>, u16, u16)> = Vec::new();
+/// The 170-face lists of the image and the first view of the
+/// benchmark's 170-, 300- and 1000-face scenes.
+pub(super) fn scenes() -> Vec<Named> {
+    let mut scenes: Vec<Named> = Vec::new();
     let v3 = |(x, y, z): (i32, i32, i32)| Vertex3 {
         x: Coord::from_bits(x as i16),
         y: Coord::from_bits(y as i16),
@@ -263,6 +286,17 @@ fn coherence_between_rows() {
             scenes.push((std::format!("{} {n}", v.short()), faces, w, h));
         }
     }
+    scenes
+}
+
+fn per_mille(part: u32, all: u32) -> u32 {
+    part * 1000 / all.max(1)
+}
+
+#[test]
+#[ignore]
+fn coherence_between_rows() {
+    let scenes = scenes();
     std::println!("scene | rows | spans | runs | rows, same live set | rows as above | their spans | runs shaped as above | of those, same face | trapezoid-rows | shown | trapezoids never shown | rows with an intersecting span");
     for (name, faces, w, h) in &scenes {
         let c = count(faces, *w, *h);

@@ -602,11 +602,9 @@ use probe::{add as padd, max as pmax};
 #[cfg(test)]
 mod tests {
     extern crate std;
+    use super::super::coherence::{scenes, Pools};
     use super::super::*;
     use crate::fixed::{Coord, Vertex3};
-    use crate::raster::clip::ClipRect;
-    use crate::visible::store::{Face, Segment, StoreMemory};
-    use crate::visible::trapezoid::EdgeSlot;
     use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
     use std::vec;
     use std::vec::Vec;
@@ -644,29 +642,8 @@ mod tests {
     /// and by priority: the same pixels, and each written once by
     /// priority unless it fell back. The priority resolve's stats.
     fn compare(polys: &[Vec<Vertex3>], (w, h): (u16, u16), runs: usize) -> VisibleStats {
-        let n = polys.len();
-        let mut traps = vec![Trapezoid::EMPTY; 32 * n + 64];
-        let mut fcs = vec![Face::EMPTY; n + 1];
-        let mut segs = [Segment::EMPTY; 1];
-        let mut rows = vec![0u16; h as usize];
-        let mut slots = vec![EdgeSlot::EMPTY; 64];
-        let mut store = TrapezoidStore::new(
-            StoreMemory {
-                trapezoids: &mut traps,
-                faces: &mut fcs,
-                segments: &mut segs,
-                rows: &mut rows,
-                edges: &mut slots,
-            },
-            w,
-            h,
-        )
-        .unwrap();
-        let clip = ClipRect::full(w, h);
-        for (k, p) in polys.iter().enumerate() {
-            let c = Rgb888::new((k >> 8) as u8 + 1, k as u8, 7);
-            store.add_polygon(0, p.iter().copied(), c, &clip).unwrap();
-        }
+        let mut pools = Pools::new(polys.len(), h);
+        let store = pools.store(polys, w, h);
         let mut active = vec![Active::EMPTY; store.len() + 1];
         let mut run_buf = vec![Run::EMPTY; runs];
         let mut ws = Workspace::new(&mut active, &mut run_buf);
@@ -698,50 +675,11 @@ mod tests {
         }
     }
 
-    /// A named scene: its faces and its frame.
-    type Named = (std::string::String, Vec<Vec<Vertex3>>, (u16, u16));
-
-    /// The 170-face lists of the image and the benchmark's scenes.
-    fn scenes() -> Vec<Named> {
-        let mut out = Vec::new();
-        for (name, polys) in testkit::poly3_scenes::all().into_iter().take(2) {
-            let faces = polys
-                .iter()
-                .filter(|p| testkit::reference3d::drawn(&p.poly))
-                .map(|p| p.poly.iter().copied().map(v3).collect())
-                .collect();
-            let size = (testkit::poly3_scenes::W, testkit::poly3_scenes::H);
-            out.push((std::format!("poly3-{name}"), faces, size));
-        }
-        use testkit::scenes3d::{scene, Version};
-        for n in [170, 1000] {
-            for v in [Version::Layered, Version::Tilted] {
-                let s = scene(v, n);
-                let faces = s.views[0]
-                    .iter()
-                    .map(|f| {
-                        f.iter()
-                            .map(|p| {
-                                v3((
-                                    p.x.to_bits().into(),
-                                    p.y.to_bits().into(),
-                                    p.z.to_bits().into(),
-                                ))
-                            })
-                            .collect()
-                    })
-                    .collect();
-                let size = (testkit::scenes3d::W, testkit::scenes3d::H);
-                out.push((std::format!("{} {n}", v.short()), faces, size));
-            }
-        }
-        out
-    }
-
     #[test]
     fn draws_the_sweeps_pixels() {
         let _one = lock();
-        for (name, faces, size) in scenes() {
+        for (name, faces, w, h) in scenes() {
+            let size = (w, h);
             // Records enough, and so few that it falls back.
             for runs in [4 * size.0 as usize, size.0 as usize] {
                 let st = compare(&faces, size, runs);
@@ -781,7 +719,8 @@ mod tests {
     fn priority_counts() {
         let _one = lock();
         std::println!("scene | pair tests | conflicts | most live records | partner checks | overlapping | parts left | claims | coverage scanned | coverage moved");
-        for (name, faces, size) in scenes() {
+        for (name, faces, w, h) in scenes() {
+            let size = (w, h);
             super::probe::take();
             compare(&faces, size, 4 * size.0 as usize);
             let c = super::probe::take();
