@@ -1038,6 +1038,7 @@ where
     /// (`BACKGROUND` for the background), out of the order of a row's
     /// runs, and counts them: for the priority resolve (`priority`).
     #[cfg(test)]
+    #[inline(always)]
     fn fill(&mut self, x0: i32, x1: i32, color: u32) {
         let (w, h) = self.size;
         if self.y as u32 >= h || x0 as u32 >= w || self.error.is_some() {

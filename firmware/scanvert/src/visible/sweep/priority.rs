@@ -13,8 +13,8 @@
 //!
 //! A trapezoid that enters the active list gets a *key*, its fixed-point
 //! depth at the middle of its columns on its first row, and takes its
-//! place in the live list, kept by key (nearest first; at equal keys, in
-//! the order they entered). As it enters it is tested against every
+//! place in the live list (the sweep's sorted array, kept by key instead
+//! of by `l`: nearest first; at equal keys, in the order they entered). As it enters it is tested against every
 //! live trapezoid whose columns overlap its own: over the rectangle of
 //! their common rows and columns, the difference of their fixed-point
 //! depths is affine, so its least value is at a corner. When the one
@@ -25,9 +25,10 @@
 //!
 //! # A row
 //!
-//! The live trapezoids are stepped, then visited in order. Each claims
-//! the pixels of its `l..r` that no trapezoid before it claimed (the
-//! row's *coverage*, a sorted list of intervals) and that no trapezoid on
+//! The live trapezoids are stepped by the sweep's own `step_live`, then
+//! visited in order. Each claims the pixels of its `l..r` that no
+//! trapezoid before it claimed (the row's *coverage*, a bit a column)
+//! and that no trapezoid on
 //! its conflict list is in front of: for each one whose `l..r` overlaps
 //! its own, the depths at both ends of the overlap are compared exactly
 //! (as the sweep compares them), and where the planes cross on it, the
@@ -52,23 +53,23 @@
 //! # Memory
 //!
 //! The workspace's active slots (as for the sweep: the most trapezoids
-//! on one row) and its run buffer: its first half holds the coverage (at
-//! most one interval every two columns), the rest the conflict records,
-//! one run each (the partner's slot and the next record), freed when the
-//! trapezoid that holds them ends. When a frame needs more records than
-//! the buffer holds, or a trapezoid leaves more than [`PARTS`] parts of a
-//! row to partners, the rows from there on are drawn by the sweep
-//! instead, to the same pixels.
+//! on one row; each slot's `cover` element holds what the order needs),
+//! its run buffer for the conflict records (one run each: the partner's
+//! slot and the next record; a slot's list is freed when the slot is
+//! taken again), and 512 bytes of stack for the coverage. When a frame
+//! needs more records than the buffer holds, or a trapezoid leaves more
+//! than [`PARTS`] parts of a row to partners, the rows from there on are
+//! drawn by the sweep instead, to the same pixels.
 //!
 //! # Cost
 //!
-//! Per row, `O(a)` for stepping and the writes, `O(a·c)` for the coverage
-//! of `c` intervals, plus two depth compares for each conflict whose
-//! trapezoids overlap on the row; per frame, one test per pair of
-//! trapezoids that are live together.
+//! Per row, `O(a)` for stepping, `O(a + w/32)` for the coverage of a row
+//! `w` columns wide, and the writes, plus two depth compares for each
+//! conflict whose trapezoids overlap on the row; per frame, one test per
+//! pair of trapezoids that are live together.
 
 use super::{
-    capacity, exact_nearer, jump, step_edge, Active, Counts, Cover, Entry, Hot, Resolve, Sweep,
+    capacity, exact_nearer, jump, step_live, Active, Counts, Cover, Covered, Entry, Resolve, Sweep,
     ToTarget, VisibleError, VisibleStats, Workspace, BACKGROUND,
 };
 use crate::color::ListColor;
@@ -80,20 +81,22 @@ use crate::visible::trapezoid::{DEPTH_TOLERANCE, NONE};
 /// "No record".
 const NIL: u16 = NONE;
 
-/// A live trapezoid's place in the live list (`act[p].hot`): the sweep's
-/// element, with these meanings in this resolve: `l`, `r` its pixels on
-/// the row (`l` is `i32::MAX` when it has none), `z` its key, `zx` its
-/// columns' bounds `lo | hi << 16`, `face` the head of its conflict list,
-/// `slot` its slot. Its slot's `cover` holds its depth at pixel `(0, 0)`,
-/// unwrapped (`r` the low word, `z` the high), and its last row.
+/// What a live trapezoid keeps besides the sweep's stepping state, in
+/// its slot's `cover` element: `r` its key, `zx` its columns' bounds
+/// `lo | hi << 16`, `z` the high word of its depth at pixel `(0, 0)`
+/// unwrapped (the low word is the wrapped depth's), `p` the head of its
+/// conflict list. The live list is the sweep's sorted array
+/// (`act[..k].hot`), kept by key instead of by `l`.
 #[inline(always)]
-fn z00(act: &[Active], slot: usize) -> i64 {
-    let c = &act[slot].cover;
-    (c.z as i64) << 32 | c.r as u32 as i64
+fn z00(act: &[Active], slot: usize, y: i32) -> i64 {
+    let (e, c) = (&act[slot].entry, &act[slot].cover);
+    // The entry's `z` is the depth at column 0 of row `y`.
+    let low = e.z.wrapping_sub(e.zy.wrapping_mul(y));
+    (c.z as i64) << 32 | low as u32 as i64
 }
 
-/// The conflict records, one run each in the run buffer past the
-/// coverage: the partner's slot and the next record.
+/// The conflict records, one run each in the run buffer: the partner's
+/// slot and the next record.
 struct Pool<'r> {
     runs: &'r mut [Run],
     /// Records never used: `used..runs.len()`.
@@ -142,13 +145,13 @@ impl Pool<'_> {
     }
 }
 
-/// The pixels of the row claimed so far: sorted intervals `(start, end)`
-/// that neither overlap nor touch, in runs (at most one every two
-/// columns).
-struct Coverage<'r> {
-    iv: &'r mut [Run],
-    n: usize,
+/// The pixels of the row claimed so far, a bit a column.
+struct Coverage {
+    bits: [u32; COVERAGE_WORDS],
 }
+
+/// Words of [`Coverage`]: 4096 columns, the widest frame.
+const COVERAGE_WORDS: usize = 128;
 
 /// Most parts of one trapezoid's pixels on a row that it leaves to
 /// conflict partners; a row that needs more is drawn by the sweep.
@@ -192,8 +195,8 @@ where
 
 /// Resolves `store` by priority into `out`. `Ok(None)` when every row is
 /// drawn; `Ok(Some(y))` when the conflict records or a trapezoid's
-/// [`PARTS`] ran out at row `y`,
-/// whose pixels and those below are still to be drawn (by the sweep).
+/// [`PARTS`] ran out at row `y`, whose pixels and those below are still
+/// to be drawn (by the sweep).
 pub(super) fn draw_priority<T>(
     active: &mut [Active],
     runs: &mut [Run],
@@ -206,50 +209,31 @@ where
     T::Color: ListColor,
 {
     let width = store.width() as i32;
+    let words = (width as usize).div_ceil(32);
+    if words > COVERAGE_WORDS {
+        return Ok(Some(0));
+    }
     let cap = capacity(active);
     let act = &mut active[..cap];
     for (i, a) in act.iter_mut().enumerate() {
         a.free = i as u16;
+        a.cover.p = NIL;
     }
     let (mut k, mut nf) = (0usize, cap);
-    let (cov, rest) = runs.split_at_mut(((width as usize).div_ceil(2) + 1).min(runs.len()));
-    let records = rest.len().min(NIL as usize);
-    let mut cov = Coverage { iv: cov, n: 0 };
+    let records = runs.len().min(NIL as usize);
     let mut pool = Pool {
-        runs: &mut rest[..records],
+        runs: &mut runs[..records],
         used: 0,
         free: NIL,
     };
+    let mut cov = Coverage {
+        bits: [0; COVERAGE_WORDS],
+    };
     for y in 0..store.height() {
         let yi = y as i32;
-        // Step the live trapezoids to this row, dropping those that ended.
-        let mut w = 0;
-        for p in 0..k {
-            let mut h = act[p].hot;
-            let slot = h.slot as usize;
-            let e = &mut act[slot].entry;
-            if e.left.end() <= yi {
-                pool.release(h.face);
-                // No pixels from here on, should a record still name it.
-                e.x1 = 0;
-                act[nf].free = h.slot;
-                nf += 1;
-                continue;
-            }
-            step_edge(&mut e.left);
-            step_edge(&mut e.right);
-            e.z = e.z.wrapping_add(e.zy);
-            let (l, r, _) = e.pixels();
-            (h.l, h.r) = (l, r);
-            if w == p {
-                let a = &mut act[w].hot;
-                (a.l, a.r) = (l, r);
-            } else {
-                act[w].hot = h;
-            }
-            w += 1;
-        }
-        k = w;
+        // Step the live trapezoids to this row, dropping those that ended
+        // (their conflict lists are freed when their slot is taken again).
+        (k, nf) = step_live(act, k, nf, yi);
         // Enter the trapezoids whose top is this row, each tested against
         // the live ones and put in its place by key.
         let mut t = store.row_head(y as usize);
@@ -259,7 +243,8 @@ where
                 return Err(VisibleError::Active { capacity: cap });
             }
             nf -= 1;
-            let slot = act[nf].free;
+            let slot = act[nf].free as usize;
+            pool.release(act[slot].cover.p);
             let e = Entry::from(tr, store);
             let (lo, hi) = tr.column_bounds();
             let (zu, key) = match store.face(tr.face) {
@@ -272,64 +257,43 @@ where
                 }
                 None => (0, 0),
             };
-            {
-                let c = &mut act[slot as usize].cover;
-                c.r = zu as i32;
-                c.z = (zu >> 32) as i32;
-            }
-            act[slot as usize].entry = e;
+            act[slot].entry = e;
+            act[slot].cover = Covered {
+                r: key,
+                z: (zu >> 32) as i32,
+                zx: lo | hi << 16,
+                p: NIL,
+            };
             stats.trapezoids += 1;
             let last = tr.end() - 1;
-            let mut head = NIL;
             // Its place: after every live one of a key at most its own.
             let mut at = k;
-            while at > 0 && act[at - 1].hot.z > key {
+            while at > 0 && act[act[at - 1].hot.slot as usize].cover.r > key {
                 at -= 1;
             }
             for p in 0..k {
-                let h = act[p].hot;
-                let (ulo, uhi) = (h.zx & 0xffff, (h.zx >> 16) & 0xffff);
+                let u = act[p].hot.slot as usize;
+                let c = act[u].cover;
+                let (ulo, uhi) = (c.zx & 0xffff, (c.zx >> 16) & 0xffff);
                 let (i0, i1) = (lo.max(ulo), hi.min(uhi) - 1);
                 if i0 > i1 {
                     continue;
                 }
                 padd(0, 1);
-                let u = h.slot as usize;
-                let ue = &act[u].entry;
-                let j1 = last.min(ue.left.end() - 1);
-                let (near, far) = if p < at {
-                    (u, slot as usize)
-                } else {
-                    (slot as usize, u)
-                };
+                let j1 = last.min(act[u].entry.left.end() - 1);
+                let (near, far) = if p < at { (u, slot) } else { (slot, u) };
                 if !in_front(act, near, far, (i0, i1), (yi, j1)) {
                     padd(1, 1);
                     pmax(2, pool.used as u64);
-                    if p < at {
-                        let Some(q) = pool.push(slot, h.face) else {
-                            padd(9, y as u64);
-                            return Ok(Some(y));
-                        };
-                        act[p].hot.face = q;
-                    } else {
-                        let Some(q) = pool.push(h.slot, head) else {
-                            padd(9, y as u64);
-                            return Ok(Some(y));
-                        };
-                        head = q;
-                    }
+                    let Some(q) = pool.push(far as u16, act[near].cover.p) else {
+                        padd(9, y as u64);
+                        return Ok(Some(y));
+                    };
+                    act[near].cover.p = q;
+                    ppair(false, act[near].entry.face, act[far].entry.face);
                 }
             }
-            let (l, r, _) = e.pixels();
-            let h = Hot {
-                l,
-                r,
-                z: key,
-                zx: lo | hi << 16,
-                color: 0,
-                face: head,
-                slot,
-            };
+            let h = e.hot(slot as u16);
             let mut p = k;
             while p > at {
                 act[p].hot = act[p - 1].hot;
@@ -340,29 +304,30 @@ where
         }
         stats.max_active = stats.max_active.max(k as u32);
         // Claim, front to back.
-        cov.n = 0;
+        cov.bits[..words].fill(0);
         out.y = y;
         for p in 0..k {
-            let h = act[p].hot;
+            let h = &act[p].hot;
             if h.l >= h.r {
                 continue;
             }
-            let slot = h.slot as usize;
-            let color = act[slot].entry.color;
-            if h.face == NIL {
-                stats.hidden += cov.claim(h.l, h.r, color, out);
+            let h = *h;
+            let head = act[h.slot as usize].cover.p;
+            if head == NIL {
+                stats.hidden += cov.claim(h.l, h.r, h.color, out);
                 continue;
             }
             // The parts of l..r left to conflict partners in front.
             let mut parts = [(0i32, 0i32); PARTS];
             let mut n = 0;
-            let mut q = h.face;
+            let mut q = head;
             while q != NIL {
                 let (u, next) = pool.get(q);
                 padd(3, 1);
-                let d = left_to(act, store, slot, u, (h.l, h.r), yi, stats);
+                let d = left_to(act, store, h.slot as usize, u, (h.l, h.r), yi, stats);
                 if d.0 < d.1 {
                     padd(5, 1);
+                    ppair(true, act[h.slot as usize].entry.face, act[u].entry.face);
                     let Some(part) = parts.get_mut(n) else {
                         return Ok(Some(y));
                     };
@@ -377,27 +342,17 @@ where
             let mut s = h.l;
             for &(a, b) in parts.iter() {
                 if s < a {
-                    stats.hidden += cov.claim(s, a, color, out);
+                    stats.hidden += cov.claim(s, a, h.color, out);
                 }
                 s = s.max(b);
             }
             if s < h.r {
-                stats.hidden += cov.claim(s, h.r, color, out);
+                stats.hidden += cov.claim(s, h.r, h.color, out);
             }
         }
         // The background in the gaps.
         if out.background.is_some() {
-            let mut x = 0;
-            for r in &cov.iv[..cov.n] {
-                let (a, b) = (r.len() as i32, r.ink() as i32);
-                if x < a {
-                    out.fill(x, a, BACKGROUND);
-                }
-                x = b;
-            }
-            if x < width {
-                out.fill(x, width, BACKGROUND);
-            }
+            cov.claim(0, width, BACKGROUND, out);
         }
         stats.rows += 1;
         if let Some(e) = out.error.take() {
@@ -420,9 +375,10 @@ fn unwrap(z: i32, zx: i32, zy: i32, (x, y, z0): (i32, i32, i32)) -> i64 {
     z as i64 - (m << 32)
 }
 
-/// `true` when `x` is strictly in front of `y` on every pixel centre of
-/// columns `i0..=i1` and rows `j0..=j1` (the depths of `y` greater by at
-/// least [`DEPTH_TOLERANCE`] in fixed point at the least corner).
+/// `true` when slot `x` is strictly in front of slot `y` on every pixel
+/// centre of columns `i0..=i1` and rows `j0..=j1` (both live on row `j0`;
+/// the depths of `y` greater by at least [`DEPTH_TOLERANCE`] in fixed
+/// point at the least corner).
 #[inline]
 fn in_front(
     act: &[Active],
@@ -434,7 +390,7 @@ fn in_front(
     let (ex, ey) = (&act[x].entry, &act[y].entry);
     let gx = ey.zx as i64 - ex.zx as i64;
     let gy = ey.zy as i64 - ex.zy as i64;
-    let g = z00(act, y) - z00(act, x)
+    let g = z00(act, y, j0) - z00(act, x, j0)
         + gx * if gx >= 0 { i0 } else { i1 } as i64
         + gy * if gy >= 0 { j0 } else { j1 } as i64;
     g >= DEPTH_TOLERANCE
@@ -453,6 +409,11 @@ fn left_to(
     stats: &mut VisibleStats,
 ) -> (i32, i32) {
     let (ex, eu) = (&act[x].entry, &act[u].entry);
+    // A partner that ended is not stepped any more: it has no pixels
+    // (its slot may hold another trapezoid since, which is harmless).
+    if eu.left.end() <= y {
+        return (0, 0);
+    }
     let (ul, ur, _) = eu.pixels();
     let (a, b) = (l.max(ul), r.min(ur));
     if a >= b {
@@ -511,75 +472,131 @@ fn left_to(
     }
 }
 
-impl Coverage<'_> {
-    /// Claims the pixels of `s..e` (`s < e`) not yet covered on the row:
-    /// writes them in `color` and adds `s..e` to the coverage. 1 when
-    /// they were all covered already, else 0.
-    #[inline(never)]
+impl Coverage {
+    /// Claims the pixels of `s..e` (`s < e`, within the row) not yet
+    /// covered: writes them in `color` and covers `s..e`. 1 when they
+    /// were all covered already, else 0.
+    #[inline(always)]
     fn claim<T>(&mut self, s: i32, e: i32, color: u32, out: &mut ToTarget<'_, T>) -> u32
     where
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        let n = self.n.min(self.iv.len());
-        let iv = &mut self.iv[..];
         padd(6, 1);
-        // The first interval that ends at or after `s`.
-        let mut i = 0;
-        while i < n && (iv[i].ink() as i32) < s {
-            i += 1;
-        }
-        padd(7, i as u64);
-        let (mut start, mut end) = (s, e);
-        let mut pos = s;
-        let mut j = i;
-        if i < n {
-            let a = iv[i].len() as i32;
-            let b = iv[i].ink() as i32;
-            if a <= s && e <= b {
-                return 1;
-            }
-            start = start.min(a);
-            while j < n {
-                let (a, b) = (iv[j].len() as i32, iv[j].ink() as i32);
-                if a > e {
-                    break;
+        let w0 = (s >> 5) as usize;
+        if w0 == ((e - 1) >> 5) as usize {
+            if let Some(c) = self.bits.get_mut(w0) {
+                let m = (!0u32 << (s & 31)) & (!0u32 >> (31 - ((e - 1) & 31)));
+                let old = *c;
+                *c = old | m;
+                if old & m == 0 {
+                    out.fill(s, e, color);
+                    return 0;
                 }
-                if a > pos {
-                    out.fill(pos, a, color);
+                if old & m == m {
+                    return 1;
                 }
-                pos = pos.max(b);
-                end = end.max(b);
-                j += 1;
+                *c = old;
             }
         }
-        if pos < e {
-            out.fill(pos, e, color);
-        }
-        // iv[i..j] becomes one interval.
-        if j == i {
-            if n >= iv.len() {
+        self.claim_words(s, e, color, out)
+    }
+
+    /// [`claim`](Self::claim) of a span over several words, or of one
+    /// partly covered.
+    #[inline(never)]
+    fn claim_words<T>(&mut self, s: i32, e: i32, color: u32, out: &mut ToTarget<'_, T>) -> u32
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        let (w0, w1) = ((s >> 5) as usize, ((e - 1) >> 5) as usize);
+        let first = !0u32 << (s & 31);
+        let last = !0u32 >> (31 - ((e - 1) & 31));
+        let Some(words) = self.bits.get_mut(w0..=w1) else {
+            return 0;
+        };
+        let n = words.len();
+        padd(7, n as u64);
+        let mask = |i: usize| {
+            let mut m = !0u32;
+            if i == 0 {
+                m &= first;
+            }
+            if i + 1 == n {
+                m &= last;
+            }
+            m
+        };
+        // Most spans are all new or all covered: told by a pass that
+        // only reads, the ends apart from the words between.
+        if let [c0, mid @ .., c1] = &mut *words {
+            let (o0, o1) = (*c0 & first, *c1 & last);
+            if o0 == 0 && o1 == 0 && mid.iter().all(|&c| c == 0) {
+                *c0 |= first;
+                *c1 |= last;
+                mid.fill(!0);
+                out.fill(s, e, color);
                 return 0;
             }
-            padd(8, (n - i) as u64);
-            let mut m = n;
-            while m > i {
-                iv[m] = iv[m - 1];
-                m -= 1;
+            if o0 == first && o1 == last && mid.iter().all(|&c| c == !0) {
+                return 1;
             }
-            self.n = n + 1;
-        } else if j > i + 1 {
-            let gone = j - i - 1;
-            padd(8, (n - gone - i) as u64);
-            for m in i + 1..n - gone {
-                iv[m] = iv[m + gone];
+        } else {
+            let m = first & last;
+            match words[0] & m {
+                0 => {
+                    words[0] |= m;
+                    out.fill(s, e, color);
+                    return 0;
+                }
+                o if o == m => return 1,
+                _ => {}
             }
-            self.n = n - gone;
         }
-        if let Some(r) = iv.get_mut(i) {
-            *r = Run::new(start as u16, end as u16);
+        // The runs of uncovered columns, joined across words.
+        let mut run: Option<(i32, i32)> = None;
+        for (i, c) in words.iter_mut().enumerate() {
+            let m = mask(i);
+            let u = m & !*c;
+            *c |= m;
+            emit(u, w0 + i, &mut run, color, out);
+        }
+        if let Some((a, b)) = run {
+            out.fill(a, b, color);
         }
         0
+    }
+}
+
+/// Adds the runs of set bits of `u` (word `w` of a row) to the pending
+/// run `run`, writing each run that ends before the next starts.
+#[inline(always)]
+fn emit<T>(
+    mut u: u32,
+    w: usize,
+    run: &mut Option<(i32, i32)>,
+    color: u32,
+    out: &mut ToTarget<'_, T>,
+) where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    let base = (w as i32) << 5;
+    while u != 0 {
+        let a = u.trailing_zeros();
+        let len = (!(u >> a)).trailing_zeros();
+        let (x0, x1) = (base + a as i32, base + (a + len) as i32);
+        match run {
+            Some((_, b)) if *b == x0 => *b = x1,
+            _ => {
+                if let Some((p, q)) = run.take() {
+                    out.fill(p, q, color);
+                }
+                *run = Some((x0, x1));
+            }
+        }
+        u &= if a + len >= 32 { 0 } else { !0u32 << (a + len) };
     }
 }
 
@@ -593,11 +610,30 @@ mod probe {
     pub fn max(i: usize, n: u64) {
         C[i].fetch_max(n, Ordering::Relaxed);
     }
+    extern crate std;
+    /// Pairs of faces.
+    type Faces = std::collections::BTreeSet<(u16, u16)>;
+    /// Conflicts (faces) recorded, and those that left a pixel.
+    pub static PAIRS: std::sync::Mutex<(Faces, Faces)> =
+        std::sync::Mutex::new((Faces::new(), Faces::new()));
+    pub fn pair(left: bool, a: u16, b: u16) {
+        let mut p = PAIRS.lock().unwrap();
+        if left {
+            p.1.insert((a, b));
+        } else {
+            p.0.insert((a, b));
+        }
+    }
     pub fn take() -> [u64; 12] {
+        let mut p = PAIRS.lock().unwrap();
+        C[10].store(p.0.len() as u64, Ordering::Relaxed);
+        C[11].store(p.1.len() as u64, Ordering::Relaxed);
+        p.0.clear();
+        p.1.clear();
         core::array::from_fn(|i| C[i].swap(0, Ordering::Relaxed))
     }
 }
-use probe::{add as padd, max as pmax};
+use probe::{add as padd, max as pmax, pair as ppair};
 
 #[cfg(test)]
 mod tests {
@@ -718,14 +754,14 @@ mod tests {
     #[ignore]
     fn priority_counts() {
         let _one = lock();
-        std::println!("scene | pair tests | conflicts | most live records | partner checks | overlapping | parts left | claims | coverage scanned | coverage moved");
+        std::println!("scene | pair tests | conflicts | most live records | partner checks | overlapping | parts left | claims | coverage words | face pairs in conflict | that left a pixel");
         for (name, faces, w, h) in scenes() {
             let size = (w, h);
             super::probe::take();
             compare(&faces, size, 4 * size.0 as usize);
             let c = super::probe::take();
             std::println!(
-                "{name} | {} | {} | {} | {} | {} | {} | {} | {} | {}",
+                "{name} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {}",
                 c[0],
                 c[1],
                 c[2],
@@ -734,7 +770,8 @@ mod tests {
                 c[5],
                 c[6],
                 c[7],
-                c[8]
+                c[10],
+                c[11]
             );
         }
     }
