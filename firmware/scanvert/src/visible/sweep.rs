@@ -2094,6 +2094,7 @@ mod tests {
         }
     }
 
+    use super::coherence::Pools;
     use testkit::rng::Rng;
 
     /// The pixel rule for one pixel, from its definition.
@@ -2170,58 +2171,13 @@ mod tests {
         run_scene_many_from(polys, mode, (MANY, CHAIN_FROM))
     }
 
-    /// A store's arrays for the tests' scenes of up to 64 triangles.
-    struct StoreArrays {
-        traps: [Trapezoid; 256],
-        faces: [Face; 64],
-        segs: [Segment; 1],
-        rows: [u16; H as usize],
-        edges: [EdgeSlot; 4],
-    }
-
-    impl StoreArrays {
-        fn new() -> Self {
-            StoreArrays {
-                traps: [Trapezoid::EMPTY; 256],
-                faces: [Face::EMPTY; 64],
-                segs: [Segment::EMPTY; 1],
-                rows: [0; H as usize],
-                edges: [EdgeSlot::EMPTY; 4],
-            }
-        }
-
-        /// A `W` × `H` store holding `polys`, each a colour of its own so
-        /// that no two faces merge.
-        fn store(&mut self, polys: &[[Vertex3; 3]]) -> TrapezoidStore<'_> {
-            let mut store = TrapezoidStore::new(
-                StoreMemory {
-                    trapezoids: &mut self.traps,
-                    faces: &mut self.faces,
-                    segments: &mut self.segs,
-                    rows: &mut self.rows,
-                    edges: &mut self.edges,
-                },
-                W,
-                H,
-            )
-            .unwrap();
-            let clip = ClipRect::full(W, H);
-            for (k, p) in polys.iter().enumerate() {
-                store
-                    .add_polygon(0, *p, Rgb888::new(k as u8, 0, 1), &clip)
-                    .unwrap();
-            }
-            store
-        }
-    }
-
     fn run_scene_many_from(
         polys: &[[Vertex3; 3]],
         mode: Resolve,
         many: (usize, usize),
     ) -> VisibleStats {
-        let mut mem = StoreArrays::new();
-        let store = mem.store(polys);
+        let mut mem = Pools::new(64, H);
+        let store = mem.store(polys, W, H);
         let want = brute(polys, &store);
         // Face slot → polygon number.
         let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
@@ -2297,10 +2253,10 @@ mod tests {
     #[test]
     fn draw_counts_the_spans_and_pixels_it_hands_the_target() {
         let mut rng = Rng(0x5eed_0011);
-        let mut mem = StoreArrays::new();
+        let mut mem = Pools::new(64, H);
         let polys: [[Vertex3; 3]; 8] =
             core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
-        let store = mem.store(&polys);
+        let store = mem.store(&polys, W, H);
         let sizes = [(W, H), (W - 7, H - 5), (1, 1), (W + 9, H + 2)];
         for (size, background) in sizes
             .into_iter()
@@ -2360,8 +2316,8 @@ mod tests {
                     ]
                 }
             });
-            let mut mem = StoreArrays::new();
-            let store = mem.store(&polys[..n]);
+            let mut mem = Pools::new(64, H);
+            let store = mem.store(&polys[..n], W, H);
             let mut want = 0;
             for y in 0..H as i32 {
                 let on_row = (0..H)
@@ -2591,8 +2547,8 @@ mod tests {
             let polys: [[Vertex3; 3]; 8] =
                 core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
             let polys = &polys[..n];
-            let mut mem = StoreArrays::new();
-            let store = mem.store(polys);
+            let mut mem = Pools::new(64, H);
+            let store = mem.store(polys, W, H);
             let (mut a1, mut a2) = ([Active::EMPTY; 64], [Active::EMPTY; 64]);
             let (mut r1, mut r2) = ([Run::EMPTY; W as usize], [Run::EMPTY; W as usize]);
             let mut ws = Workspace::new(&mut a1, &mut r1);

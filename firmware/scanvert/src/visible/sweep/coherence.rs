@@ -106,8 +106,13 @@ impl Pools {
     }
 
     /// A `w × h` store of `polys`, in segment 0, face `k` in a colour of
-    /// its own.
-    pub(super) fn store(&mut self, polys: &[Vec<Vertex3>], w: u16, h: u16) -> TrapezoidStore<'_> {
+    /// its own (so that no two faces merge).
+    pub(super) fn store<P: AsRef<[Vertex3]>>(
+        &mut self,
+        polys: &[P],
+        w: u16,
+        h: u16,
+    ) -> TrapezoidStore<'_> {
         let mut store = TrapezoidStore::new(
             StoreMemory {
                 trapezoids: &mut self.traps,
@@ -123,7 +128,9 @@ impl Pools {
         let clip = ClipRect::full(w, h);
         for (k, p) in polys.iter().enumerate() {
             let c = Rgb888::new((k >> 8) as u8 + 1, k as u8, 7);
-            store.add_polygon(0, p.iter().copied(), c, &clip).unwrap();
+            store
+                .add_polygon(0, p.as_ref().iter().copied(), c, &clip)
+                .unwrap();
         }
         store
     }
