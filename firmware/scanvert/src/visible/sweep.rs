@@ -128,7 +128,12 @@
 //! P3 against P4, the on-target section and "History"), measured by one
 //! command each; `cargo run --release -p host-tests --example
 //! visible_modes` measures the four 512 × 256 scenes on the host and
-//! writes them as display lists with `-- --write-lists DIR`.
+//! writes them as display lists with `-- --write-lists DIR`. Two
+//! test-only modules measure alternatives: `coherence` counts what
+//! coherence between rows could reuse, and `priority` is an exact resolve
+//! front to back that settles depth once per pair of trapezoids, which
+//! cost more than the sweep on the Cortex-M4 (both in "Where the sweep's
+//! instructions go on the Cortex-M4").
 //!
 //! [`Face::key`]: crate::visible::store::Face::key
 
