@@ -173,6 +173,13 @@ impl Edge {
         self.x
     }
 
+    /// Whole units the crossing moves down a row: each [`Edge::step`]
+    /// moves it by this or one more.
+    #[inline(always)]
+    pub fn step_units(&self) -> i32 {
+        self.step
+    }
+
     /// Moves to the next row.
     #[inline(always)]
     pub fn step(&mut self) {

@@ -165,6 +165,16 @@ pub enum Resolve {
     /// stays below `2·log₂(length)`.
     #[default]
     Crossing,
+    /// Painting far to near, into a target that keeps its pixels (a
+    /// frame or band buffer): every trapezoid's pixels written in full,
+    /// nearer ones over farther ones, with depths compared only between
+    /// trapezoids whose ranges of depth overlap (where planes cross, at
+    /// the exact crossing pixel, as `Crossing`). The same pixels as the
+    /// sweep, exactly; each pixel is written as often as trapezoids cover
+    /// it, so it is meant for memory, not for a display's window. Only
+    /// [`draw`] paints: where runs are asked for ([`Workspace::resolve`],
+    /// [`Sweep`]) it resolves as `Crossing`. See `docs/performance.md`.
+    Paint,
 }
 
 /// One slot of the workspace's active list (132 bytes on 32-bit
@@ -419,7 +429,11 @@ impl<E> From<RunsFull> for VisibleError<E> {
     }
 }
 
-/// What resolving a frame did.
+/// What resolving a frame did. A frame painted ([`Resolve::Paint`])
+/// resolves no spans: it counts its rows, trapezoids, most active, the
+/// crossings it split a trapezoid's pixels at (`splits`) and its exact
+/// comparisons, and leaves the span counts and `runs` at 0 (but for rows
+/// it left to the sweep).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct VisibleStats {
@@ -1041,8 +1055,8 @@ where
 {
     /// Writes pixels `x0..x1` (`x0 < x1`) of the current row in `color`
     /// (`BACKGROUND` for the background), out of the order of a row's
-    /// runs, and counts them: for the priority resolve (`priority`).
-    #[cfg(test)]
+    /// runs, and counts them: for painting ([`Resolve::Paint`]) and the
+    /// priority resolve (`priority`).
     #[inline(always)]
     fn fill(&mut self, x0: i32, x1: i32, color: u32) {
         let (w, h) = self.size;
@@ -1747,7 +1761,7 @@ fn split<O: RowOut>(
     cx: &mut Ctx<'_, O>,
 ) {
     cx.stats.splits += 1;
-    let crossing = cx.mode == Resolve::Crossing && cross;
+    let crossing = cx.mode != Resolve::Bisect && cross;
     let m = if crossing {
         crossing_point(a, b, s, t)
     } else {
@@ -2068,6 +2082,9 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
+    if mode == Resolve::Paint {
+        return paint::draw(store, workspace, target, background);
+    }
     workspace.check_runs(store)?;
     let out = ToTarget::new(target, background);
     let (stats, out) = resolve_into(workspace.active, store, mode, out)?;
@@ -2076,6 +2093,7 @@ where
 
 #[cfg(test)]
 mod coherence;
+mod paint;
 #[cfg(test)]
 mod priority;
 

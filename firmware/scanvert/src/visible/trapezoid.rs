@@ -969,8 +969,8 @@ impl Trapezoid {
 
     /// Columns `lo..hi` that hold every pixel it covers on any of its
     /// rows (possibly more): its edges' extreme ends, cut to its columns.
-    /// For the priority resolve (a prototype in `visible::sweep`'s tests).
-    #[cfg(test)]
+    /// For painting (`visible::sweep`'s `paint`) and the priority
+    /// resolve (a prototype in its tests).
     pub(crate) fn column_bounds(&self) -> (i32, i32) {
         let (l, r) = (self.left, self.right);
         // A pixel i on a row is covered only if its centre 16·i + 8 is at

@@ -1,0 +1,755 @@
+//! Painting far to near ([`Resolve::Paint`]): the rows written into a
+//! target that keeps its pixels (a frame or band buffer), every
+//! trapezoid's pixels in full, farther ones first, so that nearer ones
+//! overwrite them. Depths are compared only between trapezoids whose
+//! ranges of depth overlap; the rest of the order is settled once, when a
+//! trapezoid enters.
+//!
+//! # The order and the pairs
+//!
+//! A trapezoid that enters the active list gets the range of its
+//! fixed-point depth `Z̃` over the rectangle of its rows and columns
+//! (exact in `i64`, then saturated to `i32`, which keeps it a range of
+//! every pixel it covers: those are within `±2³⁰`). The live list is kept
+//! by the least depth of each range, greatest first (farthest first); at
+//! equal keys, in the order they entered. As it enters, it is tested
+//! against every live trapezoid whose columns overlap its own: when the
+//! one later in the order has its greatest depth below the earlier one's
+//! least by at least [`DEPTH_TOLERANCE`], it is strictly in front on
+//! every pixel they share, exactly (see `trapezoid`'s module docs).
+//! Otherwise the pair is a *conflict*, recorded on the later one's list.
+//! Faces parallel to the screen at different depths never conflict.
+//!
+//! # A row
+//!
+//! The live trapezoids are visited in order, each stepped to the row and
+//! its pixels `l..r` written, but for the parts where a live trapezoid
+//! on its conflict list is in front: for each whose `l..r` overlaps its
+//! own, the depths at both ends of the overlap are compared (in fixed
+//! point, exactly where they are too close), and where the planes cross
+//! on it, the crossing pixel is found by one division and checked on both
+//! sides, as the sweep splits an intersecting span.
+//!
+//! # Why it is exact
+//!
+//! Let `N` be the nearest trapezoid at a pixel (the nearer plane, at equal
+//! depth the lower key, as everywhere). `N` writes it: nothing on its list
+//! is in front of it there. A trapezoid `X` after `N` in the order that
+//! covers the pixel is not strictly in front of `N` everywhere they meet
+//! (it is farther here), so their pair is a conflict, `N` is on `X`'s list,
+//! and `X` leaves the pixel to `N`. Those before `N` are overwritten. A
+//! record whose partner has ended, its slot taken by another trapezoid
+//! since, leaves a pixel only to a live trapezoid in front there: never
+//! to the wrong one, since that pixel is not the trapezoid's to show.
+//!
+//! # Memory
+//!
+//! The workspace's active slots, as for the sweep, and its run buffer for
+//! the conflict records (one run each: the partner's slot and the next
+//! record; a slot's list is freed when the slot is taken again). When a
+//! frame needs more records than the buffer holds, or a trapezoid leaves
+//! more than [`PARTS`] parts of a row to partners, the rows from there on
+//! are drawn by the sweep instead, to the same pixels.
+//!
+//! # Cost
+//!
+//! Per row, one step and one span written a live trapezoid, plus two
+//! depth compares for each conflict whose trapezoids overlap on the row;
+//! per frame, one test per pair of trapezoids live together. Pixels are
+//! written as often as trapezoids cover them (the depth complexity), so
+//! it suits targets where a pixel is cheap to write: memory, not a
+//! display's window.
+
+use super::{
+    capacity, crossing_point, exact_nearer, jump, step_edge, Active, Counts, Cover, Entry,
+    Resolve, Sweep, ToTarget, VisibleError, VisibleStats, Workspace, BACKGROUND,
+};
+use crate::color::ListColor;
+use crate::port::SpanTarget;
+use crate::visible::rle::Run;
+use crate::visible::store::TrapezoidStore;
+use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
+
+/// "No record", "no row".
+const NIL: u16 = NONE;
+
+/// Most parts of one trapezoid's pixels on a row that it leaves to
+/// conflict partners; a row that needs more is drawn by the sweep.
+const PARTS: usize = 8;
+
+// What the slots hold besides their stepping state (`entry`):
+// - by slot, `hot.l`, `hot.r`: its pixels on row `hot.slot` (`l ≥ r`:
+//   none), `hot.z`: the head of its conflict list (`NIL`: none),
+//   `hot.zx`: the high word of its depth at pixel `(0, 0)`, unwrapped,
+//   `cover.z`: its columns' bounds `lo | hi << 16`, `cover.r` and
+//   `cover.zx`: the least and greatest depth of its range (the least is
+//   its key in the order);
+// - by place, `act[..k].cover.p`: the live list, in order (slots);
+// - `act[..nf].free`: the free slots, as for the sweep.
+
+/// Resolves `store` by painting and writes it into `target`, as
+/// [`draw`](super::draw) does.
+pub(super) fn draw<T>(
+    store: &TrapezoidStore<'_>,
+    workspace: &mut Workspace<'_>,
+    target: &mut T,
+    background: Option<T::Color>,
+) -> Result<(VisibleStats, Counts), VisibleError<T::Error>>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    workspace.check_runs(store)?;
+    let mut out = ToTarget::new(target, background);
+    let mut stats = VisibleStats::default();
+    let Some(y) = paint(
+        workspace.active,
+        workspace.runs,
+        store,
+        &mut out,
+        &mut stats,
+    )?
+    else {
+        return Ok((stats, out.counts));
+    };
+    // Out of records or parts: the rest by the sweep, from row `y` (a
+    // row begun is drawn again, to the same pixels).
+    let mut s = Sweep::start(workspace.active, Resolve::Crossing);
+    let (k, nf) = jump(workspace.active, store, (0, s.nf), (0, y))
+        .ok_or(VisibleError::Active { capacity: s.cap })?;
+    (s.y, s.k, s.nf) = (y, k, nf);
+    s.stats = stats;
+    let out = s.rows(workspace.active, store, store.height() - y, out)?;
+    Ok((s.stats, out.counts))
+}
+
+/// The conflict records, one run each in the run buffer: the partner's
+/// slot and the next record.
+struct Pool<'r> {
+    runs: &'r mut [Run],
+    /// Records never used: `used..runs.len()`.
+    used: usize,
+    /// The free records, linked by `next`.
+    free: u16,
+}
+
+impl Pool<'_> {
+    #[inline(always)]
+    fn get(&self, q: u16) -> (usize, u16) {
+        let r = self
+            .runs
+            .get(q as usize)
+            .copied()
+            .unwrap_or(Run::new(0, NIL));
+        (r.len() as usize, r.ink())
+    }
+
+    /// A record of `slot` ahead of `next`; `None` when none is left.
+    #[inline]
+    fn push(&mut self, slot: u16, next: u16) -> Option<u16> {
+        let q = if self.free != NIL {
+            let q = self.free;
+            self.free = self.get(q).1;
+            q
+        } else if self.used < self.runs.len() {
+            self.used += 1;
+            (self.used - 1) as u16
+        } else {
+            return None;
+        };
+        self.runs[q as usize] = Run::new(slot, next);
+        Some(q)
+    }
+
+    /// Takes record `q` (after `prev`, `NIL` for the head; `next` after
+    /// it) out of slot `slot`'s list, and frees it.
+    #[inline(never)]
+    fn unlink(&mut self, act: &mut [Active], slot: usize, prev: u16, q: u16, next: u16) {
+        match self.runs.get_mut(prev as usize) {
+            Some(p) => *p = Run::new(p.len(), next),
+            None => act[slot].hot.z = next as i32,
+        }
+        if let Some(r) = self.runs.get_mut(q as usize) {
+            *r = Run::new(r.len(), self.free);
+            self.free = q;
+        }
+    }
+
+    /// Frees the list from `q`.
+    #[inline]
+    fn release(&mut self, mut q: u16) {
+        while let Some(r) = self.runs.get_mut(q as usize) {
+            let next = r.ink();
+            *r = Run::new(r.len(), self.free);
+            self.free = q;
+            q = next;
+        }
+    }
+}
+
+/// Paints `store` into `out`. `Ok(None)` when every row is drawn;
+/// `Ok(Some(y))` when the conflict records or a trapezoid's [`PARTS`]
+/// ran out at row `y`, whose pixels and those below are still to be
+/// drawn (by the sweep).
+fn paint<T>(
+    active: &mut [Active],
+    runs: &mut [Run],
+    store: &TrapezoidStore<'_>,
+    out: &mut ToTarget<'_, T>,
+    stats: &mut VisibleStats,
+) -> Result<Option<u16>, VisibleError<T::Error>>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    let width = store.width() as i32;
+    let cap = capacity(active);
+    let act = &mut active[..cap];
+    for (i, a) in act.iter_mut().enumerate() {
+        a.free = i as u16;
+        a.hot.slot = NIL;
+        a.hot.z = NIL as i32;
+    }
+    let (mut k, mut nf) = (0usize, cap);
+    let records = runs.len().min(NIL as usize);
+    let mut pool = Pool {
+        runs: &mut runs[..records],
+        used: 0,
+        free: NIL,
+    };
+    // The parts of a row left to partners (see `draw_conflicted`).
+    let mut parts = [(0i32, 0i32); PARTS];
+    // The widest range of depth of a trapezoid entered so far.
+    let mut spread = 0i64;
+    for y in 0..store.height() {
+        let yi = y as i32;
+        (k, nf) = step(act, k, nf, y);
+        // Enter the trapezoids whose top is this row, each in its place
+        // by key and tested against the live ones.
+        let mut t = store.row_head(y as usize);
+        while let Some(tr) = store.trapezoid(t) {
+            t = tr.next_row;
+            if nf == 0 || k >= act.len() {
+                return Err(VisibleError::Active { capacity: cap });
+            }
+            nf -= 1;
+            let slot = act[nf].free as usize;
+            pool.release(act[slot].hot.z as u16);
+            let e = Entry::from(tr, store);
+            let (l, r, _) = e.pixels();
+            let (lo, hi) = tr.column_bounds();
+            let (zu, zmin, zmax) = depth_range(store, tr, (lo, hi));
+            {
+                let a = &mut act[slot];
+                a.entry = e;
+                (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
+                (a.hot.z, a.hot.zx) = (NIL as i32, (zu >> 32) as i32);
+            }
+            stats.trapezoids += 1;
+            // Its place: after every live one of a key at least its own.
+            let (mut at, mut past) = (0, k);
+            while at < past {
+                let mid = (at + past) / 2;
+                if act[act[mid].cover.p as usize].cover.r >= zmin {
+                    at = mid + 1;
+                } else {
+                    past = mid;
+                }
+            }
+            let last = tr.end() - 1;
+            // The earlier ones, keys at least its own, nearest key first:
+            // past one whose least depth is beyond its greatest, so are
+            // all before.
+            spread = spread.max(zmax as i64 - zmin as i64);
+            let me = (slot, (lo, hi), (zmin, zmax), (yi, last));
+            for p in (0..at).rev() {
+                let u = act[p].cover.p as usize;
+                if act[u].cover.r as i64 > zmax as i64 + DEPTH_TOLERANCE {
+                    break;
+                }
+                if !pair(act, &mut pool, me, u, true) {
+                    return Ok(Some(y));
+                }
+            }
+            // The later ones, keys below its own: a greatest depth is at
+            // most the key and the widest range seen.
+            for p in at..k {
+                let u = act[p].cover.p as usize;
+                if (act[u].cover.r as i64 + spread) < zmin as i64 - DEPTH_TOLERANCE {
+                    break;
+                }
+                if !pair(act, &mut pool, me, u, false) {
+                    return Ok(Some(y));
+                }
+            }
+            let c = &mut act[slot].cover;
+            (c.r, c.z, c.zx) = (zmin, lo | hi << 16, zmax);
+            let mut p = k;
+            while p > at {
+                act[p].cover.p = act[p - 1].cover.p;
+                p -= 1;
+            }
+            act[at].cover.p = slot as u16;
+            k += 1;
+        }
+        stats.max_active = stats.max_active.max(k as u32);
+        out.y = y;
+        if out.background.is_some() {
+            out.fill(0, width, BACKGROUND);
+        }
+        // Write, far to near.
+        for p in 0..k {
+            let slot = act[p].cover.p as usize;
+            let a = &act[slot];
+            let (l, r, color, head) = (a.hot.l, a.hot.r, a.entry.color, a.hot.z as u16);
+            if l >= r {
+                continue;
+            }
+            if head == NIL {
+                out.fill(l, r, color);
+                continue;
+            }
+            if !draw_conflicted(act, store, &mut pool, &mut parts, slot, (l, r), y, out, stats) {
+                return Ok(Some(y));
+            }
+        }
+        stats.rows += 1;
+        if let Some(e) = out.error.take() {
+            return Err(VisibleError::Sink(e));
+        }
+    }
+    Ok(None)
+}
+
+/// Tests the entering trapezoid `slot` (columns `lo..hi`, depths
+/// `zmin..=zmax`, rows `y..=last`) against the live one `u`, before it
+/// in the order (`earlier`) or after, and records their pair on the
+/// later one's list when it is a conflict. `false` when out of records.
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn pair(
+    act: &mut [Active],
+    pool: &mut Pool<'_>,
+    (slot, (lo, hi), (zmin, zmax), (y, last)): (usize, (i32, i32), (i32, i32), (i32, i32)),
+    u: usize,
+    earlier: bool,
+) -> bool {
+    let c = act[u].cover;
+    let (i0, i1) = (lo.max(c.z & 0xffff), hi.min(c.z >> 16) - 1);
+    if i0 > i1 {
+        return true;
+    }
+    // The later one (nearer in the order) and the earlier.
+    let (later, first, later_max, first_min) = if earlier {
+        (slot, u, zmax, c.r)
+    } else {
+        (u, slot, c.zx, zmin)
+    };
+    if (later_max as i64) < first_min as i64 - DEPTH_TOLERANCE {
+        return true;
+    }
+    let j1 = last.min(act[u].entry.left.end() - 1);
+    if j1 < y
+        || in_front(act, later, first, (i0, i1), (y, j1))
+        || in_front_edges(act, later, first, (y, j1))
+    {
+        return true;
+    }
+    let head = act[later].hot.z as u16;
+    let Some(q) = pool.push(first as u16, head) else {
+        return false;
+    };
+    act[later].hot.z = q as i32;
+    true
+}
+
+/// Writes slot `slot`'s pixels `l..r` on row `y` but for the parts where
+/// a partner on its conflict list is in front, dropping the records of
+/// partners that have ended. `false` when they are more than [`PARTS`]
+/// (nothing written).
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn draw_conflicted<T>(
+    act: &mut [Active],
+    store: &TrapezoidStore<'_>,
+    pool: &mut Pool<'_>,
+    parts: &mut [(i32, i32); PARTS],
+    slot: usize,
+    (l, r): (i32, i32),
+    y: u16,
+    out: &mut ToTarget<'_, T>,
+    stats: &mut VisibleStats,
+) -> bool
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
+    let mut n = 0;
+    let (mut prev, mut q) = (NIL, act[slot].hot.z as u16);
+    while q != NIL {
+        let (u, next) = pool.get(q);
+        match left_to(act, store, slot, u, (l, r), y, stats) {
+            None => {
+                pool.unlink(act, slot, prev, q, next);
+                q = next;
+                continue;
+            }
+            Some(d) if d.0 < d.1 => {
+                let Some(part) = parts.get_mut(n) else {
+                    return false;
+                };
+                *part = d;
+                n += 1;
+            }
+            Some(_) => {}
+        }
+        (prev, q) = (q, next);
+    }
+    // What is not left, left to right.
+    let parts = &mut parts[..n];
+    for i in 1..parts.len() {
+        let mut j = i;
+        while j > 0 && parts[j - 1].0 > parts[j].0 {
+            parts.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let color = act[slot].entry.color;
+    let mut s = l;
+    for &(a, b) in parts.iter() {
+        if s < a {
+            out.fill(s, a, color);
+        }
+        s = s.max(b);
+    }
+    if s < r {
+        out.fill(s, r, color);
+    }
+    true
+}
+
+/// Steps the live trapezoids `act[..k]` (in order) to row `y`, dropping
+/// those that ended onto the free stack `act[..nf]`; the new `k` and
+/// `nf`. Not inlined: its loop gets registers of its own.
+#[inline(never)]
+fn step(act: &mut [Active], k: usize, mut nf: usize, y: u16) -> (usize, usize) {
+    let k = k.min(act.len());
+    let mut w = 0;
+    for p in 0..k {
+        let slot = act[p].cover.p as usize;
+        let a = &mut act[slot];
+        let e = &mut a.entry;
+        if e.left.end() <= y as i32 {
+            act[nf].free = slot as u16;
+            nf += 1;
+            continue;
+        }
+        step_edge(&mut e.left);
+        step_edge(&mut e.right);
+        e.z = e.z.wrapping_add(e.zy);
+        let (l, r, _) = e.pixels();
+        (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
+        act[w].cover.p = slot as u16;
+        w += 1;
+    }
+    (w, nf)
+}
+
+/// The least and greatest fixed-point depth of trapezoid `tr` over the
+/// rectangle of its rows and columns `lo..hi`, saturated to `i32`: a
+/// range of its depth at every pixel it covers.
+#[inline]
+fn depth_range(
+    store: &TrapezoidStore<'_>,
+    tr: &Trapezoid,
+    (lo, hi): (i32, i32),
+) -> (i64, i32, i32) {
+    let Some(f) = store.face(tr.face) else {
+        return (0, i32::MIN, i32::MAX);
+    };
+    let d = f.depth();
+    let zu = unwrap(d.z, d.zx, d.zy, f.plane().origin_units());
+    let (zx, zy) = (d.zx as i64, d.zy as i64);
+    let (i0, i1) = (lo as i64, (hi - 1).max(lo) as i64);
+    let (j0, j1) = (tr.top() as i64, (tr.end() - 1) as i64);
+    let (xa, xb) = if zx >= 0 {
+        (zx * i0, zx * i1)
+    } else {
+        (zx * i1, zx * i0)
+    };
+    let (ya, yb) = if zy >= 0 {
+        (zy * j0, zy * j1)
+    } else {
+        (zy * j1, zy * j0)
+    };
+    let sat = |z: i64| z.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+    (zu, sat(zu + xa + ya), sat(zu + xb + yb))
+}
+
+/// The depth at pixel `(0, 0)` of slot `slot`'s plane, unwrapped, from
+/// its stepping state and the high word kept in `hot.zx`.
+#[inline(always)]
+fn z00(act: &[Active], slot: usize) -> i64 {
+    let (e, c) = (&act[slot].entry, &act[slot].hot);
+    // The entry's `z` is the depth at column 0 of the row it is stepped
+    // to, `hot.slot`.
+    let y = act[slot].hot.slot as i32;
+    let low = e.z.wrapping_sub(e.zy.wrapping_mul(y));
+    (c.zx as i64) << 32 | low as u32 as i64
+}
+
+/// `true` when slot `x` is strictly in front of slot `y` on every pixel
+/// centre of columns `i0..=i1` and rows `j0..=j1`: the depths of `y` greater by at least [`DEPTH_TOLERANCE`] in
+/// fixed point at the corner where the difference is least (it is
+/// affine).
+#[inline]
+fn in_front(
+    act: &[Active],
+    x: usize,
+    y: usize,
+    (i0, i1): (i32, i32),
+    (j0, j1): (i32, i32),
+) -> bool {
+    let (ex, ey) = (&act[x].entry, &act[y].entry);
+    let gx = ey.zx as i64 - ex.zx as i64;
+    let gy = ey.zy as i64 - ex.zy as i64;
+    let g = z00(act, y) - z00(act, x)
+        + gx * if gx >= 0 { i0 } else { i1 } as i64
+        + gy * if gy >= 0 { j0 } else { j1 } as i64;
+    g >= DEPTH_TOLERANCE
+}
+
+/// The depth at pixel `(0, 0)` of the plane whose wrapped fixed-point
+/// depth is `z + zx·i + zy·j`, unwrapped: the multiple of 2³² that puts
+/// the face's first vertex `(x, y, z₀)` (units) at its own depth.
+#[inline]
+fn unwrap(z: i32, zx: i32, zy: i32, (x, y, z0): (i32, i32, i32)) -> i64 {
+    // 16 times the depth at the vertex, as the wrapped function gives
+    // it: |zx·(x − 8)| < 2³¹·2¹⁶.
+    let at = 16 * z as i64 + zx as i64 * (x - 8) as i64 + zy as i64 * (y - 8) as i64;
+    let want = (z0 as i64) << (4 + 14);
+    let m = (at - want + (1 << 35)) >> 36;
+    z as i64 - (m << 32)
+}
+
+/// `true` when slot `x` is strictly in front of slot `y` on every pixel
+/// both cover on rows `j0..=j1`, by their edges: on a row, a common pixel
+/// is right of both left edges and left of both right edges, and each
+/// edge's crossing moves by its whole units a row or one more, so the
+/// difference of depths, affine, is bounded below on each row by its
+/// value at either trapezoid's left edge (if it grows to the right) or
+/// right edge (else), moved as far as it can go; that bound is linear in
+/// the row, least at `j0` or `j1`. Both are stepped to `j0`; `16·TOL`
+/// because the crossings are in sixteenths.
+#[inline]
+fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> bool {
+    let (ex, ey) = (&act[x].entry, &act[y].entry);
+    let gx = ey.zx as i64 - ex.zx as i64;
+    let gy = ey.zy as i64 - ex.zy as i64;
+    let a = 16 * (z00(act, y) - z00(act, x));
+    let bound = |s: usize| {
+        let e = &act[s].entry;
+        let j = act[s].hot.slot as i64;
+        let (x0, step) = if gx >= 0 {
+            (e.left.units() as i64, e.left.step_units() as i64)
+        } else {
+            (e.right.units() as i64, e.right.step_units() as i64 + 1)
+        };
+        let at = |jj: i64| a + gx * (x0 + step * (jj - j)) + 16 * gy * jj;
+        at(j0 as i64).min(at(j1 as i64))
+    };
+    bound(x).max(bound(y)) >= 16 * DEPTH_TOLERANCE
+}
+
+/// The part `a..b` of `l..r` (slot `x`'s pixels on row `y`) where slot
+/// `u` covers the pixels and is in front of `x` (`a ≥ b` when none);
+/// `None` when `u` is not stepped to the row: the partner recorded there
+/// has ended (a live one is earlier in the order, so stepped already).
+#[inline]
+fn left_to(
+    act: &[Active],
+    store: &TrapezoidStore<'_>,
+    x: usize,
+    u: usize,
+    (l, r): (i32, i32),
+    y: u16,
+    stats: &mut VisibleStats,
+) -> Option<(i32, i32)> {
+    let au = act.get(u)?;
+    // Its slot may hold another trapezoid since the partner ended: one
+    // stepped to the row is live, and leaving it pixels where it is in
+    // front is harmless.
+    if au.hot.slot != y || u == x {
+        return None;
+    }
+    let (a, b) = (l.max(au.hot.l), r.min(au.hot.r));
+    if a >= b {
+        return Some((0, 0));
+    }
+    let (ex, eu) = (&act[x].entry, &au.entry);
+    let yi = y as i32;
+    let mut nearer = |i: i32| {
+        let d =
+            ex.z.wrapping_add(ex.zx.wrapping_mul(i))
+                .wrapping_sub(eu.z.wrapping_add(eu.zx.wrapping_mul(i)));
+        if d < -(DEPTH_TOLERANCE as i32) {
+            return true;
+        }
+        if d > DEPTH_TOLERANCE as i32 {
+            return false;
+        }
+        stats.exact += 1;
+        exact_nearer(store, ex.face, eu.face, (i, yi), d)
+    };
+    let (xa, xb) = (nearer(a), nearer(b - 1));
+    Some(match (xa, xb) {
+        (true, true) => (0, 0),
+        (false, false) => (a, b),
+        _ => {
+            // The planes cross on a..b: the first pixel where the one
+            // nearer at `b − 1` is in front, estimated, then checked.
+            stats.splits += 1;
+            let cx = Cover {
+                z: ex.z,
+                zx: ex.zx,
+                ..Cover::EMPTY
+            };
+            let cu = Cover {
+                z: eu.z,
+                zx: eu.zx,
+                ..Cover::EMPTY
+            };
+            let mut c = if xa {
+                crossing_point(&cx, &cu, a, b)
+            } else {
+                crossing_point(&cu, &cx, a, b)
+            };
+            // `nearer` is `xa` on a..c and `xb` on c..b (an affine
+            // difference changes sign once).
+            while c > a + 1 && nearer(c - 1) != xa {
+                c -= 1;
+            }
+            while c < b - 1 && nearer(c) == xa {
+                c += 1;
+            }
+            if xa {
+                (c, b)
+            } else {
+                (a, c)
+            }
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::super::coherence::{scenes, Pools};
+    use super::super::*;
+    use crate::fixed::{Coord, Vertex3};
+    use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+    use std::vec;
+    use std::vec::Vec;
+    use testkit::rng::Rng;
+
+    /// The last colour written to each pixel.
+    struct Pixels {
+        size: (u16, u16),
+        px: Vec<Rgb888>,
+    }
+
+    impl SpanTarget for Pixels {
+        type Color = Rgb888;
+        type Error = core::convert::Infallible;
+        fn size(&self) -> (u16, u16) {
+            self.size
+        }
+        fn fill_span(&mut self, s: Span, c: Rgb888) -> Result<(), Self::Error> {
+            for x in s.x0..s.x1 {
+                self.px[s.y as usize * self.size.0 as usize + x as usize] = c;
+            }
+            Ok(())
+        }
+    }
+
+    /// Renders `polys` into a `w × h` frame with `runs` runs, by the sweep
+    /// and by painting, over a background and without: the same pixels.
+    /// Painting's stats (over a background).
+    fn compare(polys: &[Vec<Vertex3>], (w, h): (u16, u16), runs: usize) -> VisibleStats {
+        let mut pools = Pools::new(polys.len(), h);
+        let store = pools.store(polys, w, h);
+        let mut active = vec![Active::EMPTY; store.len() + 1];
+        let mut run_buf = vec![Run::EMPTY; runs];
+        let mut ws = Workspace::new(&mut active, &mut run_buf);
+        let frame = || Pixels {
+            size: (w, h),
+            px: vec![Rgb888::BLACK; w as usize * h as usize],
+        };
+        let mut stats = VisibleStats::default();
+        for bg in [Some(Rgb888::WHITE), None] {
+            let (mut a, mut b) = (frame(), frame());
+            draw(&store, &mut ws, Resolve::Crossing, &mut a, bg).unwrap();
+            let (st, _) = draw(&store, &mut ws, Resolve::Paint, &mut b, bg).unwrap();
+            for (i, (p, q)) in a.px.iter().zip(&b.px).enumerate() {
+                let at = (i % w as usize, i / w as usize);
+                assert_eq!(p, q, "pixel {at:?}, background {bg:?}");
+            }
+            if bg.is_some() {
+                stats = st;
+            }
+        }
+        stats
+    }
+
+    fn v3((x, y, z): (i32, i32, i32)) -> Vertex3 {
+        Vertex3 {
+            x: Coord::from_bits(x as i16),
+            y: Coord::from_bits(y as i16),
+            z: Coord::from_bits(z as i16),
+        }
+    }
+
+    #[test]
+    fn paints_the_sweeps_pixels() {
+        for (name, faces, w, h) in scenes() {
+            // Records enough, and so few that it falls back.
+            for runs in [4 * w as usize, w as usize] {
+                let st = compare(&faces, (w, h), runs);
+                assert!(st.rows == h as u32, "{name}");
+                // Painted to the end: the sweep's span counts stay 0.
+                assert_eq!(st.single + st.multiple + st.empty, 0, "{name}");
+            }
+        }
+    }
+
+    #[test]
+    fn random_interpenetrating_triangles_paint_the_sweeps_pixels() {
+        let mut rng = Rng(11);
+        // Rows that fell back to the sweep, with few records and many.
+        let mut fell_back = (0, 0);
+        for _ in 0..300 {
+            let n = 2 + rng.below(12) as usize;
+            let near = rng.below(2) == 0;
+            let tris: Vec<Vec<Vertex3>> = (0..n)
+                .map(|_| {
+                    (0..3)
+                        .map(|_| {
+                            let z = if near {
+                                rng.below(64)
+                            } else {
+                                rng.below(4000) - 2000
+                            };
+                            v3((rng.below(48 * 16) - 64, rng.below(40 * 16) - 64, z))
+                        })
+                        .collect()
+                })
+                .collect();
+            let a = compare(&tris, (40, 32), 40);
+            let b = compare(&tris, (40, 32), 200);
+            fell_back.0 += (a.single + a.multiple + a.empty > 0) as u32;
+            fell_back.1 += (b.single + b.multiple + b.empty > 0) as u32;
+        }
+        // Both ways are taken.
+        assert!(fell_back.0 > 0 && fell_back.1 < 300, "{fell_back:?}");
+    }
+}
