@@ -423,8 +423,8 @@ fn inks_565(scene: &Scene) -> Vec<Rgb565> {
 
 /// `--profile-3d MODE PASSES`: the 170-face 3D scene alone, `PASSES`
 /// times every view, for counting instructions under callgrind. MODE is
-/// `crossing` or `bisect` (full frames), `crossing-alone` or
-/// `bisect-alone` (resolve + decode), `cut` (the cut alone), `z16` or
+/// `crossing`, `bisect` or `paint` (full frames), `crossing-alone`,
+/// `bisect-alone` or `paint-alone` (resolve + decode), `cut` (the cut alone), `z16` or
 /// `z32`. `PROFILE_FACES=N` takes the scene of `N` faces instead of 170,
 /// and `PROFILE_VERSION=layered` the 2D version instead of the tilted one.
 pub fn profile(mode: &str, passes: u32) {
@@ -452,7 +452,9 @@ pub fn profile(mode: &str, passes: u32) {
     let mut f: Box<dyn FnMut() + '_> = match mode {
         "crossing" => full(Resolve::Crossing, &mut store, &scene, cap),
         "bisect" => full(Resolve::Bisect, &mut store, &scene, cap),
+        "paint" => full(Resolve::Paint, &mut store, &scene, cap),
         "crossing-alone" => alone(Resolve::Crossing, &stores, cap),
+        "paint-alone" => alone(Resolve::Paint, &stores, cap),
         "bisect-alone" => alone(Resolve::Bisect, &stores, cap),
         "cut" => Box::new(|| {
             for v in &scene.views {

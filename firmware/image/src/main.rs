@@ -305,7 +305,7 @@ impl Checked for FrameBuffer<'_, Pixel> {
 /// controller, for a list with `poly3`s stage by stage, and logs and
 /// compares the checksum. `true` when it matches.
 fn render_and_check<T: Checked>(
-    scene: &Scene,
+    (scene, resolve): (&Scene, Resolved),
     list: &DisplayList<'_>,
     edges: &mut [Edge],
     mem: &mut Memory3d,
@@ -316,8 +316,8 @@ fn render_and_check<T: Checked>(
     let rendered = if three {
         let controller = Controller::new(Rasterizer::new(edges))
             .with_3d(mem.as_memory())
-            .with_resolve(Resolve::Crossing);
-        render_stages(scene.name, list, controller, target, counter)
+            .with_resolve(resolve.mode);
+        render_stages(resolve.name, list, controller, target, counter)
     } else {
         let controller = Controller::new(Rasterizer::new(edges));
         render(scene.name, list, controller, target, counter)
@@ -328,9 +328,9 @@ fn render_and_check<T: Checked>(
     let Some(sum) = target.checksum() else {
         return true;
     };
-    log::checksum(scene.name, sum);
+    log::checksum(resolve.name, sum);
     if sum != scene.checksum {
-        log::mismatch(scene.name, scene.checksum);
+        log::mismatch(resolve.name, scene.checksum);
         return false;
     }
     true
@@ -343,7 +343,7 @@ fn render_and_check<T: Checked>(
 /// the count is then that of everything but the pixel writes, and there
 /// is no frame to check.
 fn frame(
-    scene: &Scene,
+    (scene, resolve): (&Scene, Resolved),
     pixels: &mut [Cell],
     edges: &mut [Edge],
     mem: &mut Memory3d,
@@ -362,7 +362,7 @@ fn frame(
     {
         let _ = pixels;
         let mut target = discard::Discard::new(w, h);
-        render_and_check(scene, &list, edges, mem, &mut target, counter)
+        render_and_check((scene, resolve), &list, edges, mem, &mut target, counter)
     }
 
     #[cfg(not(any(feature = "discard", feature = "halfword")))]
@@ -377,7 +377,7 @@ fn frame(
             log::too_big(scene.name, w, h);
             return false;
         };
-        render_and_check(scene, &list, edges, mem, &mut frame, counter)
+        render_and_check((scene, resolve), &list, edges, mem, &mut frame, counter)
     }
 
     #[cfg(all(feature = "halfword", not(feature = "discard")))]
@@ -391,7 +391,7 @@ fn frame(
             log::too_big(scene.name, w, h);
             return false;
         };
-        render_and_check(scene, &list, edges, mem, &mut fb, counter)
+        render_and_check((scene, resolve), &list, edges, mem, &mut fb, counter)
     }
 }
 
@@ -422,11 +422,15 @@ pub fn run() -> bool {
     };
     let mut edges = [Edge::EMPTY; scenes::EDGE_SLOTS];
     let mut matched = 0;
+    let mut frames = 0;
     for scene in scenes::SCENES {
-        if frame(scene, pixels, &mut edges, mem, &counter) {
-            matched += 1;
-        } else {
-            ok = false;
+        for resolve in Resolved::of(scene) {
+            frames += 1;
+            if frame((scene, resolve), pixels, &mut edges, mem, &counter) {
+                matched += 1;
+            } else {
+                ok = false;
+            }
         }
     }
     // The same lists again, band by band, checked against the same sums.
@@ -445,8 +449,37 @@ pub fn run() -> bool {
             ok &= rows::measure(scene, &mut edges, mem, &mut table, &counter);
         }
     }
-    log::summary(matched, scenes::SCENES.len(), ok);
+    log::summary(matched, frames, ok);
     ok
+}
+
+/// How a list's 3D layer is resolved, and the name its frame is logged
+/// under.
+#[derive(Clone, Copy)]
+struct Resolved {
+    mode: Resolve,
+    name: &'static str,
+}
+
+impl Resolved {
+    /// Every list with the default resolve (crossing points), under its
+    /// own name; the two 170-face lists again painted far to near
+    /// ([`Resolve::Paint`]), under their names with `-paint`.
+    fn of(scene: &Scene) -> impl Iterator<Item = Resolved> {
+        let painted = match scene.name {
+            "poly3-layered" => Some("poly3-layered-paint"),
+            "poly3-tilted" => Some("poly3-tilted-paint"),
+            _ => None,
+        };
+        let first = Resolved {
+            mode: Resolve::Crossing,
+            name: scene.name,
+        };
+        core::iter::once(first).chain(painted.map(|name| Resolved {
+            mode: Resolve::Paint,
+            name,
+        }))
+    }
 }
 
 /// Ends the program: QEMU exits with status 0 if `ok`, else 1.

@@ -321,8 +321,10 @@ impl Entry {
     };
 
     /// Trapezoid `t` of `store` on its top row: its edges' steppers
-    /// rebuilt from their ends, its face's depth and colour.
-    #[inline]
+    /// rebuilt from their ends, its face's depth and colour. Inlined into
+    /// both its callers (the sweep's and painting's): out of line, the
+    /// sweep cost more.
+    #[inline(always)]
     fn from(t: &Trapezoid, store: &TrapezoidStore<'_>) -> Entry {
         let (d, color) = store.face(t.face).map_or((Default::default(), 0), |f| {
             (f.depth(), crate::color::list_word(f.color_bits()))
@@ -1789,6 +1791,7 @@ fn split<O: RowOut>(
 /// The first pixel of `s + 1..t` where the plane of `b` is estimated to
 /// be in front of that of `a`, from their fixed-point depths at the ends
 /// of `s..t` (one division).
+#[inline(always)]
 fn crossing_point(a: &Cover, b: &Cover, s: i32, t: i32) -> i32 {
     // D(i) = Za(i) − Zb(i): ≤ 0 at s, ≥ 0 at t − 1, affine between.
     let d0 = a.z_at(s) as i64 - b.z_at(s) as i64;

@@ -48,8 +48,8 @@
 //! the conflict records (one run each: the partner's slot and the next
 //! record; a slot's list is freed when the slot is taken again). When a
 //! frame needs more records than the buffer holds, or a trapezoid leaves
-//! more than [`PARTS`] parts of a row to partners, the rows from there on
-//! are drawn by the sweep instead, to the same pixels.
+//! more than [`PARTS`] parts of a row to partners, the frame is drawn
+//! again by the sweep, to the same pixels.
 //!
 //! # Cost
 //!
@@ -61,8 +61,8 @@
 //! display's window.
 
 use super::{
-    capacity, crossing_point, exact_nearer, jump, step_edge, Active, Counts, Cover, Entry,
-    Resolve, Sweep, ToTarget, VisibleError, VisibleStats, Workspace, BACKGROUND,
+    capacity, crossing_point, exact_nearer, step_edge, Active, Counts, Cover, Entry, Resolve,
+    ToTarget, VisibleError, VisibleStats, Workspace, BACKGROUND,
 };
 use crate::color::ListColor;
 use crate::port::SpanTarget;
@@ -88,7 +88,9 @@ const PARTS: usize = 8;
 // - `act[..nf].free`: the free slots, as for the sweep.
 
 /// Resolves `store` by painting and writes it into `target`, as
-/// [`draw`](super::draw) does.
+/// [`draw`](super::draw) does. Not inlined, so that the sweep's `draw`
+/// compiles as it does without it.
+#[inline(never)]
 pub(super) fn draw<T>(
     store: &TrapezoidStore<'_>,
     workspace: &mut Workspace<'_>,
@@ -100,27 +102,23 @@ where
     T::Color: ListColor,
 {
     workspace.check_runs(store)?;
-    let mut out = ToTarget::new(target, background);
-    let mut stats = VisibleStats::default();
-    let Some(y) = paint(
-        workspace.active,
-        workspace.runs,
-        store,
-        &mut out,
-        &mut stats,
-    )?
-    else {
-        return Ok((stats, out.counts));
-    };
-    // Out of records or parts: the rest by the sweep, from row `y` (a
-    // row begun is drawn again, to the same pixels).
-    let mut s = Sweep::start(workspace.active, Resolve::Crossing);
-    let (k, nf) = jump(workspace.active, store, (0, s.nf), (0, y))
-        .ok_or(VisibleError::Active { capacity: s.cap })?;
-    (s.y, s.k, s.nf) = (y, k, nf);
-    s.stats = stats;
-    let out = s.rows(workspace.active, store, store.height() - y, out)?;
-    Ok((s.stats, out.counts))
+    {
+        let mut out = ToTarget::new(&mut *target, background);
+        let mut stats = VisibleStats::default();
+        let painted = paint(
+            workspace.active,
+            workspace.runs,
+            store,
+            &mut out,
+            &mut stats,
+        )?;
+        if painted.is_none() {
+            return Ok((stats, out.counts));
+        }
+    }
+    // Out of records or parts: the frame again by the sweep, to the same
+    // pixels.
+    super::draw(store, workspace, Resolve::Crossing, target, background)
 }
 
 /// The conflict records, one run each in the run buffer: the partner's
@@ -189,8 +187,7 @@ impl Pool<'_> {
 
 /// Paints `store` into `out`. `Ok(None)` when every row is drawn;
 /// `Ok(Some(y))` when the conflict records or a trapezoid's [`PARTS`]
-/// ran out at row `y`, whose pixels and those below are still to be
-/// drawn (by the sweep).
+/// ran out at row `y`.
 fn paint<T>(
     active: &mut [Active],
     runs: &mut [Run],
@@ -309,7 +306,17 @@ where
                 out.fill(l, r, color);
                 continue;
             }
-            if !draw_conflicted(act, store, &mut pool, &mut parts, slot, (l, r), y, out, stats) {
+            if !draw_conflicted(
+                act,
+                store,
+                &mut pool,
+                &mut parts,
+                slot,
+                (l, r),
+                y,
+                out,
+                stats,
+            ) {
                 return Ok(Some(y));
             }
         }
@@ -430,29 +437,47 @@ where
 
 /// Steps the live trapezoids `act[..k]` (in order) to row `y`, dropping
 /// those that ended onto the free stack `act[..nf]`; the new `k` and
-/// `nf`. Not inlined: its loop gets registers of its own.
+/// `nf`. In place up to the first that ended (most rows have none), then
+/// moving the rest down. Not inlined: its loops get registers of their
+/// own.
 #[inline(never)]
 fn step(act: &mut [Active], k: usize, mut nf: usize, y: u16) -> (usize, usize) {
     let k = k.min(act.len());
+    let yi = y as i32;
     let mut w = 0;
-    for p in 0..k {
+    while w < k {
+        let slot = act[w].cover.p as usize;
+        let a = &mut act[slot];
+        if a.entry.left.end() <= yi {
+            break;
+        }
+        step_one(a, y);
+        w += 1;
+    }
+    for p in w..k {
         let slot = act[p].cover.p as usize;
         let a = &mut act[slot];
-        let e = &mut a.entry;
-        if e.left.end() <= y as i32 {
+        if a.entry.left.end() <= yi {
             act[nf].free = slot as u16;
             nf += 1;
             continue;
         }
-        step_edge(&mut e.left);
-        step_edge(&mut e.right);
-        e.z = e.z.wrapping_add(e.zy);
-        let (l, r, _) = e.pixels();
-        (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
+        step_one(a, y);
         act[w].cover.p = slot as u16;
         w += 1;
     }
     (w, nf)
+}
+
+/// Steps the live trapezoid in `a` down to row `y` and keeps its pixels.
+#[inline(always)]
+fn step_one(a: &mut Active, y: u16) {
+    let e = &mut a.entry;
+    step_edge(&mut e.left);
+    step_edge(&mut e.right);
+    e.z = e.z.wrapping_add(e.zy);
+    let (l, r, _) = e.pixels();
+    (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
 }
 
 /// The least and greatest fixed-point depth of trapezoid `tr` over the
