@@ -454,7 +454,8 @@ fn step(act: &mut [Active], k: usize, mut nf: usize, y: u16) -> (usize, usize) {
         step_one(a, y);
         w += 1;
     }
-    for p in w..k {
+    let first = w;
+    for p in first..k {
         let slot = act[p].cover.p as usize;
         let a = &mut act[slot];
         if a.entry.left.end() <= yi {
