@@ -259,9 +259,10 @@ where
             // all before.
             spread = spread.max(zmax as i64 - zmin as i64);
             let me = (slot, (lo, hi), (zmin, zmax), (yi, last));
+            let past = zmax.saturating_add(DEPTH_TOLERANCE as i32);
             for p in (0..at).rev() {
                 let u = act[p].cover.p as usize;
-                if act[u].cover.r as i64 > zmax as i64 + DEPTH_TOLERANCE {
+                if act[u].cover.r > past {
                     break;
                 }
                 if !pair(act, &mut pool, me, u, true) {
@@ -270,9 +271,11 @@ where
             }
             // The later ones, keys below its own: a greatest depth is at
             // most the key and the widest range seen.
+            // (Saturated: a bound below `i32` stops nothing.)
+            let below = (zmin as i64 - DEPTH_TOLERANCE - spread).max(i32::MIN as i64) as i32;
             for p in at..k {
                 let u = act[p].cover.p as usize;
-                if (act[u].cover.r as i64 + spread) < zmin as i64 - DEPTH_TOLERANCE {
+                if act[u].cover.r < below {
                     break;
                 }
                 if !pair(act, &mut pool, me, u, false) {
@@ -352,7 +355,7 @@ fn pair(
     } else {
         (u, slot, c.zx, zmin)
     };
-    if (later_max as i64) < first_min as i64 - DEPTH_TOLERANCE {
+    if later_max < first_min.saturating_sub(DEPTH_TOLERANCE as i32) {
         return true;
     }
     let j1 = last.min(act[u].entry.left.end() - 1);
@@ -393,24 +396,50 @@ where
 {
     let mut n = 0;
     let (mut prev, mut q) = (NIL, act[slot].hot.z as u16);
+    let (zq, zxq) = (act[slot].entry.z, act[slot].entry.zx);
+    let t = DEPTH_TOLERANCE as i32;
     while q != NIL {
         let (u, next) = pool.get(q);
-        match left_to(act, store, slot, u, (l, r), y, stats) {
-            None => {
+        // A partner not stepped to the row has ended: a live one is
+        // earlier in the order, so stepped already. Its slot may hold
+        // another trapezoid since: one stepped to the row is live, and
+        // leaving it pixels where it is in front is harmless.
+        let au = match act.get(u) {
+            Some(au) if au.hot.slot == y && u != slot => au,
+            _ => {
                 pool.unlink(act, slot, prev, q, next);
                 q = next;
                 continue;
             }
-            Some(d) if d.0 < d.1 => {
-                let Some(part) = parts.get_mut(n) else {
-                    return false;
-                };
-                *part = d;
-                n += 1;
-            }
-            Some(_) => {}
-        }
+        };
         (prev, q) = (q, next);
+        let (a, b) = (l.max(au.hot.l), r.min(au.hot.r));
+        if a >= b {
+            continue;
+        }
+        // The difference of the depths (this one's less the partner's)
+        // at both ends of the overlap: it wraps back to the true one on
+        // pixels both cover (see `trapezoid`).
+        let dz = zq.wrapping_sub(au.entry.z);
+        let dzx = zxq.wrapping_sub(au.entry.zx);
+        let (da, db) = (
+            dz.wrapping_add(dzx.wrapping_mul(a)),
+            dz.wrapping_add(dzx.wrapping_mul(b - 1)),
+        );
+        let d = if da < -t && db < -t {
+            continue;
+        } else if da > t && db > t {
+            (a, b)
+        } else {
+            left_to(act, store, slot, u, (a, b), y, stats)
+        };
+        if d.0 < d.1 {
+            let Some(part) = parts.get_mut(n) else {
+                return false;
+            };
+            *part = d;
+            n += 1;
+        }
     }
     // What is not left, left to right.
     let parts = &mut parts[..n];
@@ -587,32 +616,24 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
     bound(x).max(bound(y)) >= 16 * DEPTH_TOLERANCE
 }
 
-/// The part `a..b` of `l..r` (slot `x`'s pixels on row `y`) where slot
-/// `u` covers the pixels and is in front of `x` (`a ≥ b` when none);
-/// `None` when `u` is not stepped to the row: the partner recorded there
-/// has ended (a live one is earlier in the order, so stepped already).
-#[inline]
+/// The part of `a..b` (common pixels of slots `x` and `u` on row `y`)
+/// where `u` is in front of `x`, when the fixed-point depths at its ends
+/// do not decide both: compared exactly there, and where the planes
+/// cross, split at the crossing pixel, estimated and checked.
+#[inline(never)]
 fn left_to(
     act: &[Active],
     store: &TrapezoidStore<'_>,
     x: usize,
     u: usize,
-    (l, r): (i32, i32),
+    (a, b): (i32, i32),
     y: u16,
     stats: &mut VisibleStats,
-) -> Option<(i32, i32)> {
-    let au = act.get(u)?;
-    // Its slot may hold another trapezoid since the partner ended: one
-    // stepped to the row is live, and leaving it pixels where it is in
-    // front is harmless.
-    if au.hot.slot != y || u == x {
-        return None;
-    }
-    let (a, b) = (l.max(au.hot.l), r.min(au.hot.r));
-    if a >= b {
-        return Some((0, 0));
-    }
-    let (ex, eu) = (&act[x].entry, &au.entry);
+) -> (i32, i32) {
+    let (Some(ax), Some(au)) = (act.get(x), act.get(u)) else {
+        return (0, 0);
+    };
+    let (ex, eu) = (&ax.entry, &au.entry);
     let yi = y as i32;
     let mut nearer = |i: i32| {
         let d =
@@ -628,7 +649,7 @@ fn left_to(
         exact_nearer(store, ex.face, eu.face, (i, yi), d)
     };
     let (xa, xb) = (nearer(a), nearer(b - 1));
-    Some(match (xa, xb) {
+    match (xa, xb) {
         (true, true) => (0, 0),
         (false, false) => (a, b),
         _ => {
@@ -664,7 +685,7 @@ fn left_to(
                 (a, c)
             }
         }
-    })
+    }
 }
 
 #[cfg(test)]
