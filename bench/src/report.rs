@@ -292,13 +292,17 @@ fn section_3d(run: &Run) -> String {
     let bad: u64 = run
         .rows3
         .iter()
-        .filter(|r| r.contender == CROSSING || r.contender == crate::visible3d::BISECT)
+        .filter(|r| {
+            r.contender == CROSSING
+                || r.contender == crate::visible3d::BISECT
+                || r.contender == crate::visible3d::PAINT
+        })
         .filter_map(|r| r.err.map(|e| e.total))
         .sum();
     let covered: f64 = run.scenes3.iter().map(|st| st.covered * VIEWS as f64).sum();
     let _ = writeln!(
         s,
-        "scanvert, both modes, all scenes and views: {} mismatched pixels in\n\
+        "scanvert, all three modes, all scenes and views: {} mismatched pixels in\n\
          {} covered pixels (each mode).\n",
         bad,
         thousands(covered)

@@ -110,6 +110,8 @@ pub const CROSSING: &str = "scanvert `Resolve::Crossing` (default)";
 /// Contender name.
 pub const BISECT: &str = "scanvert `Resolve::Bisect`";
 /// Contender name.
+pub const PAINT: &str = "scanvert `Resolve::Paint` (far to near, exact)";
+/// Contender name.
 pub const Z16: &str = "z-buffer, `i16` depth (Q12.4)";
 /// Contender name.
 pub const Z32: &str = "z-buffer, `i32` depth (Q12.4 + 14 bits)";
@@ -542,7 +544,7 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
     // Error and statistics of both modes.
     let mut scan_err = Vec::new();
     let mut stats = Vec::new();
-    for mode in [Resolve::Crossing, Resolve::Bisect] {
+    for mode in [Resolve::Crossing, Resolve::Bisect, Resolve::Paint] {
         let mut px = vec![Rgb888::BLACK; n_px];
         let mut per_view = Vec::new();
         let (mut inter, mut splits) = (0u64, 0u64);
@@ -625,9 +627,13 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
     let inks565 = inks_565(scene);
     // The stores of the full frames persist from pass to pass, as on a
     // device: each frame empties the segment and cuts every face again.
-    let mut full_mems = [StoreMem::for_scene(scene), StoreMem::for_scene(scene)];
-    let [m0, m1] = &mut full_mems;
-    let (mut full_c, mut full_b) = (m0.store(), m1.store());
+    let mut full_mems = [
+        StoreMem::for_scene(scene),
+        StoreMem::for_scene(scene),
+        StoreMem::for_scene(scene),
+    ];
+    let [m0, m1, m2] = &mut full_mems;
+    let (mut full_c, mut full_b, mut full_p) = (m0.store(), m1.store(), m2.store());
     let mut limit_px = vec![Rgb565::BLACK; n_px];
     let mut fns: Vec<Box<dyn FnMut() + '_>> = vec![
         full(Resolve::Crossing, &mut full_c, scene, most_traps),
@@ -642,6 +648,8 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
                 black_box(&mut limit_px[..n]).fill(Rgb565::RED);
             }
         }),
+        full(Resolve::Paint, &mut full_p, scene, most_traps),
+        alone(Resolve::Paint, &stores, most_traps),
     ];
     let secs = time_fns(&mut fns, MIN_RUN, ROUNDS);
     drop(fns);
@@ -667,7 +675,14 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
             Some(scan_err[0]),
             scan_mem.clone(),
         ),
-        row(BISECT, ms[1], Some(ms[3]), Some(scan_err[1]), scan_mem),
+        row(
+            BISECT,
+            ms[1],
+            Some(ms[3]),
+            Some(scan_err[1]),
+            scan_mem.clone(),
+        ),
+        row(PAINT, ms[7], Some(ms[8]), Some(scan_err[2]), scan_mem),
         row(Z16, ms[4], None, Some(z16_err), z_mem(2)),
         row(Z32, ms[5], None, Some(z32_err), z_mem(4)),
         row(LIMIT, ms[6], None, None, (0, "none".into())),

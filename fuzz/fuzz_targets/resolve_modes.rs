@@ -1,5 +1,6 @@
-//! Differential: the two visible-surface resolutions
-//! (`Resolve::Bisect` and `Resolve::Crossing`) give the same pixels on
+//! Differential: the three visible-surface resolutions
+//! (`Resolve::Bisect`, `Resolve::Crossing` and `Resolve::Paint`) give the
+//! same pixels on
 //! planar input: triangles (always planar) from a small structured input,
 //! each with its own colour and clip window, on a frame of at most 64×64.
 #![no_main]
@@ -53,6 +54,16 @@ fuzz_target!(|input: Input| {
         .collect();
     let (bisect, _) = render3(&polys, w, h, Resolve::Bisect);
     let (crossing, _) = render3(&polys, w, h, Resolve::Crossing);
+    let (painted, _) = render3(&polys, w, h, Resolve::Paint);
+    if let Some(n) = (0..painted.len()).find(|&n| painted[n] != crossing[n]) {
+        panic!(
+            "pixel ({}, {}): Paint shows {:?}, Crossing {:?}; {w}x{h} {polys:?}",
+            n % w as usize,
+            n / w as usize,
+            painted[n],
+            crossing[n]
+        );
+    }
     if let Some(n) = (0..bisect.len()).find(|&n| bisect[n] != crossing[n]) {
         panic!(
             "pixel ({}, {}): Bisect shows {:?}, Crossing {:?}; {w}x{h} {polys:?}",

@@ -17,7 +17,7 @@ use std::path::PathBuf;
 use testkit::reference::covers;
 use testkit::reference3d::Poly3;
 
-const MODES: [Resolve; 2] = [Resolve::Bisect, Resolve::Crossing];
+const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
 
 /// The Q12.4 depth range in units.
 const Z_MIN: i128 = -32768;
@@ -204,6 +204,7 @@ fn the_wall_behind_the_edge_on_floor_shows_only_where_it_is_nearer() {
     let (a, _) = render3(&scene, W, H, Resolve::Bisect);
     let (b, _) = render3(&scene, W, H, Resolve::Crossing);
     assert_eq!(a, b);
+    assert_eq!(render3(&scene, W, H, Resolve::Paint).0, b);
     let mut floor_pixels = 0;
     for j in 0..H as i32 {
         for i in 0..W as i32 {
@@ -333,6 +334,7 @@ fn a_non_planar_poly3_15000_px_deep_stays_behind_a_face_at_depth_10() {
         let (a, _) = render3(&alone, 64, 40, Resolve::Bisect);
         let (b, _) = render3(&alone, 64, 40, Resolve::Crossing);
         assert_eq!(a, b);
+        assert_eq!(render3(&alone, 64, 40, Resolve::Paint).0, b);
         assert!(a.iter().filter(|p| p.is_some()).count() > 100);
     }
 }
@@ -381,6 +383,7 @@ fn depths_at_the_corners_of_the_format() {
         let (a, _) = render3(&scene, 64, 40, Resolve::Bisect);
         let (b, _) = render3(&scene, 64, 40, Resolve::Crossing);
         assert_eq!(a, b);
+        assert_eq!(render3(&scene, 64, 40, Resolve::Paint).0, b);
     }
 }
 
@@ -431,6 +434,8 @@ proptest! {
         let scene: Vec<Poly3> = scene.iter().map(|v| poly(v)).collect();
         let (a, _) = render3(&scene, 40, 30, Resolve::Bisect);
         let (b, _) = render3(&scene, 40, 30, Resolve::Crossing);
+        let (c, _) = render3(&scene, 40, 30, Resolve::Paint);
+        prop_assert_eq!(&c, &b, "painted");
         let differ: Vec<(usize, Option<usize>, Option<usize>)> = a
             .iter()
             .zip(&b)

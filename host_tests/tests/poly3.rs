@@ -165,7 +165,7 @@ fn interpenetrating() -> impl Strategy<Value = Vec<Poly3>> {
     })
 }
 
-const MODES: [Resolve; 2] = [Resolve::Bisect, Resolve::Crossing];
+const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
@@ -199,7 +199,7 @@ fn interpenetrating_mismatch_rate_is_measured() {
         ..Config::default()
     });
     let strategy = interpenetrating();
-    let mut total = [Mismatch::default(); 2];
+    let mut total = [Mismatch::default(); 3];
     let mut scenes = 0;
     for _ in 0..200 {
         let scene = strategy.new_tree(&mut runner).expect("scene").current();

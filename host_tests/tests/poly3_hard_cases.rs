@@ -9,9 +9,9 @@ use scanvert::visible::sweep::Resolve;
 use testkit::reference::{rasterize, Window};
 use testkit::reference3d::Poly3;
 
-const MODES: [Resolve; 2] = [Resolve::Bisect, Resolve::Crossing];
+const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
 
-/// Zero mismatches in both modes.
+/// Zero mismatches in every mode.
 #[track_caller]
 fn assert_exact(scene: &[Poly3], w: u16, h: u16) {
     for mode in MODES {

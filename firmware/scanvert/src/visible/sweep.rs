@@ -128,12 +128,14 @@
 //! P3 against P4, the on-target section and "History"), measured by one
 //! command each; `cargo run --release -p host-tests --example
 //! visible_modes` measures the four 512 × 256 scenes on the host and
-//! writes them as display lists with `-- --write-lists DIR`. Two
-//! test-only modules measure alternatives: `coherence` counts what
-//! coherence between rows could reuse, and `priority` is an exact resolve
-//! front to back that settles depth once per pair of trapezoids, which
-//! cost more than the sweep on the Cortex-M4 (both in "Where the sweep's
-//! instructions go on the Cortex-M4").
+//! writes them as display lists with `-- --write-lists DIR`. A
+//! test-only module, `coherence`, counts what coherence between rows
+//! could reuse ("Where the sweep's instructions go on the Cortex-M4").
+//!
+//! [`Resolve::Paint`] resolves a frame another way, into a target that
+//! keeps its pixels: far to near, each trapezoid's pixels written in
+//! full, depths compared only between trapezoids whose ranges of depth
+//! overlap (the `paint` module).
 //!
 //! [`Face::key`]: crate::visible::store::Face::key
 
@@ -1057,8 +1059,7 @@ where
 {
     /// Writes pixels `x0..x1` (`x0 < x1`) of the current row in `color`
     /// (`BACKGROUND` for the background), out of the order of a row's
-    /// runs, and counts them: for painting ([`Resolve::Paint`]) and the
-    /// priority resolve (`priority`).
+    /// runs, and counts them: for painting ([`Resolve::Paint`]).
     #[inline(always)]
     fn fill(&mut self, x0: i32, x1: i32, color: u32) {
         let (w, h) = self.size;
@@ -2097,8 +2098,6 @@ where
 #[cfg(test)]
 mod coherence;
 mod paint;
-#[cfg(test)]
-mod priority;
 
 #[cfg(test)]
 mod tests {

@@ -531,6 +531,19 @@ impl Plane {
         (e1 * c2 as i128).cmp(&(e2 * c1 as i128))
     }
 
+    /// `true` when both slopes of [`Plane::depth`] are below 2³⁰ in
+    /// magnitude, so not wrapped: `Z̃` is then, unwrapped, an affine
+    /// function in `i64` within the error bound of the plane everywhere
+    /// in the frame. False for planes nearly edge-on, whose slopes wrap.
+    #[inline]
+    pub(crate) fn slopes_fit(&self) -> bool {
+        // |zx| ≈ 2¹⁸·|a|/c: below 2³⁰ when |a| < 2¹²·c. Each of a, b, c
+        // is below 2⁴⁸ (see `PlaneSums::edge`): this fits `i64` (saturated
+        // all the same).
+        let lim = self.c.saturating_mul(1 << 12);
+        self.a.abs() < lim && self.b.abs() < lim
+    }
+
     /// The fixed-point depth coefficients (see the [module](self) docs).
     pub fn depth(&self) -> Depth {
         let (x0, y0, z0) = self.origin_units();
@@ -969,8 +982,7 @@ impl Trapezoid {
 
     /// Columns `lo..hi` that hold every pixel it covers on any of its
     /// rows (possibly more): its edges' extreme ends, cut to its columns.
-    /// For painting (`visible::sweep`'s `paint`) and the priority
-    /// resolve (a prototype in its tests).
+    /// For painting (`visible::sweep`'s `paint`).
     pub(crate) fn column_bounds(&self) -> (i32, i32) {
         let (l, r) = (self.left, self.right);
         // A pixel i on a row is covered only if its centre 16·i + 8 is at

@@ -10,7 +10,8 @@
 //! A trapezoid that enters the active list gets the range of its
 //! fixed-point depth `Z̃` over the rectangle of its rows and columns
 //! (exact in `i64`, then saturated to `i32`, which keeps it a range of
-//! every pixel it covers: those are within `±2³⁰`). The live list is kept
+//! every pixel it covers: those are within `±2³⁰`; for a plane nearly
+//! edge-on, whose slopes wrap in `i32`, the whole of `±2³⁰`). The live list is kept
 //! by the least depth of each range, greatest first (farthest first); at
 //! equal keys, in the order they entered. As it enters, it is tested
 //! against every live trapezoid whose columns overlap its own: when the
@@ -80,7 +81,8 @@ const PARTS: usize = 8;
 // What the slots hold besides their stepping state (`entry`):
 // - by slot, `hot.l`, `hot.r`: its pixels on row `hot.slot` (`l ≥ r`:
 //   none), `hot.z`: the head of its conflict list (`NIL`: none),
-//   `hot.zx`: the high word of its depth at pixel `(0, 0)`, unwrapped,
+//   `hot.zx`: the high word of its depth at pixel `(0, 0)`, unwrapped
+//   (`WRAPS` for a plane whose slopes wrap),
 //   `cover.z`: its columns' bounds `lo | hi << 16`, `cover.r` and
 //   `cover.zx`: the least and greatest depth of its range (the least is
 //   its key in the order);
@@ -240,7 +242,7 @@ where
                 let a = &mut act[slot];
                 a.entry = e;
                 (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
-                (a.hot.z, a.hot.zx) = (NIL as i32, (zu >> 32) as i32);
+                (a.hot.z, a.hot.zx) = (NIL as i32, zu.map_or(WRAPS, |z| (z >> 32) as i32));
             }
             stats.trapezoids += 1;
             // Its place: after every live one of a key at least its own.
@@ -512,15 +514,17 @@ fn step_one(a: &mut Active, y: u16) {
 
 /// The least and greatest fixed-point depth of trapezoid `tr` over the
 /// rectangle of its rows and columns `lo..hi`, saturated to `i32`: a
-/// range of its depth at every pixel it covers.
+/// range of its depth at every pixel it covers; and its depth at pixel
+/// `(0, 0)` unwrapped, `None` when its plane's slopes wrap (nearly
+/// edge-on): its range is then that of every depth a polygon can have.
 #[inline]
 fn depth_range(
     store: &TrapezoidStore<'_>,
     tr: &Trapezoid,
     (lo, hi): (i32, i32),
-) -> (i64, i32, i32) {
-    let Some(f) = store.face(tr.face) else {
-        return (0, i32::MIN, i32::MAX);
+) -> (Option<i64>, i32, i32) {
+    let Some(f) = store.face(tr.face).filter(|f| f.plane().slopes_fit()) else {
+        return (None, -WIDEST, WIDEST);
     };
     let d = f.depth();
     let zu = unwrap(d.z, d.zx, d.zy, f.plane().origin_units());
@@ -538,8 +542,17 @@ fn depth_range(
         (zy * j1, zy * j0)
     };
     let sat = |z: i64| z.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
-    (zu, sat(zu + xa + ya), sat(zu + xb + yb))
+    (Some(zu), sat(zu + xa + ya), sat(zu + xb + yb))
 }
+
+/// Beyond every fixed-point depth at a pixel a polygon covers (see
+/// `trapezoid`: below `2²⁹ + 2¹²` in magnitude).
+const WIDEST: i32 = 1 << 30;
+
+/// The high word of an unwrapped depth for a plane whose slopes wrap: it
+/// takes no part in the tests that unwrap ([`in_front`],
+/// [`in_front_edges`]).
+const WRAPS: i32 = i32::MIN;
 
 /// The depth at pixel `(0, 0)` of slot `slot`'s plane, unwrapped, from
 /// its stepping state and the high word kept in `hot.zx`.
@@ -565,6 +578,9 @@ fn in_front(
     (i0, i1): (i32, i32),
     (j0, j1): (i32, i32),
 ) -> bool {
+    if act[x].hot.zx == WRAPS || act[y].hot.zx == WRAPS {
+        return false;
+    }
     let (ex, ey) = (&act[x].entry, &act[y].entry);
     let gx = ey.zx as i64 - ex.zx as i64;
     let gy = ey.zy as i64 - ex.zy as i64;
@@ -598,6 +614,9 @@ fn unwrap(z: i32, zx: i32, zy: i32, (x, y, z0): (i32, i32, i32)) -> i64 {
 /// because the crossings are in sixteenths.
 #[inline]
 fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> bool {
+    if act[x].hot.zx == WRAPS || act[y].hot.zx == WRAPS {
+        return false;
+    }
     let (ex, ey) = (&act[x].entry, &act[y].entry);
     let gx = ey.zx as i64 - ex.zx as i64;
     let gy = ey.zy as i64 - ex.zy as i64;
@@ -754,6 +773,17 @@ mod tests {
             y: Coord::from_bits(y as i16),
             z: Coord::from_bits(z as i16),
         }
+    }
+
+    #[test]
+    fn a_bow_tie_and_a_face_nearly_edge_on() {
+        let bow = [(0, 0, 0), (345, 198, 0), (345, 0, 0), (0, 197, 0)];
+        let steep = [(675, 232, 0), (300, 139, 22698), (294, 141, -5513)];
+        let faces: Vec<Vec<Vertex3>> = vec![
+            bow.iter().map(|&v| v3(v)).collect(),
+            steep.iter().map(|&v| v3(v)).collect(),
+        ];
+        compare(&faces, (40, 30), 200);
     }
 
     #[test]
