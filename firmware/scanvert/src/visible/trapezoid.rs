@@ -541,7 +541,8 @@ impl Plane {
         // is below 2⁴⁸ (see `PlaneSums::edge`): this fits `i64` (saturated
         // all the same).
         let lim = self.c.saturating_mul(1 << 12);
-        self.a.abs() < lim && self.b.abs() < lim
+        let lim = lim.unsigned_abs();
+        self.a.unsigned_abs() < lim && self.b.unsigned_abs() < lim
     }
 
     /// The fixed-point depth coefficients (see the [module](self) docs).
