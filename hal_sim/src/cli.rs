@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
-//!                  [--race MHZ [--fifo K]]
+//!                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K]]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
@@ -29,13 +29,14 @@ use crate::text::{self, escape_for_terminal, Assembled};
 use crate::timing::VideoTiming;
 use scanvert::controller::{RenderError, RenderStats};
 use scanvert::display_list::{DisplayList, MAGIC};
+use scanvert::visible::Resolve;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
 const USAGE: &str = "\
 usage:
   scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
-                  [--race MHZ [--fifo K]]
+                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
@@ -56,7 +57,8 @@ Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 
 const HELP_RENDER: &str = "\
 usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
-                      [--band-rows N] [--race MHZ [--fifo K]]
+                      [--band-rows N] [--resolve crossing|bisect|paint]
+                      [--race MHZ [--fifo K]]
 
 Renders SCENE, a display list in text or binary form, through the simulated display
 hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
@@ -84,6 +86,16 @@ options:
                        least 1; more rows than the frame is one band), with no whole
                        frame in the library: each band is shipped into the simulated
                        RAM. The image is the same, pixel for pixel
+  --resolve MODE       how the 3D layer's visible surfaces are resolved; every mode
+                       draws the same pixels (the nearest plane at each pixel centre):
+                         crossing  the default: the scan-line sweep, intersecting
+                                   spans split at the planes' crossing pixel
+                         bisect    the sweep, intersecting spans halved
+                         paint     far to near into the frame, nearer faces over
+                                   farther ones, depths compared only between faces
+                                   whose depth ranges overlap: fewer instructions
+                                   where faces seldom pass through each other
+                       (with --band-rows, paint resolves as crossing)
   --stats              print what the graphic controller did: commands, polygons,
                        spans, pixels, clears; for 3D scenes also poly3s, faces
                        (culled, clipped away), labels, trapezoids and runs
@@ -294,11 +306,18 @@ pub struct Rendered {
 /// a pool can address is refused, naming the line, before any of it is
 /// allocated.
 pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
+    render_scene_with(scene, Resolve::default())
+}
+
+/// [`render_scene`] with the 3D layer resolved by `resolve` (the same
+/// pixels in every mode).
+pub fn render_scene_with(scene: &Scene, resolve: Resolve) -> Result<Rendered, CliError> {
     let list = scene.list();
     let mut memory = ListMemory::for_list(&list).map_err(|e| scene.render_error(e))?;
     let mut ram = DualPortRam::new(list.width(), list.height());
     let stats = memory
         .controller()
+        .with_resolve(resolve)
         .render(&list, &mut ram.write_port())
         .map_err(|e| scene.render_error(e))?;
     Ok(Rendered { ram, stats })
@@ -311,6 +330,16 @@ pub fn render_scene(scene: &Scene) -> Result<Rendered, CliError> {
 /// memory is [`ListMemory::for_bands`]: the list's, with an edge table for
 /// its 2D commands after the last `clear`.
 pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError> {
+    render_scene_bands_with(scene, rows, Resolve::default())
+}
+
+/// [`render_scene_bands`] with the 3D layer resolved by `resolve`
+/// ([`Resolve::Paint`] resolves as [`Resolve::Crossing`] in bands).
+pub fn render_scene_bands_with(
+    scene: &Scene,
+    rows: u16,
+    resolve: Resolve,
+) -> Result<Rendered, CliError> {
     use scanvert::controller::PrepareError;
     use scanvert::pixelcolor::{Rgb565, RgbColor};
     use scanvert::port::band::{BandTarget, BandsError};
@@ -346,7 +375,8 @@ pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError
     }
     let mut ram = DualPortRam::new(list.width(), list.height());
     let mut band = vec![Rgb565::BLACK; rows.min(list.height()) as usize * list.width() as usize];
-    let (mut controller, table) = memory.band_parts();
+    let (controller, table) = memory.band_parts();
+    let mut controller = controller.with_resolve(resolve);
     let stats = controller
         .render_bands(&list, table, rows, &mut band, &mut Ship(&mut ram))
         .map_err(|e| match e {
@@ -382,6 +412,7 @@ struct Args {
     no_speed: bool,
     help: bool,
     band_rows: Option<u16>,
+    resolve: Option<Resolve>,
     race: Option<crate::timing::Clock>,
     fifo: Option<u16>,
 }
@@ -397,6 +428,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         no_speed: false,
         help: false,
         band_rows: None,
+        resolve: None,
         race: None,
         fifo: None,
     };
@@ -428,6 +460,21 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 a.timing = Some(v.clone());
             }
             "--stats" => a.stats = true,
+            "--resolve" => {
+                let v = it
+                    .next()
+                    .ok_or_else(|| usage("--resolve needs a mode: crossing, bisect or paint"))?;
+                a.resolve = Some(match v.as_str() {
+                    "crossing" => Resolve::Crossing,
+                    "bisect" => Resolve::Bisect,
+                    "paint" => Resolve::Paint,
+                    _ => {
+                        return Err(usage(format_args!(
+                            "--resolve: unknown mode '{v}' (crossing, bisect or paint)"
+                        )))
+                    }
+                });
+            }
             "--race" => {
                 let v = it.next().map(String::as_str).unwrap_or_default();
                 a.race = Some(crate::race::parse_mhz(v).ok_or_else(|| {
@@ -543,16 +590,17 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 return Err(usage("render: --fifo goes with --race"));
             }
             if let Some(cpu) = a.race {
-                if a.band_rows.is_some() || a.stats {
+                if a.band_rows.is_some() || a.stats || a.resolve.is_some() {
                     return Err(usage(
-                        "render: --race draws 1-row bands and prints its misses; --band-rows and --stats do not go with it",
+                        "render: --race draws 1-row bands and prints its misses; --band-rows, --resolve and --stats do not go with it",
                     ));
                 }
                 return crate::race::render(&scene, &timing, cpu, a.fifo, &out, warn);
             }
+            let resolve = a.resolve.unwrap_or_default();
             let mut r = match a.band_rows {
-                Some(n) => render_scene_bands(&scene, n)?,
-                None => render_scene(&scene)?,
+                Some(n) => render_scene_bands_with(&scene, n, resolve)?,
+                None => render_scene_with(&scene, resolve)?,
             };
             // The image is the mode's visible area, read from the RAM's
             // top-left corner (see `refresh`): a smaller area crops.

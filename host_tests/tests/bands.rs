@@ -767,6 +767,51 @@ fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
     }
 }
 
+#[test]
+fn the_command_line_writes_the_same_image_in_every_resolve_mode_and_refuses_others() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("resolve_cli");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let src = dir.join("three.dl");
+    std::fs::write(&src, THREE_D).expect("scene");
+    let run = |out: &Path, extra: &[&str]| {
+        let mut args: Vec<String> = [
+            "render",
+            src.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        args.extend(extra.iter().map(|s| s.to_string()));
+        scanvert_sim::cli::run(&args)
+    };
+    let full = dir.join("full.png");
+    run(&full, &[]).expect("full render");
+    let want = std::fs::read(&full).expect("png");
+    for mode in ["crossing", "bisect", "paint"] {
+        for bands in [&[][..], &["--band-rows", "7"]] {
+            let out = dir.join(format!("{mode}-{}.png", bands.len()));
+            let mut extra = vec!["--resolve", mode];
+            extra.extend_from_slice(bands);
+            run(&out, &extra).expect("render");
+            assert_eq!(std::fs::read(&out).expect("png"), want, "{extra:?}");
+        }
+    }
+    for bad in [
+        &["--resolve", "sweep"][..],
+        &["--resolve"],
+        &["--resolve", "paint", "--race", "168"],
+    ] {
+        let out = dir.join("bad.png");
+        let _ = std::fs::remove_file(&out);
+        let e = run(&out, bad).expect_err("refused");
+        assert_eq!(e.status, scanvert_sim::cli::EXIT_USAGE, "{bad:?}");
+        assert!(e.message.contains("--resolve"), "{}", e.message);
+        assert!(!out.exists(), "no image for {bad:?}");
+    }
+}
+
 /// After `Scene::check`, a pass in another workspace compares its
 /// capacity with the number the scene found: one slot short is the same
 /// typed error as before, and enough draws the same frame.
