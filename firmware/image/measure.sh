@@ -221,15 +221,20 @@ EOF
 The `poly3-*` lists are the 3D layer alone on a 512 × 256 frame
 (`testkit::poly3_scenes`): 170 `poly3`s, one colour each, parallel to
 the screen at depths of their own (*layered*), or tilted and through
-each other (*tilted*). The image renders each once, through
-`Controller::render_with` into a black frame with the host's checksum,
-and reads the counter where the controller's hook reports the end of a
+each other (*tilted*). The image renders each twice, through
+`Controller::render_with` into a black frame with the host's checksum:
+with the default `Resolve::Crossing`, and again painted far to near
+with `Resolve::Paint` (the `-paint` rows, the same pixels and
+checksum; their *spans* and *pixels* in the table above count every
+span and pixel written, those painted over included). It reads the
+counter where the controller's hook reports the end of a
 stage (counted below; *whole render* is the table above). *Spans* are those the sweep resolves (empty, single,
-multiple and intersecting; a row with no trapezoid is one). *Cut* is the 3D commands through the one
+multiple and intersecting; a row with no trapezoid is one; painting
+resolves none, so n/a). *Cut* is the 3D commands through the one
 interpreter: the cull, and every drawn `poly3` into trapezoids in the
 store (plane, edge set-up, cut, scan-line index); *check* is
 `Workspace::check`; *resolve + decode* is `visible::draw` with
-crossing points, the background left as it is; *without pixel writes*
+crossing points (or painting), the background left as it is; *without pixel writes*
 is the same into the `discard` port. The whole render adds the list
 check and the 2D commands' pass to the stages.
 
@@ -476,10 +481,15 @@ stages_table() { # ARM-LOG
     total=$(instructions_of "$name" "$1")
     scan=$(stages "$out/arm-discard.log" | awk -v n="$name" '$1 == n { print $6 }')
     per_face=$(fmt "$(awk -v c="$cut" -v f="$faces" 'BEGIN { print c / f }')" 0)
-    per_span=$(fmt "$(awk -v r="$resolve" -v s="$spans" 'BEGIN { print r / s }')" 0)
+    per_span=n/a
+    if [ "$spans" -gt 0 ]; then
+      per_span=$(fmt "$(awk -v r="$resolve" -v s="$spans" 'BEGIN { print r / s }')" 0)
+    fi
     fps=$(fmt "$(awk -v i="$total" 'BEGIN { print 168e6 / i }')" 1)
     fps_r=$(fmt "$(awk -v i="$resolve" 'BEGIN { print 168e6 / i }')" 1)
-    echo "| $name | $(thousands "$faces") | $(thousands "$traps") | $(thousands "$spans") | $(thousands "$cut") | $per_face | $(thousands "$check") | $(thousands "$resolve") | $per_span | $(thousands "$scan") | $(thousands "$total") | $fps | $fps_r |"
+    shown=n/a
+    [ "$spans" -gt 0 ] && shown=$(thousands "$spans")
+    echo "| $name | $(thousands "$faces") | $(thousands "$traps") | $shown | $(thousands "$cut") | $per_face | $(thousands "$check") | $(thousands "$resolve") | $per_span | $(thousands "$scan") | $(thousands "$total") | $fps | $fps_r |"
   done
 }
 
