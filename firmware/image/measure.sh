@@ -132,12 +132,17 @@ echo "== checksums: target against host" >&2
 (cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/*.scvl) \
   | sort >"$out/host.sums"
 for name in arm arm-halfword $( [ "$have_rv" = yes ] && echo riscv ); do
-  grep '^checksum ' "$out/$name.log" | sort >"$out/$name.sums"
-  if ! diff -u "$out/host.sums" "$out/$name.sums" >&2; then
+  # A list rendered again another way (`NAME-paint`) is checked against
+  # the host's checksum of NAME.
+  grep '^checksum ' "$out/$name.log" | sed 's/^\(checksum [^ ]*\)-paint /\1 /' \
+    | sort -u >"$out/$name.sums"
+  if [ "$(grep -c '^checksum ' "$out/$name.log")" -ne \
+    $(($(wc -l <"$out/$name.sums") + $(grep -c '^checksum [^ ]*-paint ' "$out/$name.log"))) ] \
+    || ! diff -u "$out/host.sums" "$out/$name.sums" >&2; then
     echo "$name: checksums differ from the host's" >&2
     exit 1
   fi
-  echo "$name: $(wc -l <"$out/$name.sums") checksums equal the host's" >&2
+  echo "$name: $(grep -c '^checksum ' "$out/$name.log") checksums equal the host's" >&2
 done
 # The budget variants: every list of theirs, each checksum the host's.
 (cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/budget/*.scvl) \
@@ -513,6 +518,8 @@ bands_of() {
 
 bands_table() { # BANDS-LOG HALFWORD-LOG
   frames "$2" | while read -r name w h polys clears spans pixels base; do
+    # Lists the band renders draw (not those drawn again another way).
+    bands_of "$1" | awk -v n="$name" '$1 == n { found = 1 } END { exit !found }' || continue
     row="| $name | $(thousands "$base")"
     for rows in 1 8 16 64; do
       instr=$(bands_of "$1" | awk -v n="$name" -v r="$rows" '$1 == n && $2 == r { print $3 }')

@@ -2054,7 +2054,9 @@ impl<O: RowOut> Ctx<'_, O> {
 /// `true` when face `c` is in front of face `b` at the centre of pixel
 /// `(i, j)`, exactly: the nearer plane, at equal depth the lower key.
 /// `d`, the difference of their fixed-point depths, decides only for a
-/// face missing from the store (never in a store as built).
+/// face missing from the store (never in a store as built). Not inlined:
+/// rare, and large (the exact comparison in `i128`).
+#[inline(never)]
 fn exact_nearer(store: &TrapezoidStore<'_>, c: u16, b: u16, (i, j): (i32, i32), d: i32) -> bool {
     match (store.face(c), store.face(b)) {
         (Some(fc), Some(fb)) => fc
