@@ -725,13 +725,19 @@ fn two_passes_each_skipping_the_others_bands_make_the_frame() {
     }
 }
 
-#[test]
-fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
-    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bands_cli");
-    std::fs::create_dir_all(&dir).expect("dir");
+/// `THREE_D` written into `dir`, a way to run `scanvert render` on it
+/// into an image with more options, and the PNG it writes with none.
+#[allow(clippy::type_complexity)]
+fn render_three_d(
+    dir: &Path,
+) -> (
+    impl Fn(&Path, &[&str]) -> Result<String, scanvert_sim::cli::CliError>,
+    Vec<u8>,
+) {
+    std::fs::create_dir_all(dir).expect("dir");
     let src = dir.join("three.dl");
     std::fs::write(&src, THREE_D).expect("scene");
-    let run = |out: &Path, extra: &[&str]| {
+    let run = move |out: &Path, extra: &[&str]| {
         let mut args: Vec<String> = [
             "render",
             src.to_str().unwrap(),
@@ -747,6 +753,13 @@ fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
     let full = dir.join("full.png");
     run(&full, &[]).expect("full render");
     let want = std::fs::read(&full).expect("png");
+    (run, want)
+}
+
+#[test]
+fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("bands_cli");
+    let (run, want) = render_three_d(&dir);
     for n in ["1", "7", "16", "64", "65", "100000"] {
         let out = dir.join(format!("band-{n}.png"));
         run(&out, &["--band-rows", n]).expect("band render");
@@ -770,25 +783,7 @@ fn the_command_line_writes_the_same_image_in_bands_and_refuses_bad_counts() {
 #[test]
 fn the_command_line_writes_the_same_image_in_every_resolve_mode_and_refuses_others() {
     let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("resolve_cli");
-    std::fs::create_dir_all(&dir).expect("dir");
-    let src = dir.join("three.dl");
-    std::fs::write(&src, THREE_D).expect("scene");
-    let run = |out: &Path, extra: &[&str]| {
-        let mut args: Vec<String> = [
-            "render",
-            src.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
-        args.extend(extra.iter().map(|s| s.to_string()));
-        scanvert_sim::cli::run(&args)
-    };
-    let full = dir.join("full.png");
-    run(&full, &[]).expect("full render");
-    let want = std::fs::read(&full).expect("png");
+    let (run, want) = render_three_d(&dir);
     for mode in ["crossing", "bisect", "paint"] {
         for bands in [&[][..], &["--band-rows", "7"]] {
             let out = dir.join(format!("{mode}-{}.png", bands.len()));
