@@ -1,8 +1,8 @@
 //! Painting far to near ([`Resolve::Paint`]): the rows written into a
-//! target that keeps its pixels (a frame or band buffer), every
-//! trapezoid's pixels in full, farther ones first, so that nearer ones
-//! overwrite them. Depths are compared only between trapezoids whose
-//! ranges of depth overlap; the rest of the order is settled once, when a
+//! target that keeps its pixels (a frame buffer), every trapezoid's
+//! pixels in full, farther ones first, so that nearer ones overwrite
+//! them. Depths are compared only between trapezoids whose ranges of
+//! depth overlap; the rest of the order is settled once, when a
 //! trapezoid enters.
 //!
 //! # The order and the pairs
@@ -11,15 +11,21 @@
 //! fixed-point depth `Z̃` over the rectangle of its rows and columns
 //! (exact in `i64`, then saturated to `i32`, which keeps it a range of
 //! every pixel it covers: those are within `±2³⁰`; for a plane nearly
-//! edge-on, whose slopes wrap in `i32`, the whole of `±2³⁰`). The live list is kept
-//! by the least depth of each range, greatest first (farthest first); at
-//! equal keys, in the order they entered. As it enters, it is tested
-//! against every live trapezoid whose columns overlap its own: when the
-//! one later in the order has its greatest depth below the earlier one's
-//! least by at least [`DEPTH_TOLERANCE`], it is strictly in front on
-//! every pixel they share, exactly (see `trapezoid`'s module docs).
-//! Otherwise the pair is a *conflict*, recorded on the later one's list.
-//! Faces parallel to the screen at different depths never conflict.
+//! edge-on, whose slopes wrap in `i32`, the whole of `±2³⁰`). The live
+//! list is kept by the least depth of each range, greatest first
+//! (farthest first); at equal keys, in the order they entered. As it
+//! enters, it is tested against the live trapezoids whose ranges may
+//! overlap its own (the order, and the widest range seen in the frame,
+//! bound the scan) and whose columns overlap its own. The one later in
+//! the order is strictly in front of the earlier on every pixel they
+//! share, exactly (see `trapezoid`'s module docs), when its fixed-point
+//! depth is below the earlier's by at least [`DEPTH_TOLERANCE`]: over
+//! the whole of both ranges; or at the least corner of the rectangle of
+//! their common rows and columns (the difference is affine); or on every
+//! common row within both trapezoids' edges, each edge moved as far as
+//! it can go ([`in_front_edges`]). Otherwise the pair is a *conflict*,
+//! recorded on the later one's list. Faces parallel to the screen at
+//! different depths never conflict.
 //!
 //! # A row
 //!
