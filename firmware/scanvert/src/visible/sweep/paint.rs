@@ -782,6 +782,50 @@ mod tests {
     }
 
     #[test]
+    fn a_target_smaller_than_the_store_gets_the_sweeps_pixels() {
+        let (_, faces, w, h) = scenes().into_iter().nth(1).expect("tilted");
+        let mut pools = Pools::new(faces.len(), h);
+        let store = pools.store(&faces, w, h);
+        let mut active = vec![Active::EMPTY; store.len() + 1];
+        let mut run_buf = vec![Run::EMPTY; 4 * w as usize];
+        let mut ws = Workspace::new(&mut active, &mut run_buf);
+        let (tw, th) = (w - 37, h - 21);
+        let frame = || Pixels {
+            size: (tw, th),
+            px: vec![Rgb888::BLACK; tw as usize * th as usize],
+        };
+        let (mut a, mut b) = (frame(), frame());
+        let bg = Some(Rgb888::WHITE);
+        let (_, ca) = draw(&store, &mut ws, Resolve::Crossing, &mut a, bg).unwrap();
+        let (st, cb) = draw(&store, &mut ws, Resolve::Paint, &mut b, bg).unwrap();
+        assert!(a.px == b.px);
+        assert_eq!(st.single + st.multiple + st.empty, 0, "painted");
+        // Every pixel inside written, some more than once.
+        assert_eq!(ca.pixels, tw as u32 * th as u32);
+        assert!(cb.pixels > ca.pixels);
+    }
+
+    #[test]
+    fn too_small_an_active_list_is_an_error_not_a_panic() {
+        let (_, faces, w, h) = scenes().into_iter().nth(1).expect("tilted");
+        let mut pools = Pools::new(faces.len(), h);
+        let store = pools.store(&faces, w, h);
+        let mut active = vec![Active::EMPTY; 5];
+        let mut run_buf = vec![Run::EMPTY; w as usize];
+        let mut ws = Workspace::new(&mut active, &mut run_buf);
+        let mut px = Pixels {
+            size: (w, h),
+            px: vec![Rgb888::BLACK; w as usize * h as usize],
+        };
+        let got = draw(&store, &mut ws, Resolve::Paint, &mut px, None);
+        assert!(matches!(got, Err(VisibleError::Active { capacity: 5 })));
+        let mut short = vec![Run::EMPTY; w as usize - 1];
+        let mut ws = Workspace::new(&mut active, &mut short);
+        let got = draw(&store, &mut ws, Resolve::Paint, &mut px, None);
+        assert!(matches!(got, Err(VisibleError::Runs { .. })));
+    }
+
+    #[test]
     fn a_bow_tie_and_a_face_nearly_edge_on() {
         let bow = [(0, 0, 0), (345, 198, 0), (345, 0, 0), (0, 197, 0)];
         let steep = [(675, 232, 0), (300, 139, 22698), (294, 141, -5513)];
