@@ -168,14 +168,15 @@ pub enum Resolve {
     #[default]
     Crossing,
     /// Painting far to near, into a target that keeps its pixels (a
-    /// frame or band buffer): every trapezoid's pixels written in full,
+    /// frame buffer): every trapezoid's pixels written in full,
     /// nearer ones over farther ones, with depths compared only between
     /// trapezoids whose ranges of depth overlap (where planes cross, at
     /// the exact crossing pixel, as `Crossing`). The same pixels as the
     /// sweep, exactly; each pixel is written as often as trapezoids cover
     /// it, so it is meant for memory, not for a display's window. Only
     /// [`draw`] paints: where runs are asked for ([`Workspace::resolve`],
-    /// [`Sweep`]) it resolves as `Crossing`. See `docs/performance.md`.
+    /// [`Sweep`], and so the band renderers) it resolves as `Crossing`.
+    /// See `docs/performance.md`, "Painting far to near".
     Paint,
 }
 
