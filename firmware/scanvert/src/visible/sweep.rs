@@ -1076,13 +1076,20 @@ where
         } else {
             T::Color::from_list_word(color)
         };
+        self.counts.spans += 1;
+        self.counts.pixels += x1 - x0 as u32;
+        self.write(x0 as u32, x1, c);
+    }
+
+    /// Writes pixels `x0..x1` of the current row, clipped to the target
+    /// already (so the frame need not check them again), in `c`.
+    #[inline(always)]
+    fn write(&mut self, x0: u32, x1: u32, c: T::Color) {
         let span = Span {
             y: self.y,
             x0: x0 as u16,
             x1: x1 as u16,
         };
-        self.counts.spans += 1;
-        self.counts.pixels += x1 - x0 as u32;
         if let Err(e) = self.target.fill_span_inside(span, c) {
             self.error = Some(e);
         }
@@ -1129,15 +1136,7 @@ where
         } else {
             T::Color::from_list_word(color)
         };
-        let span = Span {
-            y: self.y,
-            x0: x0 as u16,
-            x1: x1 as u16,
-        };
-        // Clipped above: the frame need not check it again.
-        if let Err(e) = self.target.fill_span_inside(span, c) {
-            self.error = Some(e);
-        }
+        self.write(x0, x1, c);
     }
 
     /// Counts the row's spans and pixels: every run that was not skipped
