@@ -228,7 +228,6 @@ where
     let mut spread = 0i64;
     for y in 0..store.height() {
         let yi = y as i32;
-        (k, nf) = step(act, k, nf, y);
         // Enter the trapezoids whose top is this row, each in its place
         // by key and tested against the live ones.
         let mut t = store.row_head(y as usize);
@@ -305,11 +304,25 @@ where
         if out.background.is_some() {
             out.fill(0, width, BACKGROUND);
         }
-        // Write, far to near.
+        // Write, far to near, each stepped to the row as it comes (the
+        // ones that entered on it are there already); those that end on
+        // the row leave the list for the free stack after it.
+        let next = yi + 1;
+        let mut w = 0;
         for p in 0..k {
             let slot = act[p].cover.p as usize;
-            let a = &act[slot];
+            let a = &mut act[slot];
+            if a.hot.slot != y {
+                step_one(a, y);
+            }
             let (l, r, color, head) = (a.hot.l, a.hot.r, a.entry.color, a.hot.z as u16);
+            if a.entry.left.end() <= next {
+                act[nf].free = slot as u16;
+                nf += 1;
+            } else {
+                act[w].cover.p = slot as u16;
+                w += 1;
+            }
             if l >= r {
                 continue;
             }
@@ -331,6 +344,7 @@ where
                 return Ok(Some(y));
             }
         }
+        k = w;
         stats.rows += 1;
         if let Some(e) = out.error.take() {
             return Err(VisibleError::Sink(e));
@@ -367,9 +381,15 @@ fn pair(
         return true;
     }
     let j1 = last.min(act[u].entry.left.end() - 1);
-    if j1 < y
-        || in_front(act, later, first, (i0, i1), (y, j1))
-        || in_front_edges(act, later, first, (y, j1))
+    if j1 < y {
+        return true;
+    }
+    // The live one to the row, as it will be when the row is written,
+    // so that both are tested from the row they are on.
+    if act[u].hot.slot != y as u16 {
+        step_one(&mut act[u], y as u16);
+    }
+    if in_front(act, later, first, (i0, i1), (y, j1)) || in_front_edges(act, later, first, (y, j1))
     {
         return true;
     }
@@ -470,41 +490,6 @@ where
         out.fill(s, r, color);
     }
     true
-}
-
-/// Steps the live trapezoids `act[..k]` (in order) to row `y`, dropping
-/// those that ended onto the free stack `act[..nf]`; the new `k` and
-/// `nf`. In place up to the first that ended (most rows have none), then
-/// moving the rest down. Not inlined: its loops get registers of their
-/// own.
-#[inline(never)]
-fn step(act: &mut [Active], k: usize, mut nf: usize, y: u16) -> (usize, usize) {
-    let k = k.min(act.len());
-    let yi = y as i32;
-    let mut w = 0;
-    while w < k {
-        let slot = act[w].cover.p as usize;
-        let a = &mut act[slot];
-        if a.entry.left.end() <= yi {
-            break;
-        }
-        step_one(a, y);
-        w += 1;
-    }
-    let first = w;
-    for p in first..k {
-        let slot = act[p].cover.p as usize;
-        let a = &mut act[slot];
-        if a.entry.left.end() <= yi {
-            act[nf].free = slot as u16;
-            nf += 1;
-            continue;
-        }
-        step_one(a, y);
-        act[w].cover.p = slot as u16;
-        w += 1;
-    }
-    (w, nf)
 }
 
 /// Steps the live trapezoid in `a` down to row `y` and keeps its pixels.
