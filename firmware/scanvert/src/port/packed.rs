@@ -138,23 +138,38 @@ where
     }
 }
 
-/// Stores `v` in every word of `run`, four words a store group; the last
-/// group overlaps the one before it instead of leaving a tail loop.
+/// Stores `v` in every word of `run` as groups of 16, 8, 4 or 2 words
+/// (double-word stores on the Cortex-M4): a run shorter than 32 words,
+/// most spans, is two groups of one size that overlap, with no loop; a
+/// longer one is a loop of groups of 16 and a last group that overlaps
+/// the one before it.
 #[inline(always)]
 fn fill_words(run: &mut [u32], v: u32) {
     let n = run.len();
-    if n >= 4 {
-        let quad = [v; 4];
-        for q in run.chunks_exact_mut(4) {
-            q.copy_from_slice(&quad);
+    if n >= 16 {
+        let group = [v; 16];
+        if n >= 32 {
+            for q in run.chunks_exact_mut(16) {
+                q.copy_from_slice(&group);
+            }
+        } else {
+            run[..16].copy_from_slice(&group);
         }
-        if !n.is_multiple_of(4) {
-            run[n - 4..].copy_from_slice(&quad);
-        }
-    } else {
-        for w in run {
-            *w = v;
-        }
+        run[n - 16..].copy_from_slice(&group);
+    } else if n >= 8 {
+        let group = [v; 8];
+        run[..8].copy_from_slice(&group);
+        run[n - 8..].copy_from_slice(&group);
+    } else if n >= 4 {
+        let group = [v; 4];
+        run[..4].copy_from_slice(&group);
+        run[n - 4..].copy_from_slice(&group);
+    } else if n >= 2 {
+        let group = [v; 2];
+        run[..2].copy_from_slice(&group);
+        run[n - 2..].copy_from_slice(&group);
+    } else if let Some(w) = run.first_mut() {
+        *w = v;
     }
 }
 
@@ -458,9 +473,9 @@ mod tests {
 
     #[test]
     fn fill_words_writes_exactly_its_run() {
-        for len in 0..40 {
+        for len in 0..70 {
             for at in 0..5 {
-                let mut w = [0u32; 48];
+                let mut w = [0u32; 80];
                 fill_words(&mut w[at..at + len], 9);
                 for (i, &v) in w.iter().enumerate() {
                     assert_eq!(v == 9, (at..at + len).contains(&i), "{len} {at} {i}");
