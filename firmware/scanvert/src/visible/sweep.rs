@@ -1031,6 +1031,10 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     skipped_px: u32,
     counts: Counts,
     error: Option<T::Error>,
+    /// For painting: the columns of the current row that may be written,
+    /// the target's width, or 0 when the row is below the target or the
+    /// target has failed (see [`ToTarget::paint_row`]).
+    limit: u32,
 }
 
 impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
@@ -1049,6 +1053,7 @@ impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
             skipped_px: 0,
             counts: Counts::default(),
             error: None,
+            limit: 0,
         }
     }
 }
@@ -1058,27 +1063,44 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
-    /// Writes pixels `x0..x1` (`x0 < x1`) of the current row in `color`
-    /// (`BACKGROUND` for the background), out of the order of a row's
-    /// runs, and counts them: for painting ([`Resolve::Paint`]).
+    /// Starts painting row `y` ([`Resolve::Paint`]): the row and the
+    /// target's state are checked here once, not span by span.
+    #[inline(always)]
+    fn paint_row(&mut self, y: u16) {
+        self.y = y;
+        let (w, h) = self.size;
+        self.limit = if (y as u32) < h && self.error.is_none() {
+            w
+        } else {
+            0
+        };
+    }
+
+    /// Writes pixels `x0..x1` (`x0 < x1`) of the row started by
+    /// [`ToTarget::paint_row`] in `color`, a face's (never `BACKGROUND`),
+    /// out of the order of a row's runs, and counts them.
     #[inline(always)]
     fn fill(&mut self, x0: i32, x1: i32, color: u32) {
-        let (w, h) = self.size;
-        if self.y as u32 >= h || x0 as u32 >= w || self.error.is_some() {
+        if x0 as u32 >= self.limit {
             return;
         }
-        let x1 = (x1 as u32).min(w);
-        let c = if color == BACKGROUND {
-            match self.background {
-                Some(c) => c,
-                None => return,
-            }
-        } else {
-            T::Color::from_list_word(color)
-        };
+        let x1 = (x1 as u32).min(self.limit);
         self.counts.spans += 1;
         self.counts.pixels += x1 - x0 as u32;
-        self.write(x0 as u32, x1, c);
+        self.write(x0 as u32, x1, T::Color::from_list_word(color));
+    }
+
+    /// Fills pixels `0..width` of the row started by
+    /// [`ToTarget::paint_row`] with the background, when there is one,
+    /// and counts them.
+    #[inline]
+    fn fill_background(&mut self, width: u32) {
+        let x1 = width.min(self.limit);
+        if let (Some(c), true) = (self.background, x1 > 0) {
+            self.counts.spans += 1;
+            self.counts.pixels += x1;
+            self.write(0, x1, c);
+        }
     }
 
     /// Writes pixels `x0..x1` of the current row, clipped to the target
@@ -1092,6 +1114,7 @@ where
         };
         if let Err(e) = self.target.fill_span_inside(span, c) {
             self.error = Some(e);
+            self.limit = 0;
         }
     }
 }

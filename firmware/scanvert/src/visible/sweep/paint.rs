@@ -69,7 +69,7 @@
 
 use super::{
     capacity, crossing_point, exact_nearer, step_edge, Active, Counts, Cover, Entry, Resolve,
-    ToTarget, VisibleError, VisibleStats, Workspace, BACKGROUND,
+    ToTarget, VisibleError, VisibleStats, Workspace,
 };
 use crate::color::ListColor;
 use crate::port::SpanTarget;
@@ -207,7 +207,7 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
-    let width = store.width() as i32;
+    let width = store.width() as u32;
     let cap = capacity(active);
     let act = &mut active[..cap];
     for (i, a) in act.iter_mut().enumerate() {
@@ -300,10 +300,8 @@ where
             k += 1;
         }
         stats.max_active = stats.max_active.max(k as u32);
-        out.y = y;
-        if out.background.is_some() {
-            out.fill(0, width, BACKGROUND);
-        }
+        out.paint_row(y);
+        out.fill_background(width);
         // Write, far to near, each stepped to the row as it comes (the
         // ones that entered on it are there already); those that end on
         // the row leave the list for the free stack after it.
