@@ -307,7 +307,8 @@ where
         // the row leave the list for the free stack after it.
         let next = yi + 1;
         let mut w = 0;
-        for p in 0..k {
+        // (`k` is within the slots: said again for the bounds checks.)
+        for p in 0..k.min(act.len()) {
             let slot = act[p].cover.p as usize;
             let a = &mut act[slot];
             if a.hot.slot != y {
@@ -318,7 +319,9 @@ where
                 act[nf].free = slot as u16;
                 nf += 1;
             } else {
-                act[w].cover.p = slot as u16;
+                if w != p {
+                    act[w].cover.p = slot as u16;
+                }
                 w += 1;
             }
             if l >= r {
