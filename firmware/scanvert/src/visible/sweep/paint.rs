@@ -72,6 +72,7 @@ use super::{
     ToTarget, VisibleError, VisibleStats, Workspace,
 };
 use crate::color::ListColor;
+use crate::fixed::ceil_px;
 use crate::port::SpanTarget;
 use crate::visible::rle::Run;
 use crate::visible::store::TrapezoidStore;
@@ -84,7 +85,9 @@ const NIL: u16 = NONE;
 /// conflict partners; a row that needs more is drawn by the sweep.
 const PARTS: usize = 8;
 
-// What the slots hold besides their stepping state (`entry`):
+// What the slots hold besides their edges' stepping state (`entry`,
+// whose `z` is the depth at pixel `(0, 0)`, wrapped: no depth is stepped,
+// see [`z_row`]):
 // - by slot, `hot.l`, `hot.r`: its pixels on row `hot.slot` (`l ≥ r`:
 //   none), `hot.z`: the head of its conflict list (`NIL`: none),
 //   `hot.zx`: the high word of its depth at pixel `(0, 0)`, unwrapped
@@ -239,8 +242,10 @@ where
             nf -= 1;
             let slot = act[nf].free as usize;
             pool.release(act[slot].hot.z as u16);
-            let e = Entry::from(tr, store);
-            let (l, r, _) = e.pixels();
+            let mut e = Entry::from(tr, store);
+            // Its depth at pixel (0, 0), from that on its top row.
+            e.z = e.z.wrapping_sub(e.zy.wrapping_mul(yi));
+            let (l, r) = row_pixels(&e);
             let (lo, hi) = tr.column_bounds();
             let (zu, zmin, zmax) = depth_range(store, tr, (lo, hi));
             {
@@ -425,7 +430,8 @@ where
 {
     let mut n = 0;
     let (mut prev, mut q) = (NIL, act[slot].hot.z as u16);
-    let (zq, zxq) = (act[slot].entry.z, act[slot].entry.zx);
+    let yi = y as i32;
+    let (zq, zxq) = (z_row(&act[slot].entry, yi), act[slot].entry.zx);
     let t = DEPTH_TOLERANCE as i32;
     while q != NIL {
         let (u, next) = pool.get(q);
@@ -449,7 +455,7 @@ where
         // The difference of the depths (this one's less the partner's)
         // at both ends of the overlap: it wraps back to the true one on
         // pixels both cover (see `trapezoid`).
-        let dz = zq.wrapping_sub(au.entry.z);
+        let dz = zq.wrapping_sub(z_row(&au.entry, yi));
         let dzx = zxq.wrapping_sub(au.entry.zx);
         let (da, db) = (
             dz.wrapping_add(dzx.wrapping_mul(a)),
@@ -499,9 +505,25 @@ fn step_one(a: &mut Active, y: u16) {
     let e = &mut a.entry;
     step_edge(&mut e.left);
     step_edge(&mut e.right);
-    e.z = e.z.wrapping_add(e.zy);
-    let (l, r, _) = e.pixels();
+    let (l, r) = row_pixels(e);
     (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
+}
+
+/// The pixels `l..r` of the row `e` is stepped to, cut to its columns;
+/// none when `l ≥ r` (as [`Entry::pixels`], without moving `l`).
+#[inline(always)]
+fn row_pixels(e: &Entry) -> (i32, i32) {
+    (
+        ceil_px(e.left.units()).max(e.x0 as i32),
+        ceil_px(e.right.units()).min(e.x1 as i32),
+    )
+}
+
+/// The wrapped fixed-point depth of `e`'s plane at column 0 of row `y`:
+/// painting keeps the depth at pixel `(0, 0)` in `e.z` and steps none.
+#[inline(always)]
+fn z_row(e: &Entry, y: i32) -> i32 {
+    e.z.wrapping_add(e.zy.wrapping_mul(y))
 }
 
 /// The least and greatest fixed-point depth of trapezoid `tr` over the
@@ -546,16 +568,12 @@ const WIDEST: i32 = 1 << 30;
 /// [`in_front_edges`]).
 const WRAPS: i32 = i32::MIN;
 
-/// The depth at pixel `(0, 0)` of slot `slot`'s plane, unwrapped, from
-/// its stepping state and the high word kept in `hot.zx`.
+/// The depth at pixel `(0, 0)` of slot `slot`'s plane, unwrapped: the
+/// wrapped one in `entry.z` and the high word kept in `hot.zx`.
 #[inline(always)]
 fn z00(act: &[Active], slot: usize) -> i64 {
     let (e, c) = (&act[slot].entry, &act[slot].hot);
-    // The entry's `z` is the depth at column 0 of the row it is stepped
-    // to, `hot.slot`.
-    let y = act[slot].hot.slot as i32;
-    let low = e.z.wrapping_sub(e.zy.wrapping_mul(y));
-    (c.zx as i64) << 32 | low as u32 as i64
+    (c.zx as i64) << 32 | e.z as u32 as i64
 }
 
 /// `true` when slot `x` is strictly in front of slot `y` on every pixel
@@ -646,10 +664,11 @@ fn left_to(
     };
     let (ex, eu) = (&ax.entry, &au.entry);
     let yi = y as i32;
+    let (zx0, zu0) = (z_row(ex, yi), z_row(eu, yi));
     let mut nearer = |i: i32| {
-        let d =
-            ex.z.wrapping_add(ex.zx.wrapping_mul(i))
-                .wrapping_sub(eu.z.wrapping_add(eu.zx.wrapping_mul(i)));
+        let d = zx0
+            .wrapping_add(ex.zx.wrapping_mul(i))
+            .wrapping_sub(zu0.wrapping_add(eu.zx.wrapping_mul(i)));
         if d < -(DEPTH_TOLERANCE as i32) {
             return true;
         }
@@ -668,12 +687,12 @@ fn left_to(
             // nearer at `b − 1` is in front, estimated, then checked.
             stats.splits += 1;
             let cx = Cover {
-                z: ex.z,
+                z: zx0,
                 zx: ex.zx,
                 ..Cover::EMPTY
             };
             let cu = Cover {
-                z: eu.z,
+                z: zu0,
                 zx: eu.zx,
                 ..Cover::EMPTY
             };
