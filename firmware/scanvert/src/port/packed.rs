@@ -174,28 +174,29 @@ fn fill_words(run: &mut [u32], v: u32) {
 }
 
 /// Writes pixels `a..b` (`a < b`, both at most `2 · words.len()`) of the
-/// packed pixels in `words` with the pixel pair `v` (`c | c << 16`).
+/// packed pixels in `words` with the pixel pair `v` (`c | c << 16`). The
+/// words it touches are checked against the slice once: a wrong span
+/// writes nothing and never panics.
 #[inline(always)]
-fn fill_pixels(words: &mut [u32], mut a: usize, mut b: usize, v: u32) {
+fn fill_pixels(words: &mut [u32], a: usize, b: usize, v: u32) {
+    let Some(mut run) = words.get_mut(a / 2..b.div_ceil(2)) else {
+        return;
+    };
     if a % 2 == 1 {
         // The high half of the first word.
-        if let Some(w) = words.get_mut(a / 2) {
+        if let Some((w, rest)) = core::mem::take(&mut run).split_first_mut() {
             *w = (*w & 0x0000_ffff) | (v & 0xffff_0000);
+            run = rest;
         }
-        a += 1;
     }
-    if b % 2 == 1 && a < b {
+    if b % 2 == 1 {
         // The low half of the last word.
-        if let Some(w) = words.get_mut(b / 2) {
+        if let Some((w, rest)) = core::mem::take(&mut run).split_last_mut() {
             *w = (*w & 0xffff_0000) | (v & 0x0000_ffff);
+            run = rest;
         }
-        b -= 1;
     }
-    // `a <= b`, both even; in bounds by the callers' guarantee, and
-    // `get_mut` keeps a wrong span from ever panicking.
-    if let Some(run) = words.get_mut(a / 2..b / 2) {
-        fill_words(run, v);
-    }
+    fill_words(run, v);
 }
 
 impl<C> SpanTarget for PackedFrameBuffer<'_, C>
