@@ -242,15 +242,16 @@ where
             nf -= 1;
             let slot = act[nf].free as usize;
             pool.release(act[slot].hot.z as u16);
-            let mut e = Entry::from(tr, store);
-            // Its depth at pixel (0, 0), from that on its top row.
-            e.z = e.z.wrapping_sub(e.zy.wrapping_mul(yi));
-            let (l, r) = row_pixels(&e);
             let (lo, hi) = tr.column_bounds();
             let (zu, zmin, zmax) = depth_range(store, tr, (lo, hi));
             {
+                // Made in its slot, not copied there.
                 let a = &mut act[slot];
-                a.entry = e;
+                a.entry = Entry::from(tr, store);
+                let e = &mut a.entry;
+                // Its depth at pixel (0, 0), from that on its top row.
+                e.z = e.z.wrapping_sub(e.zy.wrapping_mul(yi));
+                let (l, r) = row_pixels(e);
                 (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
                 (a.hot.z, a.hot.zx) = (NIL as i32, zu.map_or(WRAPS, |z| (z >> 32) as i32));
             }
