@@ -352,11 +352,11 @@ where
             }
         }
         k = w;
-        stats.rows += 1;
         if let Some(e) = out.error.take() {
             return Err(VisibleError::Sink(e));
         }
     }
+    stats.rows = store.height() as u32;
     Ok(None)
 }
 
