@@ -495,7 +495,8 @@ impl<'a> Workspace<'a> {
     /// Finds the most trapezoids of `store` that overlap one row, without
     /// resolving anything, and checks it against the active list; checks
     /// that a row of the store's width fits the run buffer. O(rows +
-    /// trapezoids × overlap).
+    /// trapezoids) when the run buffer has more runs than the store has
+    /// rows, else O(rows + trapezoids × log overlap).
     pub fn check(
         &mut self,
         store: &TrapezoidStore<'_>,
@@ -506,6 +507,29 @@ impl<'a> Workspace<'a> {
             });
         }
         let cap = self.capacity();
+        if let Some(ends) = self.runs.get_mut(..=store.height() as usize) {
+            // The trapezoids that end on each row, counted in the runs'
+            // lengths as each starts (at most 65535: the store's), and the
+            // overlap kept row by row.
+            ends.fill(Run::EMPTY);
+            let (mut k, mut most) = (0usize, 0usize);
+            for y in 0..store.height() {
+                k -= ends[y as usize].len() as usize;
+                let mut t = store.row_head(y as usize);
+                while let Some(tr) = store.trapezoid(t) {
+                    if k >= cap {
+                        return Err(VisibleError::Active { capacity: cap });
+                    }
+                    k += 1;
+                    if let Some(e) = ends.get_mut(tr.end() as usize) {
+                        *e = Run::new(e.len() + 1, 0);
+                    }
+                    t = tr.next_row;
+                }
+                most = most.max(k);
+            }
+            return Ok(most as u32);
+        }
         // The last rows of the trapezoids overlapping the row, as a binary
         // min-heap in `active[..k].cover.r`: O(log k) per trapezoid,
         // nothing per row where none starts or ends.
@@ -2366,23 +2390,28 @@ mod tests {
                     ]
                 }
             });
-            let mut mem = Pools::new(64, H);
-            let store = mem.store(&polys[..n], W, H);
-            let mut want = 0;
-            for y in 0..H as i32 {
-                let on_row = (0..H)
-                    .flat_map(|top| store.starting_at(top))
-                    .filter(|(_, t)| (t.top as i32) <= y && y < t.end as i32)
-                    .count();
-                want = want.max(on_row);
-            }
-            let mut active = [Active::EMPTY; 64];
-            let mut runs = [Run::EMPTY; W as usize];
-            let got = Workspace::new(&mut active[..want.max(1)], &mut runs).check(&store);
-            assert_eq!(got, Ok(want as u32), "round {round}");
-            if want > 0 {
-                let got = Workspace::new(&mut active[..want - 1], &mut runs).check(&store);
-                assert_eq!(got, Err(VisibleError::Active { capacity: want - 1 }));
+            // The full width: more runs than rows, the ends counted row by
+            // row; and a width below the rows, as many runs: the heap.
+            for width in [W, H - 8] {
+                let mut mem = Pools::new(64, H);
+                let store = mem.store(&polys[..n], width, H);
+                let mut want = 0;
+                for y in 0..H as i32 {
+                    let on_row = (0..H)
+                        .flat_map(|top| store.starting_at(top))
+                        .filter(|(_, t)| (t.top as i32) <= y && y < t.end as i32)
+                        .count();
+                    want = want.max(on_row);
+                }
+                let mut active = [Active::EMPTY; 64];
+                let mut runs = [Run::EMPTY; W as usize];
+                let runs = &mut runs[..width as usize];
+                let got = Workspace::new(&mut active[..want.max(1)], runs).check(&store);
+                assert_eq!(got, Ok(want as u32), "round {round}, width {width}");
+                if want > 0 {
+                    let got = Workspace::new(&mut active[..want - 1], runs).check(&store);
+                    assert_eq!(got, Err(VisibleError::Active { capacity: want - 1 }));
+                }
             }
         }
     }
