@@ -253,8 +253,9 @@ EOF
 
 The image renders into `PackedFrameBuffer` (`port/packed.rs`): RGB565
 pixels packed two to a `u32`, a span stored as a half-word at an odd
-start or end and words in between, four at a time, and a rectangle (two
-vertical edges) with its addresses worked out once. Built with
+start or end and words in between, in two overlapping groups of 2 to 16
+words (a loop of 16 only past 32 words), and a rectangle (two vertical
+edges) with its addresses worked out once. Built with
 `--features halfword` it renders into `FrameBuffer<Rgb565>` instead, one
 `strh` a pixel; its checksums equal the host's too.
 

@@ -3,10 +3,11 @@
 //!
 //! On a 32-bit core a span of `FrameBuffer<Rgb565>` is stored a half-word
 //! per pixel (`strh`). Here the frame is a slice of `u32` words, two pixels
-//! to a word, and a span is stored as whole words, four at a time (one
-//! `stm` of four registers on a Cortex-M), with a half-word merged into its
-//! word at an odd start or end. On the Cortex-M4 the image measures it in
-//! `docs/performance.md` (on-target section).
+//! to a word, and a span is stored as whole words in groups of 16, 8, 4
+//! or 2 (double-word stores on a Cortex-M4; a span shorter than 32 words is
+//! two groups of one size that overlap, with no loop), with a half-word
+//! merged into its word at an odd start or end. On the Cortex-M4 the image
+//! measures it in `docs/performance.md` (on-target section).
 //!
 //! # Layout
 //! Pixels are numbered row-major, `i = y · width + x`, with no padding
