@@ -57,6 +57,11 @@ impl Span {
 /// # Limits
 /// Both counts are `u32`, enough for 256 whole frames of 4096 × 4096;
 /// [`Counts::span`], `+` and `+=` saturate rather than wrap or panic.
+/// A frame painted far to near
+/// ([`Resolve::Paint`](crate::visible::Resolve::Paint)) counts each pixel
+/// as often as it writes it, with a plain add on its hot path: past
+/// `u32::MAX` (more than 256 layers over a 4096 × 4096 frame) that count
+/// wraps.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Counts {

@@ -1109,8 +1109,11 @@ where
             return;
         }
         let x1 = (x1 as u32).min(self.limit);
+        // Spans fit (at most 65535 trapezoids × 4096 rows × 9 parts); a
+        // frame's pixels, each counted as often as it is painted, may
+        // not: they wrap (see `Counts`), an add that never panics.
         self.counts.spans += 1;
-        self.counts.pixels += x1 - x0 as u32;
+        self.counts.pixels = self.counts.pixels.wrapping_add(x1 - x0 as u32);
         self.write(x0 as u32, x1, T::Color::from_list_word(color));
     }
 
@@ -1122,7 +1125,7 @@ where
         let x1 = width.min(self.limit);
         if let (Some(c), true) = (self.background, x1 > 0) {
             self.counts.spans += 1;
-            self.counts.pixels += x1;
+            self.counts.pixels = self.counts.pixels.wrapping_add(x1);
             self.write(0, x1, c);
         }
     }
