@@ -95,7 +95,7 @@ options:
                                    farther ones, depths compared only between faces
                                    whose depth ranges overlap: fewer instructions
                                    where faces seldom pass through each other
-                       (with --band-rows, paint resolves as crossing)
+                                   (with --band-rows, each band painted in turn)
   --stats              print what the graphic controller did: commands, polygons,
                        spans, pixels, clears; for 3D scenes also poly3s, faces
                        (culled, clipped away), labels, trapezoids and runs
@@ -334,7 +334,7 @@ pub fn render_scene_bands(scene: &Scene, rows: u16) -> Result<Rendered, CliError
 }
 
 /// [`render_scene_bands`] with the 3D layer resolved by `resolve`
-/// ([`Resolve::Paint`] resolves as [`Resolve::Crossing`] in bands).
+/// ([`Resolve::Paint`] paints each band in turn).
 pub fn render_scene_bands_with(
     scene: &Scene,
     rows: u16,

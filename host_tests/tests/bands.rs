@@ -18,7 +18,7 @@ use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
 use scanvert::scene::DEFAULT_FONT;
 use scanvert::visible::rle::Run;
 use scanvert::visible::sweep::{Active, Resolve, Workspace};
-use scanvert_sim::cli::{render_scene, render_scene_bands, Scene};
+use scanvert_sim::cli::{render_scene, render_scene_bands_with, Scene};
 use scanvert_sim::memory::ListMemory;
 use std::path::Path;
 
@@ -26,21 +26,28 @@ fn scene(text: &str) -> Scene {
     Scene::from_bytes(Path::new("bands.dl"), text.as_bytes().to_vec()).expect("scene reads")
 }
 
-/// The first pixel where the band render with `rows` differs from the
-/// full render, if any, with the number of differing pixels.
-fn differs(s: &Scene, rows: u16) -> Option<(usize, usize)> {
+/// The first pixel where the band render with `rows`, its 3D layer
+/// resolved by `mode`, differs from the full render (the default mode),
+/// if any, with the number of differing pixels.
+fn differs(s: &Scene, rows: u16, mode: Resolve) -> Option<(usize, usize)> {
     let full = render_scene(s).expect("full render");
-    let band = render_scene_bands(s, rows).expect("band render");
+    let band = render_scene_bands_with(s, rows, mode).expect("band render");
     let (a, b) = (full.ram.contents(), band.ram.contents());
     assert_eq!(a.len(), b.len());
     let first = a.iter().zip(b).position(|(p, q)| p != q)?;
     Some((first, a.iter().zip(b).filter(|(p, q)| p != q).count()))
 }
 
+/// The modes band renders are checked in: the default sweep, and
+/// painting each band in turn.
+const MODES: [Resolve; 2] = [Resolve::Crossing, Resolve::Paint];
+
 fn all_heights_match(s: &Scene) {
     let h = s.list().height();
-    for rows in [1, 7, 16, 64, h, h + 5] {
-        assert_eq!(differs(s, rows), None, "band rows {rows}");
+    for mode in MODES {
+        for rows in [1, 7, 16, 64, h, h + 5] {
+            assert_eq!(differs(s, rows, mode), None, "band rows {rows}, {mode:?}");
+        }
     }
 }
 
@@ -216,8 +223,11 @@ fn the_repository_scenes_are_the_same_in_bands() {
     for f in files {
         let s = Scene::load(&f).expect("loads");
         let h = s.list().height();
-        for rows in [1, 16, h] {
-            assert_eq!(differs(&s, rows), None, "{} band rows {rows}", f.display());
+        for mode in MODES {
+            for rows in [1, 16, h] {
+                let d = differs(&s, rows, mode);
+                assert_eq!(d, None, "{} band rows {rows}, {mode:?}", f.display());
+            }
         }
     }
 }
@@ -589,7 +599,7 @@ proptest! {
     #[test]
     fn generated_2d_lists_are_the_same_in_bands(text in list_text(), rows in prop_oneof![Just(1u16), Just(7), Just(16), 1u16..40]) {
         let s = scene(&text);
-        prop_assert_eq!(differs(&s, rows), None, "{}", text);
+        prop_assert_eq!(differs(&s, rows, Resolve::default()), None, "{}", text);
     }
 }
 
@@ -863,10 +873,10 @@ fn bands_after_long_skips_are_the_full_frames_rows() {
                 .map(|gap| (gap, gap % 7 + 1))
                 .into_iter()
                 .chain([(HEIGHT - 2, 1)]);
-            for (gap, rows) in plans {
+            for ((gap, rows), mode) in plans.flat_map(|p| MODES.map(|m| (p, m))) {
                 let mut ws = work.workspace();
                 let mut pass = scene
-                    .bands_in(&mut ws, Resolve::default(), bg, DEFAULT_FONT)
+                    .bands_in(&mut ws, mode, bg, DEFAULT_FONT)
                     .expect("pass");
                 // From row 0 when the gap is the frame's less 2: rows 0
                 // and HEIGHT - 1.
@@ -876,7 +886,7 @@ fn bands_after_long_skips_are_the_full_frames_rows() {
                     let at = y as usize * w;
                     assert!(
                         band[..n as usize * w] == px[at..at + n as usize * w],
-                        "{step:?}: gap {gap}, rows {y}..{}",
+                        "{step:?}: gap {gap}, rows {y}..{}, {mode:?}",
                         y + n
                     );
                     y += n + gap;

@@ -173,10 +173,11 @@ pub enum Resolve {
     /// trapezoids whose ranges of depth overlap (where planes cross, at
     /// the exact crossing pixel, as `Crossing`). The same pixels as the
     /// sweep, exactly; each pixel is written as often as trapezoids cover
-    /// it, so it is meant for memory, not for a display's window. Only
-    /// [`draw`] paints: where runs are asked for ([`Workspace::resolve`],
-    /// [`Sweep`], and so the band renderers) it resolves as `Crossing`.
-    /// See `docs/performance.md`, "Painting far to near".
+    /// it, so it is meant for memory, not for a display's window: a
+    /// frame buffer ([`draw`]) or a band buffer ([`Sweep::draw`], and so
+    /// the band renderers). Where runs are asked for
+    /// ([`Workspace::resolve`]) it resolves as `Crossing`. See
+    /// `docs/performance.md`, "Painting far to near".
     Paint,
 }
 
@@ -426,6 +427,18 @@ impl<E: fmt::Debug> fmt::Display for VisibleError<E> {
 
 impl<E: fmt::Debug> core::error::Error for VisibleError<E> {}
 
+impl VisibleError<core::convert::Infallible> {
+    /// The same error where another sink's errors are expected (this one
+    /// has none).
+    fn widen<E>(self) -> VisibleError<E> {
+        match self {
+            VisibleError::Active { capacity } => VisibleError::Active { capacity },
+            VisibleError::Runs { capacity } => VisibleError::Runs { capacity },
+            VisibleError::Sink(e) => match e {},
+        }
+    }
+}
+
 impl<E> From<RunsFull> for VisibleError<E> {
     fn from(e: RunsFull) -> Self {
         VisibleError::Runs {
@@ -658,6 +671,11 @@ fn resolve_many_from<O: RowOut>(
     many: (usize, usize),
     out: O,
 ) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
+    // Runs are asked for: painting resolves as crossing points here.
+    let mode = match mode {
+        Resolve::Paint => Resolve::Crossing,
+        m => m,
+    };
     let mut s = Sweep::start(active, mode);
     s.many = many;
     let out = s.rows(active, store, store.height(), out)?;
@@ -673,6 +691,14 @@ fn resolve_many_from<O: RowOut>(
 /// [`Sweep::draw`] resolves the next rows into a port; [`Sweep::skip`]
 /// moves the active list over rows without resolving them (one jump per
 /// trapezoid live after them, whatever their number; no sort, no sweep).
+///
+/// Started with [`Resolve::Paint`], it paints the rows far to near
+/// instead (the target must keep its pixels for the rows of a call: a
+/// band buffer does), its conflict records in the workspace's runs; its
+/// skips jump the same way, and each trapezoid that starts in the rows
+/// skipped and lasts past them is tested against the live ones once,
+/// after them. Out of records, it goes on as a sweep with crossing
+/// points from the row where they ran out (see the `paint` module).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Sweep {
     /// The next row.
@@ -688,6 +714,9 @@ pub struct Sweep {
     /// past which it looks for a chain.
     many: (usize, usize),
     stats: VisibleStats,
+    /// With [`Resolve::Paint`], the frame painted so far (`None` once it
+    /// has fallen back to the sweep, or in the other modes).
+    painter: Option<paint::Painter>,
 }
 
 impl Sweep {
@@ -704,6 +733,7 @@ impl Sweep {
         for (i, a) in active[..cap].iter_mut().enumerate() {
             a.free = i as u16;
         }
+        let painter = (mode == Resolve::Paint).then(|| paint::Painter::start(active));
         Sweep {
             y: 0,
             k: 0,
@@ -712,12 +742,36 @@ impl Sweep {
             mode,
             many: (MANY, CHAIN_FROM),
             stats: VisibleStats::default(),
+            painter,
         }
     }
 
     /// The next row to draw or skip.
     pub fn next_row(&self) -> u16 {
-        self.y
+        self.painter.map_or(self.y, |p| p.y)
+    }
+
+    /// Goes on from row `y` as a sweep with crossing points: a painter
+    /// out of conflict records or of parts. The active list is rebuilt
+    /// for row `y` at once ([`jump`] from the top); rows before `y` stay
+    /// as painted, and row `y`'s pixels that painting wrote are all
+    /// covered by trapezoids, so the sweep writes them again.
+    fn fall_back(
+        &mut self,
+        active: &mut [Active],
+        store: &TrapezoidStore<'_>,
+        y: u16,
+    ) -> Result<(), VisibleError<core::convert::Infallible>> {
+        let (stats, many) = (self.stats, self.many);
+        *self = Sweep::start(active, Resolve::Crossing);
+        (self.stats, self.many) = (stats, many);
+        let act = &mut active[..self.cap];
+        if y > 0 {
+            let (k, nf) = jump(act, store, (0, self.nf), (0, y))
+                .ok_or(VisibleError::Active { capacity: self.cap })?;
+            (self.y, self.k, self.nf) = (y, k, nf);
+        }
+        Ok(())
     }
 
     /// What the rows resolved so far did.
@@ -746,7 +800,27 @@ impl Sweep {
         T::Color: ListColor,
     {
         self.check(workspace)?;
-        let out = ToTarget::new(target, background);
+        let mut out = ToTarget::new(target, background);
+        let mut rows = rows;
+        if let Some(mut p) = self.painter {
+            let end = p.y.saturating_add(rows).min(store.height());
+            let painted = p.rows(
+                workspace.active,
+                workspace.runs,
+                store,
+                rows,
+                &mut out,
+                &mut self.stats,
+            );
+            self.painter = Some(p);
+            let Some(y) = painted? else {
+                return Ok(out.counts);
+            };
+            // The rest of the rows by the sweep.
+            self.fall_back(workspace.active, store, y)
+                .map_err(|e| e.widen())?;
+            rows = end - y;
+        }
         let out = self.rows(workspace.active, store, rows, out)?;
         Ok(out.counts)
     }
@@ -768,6 +842,20 @@ impl Sweep {
         rows: u16,
     ) -> Result<(), VisibleError<core::convert::Infallible>> {
         self.check(workspace)?;
+        if let Some(mut p) = self.painter {
+            let jumped = p.skip(
+                workspace.active,
+                workspace.runs,
+                store,
+                rows,
+                &mut self.stats,
+            );
+            self.painter = Some(p);
+            if let Some(y) = jumped? {
+                self.fall_back(workspace.active, store, y)?;
+            }
+            return Ok(());
+        }
         let act = &mut workspace.active[..self.cap];
         let end = self.y.saturating_add(rows).min(store.height());
         if end <= self.y {

@@ -58,6 +58,18 @@
 //! more than [`PARTS`] parts of a row to partners, the frame is drawn
 //! again by the sweep, to the same pixels.
 //!
+//! # Band by band
+//!
+//! The painter keeps where it stands between calls ([`Painter`]), so a
+//! [`Sweep`](super::Sweep) in [`Resolve::Paint`] paints a band at a time
+//! into a band buffer (which keeps its pixels for the band's rows), and
+//! jumps over rows it is not asked to draw: the live trapezoids' edges
+//! move down at once, and those that start in the rows enter on the row
+//! after them. Out of records or parts at row `y`, it goes on from row `y`
+//! as the sweep with crossing points: the rows before stay as painted,
+//! and the pixels painting wrote on row `y` are all covered by
+//! trapezoids, so the sweep writes each again.
+//!
 //! # Cost
 //!
 //! Per row, one step and one span written a live trapezoid, plus two
@@ -116,10 +128,12 @@ where
     {
         let mut out = ToTarget::new(&mut *target, background);
         let mut stats = VisibleStats::default();
-        let painted = paint(
+        let mut painter = Painter::start(workspace.active);
+        let painted = painter.rows(
             workspace.active,
             workspace.runs,
             store,
+            store.height(),
             &mut out,
             &mut stats,
         )?;
@@ -196,13 +210,158 @@ impl Pool<'_> {
     }
 }
 
-/// Paints `store` into `out`. `Ok(None)` when every row is drawn;
-/// `Ok(Some(y))` when the conflict records or a trapezoid's [`PARTS`]
-/// ran out at row `y`.
+/// A frame being painted, top to bottom: where it stands between calls
+/// (the live list and free slots in the workspace's active list, the
+/// conflict records in its run buffer), so that it can be painted a band
+/// at a time ([`Sweep`](super::Sweep) in [`Resolve::Paint`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Painter {
+    /// The next row.
+    pub(super) y: u16,
+    /// `act[..k].cover.p`: the live trapezoids, in order.
+    k: usize,
+    /// `act[..nf].free`: the free slots.
+    nf: usize,
+    /// The records never used, `used..`, and the free ones' list.
+    used: usize,
+    free: u16,
+    /// The widest range of depth of a trapezoid entered so far.
+    spread: i64,
+}
+
+impl Painter {
+    /// A frame at row 0, with the slots of `active` (at most 65535) free.
+    pub(super) fn start(active: &mut [Active]) -> Painter {
+        let cap = capacity(active);
+        for (i, a) in active[..cap].iter_mut().enumerate() {
+            a.free = i as u16;
+            a.hot.slot = NIL;
+            a.hot.z = NIL as i32;
+        }
+        Painter {
+            y: 0,
+            k: 0,
+            nf: cap,
+            used: 0,
+            free: NIL,
+            spread: 0,
+        }
+    }
+
+    /// Paints the next `rows` rows of `store` (cut at its height) into
+    /// `out`, with the slots of `active` it started with and the records
+    /// in `runs`. `Ok(None)` when they are drawn; `Ok(Some(y))` when the
+    /// conflict records or a trapezoid's [`PARTS`] ran out at row `y`:
+    /// rows before `y` are drawn, row `y` in part (pixels its trapezoids
+    /// cover, none of the background), and the painter cannot go on.
+    pub(super) fn rows<T>(
+        &mut self,
+        active: &mut [Active],
+        runs: &mut [Run],
+        store: &TrapezoidStore<'_>,
+        rows: u16,
+        out: &mut ToTarget<'_, T>,
+        stats: &mut VisibleStats,
+    ) -> Result<Option<u16>, VisibleError<T::Error>>
+    where
+        T: SpanTarget + ?Sized,
+        T::Color: ListColor,
+    {
+        paint(self, active, runs, store, rows, out, stats)
+    }
+
+    /// Moves over the next `rows` rows of `store` (cut at its height)
+    /// without painting them, at once: the live trapezoids that end in
+    /// them leave; the others' edges move down by [`Edge::advance`], one
+    /// jump each; those that start in them and last past them enter on
+    /// the row after, tested against the live ones for the rows left (a
+    /// trapezoid that starts and ends in them is never entered).
+    /// `Ok(Some(y))` when the conflict records ran out as they entered:
+    /// the painter cannot go on from row `y`, the row after.
+    ///
+    /// [`Edge::advance`]: crate::raster::edge::Edge::advance
+    pub(super) fn skip(
+        &mut self,
+        active: &mut [Active],
+        runs: &mut [Run],
+        store: &TrapezoidStore<'_>,
+        rows: u16,
+        stats: &mut VisibleStats,
+    ) -> Result<Option<u16>, VisibleError<core::convert::Infallible>> {
+        let cap = capacity(active);
+        let act = &mut active[..cap];
+        let (y0, y1) = (self.y, self.y.saturating_add(rows).min(store.height()));
+        if y1 <= y0 {
+            return Ok(None);
+        }
+        let (mut k, mut nf) = (self.k.min(cap), self.nf.min(cap));
+        // The live ones: those that end in the rows leave; the others go
+        // down to the row before `y1`, as the pass of that row leaves
+        // them (each from the row it is on: a trapezoid that entered by
+        // an earlier jump is on that jump's last row).
+        let mut w = 0;
+        for p in 0..k {
+            let slot = act[p].cover.p as usize;
+            let a = &mut act[slot];
+            if a.entry.left.end() <= y1 as i32 {
+                act[nf].free = slot as u16;
+                nf += 1;
+                continue;
+            }
+            let n = (y1 as i32 - 1 - a.hot.slot as i32).max(0) as u32;
+            a.entry.left.advance(n);
+            a.entry.right.advance(n);
+            a.hot.slot = y1 - 1;
+            act[w].cover.p = slot as u16;
+            w += 1;
+        }
+        k = w;
+        let records = runs.len().min(NIL as usize);
+        let mut pool = Pool {
+            runs: &mut runs[..records],
+            used: self.used,
+            free: self.free,
+        };
+        let mut spread = self.spread;
+        for y in y0..y1 {
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                t = tr.next_row;
+                if tr.end() <= y1 as i32 || y1 >= store.height() {
+                    continue;
+                }
+                if nf == 0 || k >= act.len() {
+                    return Err(VisibleError::Active { capacity: cap });
+                }
+                nf -= 1;
+                let slot = act[nf].free as usize;
+                if !enter(act, &mut pool, store, tr, (slot, k, y1), &mut spread, true) {
+                    return Ok(Some(y1));
+                }
+                k += 1;
+                stats.trapezoids += 1;
+            }
+        }
+        stats.max_active = stats.max_active.max(k as u32);
+        *self = Painter {
+            y: y1,
+            k,
+            nf,
+            used: pool.used,
+            free: pool.free,
+            spread,
+        };
+        Ok(None)
+    }
+}
+
+/// [`Painter::rows`].
 fn paint<T>(
+    painter: &mut Painter,
     active: &mut [Active],
     runs: &mut [Run],
     store: &TrapezoidStore<'_>,
+    rows: u16,
     out: &mut ToTarget<'_, T>,
     stats: &mut VisibleStats,
 ) -> Result<Option<u16>, VisibleError<T::Error>>
@@ -213,23 +372,18 @@ where
     let width = store.width() as u32;
     let cap = capacity(active);
     let act = &mut active[..cap];
-    for (i, a) in act.iter_mut().enumerate() {
-        a.free = i as u16;
-        a.hot.slot = NIL;
-        a.hot.z = NIL as i32;
-    }
-    let (mut k, mut nf) = (0usize, cap);
+    let (mut k, mut nf) = (painter.k.min(cap), painter.nf.min(cap));
     let records = runs.len().min(NIL as usize);
     let mut pool = Pool {
         runs: &mut runs[..records],
-        used: 0,
-        free: NIL,
+        used: painter.used,
+        free: painter.free,
     };
     // The parts of a row left to partners (see `draw_conflicted`).
     let mut parts = [(0i32, 0i32); PARTS];
-    // The widest range of depth of a trapezoid entered so far.
-    let mut spread = 0i64;
-    for y in 0..store.height() {
+    let mut spread = painter.spread;
+    let end = painter.y.saturating_add(rows).min(store.height());
+    for y in painter.y..end {
         let yi = y as i32;
         // Enter the trapezoids whose top is this row, each in its place
         // by key and tested against the live ones.
@@ -241,68 +395,10 @@ where
             }
             nf -= 1;
             let slot = act[nf].free as usize;
-            pool.release(act[slot].hot.z as u16);
-            let (lo, hi) = tr.column_bounds();
-            let (zu, zmin, zmax) = depth_range(store, tr, (lo, hi));
-            {
-                // Made in its slot, not copied there.
-                let a = &mut act[slot];
-                a.entry = Entry::from(tr, store);
-                let e = &mut a.entry;
-                // Its depth at pixel (0, 0), from that on its top row.
-                e.z = e.z.wrapping_sub(e.zy.wrapping_mul(yi));
-                let (l, r) = row_pixels(e);
-                (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
-                (a.hot.z, a.hot.zx) = (NIL as i32, zu.map_or(WRAPS, |z| (z >> 32) as i32));
+            if !enter(act, &mut pool, store, tr, (slot, k, y), &mut spread, false) {
+                return Ok(Some(y));
             }
             stats.trapezoids += 1;
-            // Its place: after every live one of a key at least its own.
-            let (mut at, mut past) = (0, k);
-            while at < past {
-                let mid = (at + past) / 2;
-                if act[act[mid].cover.p as usize].cover.r >= zmin {
-                    at = mid + 1;
-                } else {
-                    past = mid;
-                }
-            }
-            let last = tr.end() - 1;
-            // The earlier ones, keys at least its own, nearest key first:
-            // past one whose least depth is beyond its greatest, so are
-            // all before.
-            spread = spread.max(zmax as i64 - zmin as i64);
-            let me = (slot, (lo, hi), (zmin, zmax), (yi, last));
-            let past = zmax.saturating_add(DEPTH_TOLERANCE as i32);
-            for p in (0..at).rev() {
-                let u = act[p].cover.p as usize;
-                if act[u].cover.r > past {
-                    break;
-                }
-                if !pair(act, &mut pool, me, u, true) {
-                    return Ok(Some(y));
-                }
-            }
-            // The later ones, keys below its own: a greatest depth is at
-            // most the key and the widest range seen.
-            // (Saturated: a bound below `i32` stops nothing.)
-            let below = (zmin as i64 - DEPTH_TOLERANCE - spread).max(i32::MIN as i64) as i32;
-            for p in at..k {
-                let u = act[p].cover.p as usize;
-                if act[u].cover.r < below {
-                    break;
-                }
-                if !pair(act, &mut pool, me, u, false) {
-                    return Ok(Some(y));
-                }
-            }
-            let c = &mut act[slot].cover;
-            (c.r, c.z, c.zx) = (zmin, lo | hi << 16, zmax);
-            let mut p = k;
-            while p > at {
-                act[p].cover.p = act[p - 1].cover.p;
-                p -= 1;
-            }
-            act[at].cover.p = slot as u16;
             k += 1;
         }
         stats.max_active = stats.max_active.max(k as u32);
@@ -353,11 +449,116 @@ where
         }
         k = w;
         if let Some(e) = out.error.take() {
+            // The row is done; the target failed.
+            *painter = Painter {
+                y: y + 1,
+                k,
+                nf,
+                used: pool.used,
+                free: pool.free,
+                spread,
+            };
             return Err(VisibleError::Sink(e));
         }
     }
-    stats.rows = store.height() as u32;
+    stats.rows += (end - painter.y.min(end)) as u32;
+    *painter = Painter {
+        y: end.max(painter.y),
+        k,
+        nf,
+        used: pool.used,
+        free: pool.free,
+        spread,
+    };
     Ok(None)
+}
+
+/// Enters trapezoid `tr` into slot `slot` on row `y`, its top (or, when
+/// `jumped`, a later row it reaches: its edges moved down to it at once):
+/// its stepping state, its place among the `k` live ones by key, and its
+/// pairs with those whose ranges of depth may overlap its own (`spread`:
+/// the widest range of depth entered so far). `false` when out of
+/// records. Inlined into both its callers: painting rows and jumping.
+#[inline(always)]
+fn enter(
+    act: &mut [Active],
+    pool: &mut Pool<'_>,
+    store: &TrapezoidStore<'_>,
+    tr: &Trapezoid,
+    (slot, k, y): (usize, usize, u16),
+    spread: &mut i64,
+    jumped: bool,
+) -> bool {
+    let yi = y as i32;
+    pool.release(act[slot].hot.z as u16);
+    let (lo, hi) = tr.column_bounds();
+    let (zu, zmin, zmax) = depth_range(store, tr, (lo, hi));
+    {
+        // Made in its slot, not copied there.
+        let a = &mut act[slot];
+        a.entry = Entry::from(tr, store);
+        let e = &mut a.entry;
+        // Its depth at pixel (0, 0), from that on its top row.
+        let top = if jumped { tr.top() } else { yi };
+        e.z = e.z.wrapping_sub(e.zy.wrapping_mul(top));
+        if jumped {
+            // Down from its top to the row, at once.
+            let n = (yi - tr.top()).max(0) as u32;
+            e.left.advance(n);
+            e.right.advance(n);
+        }
+        let (l, r) = row_pixels(e);
+        (a.hot.l, a.hot.r, a.hot.slot) = (l, r, y);
+        (a.hot.z, a.hot.zx) = (NIL as i32, zu.map_or(WRAPS, |z| (z >> 32) as i32));
+    }
+    // Its place: after every live one of a key at least its own.
+    let (mut at, mut past) = (0, k);
+    while at < past {
+        let mid = (at + past) / 2;
+        if act[act[mid].cover.p as usize].cover.r >= zmin {
+            at = mid + 1;
+        } else {
+            past = mid;
+        }
+    }
+    let last = tr.end() - 1;
+    // The earlier ones, keys at least its own, nearest key first:
+    // past one whose least depth is beyond its greatest, so are
+    // all before.
+    *spread = (*spread).max(zmax as i64 - zmin as i64);
+    let me = (slot, (lo, hi), (zmin, zmax), (yi, last));
+    let past = zmax.saturating_add(DEPTH_TOLERANCE as i32);
+    for p in (0..at).rev() {
+        let u = act[p].cover.p as usize;
+        if act[u].cover.r > past {
+            break;
+        }
+        if !pair(act, pool, me, u, true) {
+            return false;
+        }
+    }
+    // The later ones, keys below its own: a greatest depth is at
+    // most the key and the widest range seen.
+    // (Saturated: a bound below `i32` stops nothing.)
+    let below = (zmin as i64 - DEPTH_TOLERANCE - *spread).max(i32::MIN as i64) as i32;
+    for p in at..k {
+        let u = act[p].cover.p as usize;
+        if act[u].cover.r < below {
+            break;
+        }
+        if !pair(act, pool, me, u, false) {
+            return false;
+        }
+    }
+    let c = &mut act[slot].cover;
+    (c.r, c.z, c.zx) = (zmin, lo | hi << 16, zmax);
+    let mut p = k;
+    while p > at {
+        act[p].cover.p = act[p - 1].cover.p;
+        p -= 1;
+    }
+    act[at].cover.p = slot as u16;
+    true
 }
 
 /// Tests the entering trapezoid `slot` (columns `lo..hi`, depths
@@ -751,9 +952,11 @@ mod tests {
     }
 
     /// Renders `polys` into a `w × h` frame with `runs` runs, by the sweep
-    /// and by painting, over a background and without: the same pixels.
-    /// Painting's stats (over a background).
-    fn compare(polys: &[Vec<Vertex3>], (w, h): (u16, u16), runs: usize) -> VisibleStats {
+    /// and by painting, whole and band by band, over a background and
+    /// without: the same pixels. Painting's stats (the whole frame, over
+    /// a background), and whether a band by band pass fell back to the
+    /// sweep.
+    fn compare(polys: &[Vec<Vertex3>], (w, h): (u16, u16), runs: usize) -> (VisibleStats, bool) {
         let mut pools = Pools::new(polys.len(), h);
         let store = pools.store(polys, w, h);
         let mut active = vec![Active::EMPTY; store.len() + 1];
@@ -764,6 +967,7 @@ mod tests {
             px: vec![Rgb888::BLACK; w as usize * h as usize],
         };
         let mut stats = VisibleStats::default();
+        let mut banded_fell_back = false;
         for bg in [Some(Rgb888::WHITE), None] {
             let (mut a, mut b) = (frame(), frame());
             draw(&store, &mut ws, Resolve::Crossing, &mut a, bg).unwrap();
@@ -775,8 +979,36 @@ mod tests {
             if bg.is_some() {
                 stats = st;
             }
+            // Band by band through a `Sweep` that paints: bands of 1, 3
+            // and 7 rows, and bands of 5 with every other one skipped.
+            for (band, skipping) in [(1, false), (3, false), (7, false), (5, true)] {
+                let mut c = frame();
+                let mut sweep = Sweep::new(&mut ws, Resolve::Paint);
+                let mut drawn = vec![false; h as usize];
+                let mut i = 0;
+                while sweep.next_row() < h {
+                    let y = sweep.next_row();
+                    if skipping && i % 2 == 0 {
+                        sweep.skip(&store, &mut ws, band).unwrap();
+                    } else {
+                        sweep.draw(&store, &mut ws, band, &mut c, bg).unwrap();
+                        let end = (y + band).min(h);
+                        drawn[y as usize..end as usize].fill(true);
+                    }
+                    assert!(sweep.next_row() > y);
+                    i += 1;
+                }
+                for (i, (p, q)) in a.px.iter().zip(&c.px).enumerate() {
+                    let at = (i % w as usize, i / w as usize);
+                    if drawn[at.1] {
+                        assert_eq!(p, q, "pixel {at:?}, bands of {band}, background {bg:?}");
+                    }
+                }
+                let st = sweep.stats();
+                banded_fell_back |= st.single + st.multiple + st.empty > 0;
+            }
         }
-        stats
+        (stats, banded_fell_back)
     }
 
     fn v3((x, y, z): (i32, i32, i32)) -> Vertex3 {
@@ -847,7 +1079,7 @@ mod tests {
         for (name, faces, w, h) in scenes() {
             // Records enough, and so few that it falls back.
             for runs in [4 * w as usize, w as usize] {
-                let st = compare(&faces, (w, h), runs);
+                let (st, _) = compare(&faces, (w, h), runs);
                 assert!(st.rows == h as u32, "{name}");
                 // Painted to the end: the sweep's span counts stay 0.
                 assert_eq!(st.single + st.multiple + st.empty, 0, "{name}");
@@ -858,8 +1090,10 @@ mod tests {
     #[test]
     fn random_interpenetrating_triangles_paint_the_sweeps_pixels() {
         let mut rng = Rng(11);
-        // Rows that fell back to the sweep, with few records and many.
+        // Frames that fell back to the sweep, with few records and many;
+        // band by band passes that did.
         let mut fell_back = (0, 0);
+        let mut banded = 0;
         for _ in 0..300 {
             let n = 2 + rng.below(12) as usize;
             let near = rng.below(2) == 0;
@@ -877,12 +1111,14 @@ mod tests {
                         .collect()
                 })
                 .collect();
-            let a = compare(&tris, (40, 32), 40);
-            let b = compare(&tris, (40, 32), 200);
+            let (a, banded_a) = compare(&tris, (40, 32), 40);
+            let (b, banded_b) = compare(&tris, (40, 32), 200);
             fell_back.0 += (a.single + a.multiple + a.empty > 0) as u32;
             fell_back.1 += (b.single + b.multiple + b.empty > 0) as u32;
+            banded += banded_a as u32 + banded_b as u32;
         }
-        // Both ways are taken.
+        // Both ways are taken, whole and band by band.
         assert!(fell_back.0 > 0 && fell_back.1 < 300, "{fell_back:?}");
+        assert!(banded > 0 && banded < 600, "{banded}");
     }
 }
