@@ -44,16 +44,24 @@ impl BandTarget for Drop {
 }
 
 /// The full frame (`None`) or bands of `rows` of `list`, in memory sized
-/// from it ([`ListMemory::for_bands`]).
-fn render(m: &mut ListMemory, list: &DisplayList<'_>, fb: &mut [Rgb565], band: Option<u16>) {
+/// from it ([`ListMemory::for_bands`]), its 3D layer resolved by `mode`.
+fn render(
+    m: &mut ListMemory,
+    list: &DisplayList<'_>,
+    fb: &mut [Rgb565],
+    band: Option<u16>,
+    mode: Resolve,
+) {
     let (w, h) = (list.width(), list.height());
     match band {
         None => {
             let mut f = FrameBuffer::new(fb, w, h).expect("frame");
-            m.controller().render(list, &mut f).expect("renders");
+            let mut c = m.controller().with_resolve(mode);
+            c.render(list, &mut f).expect("renders");
         }
         Some(rows) => {
-            let (mut c, table) = m.band_parts();
+            let (c, table) = m.band_parts();
+            let mut c = c.with_resolve(mode);
             let n = rows as usize * w as usize;
             c.render_bands(list, table, rows, &mut fb[..n], &mut Drop)
                 .expect("renders");
@@ -61,8 +69,9 @@ fn render(m: &mut ListMemory, list: &DisplayList<'_>, fb: &mut [Rgb565], band: O
     }
 }
 
-/// Times the full frame and the band heights of one list: ms per frame.
-fn list_times(bytes: &[u8]) -> (f64, Vec<f64>) {
+/// Times the full frame and the band heights of one list, its 3D layer
+/// resolved by `mode`: ms per frame.
+fn list_times(bytes: &[u8], mode: Resolve) -> (f64, Vec<f64>) {
     let list = DisplayList::new_checked(bytes).expect("list");
     let mut mem = ListMemory::for_bands(&list).expect("the list's 3D layer runs");
     let mut fb = vec![Rgb565::BLACK; list.width() as usize * list.height() as usize];
@@ -74,7 +83,7 @@ fn list_times(bytes: &[u8]) -> (f64, Vec<f64>) {
         fs.push(Box::new(move || {
             let mut g = cell.borrow_mut();
             let (m, f) = &mut *g;
-            render(m, black_box(list), f, band);
+            render(m, black_box(list), f, band, mode);
         }));
     }
     let t = time_fns(&mut fs, LIST_RUN, LIST_ROUNDS);
@@ -455,18 +464,29 @@ fn demo_times() -> (f64, Vec<f64>) {
 
 /// Measures everything and returns the section of `performance.md`.
 pub fn run() -> String {
-    let lists: [(&str, &[u8]); 3] = [
+    let layered: &[u8] = include_bytes!("../../firmware/image/scenes/poly3-layered.scvl");
+    let tilted: &[u8] = include_bytes!("../../firmware/image/scenes/poly3-tilted.scvl");
+    let lists: [(&str, &[u8], Resolve); 5] = [
         (
             "W3: 10 000 triangles, 2D",
             include_bytes!("../../firmware/image/scenes/w3.scvl"),
+            Resolve::default(),
         ),
+        ("poly3-layered: 170 faces", layered, Resolve::default()),
         (
-            "poly3-layered: 170 faces",
-            include_bytes!("../../firmware/image/scenes/poly3-layered.scvl"),
+            "poly3-layered, painted (`Resolve::Paint`)",
+            layered,
+            Resolve::Paint,
         ),
         (
             "poly3-tilted: 170 faces, interpenetrating",
-            include_bytes!("../../firmware/image/scenes/poly3-tilted.scvl"),
+            tilted,
+            Resolve::default(),
+        ),
+        (
+            "poly3-tilted, painted (`Resolve::Paint`)",
+            tilted,
+            Resolve::Paint,
         ),
     ];
     let mut md = String::new();
@@ -479,8 +499,8 @@ pub fn run() -> String {
         md.push('\n');
         eprintln!("  {name}: full {full:.3} ms, bands {bands:.3?} ms");
     };
-    for (name, bytes) in lists {
-        let (full, bands) = list_times(bytes);
+    for (name, bytes, mode) in lists {
+        let (full, bands) = list_times(bytes, mode);
         row(name, full, &bands);
     }
     let (full, bands) = demo_times();
@@ -565,7 +585,11 @@ pub fn profile(rows: u16, passes: u32) {
     let mut mem = ListMemory::for_bands(&list).expect("the list's 3D layer runs");
     let mut fb = vec![Rgb565::BLACK; list.width() as usize * list.height() as usize];
     for _ in 0..passes {
-        render(&mut mem, &list, &mut fb, (rows > 0).then_some(rows));
+        let mode = match std::env::var("BANDS_RESOLVE").as_deref() {
+            Ok("paint") => Resolve::Paint,
+            _ => Resolve::default(),
+        };
+        render(&mut mem, &list, &mut fb, (rows > 0).then_some(rows), mode);
     }
 }
 
@@ -631,7 +655,9 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          leaves a run of two edges at once at the band's end; the live polygons are a bit set in\n\
          list order (entering is setting a bit), and the 3D layer runs\n\
          the full frame's compiled sweep (`Sweep::draw` is not inlined).\n\
-         The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
+         The `poly3` lists painted (`Resolve::Paint`) paint each band far to near in turn into\n\
+         the band buffer, which keeps a band's pixels as a frame buffer does; their ratios are\n\
+         over the painted full frame. The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
          each band with the background (they have no `clear`, and the full frame leaves what\n\
          was there); they and the demo can come out below 1× on this host, as a 16-row band\n\
          buffer (16 KiB) stays in the first-level data cache and the full frame's 256 KiB does\n\
@@ -639,7 +665,8 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          font only the glyphs' rows on the band, but looking each glyph up again in every band:\n\
          that is most of its cost at 1 and 8 rows.\n\n\
          Instructions per frame (x86-64, from `valgrind --tool=callgrind` on\n\
-         `--profile-bands ROWS PASSES` with `BANDS_LIST` = `w3`, `layered`, `tilted` or `demo`,\n\
+         `--profile-bands ROWS PASSES` with `BANDS_LIST` = `w3`, `layered`, `tilted` or `demo`\n\
+         (`BANDS_RESOLVE=paint` to paint the `poly3` lists),\n\
          ROWS 0 for the full frame; 6 passes less 1, over 5), which do not move with the load:\n\n{COUNTS}{END}\n"
     );
     print!("{section}");
@@ -720,4 +747,4 @@ fn profile_demo(rows: u16, passes: u32) {
 /// on `--profile-bands ROWS PASSES` (`BANDS_LIST` = `w3`, `layered`,
 /// `tilted`, `demo`; ROWS 0 for the full frame): the count of 6 passes
 /// less that of 1, over 5. They do not move with the host's load.
-const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 2,972,118 | 1.30× | 1.04× | 1.02× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,030,484; every other band, 1,563,270 and 1,656,538 (a bound of 1.83× on the speed-up); rows 0–139 and 140–255, 1,566,135 and 1,500,285 (a bound of 1.93×; split at row 136, 1,491,845 and 1,578,482). Each worker compares its workspace's capacity with the scene's most trapezoids on a row every frame (the count itself is found once) and jumps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`: W3 in 16-row bands 1.16× its full frame, the `poly3` lists 1.08×, the 2D demo 1.05×.\n";
+const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 2,972,118 | 1.30× | 1.04× | 1.02× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,030,484; every other band, 1,563,270 and 1,656,538 (a bound of 1.83× on the speed-up); rows 0–139 and 140–255, 1,566,135 and 1,500,285 (a bound of 1.93×; split at row 136, 1,491,845 and 1,578,482). Each worker compares its workspace's capacity with the scene's most trapezoids on a row every frame (the count itself is found once) and jumps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`, with the `poly3` lists painted too (their `-paint` rows).\n";

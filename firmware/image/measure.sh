@@ -277,7 +277,9 @@ as the full frame's exclude its checksum; each ratio is over the
 the same way. W5 and the `poly3` lists have no `clear`: their full
 frame is cleared before, untimed, while each band is filled with the
 background (the 3D layer writes it itself where nothing 2D lies
-under it).
+under it). The `-paint` rows are the 170-face lists with
+`Resolve::Paint`, each band painted far to near in turn into the band
+buffer, over the painted full frame.
 
 | list | full frame (`FrameBuffer`) | 1 row | 8 rows | 16 rows | 64 rows | 16 rows, instructions |
 |---|--:|--:|--:|--:|--:|--:|
