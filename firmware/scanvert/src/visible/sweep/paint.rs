@@ -248,6 +248,20 @@ impl Painter {
         }
     }
 
+    /// Keeps where the frame stands: row `y` next, `k` live trapezoids,
+    /// `nf` free slots, the records as `pool` leaves them, `spread`.
+    #[inline(always)]
+    fn keep(&mut self, y: u16, (k, nf): (usize, usize), pool: &Pool<'_>, spread: i64) {
+        *self = Painter {
+            y,
+            k,
+            nf,
+            used: pool.used,
+            free: pool.free,
+            spread,
+        };
+    }
+
     /// Paints the next `rows` rows of `store` (cut at its height) into
     /// `out`, with the slots of `active` it started with and the records
     /// in `runs`. `Ok(None)` when they are drawn; `Ok(Some(y))` when the
@@ -267,7 +281,94 @@ impl Painter {
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        paint(self, active, runs, store, rows, out, stats)
+        let width = store.width() as u32;
+        let cap = capacity(active);
+        let act = &mut active[..cap];
+        let (mut k, mut nf) = (self.k.min(cap), self.nf.min(cap));
+        let records = runs.len().min(NIL as usize);
+        let mut pool = Pool {
+            runs: &mut runs[..records],
+            used: self.used,
+            free: self.free,
+        };
+        // The parts of a row left to partners (see `draw_conflicted`).
+        let mut parts = [(0i32, 0i32); PARTS];
+        let mut spread = self.spread;
+        let end = self.y.saturating_add(rows).min(store.height());
+        for y in self.y..end {
+            let yi = y as i32;
+            // Enter the trapezoids whose top is this row, each in its place
+            // by key and tested against the live ones.
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                t = tr.next_row;
+                if nf == 0 || k >= act.len() {
+                    return Err(VisibleError::Active { capacity: cap });
+                }
+                nf -= 1;
+                let slot = act[nf].free as usize;
+                if !enter(act, &mut pool, store, tr, (slot, k, y), &mut spread, false) {
+                    return Ok(Some(y));
+                }
+                stats.trapezoids += 1;
+                k += 1;
+            }
+            stats.max_active = stats.max_active.max(k as u32);
+            out.paint_row(y);
+            out.fill_background(width);
+            // Write, far to near, each stepped to the row as it comes (the
+            // ones that entered on it are there already); those that end on
+            // the row leave the list for the free stack after it.
+            let next = yi + 1;
+            let mut w = 0;
+            // (`k` is within the slots: said again for the bounds checks.)
+            for p in 0..k.min(act.len()) {
+                let slot = act[p].cover.p as usize;
+                let a = &mut act[slot];
+                if a.hot.slot != y {
+                    step_one(a, y);
+                }
+                let (l, r, color, head) = (a.hot.l, a.hot.r, a.entry.color, a.hot.z as u16);
+                if a.entry.left.end() <= next {
+                    act[nf].free = slot as u16;
+                    nf += 1;
+                } else {
+                    if w != p {
+                        act[w].cover.p = slot as u16;
+                    }
+                    w += 1;
+                }
+                if l >= r {
+                    continue;
+                }
+                if head == NIL {
+                    out.fill(l, r, color);
+                    continue;
+                }
+                if !draw_conflicted(
+                    act,
+                    store,
+                    &mut pool,
+                    &mut parts,
+                    slot,
+                    (l, r),
+                    y,
+                    out,
+                    stats,
+                ) {
+                    return Ok(Some(y));
+                }
+            }
+            k = w;
+            if let Some(e) = out.error.take() {
+                // The row is done; the target failed.
+                self.keep(y + 1, (k, nf), &pool, spread);
+                return Err(VisibleError::Sink(e));
+            }
+        }
+        stats.rows += (end - self.y.min(end)) as u32;
+        self.keep(end.max(self.y), (k, nf), &pool, spread);
+        Ok(None)
     }
 
     /// Moves over the next `rows` rows of `store` (cut at its height)
@@ -343,134 +444,9 @@ impl Painter {
             }
         }
         stats.max_active = stats.max_active.max(k as u32);
-        *self = Painter {
-            y: y1,
-            k,
-            nf,
-            used: pool.used,
-            free: pool.free,
-            spread,
-        };
+        self.keep(y1, (k, nf), &pool, spread);
         Ok(None)
     }
-}
-
-/// [`Painter::rows`].
-fn paint<T>(
-    painter: &mut Painter,
-    active: &mut [Active],
-    runs: &mut [Run],
-    store: &TrapezoidStore<'_>,
-    rows: u16,
-    out: &mut ToTarget<'_, T>,
-    stats: &mut VisibleStats,
-) -> Result<Option<u16>, VisibleError<T::Error>>
-where
-    T: SpanTarget + ?Sized,
-    T::Color: ListColor,
-{
-    let width = store.width() as u32;
-    let cap = capacity(active);
-    let act = &mut active[..cap];
-    let (mut k, mut nf) = (painter.k.min(cap), painter.nf.min(cap));
-    let records = runs.len().min(NIL as usize);
-    let mut pool = Pool {
-        runs: &mut runs[..records],
-        used: painter.used,
-        free: painter.free,
-    };
-    // The parts of a row left to partners (see `draw_conflicted`).
-    let mut parts = [(0i32, 0i32); PARTS];
-    let mut spread = painter.spread;
-    let end = painter.y.saturating_add(rows).min(store.height());
-    for y in painter.y..end {
-        let yi = y as i32;
-        // Enter the trapezoids whose top is this row, each in its place
-        // by key and tested against the live ones.
-        let mut t = store.row_head(y as usize);
-        while let Some(tr) = store.trapezoid(t) {
-            t = tr.next_row;
-            if nf == 0 || k >= act.len() {
-                return Err(VisibleError::Active { capacity: cap });
-            }
-            nf -= 1;
-            let slot = act[nf].free as usize;
-            if !enter(act, &mut pool, store, tr, (slot, k, y), &mut spread, false) {
-                return Ok(Some(y));
-            }
-            stats.trapezoids += 1;
-            k += 1;
-        }
-        stats.max_active = stats.max_active.max(k as u32);
-        out.paint_row(y);
-        out.fill_background(width);
-        // Write, far to near, each stepped to the row as it comes (the
-        // ones that entered on it are there already); those that end on
-        // the row leave the list for the free stack after it.
-        let next = yi + 1;
-        let mut w = 0;
-        // (`k` is within the slots: said again for the bounds checks.)
-        for p in 0..k.min(act.len()) {
-            let slot = act[p].cover.p as usize;
-            let a = &mut act[slot];
-            if a.hot.slot != y {
-                step_one(a, y);
-            }
-            let (l, r, color, head) = (a.hot.l, a.hot.r, a.entry.color, a.hot.z as u16);
-            if a.entry.left.end() <= next {
-                act[nf].free = slot as u16;
-                nf += 1;
-            } else {
-                if w != p {
-                    act[w].cover.p = slot as u16;
-                }
-                w += 1;
-            }
-            if l >= r {
-                continue;
-            }
-            if head == NIL {
-                out.fill(l, r, color);
-                continue;
-            }
-            if !draw_conflicted(
-                act,
-                store,
-                &mut pool,
-                &mut parts,
-                slot,
-                (l, r),
-                y,
-                out,
-                stats,
-            ) {
-                return Ok(Some(y));
-            }
-        }
-        k = w;
-        if let Some(e) = out.error.take() {
-            // The row is done; the target failed.
-            *painter = Painter {
-                y: y + 1,
-                k,
-                nf,
-                used: pool.used,
-                free: pool.free,
-                spread,
-            };
-            return Err(VisibleError::Sink(e));
-        }
-    }
-    stats.rows += (end - painter.y.min(end)) as u32;
-    *painter = Painter {
-        y: end.max(painter.y),
-        k,
-        nf,
-        used: pool.used,
-        free: pool.free,
-        spread,
-    };
-    Ok(None)
 }
 
 /// Enters trapezoid `tr` into slot `slot` on row `y`, its top (or, when
