@@ -2,11 +2,12 @@
 //! (`Resolve::Bisect`, `Resolve::Crossing` and `Resolve::Paint`) give the
 //! same pixels on
 //! planar input: triangles (always planar) from a small structured input,
-//! each with its own colour and clip window, on a frame of at most 64×64.
+//! each with its own colour and clip window, on a frame of at most 64×64;
+//! and painting band by band, in bands of 1 to 16 rows, gives them too.
 #![no_main]
 
 use arbitrary::Arbitrary;
-use host_tests::harness3d::render3;
+use host_tests::harness3d::{render3, render3_bands};
 use libfuzzer_sys::fuzz_target;
 use scanvert::visible::sweep::Resolve;
 use testkit::reference::Window;
@@ -24,6 +25,7 @@ struct Triangle {
 struct Input {
     width: u8,
     height: u8,
+    band_rows: u8,
     triangles: Vec<Triangle>,
 }
 
@@ -61,6 +63,17 @@ fuzz_target!(|input: Input| {
             n % w as usize,
             n / w as usize,
             painted[n],
+            crossing[n]
+        );
+    }
+    let rows = 1 + input.band_rows as u16 % 16;
+    let banded = render3_bands(&polys, w, h, Resolve::Paint, rows);
+    if let Some(n) = (0..banded.len()).find(|&n| banded[n] != crossing[n]) {
+        panic!(
+            "pixel ({}, {}): Paint in bands of {rows} shows {:?}, Crossing {:?}; {w}x{h} {polys:?}",
+            n % w as usize,
+            n / w as usize,
+            banded[n],
             crossing[n]
         );
     }

@@ -80,6 +80,38 @@ pub fn render3(
     (pixels.into_iter().map(index_of).collect(), stats)
 }
 
+/// [`render3`] band by band (`Controller::render_bands`, bands of `rows`
+/// rows into one band buffer): the winner at each pixel.
+pub fn render3_bands(
+    polys: &[Poly3],
+    width: u16,
+    height: u16,
+    mode: Resolve,
+    rows: u16,
+) -> Vec<Option<usize>> {
+    use scanvert::port::band::BandTarget;
+    /// The bands, one after the other.
+    struct Collect(Vec<Rgb888>);
+    impl BandTarget for Collect {
+        type Color = Rgb888;
+        type Error = core::convert::Infallible;
+        fn ship(&mut self, _: u16, _: u16, px: &[Rgb888]) -> Result<(), Self::Error> {
+            self.0.extend_from_slice(px);
+            Ok(())
+        }
+    }
+    let bytes = build_list3(polys, width, height);
+    let list = DisplayList::new_checked(&bytes).expect("Writer output is valid");
+    let mut memory = ListMemory::for_bands(&list).expect("within the pools' limits");
+    let (c, table) = memory.band_parts();
+    let mut band = vec![Rgb888::WHITE; rows as usize * width as usize];
+    let mut out = Collect(Vec::new());
+    c.with_resolve(mode)
+        .render_bands(&list, table, rows, &mut band, &mut out)
+        .expect("render");
+    out.0.into_iter().map(index_of).collect()
+}
+
 /// How the library's picture compares with the reference's.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct Mismatch {

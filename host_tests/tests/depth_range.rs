@@ -6,7 +6,7 @@
 //! test profile, with overflow checks on.
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
-use host_tests::harness3d::{compare, render3};
+use host_tests::harness3d::{compare, render3, render3_bands};
 use proptest::prelude::*;
 use scanvert::fixed::Vertex3;
 use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, PolygonSink, View, Viewport, Q16};
@@ -436,6 +436,10 @@ proptest! {
         let (b, _) = render3(&scene, 40, 30, Resolve::Crossing);
         let (c, _) = render3(&scene, 40, 30, Resolve::Paint);
         prop_assert_eq!(&c, &b, "painted");
+        for rows in [1, 4, 11] {
+            let d = render3_bands(&scene, 40, 30, Resolve::Paint, rows);
+            prop_assert_eq!(&d, &b, "painted in bands of {}", rows);
+        }
         let differ: Vec<(usize, Option<usize>, Option<usize>)> = a
             .iter()
             .zip(&b)
