@@ -158,20 +158,24 @@ fn fill_words(run: &mut [u32], v: u32) {
         }
         run[n - 16..].copy_from_slice(&group);
     } else if n >= 8 {
-        let group = [v; 8];
-        run[..8].copy_from_slice(&group);
-        run[n - 8..].copy_from_slice(&group);
+        both_ends::<8>(run, v);
     } else if n >= 4 {
-        let group = [v; 4];
-        run[..4].copy_from_slice(&group);
-        run[n - 4..].copy_from_slice(&group);
+        both_ends::<4>(run, v);
     } else if n >= 2 {
-        let group = [v; 2];
-        run[..2].copy_from_slice(&group);
-        run[n - 2..].copy_from_slice(&group);
+        both_ends::<2>(run, v);
     } else if let Some(w) = run.first_mut() {
         *w = v;
     }
+}
+
+/// Stores `v` in the first `N` and the last `N` words of `run` (`N ≤
+/// run.len() ≤ 2N`): every word, the two groups overlapping.
+#[inline(always)]
+fn both_ends<const N: usize>(run: &mut [u32], v: u32) {
+    let group = [v; N];
+    let n = run.len();
+    run[..N].copy_from_slice(&group);
+    run[n - N..].copy_from_slice(&group);
 }
 
 /// Writes pixels `a..b` (`a < b`, both at most `2 · words.len()`) of the
