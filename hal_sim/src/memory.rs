@@ -8,7 +8,7 @@ use scanvert::display_list::DisplayList;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
-use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+use scanvert::raster::table::{TableMemory, TablePolygon};
 use scanvert::scene::label::{Label, LabelError};
 use scanvert::scene::{Capacities, SceneError, SceneMemory, UpdateError};
 use scanvert::visible::rle::Run;
@@ -63,13 +63,13 @@ impl ListMemory {
     }
 
     /// [`for_list`](Self::for_list) with an edge table for the band path
-    /// ([`Controller::bands`]): as [`needs_table`] counts it, for the
+    /// ([`Controller::bands`]): as [`DisplayList::table_needs`] counts it, for the
     /// `poly`s and `line`s after the last `clear`.
     pub fn for_bands(
         list: &DisplayList<'_>,
     ) -> Result<ListMemory, RenderError<core::convert::Infallible>> {
         let mut m = Self::for_list(list)?;
-        let t = needs_table(list);
+        let t = list.table_needs();
         m.table_polygons = vec![TablePolygon::EMPTY; t.polygons];
         m.table_index = vec![0; 2 * t.polygons];
         m.table_edges = vec![Edge::EMPTY; t.edges];

@@ -14,7 +14,7 @@ use scanvert::port::band::{BandError, BandTarget, BandsError};
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
-use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+use scanvert::raster::table::{TableMemory, TablePolygon};
 use scanvert::scene::DEFAULT_FONT;
 use scanvert::visible::rle::Run;
 use scanvert::visible::sweep::{Active, Resolve, Workspace};
@@ -275,7 +275,7 @@ fn bad_bands_are_typed_errors() {
     let s = scene(FLAT);
     let list = s.list();
     let (w, h) = (list.width() as usize, list.height());
-    let need = needs_table(&list);
+    let need = list.table_needs();
     let mut edges = vec![Edge::EMPTY; 8];
     let mut polys = vec![TablePolygon::EMPTY; need.polygons];
     let mut index = vec![0u32; 2 * need.polygons];
@@ -342,7 +342,7 @@ fn bad_bands_are_typed_errors() {
     // that has a pixel in its clip, at its offset.
     let ls = scene(LINES);
     let lines_list = ls.list();
-    let need = needs_table(&lines_list);
+    let need = lines_list.table_needs();
     assert_eq!(need.lines, 21, "every line after the last clear");
     let (mut p2, mut l2, mut e2, mut n2) = (
         vec![TablePolygon::EMPTY; need.polygons],

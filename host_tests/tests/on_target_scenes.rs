@@ -25,7 +25,7 @@
 //! The image's `budget` variants (`firmware/image/src/budget.rs`) render
 //! lists band by band with no frame buffer, in statics sized exactly for
 //! them: the constants of `scenes.rs`'s modules `budget_demo` and
-//! `budget_poly3`, from `controller::needs`, `raster::table::needs_table`
+//! `budget_poly3`, from `controller::needs`, `DisplayList::table_needs`
 //! and the most trapezoids on a row of the host's render. `budget_demo`
 //! is the README's 3D demo at 320 × 240, its 8 frames (`scanvert demo`'s
 //! default) written as display lists by `scanvert_sim::demo::frame_list`
@@ -38,7 +38,6 @@ use host_tests::harness3d::vertex3;
 use scanvert::controller::{Needs, RenderStats};
 use scanvert::display_list::{DisplayList, Writer};
 use scanvert::port::checksum::frame_checksum;
-use scanvert::raster::table::needs_table;
 use scanvert::visible::sweep::Resolve;
 use scanvert_sim::demo::{self, Size};
 use scanvert_sim::dual_port::DualPortRam;
@@ -228,7 +227,7 @@ fn budget_module(set: &BudgetSet) -> String {
         slots = slots.max(need.edge_slots);
         edges = edges.max(need.edges);
         width = width.max(list.width() as usize);
-        let t = needs_table(&list);
+        let t = list.table_needs();
         table.polygons = table.polygons.max(t.polygons);
         table.edges = table.edges.max(t.edges);
         table.lines = table.lines.max(t.lines);
@@ -244,7 +243,7 @@ fn budget_module(set: &BudgetSet) -> String {
         "/// The `budget` variant's lists and memory: {doc}\n\
          ///\n\
          /// Each capacity is the most any of the lists needs (`controller::needs`,\n\
-         /// `raster::table::needs_table`, the most trapezoids on a row of the\n\
+         /// `DisplayList::table_needs`, the most trapezoids on a row of the\n\
          /// host's render), and no more. (A build uses one such module.)\n\
          #[allow(dead_code)]\n\
          pub mod {module} {{\n    \

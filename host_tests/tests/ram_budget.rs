@@ -12,7 +12,7 @@
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use scanvert::display_list::DisplayList;
 use scanvert::port::framebuffer::FrameBuffer;
-use scanvert::raster::table::{needs_table, TableNeeds};
+use scanvert::raster::table::TableNeeds;
 use scanvert::visible::Resolve;
 use scanvert_sim::memory::ListMemory;
 use std::path::Path;
@@ -246,7 +246,7 @@ fn list_counts(path: &Path) -> Counts {
         active: stats.visible.max_active as usize,
         labels: n.labels,
         text: n.text,
-        table: needs_table(&list),
+        table: list.table_needs(),
     }
 }
 

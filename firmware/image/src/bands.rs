@@ -18,7 +18,7 @@ use scanvert::port::checksum::Checksum;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
-use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+use scanvert::raster::table::{TableMemory, TablePolygon};
 use scanvert::visible::Resolve;
 
 #[cfg(not(feature = "defmt"))]
@@ -78,7 +78,7 @@ pub fn measure(
     let Ok(list) = DisplayList::new_checked(scene.list) else {
         return false;
     };
-    let need = needs_table(&list);
+    let need = list.table_needs();
     if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES || need.lines > TABLE_LINES {
         report_skip(scene.name);
         return true;

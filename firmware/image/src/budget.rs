@@ -15,7 +15,7 @@
 //! rasteriser's edges and the 2D edge table, every capacity the most any
 //! of the lists needs (the constants of the `scenes.rs` module, which the
 //! host test `on_target_scenes` derives from `controller::needs`,
-//! `raster::table::needs_table` and the host's render). Each band is
+//! `DisplayList::table_needs` and the host's render). Each band is
 //! shipped, in order, into a running checksum, which must equal the
 //! host's checksum of the whole frame.
 //!

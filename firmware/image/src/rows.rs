@@ -18,7 +18,7 @@ use scanvert::controller::Controller;
 use scanvert::display_list::{Command, DisplayList};
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
-use scanvert::raster::table::{needs_table, TableMemory};
+use scanvert::raster::table::TableMemory;
 use scanvert::visible::Resolve;
 
 #[cfg(not(feature = "defmt"))]
@@ -36,7 +36,7 @@ pub fn measure(
     let Ok(list) = DisplayList::new_checked(scene.list) else {
         return false;
     };
-    let need = needs_table(&list);
+    let need = list.table_needs();
     if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES || need.lines > TABLE_LINES {
         return true;
     }

@@ -72,7 +72,7 @@ pub const SCENES: &[Scene] = &[
 /// The `budget` variant's lists and memory: the README's 3D demo at 320 × 240, its 8 frames as display lists.
 ///
 /// Each capacity is the most any of the lists needs (`controller::needs`,
-/// `raster::table::needs_table`, the most trapezoids on a row of the
+/// `DisplayList::table_needs`, the most trapezoids on a row of the
 /// host's render), and no more. (A build uses one such module.)
 #[allow(dead_code)]
 pub mod budget_demo {
@@ -155,7 +155,7 @@ pub mod budget_demo {
 /// The `budget` variant's lists and memory: the two 170-face lists at 512 × 256.
 ///
 /// Each capacity is the most any of the lists needs (`controller::needs`,
-/// `raster::table::needs_table`, the most trapezoids on a row of the
+/// `DisplayList::table_needs`, the most trapezoids on a row of the
 /// host's render), and no more. (A build uses one such module.)
 #[allow(dead_code)]
 pub mod budget_poly3 {

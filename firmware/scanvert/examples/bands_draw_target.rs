@@ -27,7 +27,7 @@ use scanvert::port::draw_target::DrawTargetPort;
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
-use scanvert::raster::table::{needs_table, TableMemory, TablePolygon};
+use scanvert::raster::table::{TableMemory, TablePolygon};
 use scanvert::scene::SceneStorage;
 
 const W: u16 = 128;
@@ -142,7 +142,7 @@ fn main() {
     controller.render(&list, &mut fb).expect("renders");
 
     // Band by band into the counting target.
-    let t = needs_table(&list);
+    let t = list.table_needs();
     let mut polygons = vec![TablePolygon::EMPTY; t.polygons];
     let mut table_index = vec![0u32; 2 * t.polygons];
     let mut table_edges = vec![Edge::EMPTY; t.edges];

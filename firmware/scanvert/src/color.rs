@@ -12,6 +12,10 @@ use embedded_graphics_core::pixelcolor::{
     BinaryColor, Gray8, Rgb555, Rgb565, Rgb666, Rgb888, RgbColor,
 };
 
+/// The colour of `poly`, `line`, `poly3` and `face` before a list's
+/// first `color` command.
+pub const DEFAULT_COLOR: Rgb888 = Rgb888::WHITE;
+
 /// A pixel format that a display-list colour can be written in.
 pub trait ListColor: embedded_graphics_core::pixelcolor::PixelColor {
     /// The pixel nearest below `c` in this format (each channel truncated).

@@ -83,6 +83,7 @@ use crate::geometry::project::WINDOW_MAX;
 use crate::geometry::{Outcome, Pipeline};
 use crate::port::SpanTarget;
 use crate::raster::clip::ClipRect;
+use crate::raster::draw::Draw;
 use crate::raster::line;
 use crate::raster::scan::{FillError, Rasterizer};
 use crate::scene::label::{self, LabelError};
@@ -95,8 +96,6 @@ use crate::visible::trapezoid::{EdgeSlot, Polygon};
 use crate::visible::{Resolve, VisibleError, VisibleStats};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
-
-pub use crate::scene::list::{front_facing, DEFAULT_COLOR};
 
 pub mod bands;
 pub use bands::{ListBands, ListBandsError, PrepareError};
@@ -484,9 +483,9 @@ pub fn needs(
     let mut need = Needs::default();
     let mut first = None;
     let mut widest = (0, 0);
+    need.edges = list.summary().poly as usize;
     for (offset, cmd) in list.commands() {
         match &cmd {
-            Command::Poly(v) => need.edges = need.edges.max(v.len()),
             Command::Poly3(_) => need.poly3 += 1,
             _ if !cmd.is_3d() => {}
             _ => need.scene += 1,
@@ -621,11 +620,11 @@ impl<'e> Controller<'e> {
     fn fault(&self, list: &DisplayList<'_>) -> Result<(), RenderError<core::convert::Infallible>> {
         let capacity = self.raster.capacity();
         for (offset, cmd) in list.commands() {
-            match cmd {
-                Command::Poly(v) if v.len() > capacity => {
+            match cmd.poly_vertices() {
+                Some(vertices) if vertices > capacity => {
                     return Err(RenderError::Capacity {
                         offset,
-                        vertices: v.len(),
+                        vertices,
                         capacity,
                     })
                 }
@@ -683,7 +682,8 @@ impl<'e> Controller<'e> {
     }
 
     /// Executes `list` into `target`, starting with the clip registers on
-    /// the whole frame and the colour [`DEFAULT_COLOR`].
+    /// the whole frame and the colour
+    /// [`DEFAULT_COLOR`](crate::color::DEFAULT_COLOR).
     ///
     /// The frame is the list's, cut to the target's size. The list is
     /// [`check`](Self::check)ed and its 3D layer built first: on any error
@@ -747,34 +747,31 @@ impl<'e> Controller<'e> {
             }
             _ => None,
         };
-        let mut clip = ClipRect::full(w, h);
-        let mut color = T::Color::from_rgb888(DEFAULT_COLOR);
         stats.commands = list.summary().commands as u32;
-        // A list with no `clear`, `poly` or `line` draws nothing here: it
-        // is not read again.
-        let painted = list.commands().take(match list.summary().draws_2d {
-            true => usize::MAX,
-            false => 0,
-        });
-        for (offset, cmd) in painted {
-            match cmd {
-                Command::Clear(c) => {
+        // The list's one 2D interpreter: a list with no `clear`, `poly`
+        // or `line` draws nothing here, and is not read again.
+        for (offset, draw) in list.draws((w, h)) {
+            match draw {
+                Draw::Clear(c) => {
                     target
                         .clear(T::Color::from_rgb888(c))
                         .map_err(|error| RenderError::Target { offset, error })?;
                     stats.clears += 1;
                 }
-                Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
-                Command::Color(c) => color = T::Color::from_rgb888(c),
-                Command::Poly(v) => {
+                Draw::Poly {
+                    vertices,
+                    clip,
+                    color,
+                } => {
+                    let color = T::Color::from_rgb888(color);
                     let counts =
                         raster
-                            .fill(v.iter(), &clip, color, target)
+                            .fill(vertices, &clip, color, target)
                             .map_err(|e| match e {
                                 FillError::Target(error) => RenderError::Target { offset, error },
                                 FillError::Capacity { capacity } => RenderError::Capacity {
                                     offset,
-                                    vertices: v.len(),
+                                    vertices: vertices.len(),
                                     capacity,
                                 },
                             })?;
@@ -782,14 +779,18 @@ impl<'e> Controller<'e> {
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;
                 }
-                Command::Line(a, b) => {
-                    let counts = line::draw_line(a, b, &clip, color, target)
+                Draw::Line {
+                    from,
+                    to,
+                    clip,
+                    color,
+                } => {
+                    let color = T::Color::from_rgb888(color);
+                    let counts = line::draw_line(from, to, &clip, color, target)
                         .map_err(|error| RenderError::Target { offset, error })?;
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;
                 }
-                // The 3D layer, drawn below.
-                _ => {}
             }
         }
         hook.stage(Stage::Painted);

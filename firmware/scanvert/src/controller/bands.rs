@@ -243,7 +243,9 @@ impl<'e> Controller<'e> {
                 &mut out.stats,
             )?;
         }
-        let table = EdgeTable::build(table, list, (w, h)).map_err(PrepareError::Table)?;
+        let commands = list.summary().commands as u32;
+        let table = EdgeTable::build(table, list.draws((w, h)), h, commands)
+            .map_err(PrepareError::Table)?;
         out.stats.commands = table.commands();
         out.stats.polygons = (table.len() - table.lines()) as u32;
         out.stats.clears = table.clear_color().is_some() as u32;

@@ -63,12 +63,15 @@
 //! so that the controller need not walk it again to learn it.
 //! [`Writer`] emits the same format into a caller-owned buffer.
 
+mod draws;
 pub mod layout;
 mod reader;
 mod writer;
 
+pub use draws::Draws;
 pub use reader::{
-    Axis, Command, Commands, DisplayList, FromBytes, Packed, Points, Summary, Vertices, Vertices3,
+    Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Points, Summary, Vertices,
+    Vertices3,
 };
 pub use writer::{WriteError, Writer};
 

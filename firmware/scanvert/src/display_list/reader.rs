@@ -437,6 +437,14 @@ impl Command<'_> {
     pub const fn is_scene(&self) -> bool {
         self.opcode().is_scene()
     }
+
+    /// A `poly`'s number of vertices; `None` for every other command.
+    pub fn poly_vertices(&self) -> Option<usize> {
+        match self {
+            Command::Poly(v) => Some(v.len()),
+            _ => None,
+        }
+    }
 }
 
 /// An axis of rotation.
@@ -701,10 +709,46 @@ impl<'a, V: FromBytes + 'a> Packed<'a, V> {
     }
 
     /// Iterates the items.
-    pub fn iter(&self) -> impl ExactSizeIterator<Item = V> + Clone + 'a {
-        self.bytes.chunks_exact(V::SIZE).map(V::from_bytes)
+    pub fn iter(&self) -> Items<'a, V> {
+        Items {
+            chunks: self.bytes.chunks_exact(V::SIZE),
+            item: PhantomData,
+        }
     }
 }
+
+impl<'a, V: FromBytes + 'a> IntoIterator for Packed<'a, V> {
+    type Item = V;
+    type IntoIter = Items<'a, V>;
+
+    /// The items, in order (as [`Packed::iter`]).
+    fn into_iter(self) -> Items<'a, V> {
+        self.iter()
+    }
+}
+
+/// The items of a [`Packed`], in order.
+#[derive(Clone, Debug)]
+pub struct Items<'a, V> {
+    chunks: core::slice::ChunksExact<'a, u8>,
+    item: PhantomData<fn() -> V>,
+}
+
+impl<V: FromBytes> Iterator for Items<'_, V> {
+    type Item = V;
+
+    #[inline]
+    fn next(&mut self) -> Option<V> {
+        self.chunks.next().map(V::from_bytes)
+    }
+
+    #[inline]
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.chunks.size_hint()
+    }
+}
+
+impl<V: FromBytes> ExactSizeIterator for Items<'_, V> {}
 
 /// The vertices of a `poly`: at least 3, each `(x, y)` in Q12.4.
 pub type Vertices<'a> = Packed<'a, Vertex>;

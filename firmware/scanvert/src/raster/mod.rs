@@ -8,11 +8,13 @@
 
 pub mod clip;
 pub mod dda;
+pub mod draw;
 pub mod edge;
 pub mod line;
 pub mod scan;
 pub mod table;
 
 pub use clip::{ClipRect, ClipWindow};
+pub use draw::Draw;
 pub use edge::{Edge, Stepper};
 pub use scan::{FillError, Rasterizer};

@@ -4,7 +4,9 @@
 //!
 //! # One pass
 //!
-//! [`EdgeTable::build`] reads the list once. Every `poly` and `line` after
+//! [`EdgeTable::build`] reads the list once, through its one 2D
+//! interpreter ([`DisplayList::draws`](crate::display_list::DisplayList::draws)).
+//! Every `poly` and `line` after
 //! the last `clear` (what comes before it is covered by it: a `clear`
 //! empties the table) is entered, in list order, with its colour and the
 //! clip registers in force at its place. A polygon's edges are set up
@@ -38,16 +40,17 @@
 //! row, and the live set, which takes one bit an entry of its half;
 //! `build` counts the entries by first row there first), an [`Edge`] (32
 //! bytes) per edge of the polygons and an `Option<`[`Line`]`>` (48 bytes)
-//! per line; [`needs_table`] counts them for a list, as an upper bound
+//! per line; [`DisplayList::table_needs`](crate::display_list::DisplayList::table_needs)
+//! counts them for a list, as an upper bound
 //! (one edge per vertex, every line entered).
 //! Running out is a [`TableError`] found by `build`, before anything is
 //! drawn.
 
 use crate::color::ListColor;
-use crate::display_list::{Command, DisplayList};
+use crate::fixed::Vertex;
 use crate::port::Counts;
 use crate::port::{Span, SpanTarget};
-use crate::raster::clip::ClipRect;
+use crate::raster::draw::Draw;
 use crate::raster::edge::Edge;
 use crate::raster::line::Line;
 use crate::raster::scan::{build_edges, Walk};
@@ -98,7 +101,9 @@ impl TablePolygon {
     }
 }
 
-/// The caller's memory for an [`EdgeTable`]; [`needs_table`] sizes it.
+/// The caller's memory for an [`EdgeTable`];
+/// [`DisplayList::table_needs`](crate::display_list::DisplayList::table_needs)
+/// sizes it.
 #[derive(Debug)]
 pub struct TableMemory<'a> {
     /// One entry per polygon and line after the last `clear`.
@@ -112,7 +117,8 @@ pub struct TableMemory<'a> {
     pub lines: &'a mut [Option<Line>],
 }
 
-/// What the table of a list needs, from [`needs_table`].
+/// What the table of a list needs, from
+/// [`DisplayList::table_needs`](crate::display_list::DisplayList::table_needs).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct TableNeeds {
@@ -125,40 +131,35 @@ pub struct TableNeeds {
     pub lines: usize,
 }
 
-/// Counts the table memory of `list`: the `poly`s and `line`s after its
-/// last `clear`, the polygons' vertices (an upper bound of their edges).
-pub fn needs_table(list: &DisplayList<'_>) -> TableNeeds {
-    let mut n = TableNeeds::default();
-    // One pass: a `clear` drops what came before it.
-    let painted = list.commands().take(match list.summary().draws_2d {
-        true => usize::MAX,
-        false => 0,
-    });
-    for (_, cmd) in painted {
-        match cmd {
-            Command::Clear(_) => n = TableNeeds::default(),
-            Command::Poly(v) => {
-                n.polygons += 1;
-                n.edges += v.len();
+impl TableNeeds {
+    /// Counts the table memory of `draws` (a list's
+    /// [`draws`](crate::display_list::DisplayList::draws); see
+    /// [`table_needs`](crate::display_list::DisplayList::table_needs)): the
+    /// polygons and lines after the last clear, the polygons' vertices (an
+    /// upper bound of their edges).
+    pub fn count<V, I>(draws: I) -> TableNeeds
+    where
+        I: IntoIterator<Item = (usize, Draw<V>)>,
+        V: IntoIterator<Item = Vertex>,
+        V::IntoIter: ExactSizeIterator,
+    {
+        let mut n = TableNeeds::default();
+        // One pass: a clear drops what came before it.
+        for (_, draw) in draws {
+            match draw {
+                Draw::Clear(_) => n = TableNeeds::default(),
+                Draw::Poly { vertices, .. } => {
+                    n.polygons += 1;
+                    n.edges += vertices.into_iter().len();
+                }
+                Draw::Line { .. } => {
+                    n.polygons += 1;
+                    n.lines += 1;
+                }
             }
-            Command::Line(..) => {
-                n.polygons += 1;
-                n.lines += 1;
-            }
-            _ => {}
         }
+        n
     }
-    n
-}
-
-/// The offset and colour of the last `clear` of `list`.
-pub fn last_clear(list: &DisplayList<'_>) -> Option<(usize, Rgb888)> {
-    list.commands()
-        .filter_map(|(o, c)| match c {
-            Command::Clear(c) => Some((o, c)),
-            _ => None,
-        })
-        .last()
 }
 
 /// The table ran out of memory at the `poly` or `line` at `offset`.
@@ -262,17 +263,25 @@ impl<'a> EdgeTable<'a> {
         }
     }
 
-    /// Enters every `poly` and `line` of `list` after its last `clear`,
-    /// on a frame of `w × h` (the list's frame cut to the target's).
+    /// Enters every polygon and line of `draws` after the last clear, on
+    /// a frame `height` rows high: a list's
+    /// [`draws`](crate::display_list::DisplayList::draws) on its frame cut
+    /// to the target's. `commands` is the list's count of commands, kept
+    /// for the statistics ([`commands`](Self::commands)).
     ///
     /// Kept out of line: it runs once a frame, and inlined into a band
     /// render it changed how the render's pixel loops were compiled.
     #[inline(never)]
-    pub fn build(
+    pub fn build<V, I>(
         mem: TableMemory<'a>,
-        list: &DisplayList<'_>,
-        (w, h): (u16, u16),
-    ) -> Result<Self, TableError> {
+        draws: I,
+        h: u16,
+        commands: u32,
+    ) -> Result<Self, TableError>
+    where
+        I: IntoIterator<Item = (usize, Draw<V>)>,
+        V: IntoIterator<Item = Vertex>,
+    {
         let TableMemory {
             polygons,
             index,
@@ -280,31 +289,24 @@ impl<'a> EdgeTable<'a> {
             lines,
         } = mem;
         let cap = polygons.len().min(index.len() / 2);
-        let mut clip = ClipRect::full(w, h);
-        let mut color = crate::controller::DEFAULT_COLOR;
         let (mut count, mut used, mut nlines) = (0usize, 0usize, 0usize);
-        let commands = list.summary().commands as u32;
         // One pass: a `clear` empties the table (it covers everything
         // before it), and running out of memory counts only if no `clear`
         // follows.
         let mut clear = None;
         let mut full: Option<TableError> = None;
-        // A list with no `clear`, `poly` or `line` enters nothing: it is
-        // not read.
-        let painted = list.commands().take(match list.summary().draws_2d {
-            true => usize::MAX,
-            false => 0,
-        });
-        for (offset, cmd) in painted {
-            match cmd {
-                Command::Clear(c) => {
+        for (offset, draw) in draws {
+            match draw {
+                Draw::Clear(c) => {
                     (count, used, nlines, full, clear) = (0, 0, 0, None, Some(c));
                 }
-                Command::Clip(win) => clip = ClipRect::from_window(win, w, h),
-                Command::Color(c) => color = c,
-                Command::Poly(v) if full.is_none() && !clip.is_empty() => {
+                Draw::Poly {
+                    vertices,
+                    clip,
+                    color,
+                } if full.is_none() && !clip.is_empty() => {
                     let room = &mut edges[used..];
-                    let Some(n) = build_edges(room, v.iter(), &clip) else {
+                    let Some(n) = build_edges(room, vertices, &clip) else {
                         full = Some(TableError::Edges {
                             offset,
                             capacity: edges.len(),
@@ -341,9 +343,14 @@ impl<'a> EdgeTable<'a> {
                     count += 1;
                     used += n;
                 }
-                Command::Line(a, b) if full.is_none() => {
+                Draw::Line {
+                    from,
+                    to,
+                    clip,
+                    color,
+                } if full.is_none() => {
                     // As `draw_line`: nothing when no pixel is in the clip.
-                    let Some(line) = Line::new(a, b, &clip) else {
+                    let Some(line) = Line::new(from, to, &clip) else {
                         continue;
                     };
                     let Some(slot) = lines.get_mut(nlines) else {
@@ -601,13 +608,14 @@ fn run_line<T: SpanTarget + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::display_list::Writer;
+    use crate::display_list::{Command, DisplayList, Writer};
     use crate::fixed::Vertex;
+    use crate::raster::clip::ClipRect;
 
     #[test]
     fn needs_count_what_follows_the_last_clear() {
         // Random lists of `clear`, `poly`, `line`, `color` and `poly3`:
-        // the one pass counts what a count after `last_clear` counts.
+        // the one pass counts what a count after the last `clear` counts.
         let mut rng = testkit::rng::Rng(0x7ab1e);
         let mut bytes = [0u8; 2048];
         for _ in 0..500 {
@@ -629,7 +637,11 @@ mod tests {
                 .unwrap();
             }
             let list = DisplayList::new_checked(w.finish()).unwrap();
-            let last = last_clear(&list).map(|(o, _)| o);
+            let last = list
+                .commands()
+                .filter(|(_, c)| matches!(c, Command::Clear(_)))
+                .map(|(o, _)| o)
+                .last();
             let mut want = TableNeeds::default();
             for (offset, cmd) in list.commands() {
                 let counted = last.is_none_or(|c| offset > c);
@@ -645,7 +657,7 @@ mod tests {
                     _ => {}
                 }
             }
-            assert_eq!(needs_table(&list), want);
+            assert_eq!(list.table_needs(), want);
         }
     }
 
@@ -710,7 +722,7 @@ mod tests {
                     _ => {}
                 }
             }
-            let need = needs_table(&list);
+            let need = list.table_needs();
             let mut polygons = [TablePolygon::EMPTY; 300];
             let mut index = [0u32; 600];
             let mut edges = [Edge::EMPTY; 1800];
@@ -721,7 +733,7 @@ mod tests {
                 edges: &mut edges[..need.edges],
                 lines: &mut lines[..need.lines],
             };
-            let mut table = EdgeTable::build(mem, &list, (W, H)).unwrap();
+            let mut table = EdgeTable::build(mem, list.draws((W, H)), H, 0).unwrap();
             got.fill(Rgb888::new(0, 0, 0));
             let mut fb = FrameBuffer::new(&mut got, W, H).unwrap();
             let mut drawn = [false; H as usize];

@@ -12,19 +12,18 @@
 //! list carries besides the geometry stage's ([`Pipeline`]) is its colour,
 //! its clip registers and its frame ([`ListState`]).
 
+use crate::color::DEFAULT_COLOR;
 use crate::display_list::{Axis, Command, Vertices3};
 use crate::fixed::Vertex3;
+use crate::geometry::cull::front_facing;
 use crate::geometry::{
     Angle, Light, Orthographic, Outcome, Perspective, Pipeline, PipelineError, Point3, PolygonSink,
     View, Viewport, Q16,
 };
 use crate::raster::clip::ClipRect;
-use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
+use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::{label, SceneError};
-
-/// The colour of `poly` and `poly3` before the first `color` command.
-pub const DEFAULT_COLOR: Rgb888 = Rgb888::WHITE;
 
 /// What a list carries besides the geometry stage: the current colour,
 /// the clip registers, and the list's frame (clip windows are cut to it).
@@ -100,7 +99,7 @@ pub(crate) trait Out {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<bool, SceneError> {
-        let drawn = front_facing(vertices);
+        let drawn = front_facing(vertices.iter());
         if drawn {
             self.polygon(vertices.iter(), color, clip)?;
         }
@@ -123,28 +122,6 @@ impl<O: Out> PolygonSink for Faces<'_, O> {
     fn polygon(&mut self, v: &[Vertex3], color: Rgb888, _: bool) -> Result<(), SceneError> {
         self.out.polygon(v.iter().copied(), color, &self.clip)
     }
-}
-
-/// `true` when the `poly3` is drawn: the shoelace sum of its vertices is
-/// negative (counter-clockwise as displayed, y down). Each term is below
-/// 2³¹ and there are at most 65535: the sum fits in `i64`.
-pub fn front_facing(v: &Vertices3<'_>) -> bool {
-    let mut it = v.iter();
-    let Some(first) = it.next() else {
-        return false;
-    };
-    // Each term one pair of 32 × 32 → 64-bit multiplies; the closing
-    // edge after the loop (chaining it in cost a check a vertex).
-    let term = |p: Vertex3, q: Vertex3| {
-        p.x.units() as i64 * q.y.units() as i64 - q.x.units() as i64 * p.y.units() as i64
-    };
-    let mut s = 0i64;
-    let mut prev = first;
-    for p in it {
-        s += term(prev, p);
-        prev = p;
-    }
-    s + term(prev, first) < 0
 }
 
 /// The geometry stage a list starts with, for a `width × height` frame:

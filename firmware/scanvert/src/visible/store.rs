@@ -48,8 +48,8 @@
 
 use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
+use crate::geometry::cull::front_facing;
 use crate::raster::clip::{ClipRect, ClipWindow};
-use crate::scene::list::front_facing;
 use crate::visible::trapezoid::{
     rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, NONE,
 };
@@ -554,7 +554,7 @@ impl<'a> TrapezoidStore<'a> {
                 .add_from(s, Source::Outlined(it, Ok(o)), color, clip)
                 .map(|_| true),
             // Too many vertices: an error only for a drawn one.
-            Err(e) => match front_facing(vertices) {
+            Err(e) => match front_facing(vertices.iter()) {
                 true => self
                     .add_from(s, Source::Outlined(it, Err(e.into())), color, clip)
                     .map(|_| true),
@@ -923,7 +923,7 @@ mod tests {
             };
             let (mut a, mut b) = (Mem::<32, 4>::new(), Mem::<32, 4>::new());
             let (mut sa, mut sb) = (a.store(), b.store());
-            let front = crate::scene::list::front_facing(&v);
+            let front = crate::geometry::cull::front_facing(v.iter());
             let got = sa.add_poly3(1, &v, Rgb888::RED, &clip);
             if front {
                 let want = sb.add_polygon(1, poly.iter().copied(), Rgb888::RED, &clip);
