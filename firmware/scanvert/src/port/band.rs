@@ -40,9 +40,15 @@
 //! skipped: passed over without being resolved or drawn (a scene's active
 //! list jumps over them at once).
 
+use crate::port::draw_target::{self, Window};
 use crate::port::{Span, SpanTarget};
+use core::convert::Infallible;
 use core::fmt;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{OriginDimensions, Size};
 use embedded_graphics_core::pixelcolor::PixelColor;
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Pixel;
 
 /// Where finished bands go: a panel's link, a DMA channel, or the rows of
 /// a larger image.
@@ -271,6 +277,69 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
         self.pixels.fill(color);
         Ok(())
+    }
+}
+
+/// The band's size is the frame's: embedded-graphics places a drawing in
+/// frame coordinates, and the band keeps the part on its rows.
+impl<C: PixelColor> OriginDimensions for Band<'_, C> {
+    fn size(&self) -> Size {
+        Size::new(self.width as u32, self.height as u32)
+    }
+}
+
+/// embedded-graphics drawing into a band: every primitive, font and image
+/// draws into the band's rows of the frame, with no frame buffer. Pixels
+/// outside the band's rows (or the frame) are discarded, so drawing the
+/// same into every band of a pass draws it into the frame, pixel for
+/// pixel as into a [`FrameBuffer`](crate::port::framebuffer::FrameBuffer).
+///
+/// [`fill_solid`](DrawTarget::fill_solid) and
+/// [`fill_contiguous`](DrawTarget::fill_contiguous) cut their rectangle
+/// to the band first: one of no row of the band costs a rectangle test
+/// (`fill_contiguous` still steps its colour iterator past the rows
+/// above the band, which embedded-graphics' iterators cannot jump).
+/// [`draw_iter`](DrawTarget::draw_iter) tests each pixel. Nothing can
+/// fail.
+impl<C: PixelColor> DrawTarget for Band<'_, C> {
+    type Color = C;
+    type Error = Infallible;
+
+    fn draw_iter<I>(&mut self, pixels: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = Pixel<C>>,
+    {
+        let win = self.window();
+        draw_target::draw_iter(self, win, pixels)
+    }
+
+    fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
+    where
+        I: IntoIterator<Item = C>,
+    {
+        let win = self.window();
+        draw_target::fill_contiguous(self, win, area, colors)
+    }
+
+    fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
+        let win = self.window();
+        draw_target::fill_solid(self, win, area, color)
+    }
+
+    /// Fills the band's rows: the part of the frame it holds.
+    fn clear(&mut self, color: C) -> Result<(), Infallible> {
+        SpanTarget::clear(self, color)
+    }
+}
+
+impl<C> Band<'_, C> {
+    /// The band's rows, as the window of its drawing.
+    fn window(&self) -> Window {
+        Window {
+            w: self.width,
+            y0: self.y0,
+            y1: self.y0 + self.rows,
+        }
     }
 }
 

@@ -180,16 +180,146 @@ impl<C: PixelColor> OriginDimensions for FrameBuffer<'_, C> {
     }
 }
 
-/// The part of `area` inside a `w × h` frame, as `(x0, y0, x1, y1)`
-/// (ends exclusive), or `None` when they do not meet. The corners are
-/// computed in `i64`: an `i32` plus a `u32` cannot overflow there.
-fn visible(area: &Rectangle, w: u16, h: u16) -> Option<(u16, u16, u16, u16)> {
-    let (x, y) = (area.top_left.x as i64, area.top_left.y as i64);
-    let x0 = x.clamp(0, w as i64);
-    let y0 = y.clamp(0, h as i64);
-    let x1 = (x + area.size.width as i64).clamp(0, w as i64);
-    let y1 = (y + area.size.height as i64).clamp(0, h as i64);
-    (x0 < x1 && y0 < y1).then_some((x0 as u16, y0 as u16, x1 as u16, y1 as u16))
+/// The pixels a drawing may write: columns `0..w` of rows `y0..y1`
+/// (the whole frame for a frame buffer, the band's rows for a
+/// [`Band`](crate::port::band::Band)).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Window {
+    pub(crate) w: u16,
+    pub(crate) y0: u16,
+    pub(crate) y1: u16,
+}
+
+impl Window {
+    /// The part of `area` inside the window, as `(x0, y0, x1, y1)` (ends
+    /// exclusive), or `None` when they do not meet. The corners are
+    /// computed in `i64`: an `i32` plus a `u32` cannot overflow there.
+    fn visible(self, area: &Rectangle) -> Option<(u16, u16, u16, u16)> {
+        let (x, y) = (area.top_left.x as i64, area.top_left.y as i64);
+        let (top, bottom) = (self.y0 as i64, self.y1 as i64);
+        let x0 = x.clamp(0, self.w as i64);
+        let y0 = y.clamp(top, bottom);
+        let x1 = (x + area.size.width as i64).clamp(0, self.w as i64);
+        let y1 = (y + area.size.height as i64).clamp(top, bottom);
+        (x0 < x1 && y0 < y1).then_some((x0 as u16, y0 as u16, x1 as u16, y1 as u16))
+    }
+}
+
+/// [`DrawTarget::draw_iter`] into `target` as one span a pixel, the
+/// pixels outside `win` discarded.
+pub(crate) fn draw_iter<T, I>(target: &mut T, win: Window, pixels: I) -> Result<(), T::Error>
+where
+    T: SpanTarget + ?Sized,
+    I: IntoIterator<Item = Pixel<T::Color>>,
+{
+    for Pixel(p, color) in pixels {
+        if let (Ok(x), Ok(y)) = (u16::try_from(p.x), u16::try_from(p.y)) {
+            // x < w <= 4096, so x + 1 cannot overflow.
+            if x < win.w && y >= win.y0 && y < win.y1 {
+                target.fill_span(
+                    Span {
+                        y,
+                        x0: x,
+                        x1: x + 1,
+                    },
+                    color,
+                )?;
+            }
+        }
+    }
+    Ok(())
+}
+
+/// [`DrawTarget::fill_contiguous`] into `target` as one span per stretch
+/// of equal colours, the pixels outside `win` discarded.
+pub(crate) fn fill_contiguous<T, I>(
+    target: &mut T,
+    win: Window,
+    area: &Rectangle,
+    colors: I,
+) -> Result<(), T::Error>
+where
+    T: SpanTarget + ?Sized,
+    I: IntoIterator<Item = T::Color>,
+{
+    let Some((x0, y0, x1, y1)) = win.visible(area) else {
+        return Ok(());
+    };
+    // Colours run row-major over all of `area`; those of pixels outside
+    // the window are skipped. `area` is at least one pixel in each
+    // direction here, and every offset below is at most its width or
+    // height (a `u32`), so it fits a `u64` and a `usize` index does not
+    // need to: `nth` takes a `usize`, so large skips go in steps.
+    let mut colors = colors.into_iter();
+    let left = (x0 as i64 - area.top_left.x as i64) as u64;
+    let right = area.size.width as u64 - (x1 as i64 - area.top_left.x as i64) as u64;
+    let above = (y0 as i64 - area.top_left.y as i64) as u64;
+    // above <= 4096 + 2^31 and width < 2^32: the product is below 2^64.
+    if !skip(&mut colors, above.saturating_mul(area.size.width as u64)) {
+        return Ok(());
+    }
+    for y in y0..y1 {
+        if !skip(&mut colors, left) {
+            return Ok(());
+        }
+        let mut run: Option<(u16, T::Color)> = None;
+        for x in x0..x1 {
+            let Some(c) = colors.next() else {
+                if let Some((start, rc)) = run {
+                    target.fill_span(
+                        Span {
+                            y,
+                            x0: start,
+                            x1: x,
+                        },
+                        rc,
+                    )?;
+                }
+                return Ok(());
+            };
+            match run {
+                Some((_, rc)) if rc == c => {}
+                Some((start, rc)) => {
+                    target.fill_span(
+                        Span {
+                            y,
+                            x0: start,
+                            x1: x,
+                        },
+                        rc,
+                    )?;
+                    run = Some((x, c));
+                }
+                None => run = Some((x, c)),
+            }
+        }
+        if let Some((start, rc)) = run {
+            target.fill_span(Span { y, x0: start, x1 }, rc)?;
+        }
+        if y + 1 < y1 && !skip(&mut colors, right) {
+            return Ok(());
+        }
+    }
+    Ok(())
+}
+
+/// [`DrawTarget::fill_solid`] into `target` as one span a row of `area`
+/// inside `win`.
+pub(crate) fn fill_solid<T>(
+    target: &mut T,
+    win: Window,
+    area: &Rectangle,
+    color: T::Color,
+) -> Result<(), T::Error>
+where
+    T: SpanTarget + ?Sized,
+{
+    if let Some((x0, y0, x1, y1)) = win.visible(area) {
+        for y in y0..y1 {
+            target.fill_span(Span { y, x0, x1 }, color)?;
+        }
+    }
+    Ok(())
 }
 
 /// embedded-graphics drawing into the frame buffer. Pixels outside the
@@ -207,104 +337,36 @@ impl<C: PixelColor> DrawTarget for FrameBuffer<'_, C> {
     where
         I: IntoIterator<Item = Pixel<C>>,
     {
-        let (w, h) = (self.width(), self.height());
-        for Pixel(p, color) in pixels {
-            if let (Ok(x), Ok(y)) = (u16::try_from(p.x), u16::try_from(p.y)) {
-                // x < w <= 4096, so x + 1 cannot overflow.
-                if x < w && y < h {
-                    SpanTarget::fill_span(
-                        self,
-                        Span {
-                            y,
-                            x0: x,
-                            x1: x + 1,
-                        },
-                        color,
-                    )?;
-                }
-            }
-        }
-        Ok(())
+        let win = self.window();
+        draw_iter(self, win, pixels)
     }
 
     fn fill_contiguous<I>(&mut self, area: &Rectangle, colors: I) -> Result<(), Infallible>
     where
         I: IntoIterator<Item = C>,
     {
-        let Some((x0, y0, x1, y1)) = visible(area, self.width(), self.height()) else {
-            return Ok(());
-        };
-        // Colours run row-major over all of `area`; those of pixels outside
-        // the frame are skipped. `area` is at least one pixel in each
-        // direction here, and every offset below is at most its width or
-        // height (a `u32`), so it fits a `u64` and a `usize` index does not
-        // need to: `nth` takes a `usize`, so large skips go in steps.
-        let mut colors = colors.into_iter();
-        let left = (x0 as i64 - area.top_left.x as i64) as u64;
-        let right = area.size.width as u64 - (x1 as i64 - area.top_left.x as i64) as u64;
-        let above = (y0 as i64 - area.top_left.y as i64) as u64;
-        // above <= 4096 + 2^31 and width < 2^32: the product is below 2^64.
-        if !skip(&mut colors, above.saturating_mul(area.size.width as u64)) {
-            return Ok(());
-        }
-        for y in y0..y1 {
-            if !skip(&mut colors, left) {
-                return Ok(());
-            }
-            let mut run: Option<(u16, C)> = None;
-            for x in x0..x1 {
-                let Some(c) = colors.next() else {
-                    if let Some((start, rc)) = run {
-                        SpanTarget::fill_span(
-                            self,
-                            Span {
-                                y,
-                                x0: start,
-                                x1: x,
-                            },
-                            rc,
-                        )?;
-                    }
-                    return Ok(());
-                };
-                match run {
-                    Some((_, rc)) if rc == c => {}
-                    Some((start, rc)) => {
-                        SpanTarget::fill_span(
-                            self,
-                            Span {
-                                y,
-                                x0: start,
-                                x1: x,
-                            },
-                            rc,
-                        )?;
-                        run = Some((x, c));
-                    }
-                    None => run = Some((x, c)),
-                }
-            }
-            if let Some((start, rc)) = run {
-                SpanTarget::fill_span(self, Span { y, x0: start, x1 }, rc)?;
-            }
-            if y + 1 < y1 && !skip(&mut colors, right) {
-                return Ok(());
-            }
-        }
-        Ok(())
+        let win = self.window();
+        fill_contiguous(self, win, area, colors)
     }
 
     fn fill_solid(&mut self, area: &Rectangle, color: C) -> Result<(), Infallible> {
-        if let Some((x0, y0, x1, y1)) = visible(area, self.width(), self.height()) {
-            for y in y0..y1 {
-                SpanTarget::fill_span(self, Span { y, x0, x1 }, color)?;
-            }
-        }
-        Ok(())
+        let win = self.window();
+        fill_solid(self, win, area, color)
     }
 
     fn clear(&mut self, color: C) -> Result<(), Infallible> {
         SpanTarget::clear(self, color)
+    }
+}
+
+impl<C: PixelColor> FrameBuffer<'_, C> {
+    /// The whole frame, as the window of its drawing.
+    fn window(&self) -> Window {
+        Window {
+            w: self.width(),
+            y0: 0,
+            y1: self.height(),
+        }
     }
 }
 
