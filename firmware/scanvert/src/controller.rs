@@ -98,6 +98,7 @@ use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 pub mod bands;
+pub mod frame;
 pub use bands::{ListBands, ListBandsError, PrepareError};
 
 /// Matrices the transform stack of a list's 3D scene saves (`push`

@@ -13,6 +13,7 @@
 //! | 3D: scene | [`scene`] | segments built by the application's procedures, rebuilt only when stale; labels drawn last |
 //! | 4. port | [`port`] | spans into memory or hardware: the frame buffer, the checksum, any embedded-graphics `DrawTarget` |
 //! | all | [`controller`] | runs a display list through all of the above (`poly3` and the 3D scene as a layer over the 2D commands) |
+//! | 5. frame | [`frame`] (in [`controller`]) | one pass over a stack of layers (display lists, scenes, embedded-graphics drawables), band by band, changed rows only, shipped to the panel |
 //!
 //! Beside them: [`fixed`] (Q12.4 vertices and the widths of every
 //! intermediate) and [`color`] (list colours to the port's pixel format).
@@ -72,6 +73,9 @@ pub use crate::scene::{Builder, Label, Procedure, Scene, SceneError, SceneMemory
 pub use crate::visible::{
     Active, EdgeSlot, Face, Resolve, Run, Segment, StoreMemory, Trapezoid, Workspace,
 };
+
+// One frame over a stack of layers.
+pub use crate::controller::frame::{self, DrawableLayer, FramePass, Layer};
 
 // Colours.
 pub use crate::color::{ListColor, ToRgb888};

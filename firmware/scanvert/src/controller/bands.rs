@@ -14,11 +14,13 @@
 //! draws into a black frame buffer. [`Controller::render_bands`] runs the
 //! whole frame through one buffer and a [`BandTarget`].
 
-use super::{build_layer, Controller, ListScene, RenderError, RenderStats, Resource};
+use super::frame::{FramePass, Layer};
+use super::{build_layer, Controller, ListScene, RenderError, RenderStats};
 use crate::color::ListColor;
 use crate::display_list::DisplayList;
-use crate::port::band::{Band, BandError, BandTarget, BandsError};
-use crate::port::SpanTarget;
+use crate::port::band::{check_band, check_buffer, fill_background};
+use crate::port::band::{Band, BandTarget, BandsError};
+use crate::port::Counts;
 use crate::raster::table::{EdgeTable, TableError, TableMemory};
 use crate::scene::label;
 use crate::visible::{Sweep, VisibleError};
@@ -69,7 +71,8 @@ pub struct ListBands<'t> {
     layer: Option<ListScene<'t>>,
     /// The layer's sweep and first command's offset.
     sweep: Option<(Sweep, usize)>,
-    background: Rgb888,
+    /// The colour of the list's last `clear`.
+    clear: Option<Rgb888>,
     size: (u16, u16),
     next: u16,
     stats: RenderStats,
@@ -83,7 +86,7 @@ impl ListBands<'_> {
             table: EdgeTable::empty(),
             layer: None,
             sweep: None,
-            background: Rgb888::BLACK,
+            clear: None,
             size: (list.width(), list.height()),
             next: 0,
             stats: RenderStats::default(),
@@ -112,13 +115,14 @@ impl ListBands<'_> {
     /// The colour of rows no command writes: the last `clear`'s, or
     /// black.
     pub fn background(&self) -> Rgb888 {
-        self.background
+        self.clear.unwrap_or(Rgb888::BLACK)
     }
 
     /// Draws rows `y..y + rows` (cut at the frame's last row) into
     /// `pixels`, row by row, `width` pixels a row; returns the rows drawn.
     /// Rows between the last band and `y` are skipped. Nothing is drawn
-    /// when the band is refused.
+    /// when the band is refused. The same as a [`FramePass`] of this one
+    /// layer over a black background.
     pub fn draw<C>(
         &mut self,
         y: u16,
@@ -128,75 +132,81 @@ impl ListBands<'_> {
     where
         C: ListColor,
     {
-        let (w, h) = self.size;
-        if rows == 0 {
-            return Err(BandError::NoRows.into());
-        }
-        if y >= h {
-            return Err(BandError::Outside { y, height: h }.into());
-        }
-        if y < self.next {
-            return Err(BandError::Order { next: self.next, y }.into());
-        }
-        let mut band = Band::new(pixels, (w, h), y, rows)?;
-        // The offset of the layer's first command, as the full frame
-        // reports the layer's errors.
+        check_band(y, rows, self.next, self.size.1)?;
+        let mut band = Band::new(pixels, self.size, y, rows)?;
+        let background = Some(C::from_rgb888(Rgb888::BLACK));
+        self.draw_band(&mut band, background)
+            .map_err(|e| BandsError::Render(self.layer_error(e)))?;
+        Ok(band.rows())
+    }
+
+    /// A visible-surface error of the 3D layer, as the full frame reports
+    /// it.
+    fn layer_error(&self, e: VisibleError<Infallible>) -> PrepareError {
         let first = self.sweep.as_ref().map_or(0, |(_, first)| *first);
-        let layer_error = |e: VisibleError<Infallible>| match e {
-            VisibleError::Sink(e) => match e {},
-            // Checked when the layer was built: never.
-            VisibleError::Active { capacity } | VisibleError::Runs { capacity } => {
-                BandsError::Render(PrepareError::Render(RenderError::Capacity3d {
-                    offset: first,
-                    resource: Resource::Active,
-                    capacity,
-                }))
-            }
-        };
+        PrepareError::Render(super::visible_error(first, e))
+    }
+
+    /// Draws the band's rows over what is in it (see [`Layer::draw`]).
+    fn draw_band<C: ListColor>(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        let (w, h) = self.size;
+        let y = band.y();
         if y > self.next {
             self.table.skip(y as i32);
             if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
                 let (store, _, ws) = scene.band_parts();
-                sweep.skip(store, ws, y - self.next).map_err(layer_error)?;
+                sweep.skip(store, ws, y - self.next)?;
             }
         }
+        // The list's last `clear` covers what is below it; without one,
+        // the lowest layer's background.
+        let background = match self.clear {
+            Some(c) => Some(C::from_rgb888(c)),
+            None => background,
+        };
         // With nothing 2D to draw under the 3D layer, and the layer as
         // large as the frame, the sweep writes the background runs itself
         // (every pixel once) instead of a fill that the faces overwrite.
-        let background = C::from_rgb888(self.background);
         let layer_fills = self.table.is_empty()
             && self
                 .layer
                 .as_ref()
                 .is_some_and(|scene| (scene.store().width(), scene.store().height()) == (w, h));
         if !layer_fills {
-            ok(band.clear(background));
+            fill_background(band, background);
         }
-        let c = ok(self.table.draw(band.end() as i32, &mut band));
-        self.stats.spans += c.spans;
-        self.stats.pixels += c.pixels as u64;
+        let mut counts = ok(self.table.draw(band.end() as i32, band));
         if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
             let (store, labels, ws) = scene.band_parts();
-            let c = sweep
-                .draw(
-                    store,
-                    ws,
-                    band.rows(),
-                    &mut band,
-                    layer_fills.then_some(background),
-                )
-                .map_err(layer_error)?;
+            let under = if layer_fills { background } else { None };
+            counts += sweep.draw(store, ws, band.rows(), band, under)?;
             self.stats.visible = sweep.stats();
-            self.stats.spans += c.spans;
-            self.stats.pixels += c.pixels as u64;
             let rows = (band.y() as i32, band.end() as i32);
-            let c = ok(labels.draw_rows(label::DEFAULT_FONT, rows, &mut band));
-            self.stats.spans += c.written.spans;
-            self.stats.pixels += c.written.pixels as u64;
+            let c = ok(labels.draw_rows(label::DEFAULT_FONT, rows, band));
+            counts += c.written;
             self.stats.labels += c.drawn;
         }
+        self.stats.spans += counts.spans;
+        self.stats.pixels += counts.pixels as u64;
         self.next = band.end();
-        Ok(band.rows())
+        Ok(counts)
+    }
+}
+
+/// A display list's frame as a layer: its 2D commands in painter's
+/// order, then its 3D layer and labels. Its last `clear` covers the
+/// layers below it.
+impl<C: ListColor> Layer<C> for ListBands<'_> {
+    fn draw(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        self.draw_band(band, background)
     }
 }
 
@@ -249,7 +259,7 @@ impl<'e> Controller<'e> {
         out.stats.commands = table.commands();
         out.stats.polygons = (table.len() - table.lines()) as u32;
         out.stats.clears = table.clear_color().is_some() as u32;
-        out.background = table.clear_color().unwrap_or(Rgb888::BLACK);
+        out.clear = table.clear_color();
         out.table = table;
         Ok(())
     }
@@ -271,32 +281,19 @@ impl<'e> Controller<'e> {
         P: BandTarget + ?Sized,
         P::Color: ListColor,
     {
-        let (w, h) = (list.width(), list.height());
-        if rows == 0 {
-            return Err(BandError::NoRows.into());
-        }
-        let needed = rows.min(h) as usize * w as usize;
-        if band.len() < needed {
-            return Err(BandError::Buffer {
-                len: band.len(),
-                needed,
-            }
-            .into());
-        }
+        let size = (list.width(), list.height());
+        check_buffer(rows, size, band.len())?;
         let mut bands = ListBands::unprepared(list);
         self.prepare(list, table, &mut bands)
             .map_err(BandsError::Render)?;
-        let mut y = 0;
-        while y < h {
-            let n = bands.draw(y, rows, band).map_err(|e| match e {
+        let black = P::Color::from_rgb888(Rgb888::BLACK);
+        let pass = FramePass::new(size, black).draw(&mut [&mut bands], rows, band, target);
+        if let Err(e) = pass {
+            return Err(match e {
                 BandsError::Band(b) => BandsError::Band(b),
-                BandsError::Render(r) => BandsError::Render(r),
-                BandsError::Ship { error, .. } => match error {},
-            })?;
-            target
-                .ship(y, n, &band[..n as usize * w as usize])
-                .map_err(|error| BandsError::Ship { y, error })?;
-            y += n;
+                BandsError::Render(e) => BandsError::Render(bands.layer_error(e)),
+                BandsError::Ship { y, error } => BandsError::Ship { y, error },
+            });
         }
         Ok(bands.stats())
     }

@@ -280,6 +280,124 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
     }
 }
 
+/// A layer's `background` duty done by a fill: the band gets the
+/// background, when there is one, before the layer draws.
+pub(crate) fn fill_background<C: PixelColor>(band: &mut Band<'_, C>, background: Option<C>) {
+    if let Some(c) = background {
+        match SpanTarget::clear(band, c) {
+            Ok(()) => {}
+            Err(e) => match e {},
+        }
+    }
+}
+
+/// Checks a band of rows `y..y + rows` of a frame `height` rows high
+/// whose next row to draw is `next`: at least one row, inside the frame,
+/// not above the last band's end.
+pub(crate) fn check_band(y: u16, rows: u16, next: u16, height: u16) -> Result<(), BandError> {
+    if rows == 0 {
+        return Err(BandError::NoRows);
+    }
+    if y >= height {
+        return Err(BandError::Outside { y, height });
+    }
+    if y < next {
+        return Err(BandError::Order { next, y });
+    }
+    Ok(())
+}
+
+/// Checks that a buffer of `len` pixels holds a band of `rows` rows of a
+/// `width × height` frame (or the whole frame, when it is lower).
+pub(crate) fn check_buffer(
+    rows: u16,
+    (width, height): (u16, u16),
+    len: usize,
+) -> Result<(), BandError> {
+    if rows == 0 {
+        return Err(BandError::NoRows);
+    }
+    let needed = rows.min(height) as usize * width as usize;
+    if len < needed {
+        return Err(BandError::Buffer { len, needed });
+    }
+    Ok(())
+}
+
+/// Rows of a frame to draw again: one bit per row, in caller memory
+/// ([`DirtyRows::words`] `u32`s for a frame's height).
+#[derive(Debug)]
+pub struct DirtyRows<'d> {
+    bits: &'d mut [u32],
+    height: u16,
+}
+
+impl<'d> DirtyRows<'d> {
+    /// `u32`s needed for `height` rows.
+    pub const fn words(height: u16) -> usize {
+        (height as usize).div_ceil(32)
+    }
+
+    /// No row marked, over `bits`; `None` when it holds fewer than
+    /// [`words`](Self::words)`(height)`.
+    pub fn new(bits: &'d mut [u32], height: u16) -> Option<Self> {
+        let bits = bits.get_mut(..Self::words(height))?;
+        bits.fill(0);
+        Some(DirtyRows { bits, height })
+    }
+
+    /// Rows in the frame.
+    pub fn height(&self) -> u16 {
+        self.height
+    }
+
+    /// Marks rows `y0..y1`, cut to the frame.
+    pub fn mark(&mut self, y0: i32, y1: i32) {
+        let (y0, y1) = (y0.max(0), y1.min(self.height as i32));
+        for y in y0..y1 {
+            self.bits[y as usize / 32] |= 1 << (y % 32);
+        }
+    }
+
+    /// Marks every row.
+    pub fn mark_all(&mut self) {
+        self.mark(0, self.height as i32);
+    }
+
+    /// Unmarks every row.
+    pub fn clear(&mut self) {
+        self.bits.fill(0);
+    }
+
+    /// `true` when row `y` is marked.
+    pub fn is_marked(&self, y: u16) -> bool {
+        y < self.height && self.bits[y as usize / 32] & (1 << (y % 32)) != 0
+    }
+
+    /// Rows marked.
+    pub fn count(&self) -> usize {
+        self.bits.iter().map(|w| w.count_ones() as usize).sum()
+    }
+
+    /// The marked rows as runs `(y0, y1)`, top to bottom.
+    pub fn runs(&self) -> impl Iterator<Item = (u16, u16)> + '_ {
+        let mut y = 0u16;
+        core::iter::from_fn(move || {
+            while y < self.height && !self.is_marked(y) {
+                y += 1;
+            }
+            if y >= self.height {
+                return None;
+            }
+            let y0 = y;
+            while y < self.height && self.is_marked(y) {
+                y += 1;
+            }
+            Some((y0, y))
+        })
+    }
+}
+
 /// The band's size is the frame's: embedded-graphics places a drawing in
 /// frame coordinates, and the band keeps the part on its rows.
 impl<C: PixelColor> OriginDimensions for Band<'_, C> {

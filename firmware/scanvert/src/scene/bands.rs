@@ -18,7 +18,9 @@
 
 use super::{Frame, LabelStore, Scene};
 use crate::color::ListColor;
-use crate::port::band::{Band, BandError, BandTarget, BandsError};
+pub use crate::port::band::DirtyRows;
+use crate::port::band::{check_band, Band, BandsError};
+use crate::port::Counts;
 use crate::visible::store::TrapezoidStore;
 use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
 use core::convert::Infallible;
@@ -57,50 +59,41 @@ impl<C: ListColor> SceneBands<'_, '_, '_, C> {
     /// Draws rows `y..y + rows` (cut at the frame's last row) into
     /// `pixels`, row by row, the frame's width a row; returns the rows
     /// drawn. Rows between the last band and `y` are skipped. Nothing is
-    /// drawn when the band is refused.
+    /// drawn when the band is refused. The same as a
+    /// [`FramePass`](crate::controller::frame::FramePass) of this one
+    /// layer over the pass's background.
     pub fn draw(
         &mut self,
         y: u16,
         rows: u16,
         pixels: &mut [C],
     ) -> Result<u16, SceneBandsError<Infallible>> {
-        let store = self.store;
-        let (w, h) = (store.width(), store.height());
-        if rows == 0 {
-            return Err(BandError::NoRows.into());
-        }
-        if y >= h {
-            return Err(BandError::Outside { y, height: h }.into());
-        }
-        if y < self.next {
-            return Err(BandError::Order { next: self.next, y }.into());
-        }
-        let mut band = Band::new(pixels, (w, h), y, rows)?;
+        let size = (self.store.width(), self.store.height());
+        check_band(y, rows, self.next, size.1)?;
+        let mut band = Band::new(pixels, size, y, rows)?;
+        let background = Some(self.background);
+        self.draw_band(&mut band, background)
+            .map_err(BandsError::Render)?;
+        Ok(band.rows())
+    }
+
+    /// Draws the band's rows over what is in it: the lowest layer with
+    /// `background` (see
+    /// [`Layer::draw`](crate::controller::frame::Layer::draw)).
+    pub(crate) fn draw_band(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        let (store, y) = (self.store, band.y());
         if y > self.next {
-            self.sweep
-                .skip(store, self.workspace, y - self.next)
-                .map_err(BandsError::Render)?;
+            self.sweep.skip(store, self.workspace, y - self.next)?;
         }
         let d = self
             .sweep
-            .draw(
-                store,
-                self.workspace,
-                band.rows(),
-                &mut band,
-                Some(self.background),
-            )
-            .map_err(|e| match e {
-                VisibleError::Sink(e) => match e {},
-                VisibleError::Active { capacity } => {
-                    BandsError::Render(VisibleError::Active { capacity })
-                }
-                VisibleError::Runs { capacity } => {
-                    BandsError::Render(VisibleError::Runs { capacity })
-                }
-            })?;
+            .draw(store, self.workspace, band.rows(), band, background)?;
         let rows = (band.y() as i32, band.end() as i32);
-        let l = match self.labels.draw_rows(self.font, rows, &mut band) {
+        let l = match self.labels.draw_rows(self.font, rows, band) {
             Ok(l) => l,
             Err(e) => match e {},
         };
@@ -111,7 +104,7 @@ impl<C: ListColor> SceneBands<'_, '_, '_, C> {
         f.labels.off_frame = l.off_frame;
         f.labels.written += l.written;
         self.next = band.end();
-        Ok(band.rows())
+        Ok(d + l.written)
     }
 }
 
@@ -157,39 +150,6 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             background,
             font,
         )
-    }
-
-    /// Draws the scene band by band, `rows` rows at a time, through the
-    /// caller's buffer `band` (at least `rows × width` pixels), each band
-    /// handed to `target` to ship before the next is drawn: the pixels
-    /// [`draw`](Self::draw) writes with `Some(background)`.
-    pub fn draw_bands<P>(
-        &mut self,
-        resolve: Resolve,
-        background: P::Color,
-        font: &MonoFont<'_>,
-        rows: u16,
-        band: &mut [P::Color],
-        target: &mut P,
-    ) -> Result<Frame, SceneBandsError<P::Error>>
-    where
-        P: BandTarget + ?Sized,
-        P::Color: ListColor,
-    {
-        let (w, h) = (self.store.width(), self.store.height());
-        check_buffer(rows, h, w, band.len())?;
-        let mut pass = self
-            .bands(resolve, background, font)
-            .map_err(BandsError::Render)?;
-        let mut y = 0;
-        while y < h {
-            let n = pass.draw(y, rows, band).map_err(widen)?;
-            target
-                .ship(y, n, &band[..n as usize * w as usize])
-                .map_err(|error| BandsError::Ship { y, error })?;
-            y += n;
-        }
-        Ok(pass.frame())
     }
 }
 
@@ -242,101 +202,6 @@ fn pass<'s, 'a, 'w, C: ListColor>(
         next: 0,
         frame: Frame::default(),
     })
-}
-
-/// Refuses no rows and a buffer too small for a band of `rows` rows.
-fn check_buffer<E>(rows: u16, h: u16, w: u16, len: usize) -> Result<(), SceneBandsError<E>> {
-    if rows == 0 {
-        return Err(BandError::NoRows.into());
-    }
-    let needed = rows.min(h) as usize * w as usize;
-    if len < needed {
-        return Err(BandError::Buffer { len, needed }.into());
-    }
-    Ok(())
-}
-
-/// A band's error, as one of a port's.
-fn widen<E>(e: SceneBandsError<Infallible>) -> SceneBandsError<E> {
-    match e {
-        BandsError::Band(b) => BandsError::Band(b),
-        BandsError::Render(r) => BandsError::Render(r),
-        BandsError::Ship { error, .. } => match error {},
-    }
-}
-
-/// Rows of a frame to draw again: one bit per row, in caller memory
-/// ([`DirtyRows::words`] `u32`s for a frame's height).
-#[derive(Debug)]
-pub struct DirtyRows<'d> {
-    bits: &'d mut [u32],
-    height: u16,
-}
-
-impl<'d> DirtyRows<'d> {
-    /// `u32`s needed for `height` rows.
-    pub const fn words(height: u16) -> usize {
-        (height as usize).div_ceil(32)
-    }
-
-    /// No row marked, over `bits`; `None` when it holds fewer than
-    /// [`words`](Self::words)`(height)`.
-    pub fn new(bits: &'d mut [u32], height: u16) -> Option<Self> {
-        let bits = bits.get_mut(..Self::words(height))?;
-        bits.fill(0);
-        Some(DirtyRows { bits, height })
-    }
-
-    /// Rows in the frame.
-    pub fn height(&self) -> u16 {
-        self.height
-    }
-
-    /// Marks rows `y0..y1`, cut to the frame.
-    pub fn mark(&mut self, y0: i32, y1: i32) {
-        let (y0, y1) = (y0.max(0), y1.min(self.height as i32));
-        for y in y0..y1 {
-            self.bits[y as usize / 32] |= 1 << (y % 32);
-        }
-    }
-
-    /// Marks every row.
-    pub fn mark_all(&mut self) {
-        self.mark(0, self.height as i32);
-    }
-
-    /// Unmarks every row.
-    pub fn clear(&mut self) {
-        self.bits.fill(0);
-    }
-
-    /// `true` when row `y` is marked.
-    pub fn is_marked(&self, y: u16) -> bool {
-        y < self.height && self.bits[y as usize / 32] & (1 << (y % 32)) != 0
-    }
-
-    /// Rows marked.
-    pub fn count(&self) -> usize {
-        self.bits.iter().map(|w| w.count_ones() as usize).sum()
-    }
-
-    /// The marked rows as runs `(y0, y1)`, top to bottom.
-    pub fn runs(&self) -> impl Iterator<Item = (u16, u16)> + '_ {
-        let mut y = 0u16;
-        core::iter::from_fn(move || {
-            while y < self.height && !self.is_marked(y) {
-                y += 1;
-            }
-            if y >= self.height {
-                return None;
-            }
-            let y0 = y;
-            while y < self.height && self.is_marked(y) {
-                y += 1;
-            }
-            Some((y0, y))
-        })
-    }
 }
 
 /// Segments whose stale marks [`Scene::update_marking`] remembers; with
@@ -465,47 +330,6 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             }
         }
         r
-    }
-
-    /// Draws only the rows marked in `dirty`, in bands of at most `rows`
-    /// rows through the caller's buffer `band`, each shipped to `target`
-    /// as [`draw_bands`](Self::draw_bands) ships them: one top-to-bottom
-    /// pass, the rows between stepped over. A panel that keeps its pixels
-    /// then shows the whole frame. Returns what was drawn and the rows
-    /// shipped.
-    #[allow(clippy::too_many_arguments)]
-    pub fn draw_marked<P>(
-        &mut self,
-        resolve: Resolve,
-        background: P::Color,
-        font: &MonoFont<'_>,
-        dirty: &DirtyRows<'_>,
-        rows: u16,
-        band: &mut [P::Color],
-        target: &mut P,
-    ) -> Result<(Frame, u32), SceneBandsError<P::Error>>
-    where
-        P: BandTarget + ?Sized,
-        P::Color: ListColor,
-    {
-        let (w, h) = (self.store.width(), self.store.height());
-        check_buffer(rows, h, w, band.len())?;
-        let mut pass = self
-            .bands(resolve, background, font)
-            .map_err(BandsError::Render)?;
-        let mut shipped = 0u32;
-        for (y0, y1) in dirty.runs() {
-            let mut y = y0;
-            while y < y1 {
-                let n = pass.draw(y, rows.min(y1 - y), band).map_err(widen)?;
-                target
-                    .ship(y, n, &band[..n as usize * w as usize])
-                    .map_err(|error| BandsError::Ship { y, error })?;
-                shipped += n as u32;
-                y += n;
-            }
-        }
-        Ok((pass.frame(), shipped))
     }
 }
 

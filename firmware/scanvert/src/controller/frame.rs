@@ -1,0 +1,374 @@
+//! One frame pass over a stack of layers: the last stage before the
+//! panel.
+//!
+//! A frame is drawn top to bottom, a band of rows at a time, into a buffer
+//! of `rows × width` pixels, with no frame buffer (or into a whole frame,
+//! as one band as high as the frame). Each band goes through every
+//! [`Layer`] of the stack in painter's order, lowest first, and is then
+//! shipped to a [`BandTarget`] (a panel's link, a DMA channel, the rows of
+//! an image). The layers are what the application shows:
+//!
+//! | layer | what it draws |
+//! |---|---|
+//! | [`ListBands`](crate::controller::ListBands) | a display list: its 2D commands in painter's order, then its 3D layer (hidden surfaces) and labels |
+//! | [`SceneBands`] | a retained 3D [`Scene`]: its visible faces, then its labels |
+//! | [`DrawableLayer`] | any embedded-graphics `Drawable`: text in any font, circles, rounded rectangles, images |
+//!
+//! [`FramePass`] is the one driver: it checks each band (rows, buffer,
+//! order), lets the layers step over the rows it skips, draws only the
+//! runs of changed rows when asked ([`FramePass::draw_marked`]), and ships.
+//! [`Controller::render_bands`](crate::controller::Controller::render_bands),
+//! [`Scene::draw_bands`](crate::scene::Scene::draw_bands) and
+//! [`Scene::draw_marked`](crate::scene::Scene::draw_marked) are that
+//! driver over one layer.
+//!
+//! # The background
+//!
+//! A band's buffer holds the last band's pixels. The lowest layer is told
+//! the frame's background and covers every pixel of the band: with its own
+//! runs where it can (the 3D sweep writes the background as runs between
+//! faces, each pixel once), else by a fill first. The layers above draw
+//! only what they cover.
+//!
+//! # Changed rows
+//!
+//! [`DirtyRows`] marks the rows to draw again. A [`DrawableLayer`] layer marks
+//! the rows of what changed in it (what was there and what is there now,
+//! by bounding box); [`Scene::update_marking`](crate::scene::Scene::update_marking)
+//! marks the rows whose content a scene update changed.
+//! [`FramePass::draw_marked`] asks every layer for its marks, then draws
+//! and ships only the marked rows. A panel that keeps its pixels then
+//! shows the whole frame.
+//!
+//! ```
+//! use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
+//! use embedded_graphics::prelude::*;
+//! use embedded_graphics::primitives::{Circle, PrimitiveStyle};
+//! use embedded_graphics::text::Text;
+//! use scanvert::frame::{DrawableLayer, FramePass, Layer};
+//! use scanvert::pixelcolor::Rgb565;
+//! use scanvert::port::band::{BandTarget, DirtyRows};
+//!
+//! /// Stands for a panel: counts the rows it is sent.
+//! struct Panel(u32);
+//! impl BandTarget for Panel {
+//!     type Color = Rgb565;
+//!     type Error = core::convert::Infallible;
+//!     fn ship(&mut self, _y: u16, rows: u16, _px: &[Rgb565]) -> Result<(), Self::Error> {
+//!         self.0 += rows as u32;
+//!         Ok(())
+//!     }
+//! }
+//!
+//! let style = MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE);
+//! let dot = |x| Circle::new(Point::new(x, 40), 9).into_styled(PrimitiveStyle::with_fill(Rgb565::RED));
+//! let mut clock = DrawableLayer::new(Text::new("12:00", Point::new(2, 10), style));
+//! let mut marker = DrawableLayer::new(dot(10));
+//! let mut band = [Rgb565::BLACK; 8 * 64];
+//! let mut panel = Panel(0);
+//! // The first frame: every row.
+//! FramePass::new((64, 64), Rgb565::BLACK)
+//!     .draw(&mut [&mut clock, &mut marker], 8, &mut band, &mut panel)?;
+//! assert_eq!(panel.0, 64);
+//! // The dot moves: only the rows it was and is on are drawn and sent.
+//! marker.set(dot(30));
+//! let mut bits = [0u32; DirtyRows::words(64)];
+//! let mut dirty = DirtyRows::new(&mut bits, 64).unwrap();
+//! let sent = FramePass::new((64, 64), Rgb565::BLACK)
+//!     .draw_marked(&mut [&mut clock, &mut marker], &mut dirty, 8, &mut band, &mut panel)?;
+//! assert_eq!(sent, 9);
+//! # Ok::<(), scanvert::frame::FrameError<core::convert::Infallible>>(())
+//! ```
+
+use crate::color::ListColor;
+use crate::port::band::{check_band, check_buffer, fill_background};
+use crate::port::band::{Band, BandTarget, BandsError, DirtyRows};
+use crate::port::Counts;
+use crate::scene::{Frame, Scene, SceneBands, SceneBandsError};
+use crate::visible::{Resolve, VisibleError};
+use core::convert::Infallible;
+use embedded_graphics::mono_font::MonoFont;
+use embedded_graphics_core::pixelcolor::PixelColor;
+
+mod drawable;
+
+pub use drawable::DrawableLayer;
+
+/// Why a frame pass could not draw or ship a band: the band (nothing was
+/// drawn into it), a layer's visible-surface workspace, or the target.
+pub type FrameError<E> = BandsError<VisibleError<Infallible>, E>;
+
+/// One layer of a frame: what it draws on a band's rows.
+///
+/// Bands come from one top-to-bottom pass: each starts at or below the
+/// end of the last one, and the rows between were skipped (a layer with
+/// state by row, such as the 2D edge table or the 3D sweep, steps over
+/// them).
+pub trait Layer<C: PixelColor> {
+    /// Draws the layer's part of rows `band.y()..band.end()` over what the
+    /// layers below drew. With `background`, this is the lowest layer
+    /// and the band holds stale pixels: the layer writes every pixel of
+    /// the band, `background` where it has nothing (or its own
+    /// background: a display list's last `clear`).
+    fn draw(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>>;
+
+    /// Marks in `dirty` the rows where the layer changed since the last
+    /// pass, and forgets them; with `None` (a pass of the whole frame),
+    /// only forgets them. Layers that are built anew for each frame (a
+    /// display list's, a scene's pass) mark nothing here: their changes
+    /// are found where they are made
+    /// ([`Scene::update_marking`](crate::scene::Scene::update_marking)).
+    fn take_changes(&mut self, dirty: Option<&mut DirtyRows<'_>>) {
+        let _ = dirty;
+    }
+}
+
+impl<C: PixelColor, L: Layer<C> + ?Sized> Layer<C> for &mut L {
+    fn draw(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        (**self).draw(band, background)
+    }
+
+    fn take_changes(&mut self, dirty: Option<&mut DirtyRows<'_>>) {
+        (**self).take_changes(dirty)
+    }
+}
+
+/// One top-to-bottom pass over a frame's layers (see the
+/// [module](self) docs).
+#[derive(Clone, Copy, Debug)]
+pub struct FramePass<C> {
+    size: (u16, u16),
+    background: C,
+    next: u16,
+    counts: Counts,
+}
+
+impl<C: PixelColor> FramePass<C> {
+    /// A pass over a frame of `size` (width, height), whose pixels no
+    /// layer covers are `background`.
+    pub fn new(size: (u16, u16), background: C) -> Self {
+        FramePass {
+            size,
+            background,
+            next: 0,
+            counts: Counts::default(),
+        }
+    }
+
+    /// The frame's width and height.
+    pub fn size(&self) -> (u16, u16) {
+        self.size
+    }
+
+    /// The first row the next band may start at.
+    pub fn next_row(&self) -> u16 {
+        self.next
+    }
+
+    /// Spans and pixels the layers wrote so far.
+    pub fn counts(&self) -> Counts {
+        self.counts
+    }
+
+    /// Draws rows `y..y + rows` (cut at the frame's last row) through
+    /// every layer, lowest first, into `pixels` (row by row, the frame's
+    /// width a row), and returns the rows drawn. Rows between the last
+    /// band and `y` are skipped. Nothing is drawn when the band is
+    /// refused.
+    ///
+    /// This is the pass one band at a time: with two buffers, one band
+    /// is drawn while the other is on its way.
+    pub fn draw_band(
+        &mut self,
+        layers: &mut [&mut dyn Layer<C>],
+        y: u16,
+        rows: u16,
+        pixels: &mut [C],
+    ) -> Result<u16, FrameError<Infallible>> {
+        check_band(y, rows, self.next, self.size.1)?;
+        let mut band = Band::new(pixels, self.size, y, rows)?;
+        let mut background = Some(self.background);
+        for layer in layers.iter_mut() {
+            self.counts += layer
+                .draw(&mut band, background.take())
+                .map_err(BandsError::Render)?;
+        }
+        // No layer: the band is the background.
+        fill_background(&mut band, background);
+        self.next = band.end();
+        Ok(band.rows())
+    }
+
+    /// Draws the whole frame band by band, `rows` rows at a time, through
+    /// the caller's buffer `band` (at least `rows × width` pixels), each
+    /// band handed to `target` before the next is drawn. The layers'
+    /// changes are forgotten: every row is drawn.
+    pub fn draw<P>(
+        self,
+        layers: &mut [&mut dyn Layer<C>],
+        rows: u16,
+        band: &mut [C],
+        target: &mut P,
+    ) -> Result<Counts, FrameError<P::Error>>
+    where
+        P: BandTarget<Color = C> + ?Sized,
+    {
+        let h = self.size.1;
+        for layer in layers.iter_mut() {
+            layer.take_changes(None);
+        }
+        self.draw_runs(layers, core::iter::once((0, h)), rows, band, target)
+            .map(|(counts, _)| counts)
+    }
+
+    /// Draws only the rows that changed: every layer marks its changes in
+    /// `dirty` ([`Layer::take_changes`]) over what is marked there already
+    /// (by [`Scene::update_marking`](crate::scene::Scene::update_marking),
+    /// or by hand), then the marked rows are drawn in bands of at most
+    /// `rows` rows and shipped, the rows between stepped over. Returns
+    /// the rows shipped; `dirty` is left as it was marked.
+    pub fn draw_marked<P>(
+        self,
+        layers: &mut [&mut dyn Layer<C>],
+        dirty: &mut DirtyRows<'_>,
+        rows: u16,
+        band: &mut [C],
+        target: &mut P,
+    ) -> Result<u32, FrameError<P::Error>>
+    where
+        P: BandTarget<Color = C> + ?Sized,
+    {
+        for layer in layers.iter_mut() {
+            layer.take_changes(Some(dirty));
+        }
+        self.draw_runs(layers, dirty.runs(), rows, band, target)
+            .map(|(_, shipped)| shipped)
+    }
+
+    /// Draws and ships the runs of rows `runs` (top to bottom), in bands
+    /// of at most `rows` rows; returns the counts and the rows shipped.
+    pub(crate) fn draw_runs<P, R>(
+        mut self,
+        layers: &mut [&mut dyn Layer<C>],
+        runs: R,
+        rows: u16,
+        band: &mut [C],
+        target: &mut P,
+    ) -> Result<(Counts, u32), FrameError<P::Error>>
+    where
+        P: BandTarget<Color = C> + ?Sized,
+        R: IntoIterator<Item = (u16, u16)>,
+    {
+        check_buffer(rows, self.size, band.len())?;
+        let w = self.size.0 as usize;
+        let mut shipped = 0u32;
+        for (y0, y1) in runs {
+            let mut y = y0;
+            while y < y1 {
+                let n = self
+                    .draw_band(layers, y, rows.min(y1 - y), band)
+                    .map_err(widen)?;
+                target
+                    .ship(y, n, &band[..n as usize * w])
+                    .map_err(|error| BandsError::Ship { y, error })?;
+                shipped += n as u32;
+                y += n;
+            }
+        }
+        Ok((self.counts, shipped))
+    }
+}
+
+/// A band's error, as one of a target's.
+pub(crate) fn widen<R, E>(e: BandsError<R, Infallible>) -> BandsError<R, E> {
+    match e {
+        BandsError::Band(b) => BandsError::Band(b),
+        BandsError::Render(r) => BandsError::Render(r),
+        BandsError::Ship { error, .. } => match error {},
+    }
+}
+
+/// A scene's pass as a layer: its visible faces, then its labels. As the
+/// lowest layer it writes the background between the faces itself.
+impl<C: ListColor> Layer<C> for SceneBands<'_, '_, '_, C> {
+    fn draw(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        self.draw_band(band, background)
+    }
+}
+
+/// A scene through the frame pass as its one layer.
+impl<const DEPTH: usize, const N: usize> Scene<'_, DEPTH, N> {
+    /// Draws the scene band by band, `rows` rows at a time, through the
+    /// caller's buffer `band` (at least `rows × width` pixels), each band
+    /// handed to `target` to ship before the next is drawn: the pixels
+    /// [`draw`](Scene::draw) writes with `Some(background)`.
+    pub fn draw_bands<P>(
+        &mut self,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<Frame, SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let size = (self.store().width(), self.store().height());
+        check_buffer(rows, size, band.len())?;
+        let mut pass = self
+            .bands(resolve, background, font)
+            .map_err(BandsError::Render)?;
+        FramePass::new(size, background).draw(&mut [&mut pass], rows, band, target)?;
+        Ok(pass.frame())
+    }
+
+    /// Draws only the rows marked in `dirty`, in bands of at most `rows`
+    /// rows through the caller's buffer `band`, each shipped to `target`
+    /// as [`draw_bands`](Self::draw_bands) ships them: one top-to-bottom
+    /// pass, the rows between stepped over. A panel that keeps its pixels
+    /// then shows the whole frame. Returns what was drawn and the rows
+    /// shipped.
+    #[allow(clippy::too_many_arguments)]
+    pub fn draw_marked<P>(
+        &mut self,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        dirty: &DirtyRows<'_>,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<(Frame, u32), SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let size = (self.store().width(), self.store().height());
+        check_buffer(rows, size, band.len())?;
+        let mut pass = self
+            .bands(resolve, background, font)
+            .map_err(BandsError::Render)?;
+        let (_, shipped) = FramePass::new(size, background).draw_runs(
+            &mut [&mut pass],
+            dirty.runs(),
+            rows,
+            band,
+            target,
+        )?;
+        Ok((pass.frame(), shipped))
+    }
+}
