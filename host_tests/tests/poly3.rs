@@ -12,9 +12,9 @@
 //!
 //! In *layered* scenes every polygon lies in a depth layer of its own
 //! (layers at least 1/16 apart, in random order in the list): no mismatch
-//! is allowed. In *interpenetrating* scenes the depths overlap freely: the
-//! rate of mismatches per 1000 covered pixels is measured, printed, and
-//! must be at most 2.
+//! is allowed. In *interpenetrating* scenes the depths overlap freely, and
+//! no mismatch is allowed either: the counts over 200 of them are printed
+//! too.
 
 use host_tests::harness3d::{compare, Mismatch};
 use proptest::prelude::*;
@@ -179,12 +179,12 @@ proptest! {
         }
     }
 
-    /// Interpenetrating: at most 2 mismatches per 1000 covered pixels.
+    /// Interpenetrating: every pixel is the reference's too.
     #[test]
-    fn interpenetrating_scenes_are_within_the_bar(scene in interpenetrating()) {
+    fn interpenetrating_scenes_match_the_reference_exactly(scene in interpenetrating()) {
         for mode in MODES {
             let (m, first) = compare(&scene, W, H, mode);
-            prop_assert!(m.mismatched * 1000 <= 2 * m.covered, "{:?}: {:?}, first {:?}", mode, m, first);
+            prop_assert_eq!(m.mismatched, 0, "{:?}: {:?}, first {:?}", mode, m, first);
         }
     }
 }
@@ -222,6 +222,6 @@ fn interpenetrating_mismatch_rate_is_measured() {
             t.intersecting,
             t.exact
         );
-        assert!(t.mismatched * 1000 <= 2 * t.covered);
+        assert_eq!(t.mismatched, 0, "{mode:?}");
     }
 }

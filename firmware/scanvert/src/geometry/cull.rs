@@ -262,7 +262,43 @@ mod tests {
         let e = (1i64 << 30) - 1;
         let big = [[-e, -e, -e], [e, e, -e], [e, -e, e], [-e, e, e], [e, e, e]];
         let many: [[i64; 3]; 64] = core::array::from_fn(|k| big[k % 5]);
-        let _ = front(&persp(), &many);
-        let _ = light_normal(normal(big[0], big[1], big[2]), newell(&many));
+        // Newell's normal in its other form, the cyclic sum of vₖ × vₖ₊₁,
+        // each product widened to i128 first.
+        let cross = |a: [i64; 3], b: [i64; 3]| {
+            let (a, b) = (a.map(i128::from), b.map(i128::from));
+            [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ]
+        };
+        let mut want = [0i128; 3];
+        for k in 0..many.len() {
+            let c = cross(many[k], many[(k + 1) % many.len()]);
+            for i in 0..3 {
+                want[i] += c[i];
+            }
+        }
+        assert_eq!(newell(&many), want);
+        let det: i128 = (0..3).map(|i| many[0][i] as i128 * want[i]).sum();
+        assert_eq!(front(&persp(), &many), det < 0);
+        assert_eq!(front(&ortho(), &many), want[2] < 0);
+        // The corner's normal, turned to Newell's side.
+        let corner = normal(big[0], big[1], big[2]);
+        let (c0, c1, c2) = (
+            cross(big[0], big[1]),
+            cross(big[1], big[2]),
+            cross(big[2], big[0]),
+        );
+        let triangle: [i128; 3] = core::array::from_fn(|i| c0[i] + c1[i] + c2[i]);
+        assert_eq!(corner.map(i128::from), triangle);
+        let lit = light_normal(corner, want);
+        assert!(lit == corner || lit == corner.map(|c| -c), "{lit:?}");
+        // `want` is below 2⁷⁰ a component: the dot product with it cut by
+        // 2⁴⁰ is off by less than 3 · 2⁶² from the exact one over 2⁴⁰,
+        // far below its size here, so its sign is the exact one's.
+        let dot: i128 = (0..3).map(|i| lit[i] as i128 * (want[i] >> 40)).sum();
+        assert!(dot.unsigned_abs() > 3 << 62, "{dot} too near 0 to decide");
+        assert!(dot > 0, "{lit:?} points away from {want:?}");
     }
 }
