@@ -266,7 +266,7 @@ impl<'a> EdgeTable<'a> {
     /// on a frame of `w × h` (the list's frame cut to the target's).
     ///
     /// Kept out of line: it runs once a frame, and inlined into a band
-    /// render it changed how the render's pixel loops were compiled.
+    /// render it changes how the render's pixel loops are compiled.
     #[inline(never)]
     pub fn build(
         mem: TableMemory<'a>,
