@@ -2770,7 +2770,7 @@ mod tests {
     }
 
     /// The crossing point's quotient in 32 bits where it fits equals the
-    /// 64-bit floor division it replaced, on both sides of 2³².
+    /// 64-bit floor division, on both sides of 2³².
     #[test]
     fn crossing_point_divides_as_in_64_bits() {
         let want = |a: &Cover, b: &Cover, s: i32, t: i32| {
