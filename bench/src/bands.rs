@@ -621,53 +621,16 @@ pub fn write_section(path: &std::path::Path, machine: &str) -> std::io::Result<(
          (`Controller::render`, `Scene::draw`), the best of 60 runs of 10 ms of each, round-robin, in one process. Both\n\
          include the frame's preparation (the list checked, the 3D layer built; for bands the\n\
          edge table); the bands are shipped to a provider that only reads them, and each band is\n\
-         filled with the background first. Runs this short are often not interrupted by other\n\
-         work on the host; the best of 5 runs of 150 ms, as this section used to take, moved\n\
-         by ±0.2 with the load. The\n\
-         targets are 1.25× for W3 in bands of 16 rows and 1.1× for the 3D frames.\n\n{table}\n\
-         The two vCPUs of this host are shared with other work. With both free, the calibration\n\
-         loop (the same on one and two threads, nothing shared) reaches about 1.9×; at load\n\
-         averages of 6 to 9 it gave 0.6 to 1.1×, and the demo's two threads, timed as this section\n\
-         used to time them (the best mean over 150 ms runs of several calls), 0.98 to 1.09×: the\n\
-         1.00× it showed before measured the load. The best single calls catch the moments when\n\
-         both cores are free, and the calibration, timed round-robin with them, says how free\n\
-         they were. Starting the second\n\
-         thread for each call was not the cause (17 µs at best, 53 µs on average, against 2 ms\n\
-         of work a call); nor is sharing: the scene is only read, and each thread writes only its\n\
-         own workspace and band buffer. What is left is each worker's own work on rows it does\n\
-         not draw, per frame (the instruction counts below): it compares its workspace's\n\
-         capacity with the most trapezoids on a row (found once, by `Scene::check`) and jumps its\n\
-         active list over the other's rows (`Sweep::skip`: one exact jump per trapezoid live\n\
-         after them, none for those that start and end within them), and draws again the\n\
-         labels cut by its first band's top. Splitting the frame into a top and a bottom part\n\
-         costs the least of it: only the second worker jumps, once, instead of both at every\n\
-         other band; the split is where both parts take the same time.\n\
-         Bands claimed from a shared counter would balance the load when a core is taken away,\n\
-         but came out slower with both free: each worker still makes a pass over every frame and\n\
-         jumps over the other's bands, as with every other band, and where the rest of its time\n\
-         goes (the counter's cache line moves between the cores at every band) is not measured.\n\n\
-         Where the time goes (profiles of `--profile-bands ROWS PASSES`, `BANDS_LIST=layered`\n\
-         for the `poly3` list): the fixed part (W3 in 64-row bands: 1.04× the instructions on\n\
-         x86-64, 1.11× on the M4) is entering the 10 000 polygons into the table (their edges\n\
-         written out and read back, the order by first row); each further band revisits every\n\
-         polygon it meets, reloading its state and edges, which is most of the cost at 1 row.\n\
-         A band walks a polygon with the full frame's own loop (`raster::scan`'s `Walk`), which\n\
-         leaves a run of two edges at once at the band's end; the live polygons are a bit set in\n\
-         list order (entering is setting a bit), and the 3D layer runs\n\
-         the full frame's compiled sweep (`Sweep::draw` is not inlined).\n\
-         The `poly3` lists painted (`Resolve::Paint`) paint each band far to near in turn into\n\
-         the band buffer, which keeps a band's pixels as a frame buffer does; their ratios are\n\
-         over the painted full frame. The `poly3` lists resolve the same rows with the same sweep; what they add is filling\n\
-         each band with the background (they have no `clear`, and the full frame leaves what\n\
-         was there); they and the demo can come out below 1× on this host, as a 16-row band\n\
-         buffer (16 KiB) stays in the first-level data cache and the full frame's 256 KiB does\n\
-         not (callgrind counts fewer write misses in bands). The demo draws each label in every band it reaches, reading from the\n\
-         font only the glyphs' rows on the band, but looking each glyph up again in every band:\n\
-         that is most of its cost at 1 and 8 rows.\n\n\
-         Instructions per frame (x86-64, from `valgrind --tool=callgrind` on\n\
-         `--profile-bands ROWS PASSES` with `BANDS_LIST` = `w3`, `layered`, `tilted` or `demo`\n\
-         (`BANDS_RESOLVE=paint` to paint the `poly3` lists),\n\
-         ROWS 0 for the full frame; 6 passes less 1, over 5), which do not move with the load:\n\n{COUNTS}{END}\n"
+         filled with the background first. The targets are 1.25× for W3 in bands\n\
+         of 16 rows and 1.1× for the 3D frames.\n\n{table}\n\
+         The host's two vCPUs are shared with other work: the best single calls\n\
+         catch the moments when both cores are free, and the calibration, timed\n\
+         round-robin with them, says how free they were. A worker still works on\n\
+         the rows it does not draw: it jumps its active list over them\n\
+         (`Sweep::skip`) and draws again the labels cut by its first band's top;\n\
+         split into a top and a bottom part, only the second worker jumps, once.\n\n\
+         The Cortex-M4's counts are in the on-target section (*Band by band, with\n\
+         no frame buffer*), written by `firmware/image/measure.sh`.\n{END}\n"
     );
     print!("{section}");
     let old = std::fs::read_to_string(path).unwrap_or_default();
@@ -742,9 +705,3 @@ fn profile_demo(rows: u16, passes: u32) {
     })
     .expect("demo scene");
 }
-
-/// Instructions per frame on this host, from `valgrind --tool=callgrind`
-/// on `--profile-bands ROWS PASSES` (`BANDS_LIST` = `w3`, `layered`,
-/// `tilted`, `demo`; ROWS 0 for the full frame): the count of 6 passes
-/// less that of 1, over 5. They do not move with the host's load.
-const COUNTS: &str = "They are counted by hand, not by this benchmark; rerun them after a change to the band path.\n\n| frame | full frame, instructions | 1 row | 8 rows | 16 rows | 64 rows |\n|---|---|---|---|---|---|\n| W3: 10 000 triangles, 2D | 32,376,617 | 2.07× | 1.15× | 1.09× | 1.04× |\n| poly3-layered: 170 faces | 2,363,236 | 1.07× | 1.04× | 1.04× | 1.03× |\n| poly3-tilted: 170 faces, interpenetrating | 2,886,734 | 1.08× | 1.05× | 1.05× | 1.05× |\n| the 3D demo's first frame (Scene) | 2,972,118 | 1.30× | 1.04× | 1.02× | 1.01× |\n\nTwo workers on the demo's first frame, 16-row bands (`BANDS_LIST=demo` with `BANDS_WORKER` = `all`, `0`, `1`, `top` or `bottom` and `BANDS_SPLIT=140`), instructions per frame: one worker drawing every band in one pass, 3,030,484; every other band, 1,563,270 and 1,656,538 (a bound of 1.83× on the speed-up); rows 0–139 and 140–255, 1,566,135 and 1,500,285 (a bound of 1.93×; split at row 136, 1,491,845 and 1,578,482). Each worker compares its workspace's capacity with the scene's most trapezoids on a row every frame (the count itself is found once) and jumps over the rows it does not draw.\n\nThe Cortex-M4's counts, from the firmware image under QEMU, are in the on-target section (*Band by band, with no frame buffer*), written by `firmware/image/measure.sh`, with the `poly3` lists painted too (their `-paint` rows).\n";

@@ -475,8 +475,8 @@ fn write_depth_pngs(
     )
 }
 
-/// `--only depth`: the sweep and the split alone; their section (and the
-/// history section) of `docs/performance.md` rewritten in place.
+/// `--only depth`: the sweep and the split alone; their section of
+/// `docs/performance.md` rewritten in place.
 fn only_depth() -> std::io::Result<()> {
     let (depth, split, seconds) = depth_part();
     let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
@@ -487,14 +487,7 @@ fn only_depth() -> std::io::Result<()> {
         report::DEPTH_BEGIN,
         report::DEPTH_END,
         &report::section_depth(&depth, &split, seconds),
-        "## Targets (issue 5)",
-    );
-    let md = report::splice(
-        &md,
-        report::HISTORY_BEGIN,
-        report::HISTORY_END,
-        report::HISTORY,
-        "## Targets (issue 5)",
+        "## Targets",
     );
     std::fs::write(&md_path, md)?;
     write_depth_pngs(&docs, &depth, &split)?;
@@ -505,7 +498,7 @@ fn only_depth() -> std::io::Result<()> {
 }
 
 /// `--only worst`: the worst cases timed; their section of
-/// `docs/performance.md` (at the end of "Worst cases") and
+/// `docs/performance.md` (in "Worst cases") and
 /// `docs/worst-case.png` rewritten.
 fn only_worst() -> std::io::Result<()> {
     let machine = format!("load average {} before the run", load_average());
@@ -518,7 +511,7 @@ fn only_worst() -> std::io::Result<()> {
         worst::BEGIN,
         worst::END,
         &worst::section(&rows, &machine),
-        "### Where the sweep's instructions go on the Cortex-M4",
+        "## Painting far to near (`Resolve::Paint`)",
     );
     std::fs::write(&md_path, md)?;
     write_png(&docs.join("worst-case.png"), plot::render_worst(&rows))?;

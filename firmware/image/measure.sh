@@ -5,15 +5,25 @@
 # (the `budget` variants: their statics are only what the band render of
 # their lists needs, read from the ELF's sections and symbols).
 #
-#   firmware/image/measure.sh           build, run, check, and rewrite the
-#                                       on-target section of docs/performance.md
-#   firmware/image/measure.sh --check   the same, but only print the section,
-#                                       and say whether the page is current (CI)
+#   firmware/image/measure.sh           build, run, check, and rewrite what
+#                                       it owns in the docs (below)
+#   firmware/image/measure.sh --check   the same, but write nothing: print
+#                                       the section and exit 1 unless every
+#                                       page already holds these figures (CI)
+#
+# What it owns: in docs/performance.md the blocks between
+# `<!-- on-target:begin -->` and `<!-- on-target:end -->` and between
+# `<!-- headline-target:begin -->` and `<!-- headline-target:end -->`
+# (each marker on a line of its own); and in README.md, CHANGELOG.md and
+# docs/*.md every figure written as `<!-- measure:NAME -->VALUE<!-- /measure -->`
+# on one line, NAME one of those `figures` below prints.
 #
 # Every frame's checksum must equal the host's (`scanvert checksum` of the
 # same lists) and the image must exit with status 0, or this fails.
-# Needs qemu-system-arm, and qemu-system-riscv32 for the RISC-V variant
-# (skipped with a note when it is missing).
+# Needs qemu-system-arm, and qemu-system-riscv32 for the RISC-V variant.
+# Without qemu-system-arm it fails. Without qemu-system-riscv32, --check
+# fails, and a rewrite keeps the page's RISC-V subsection as it was (it
+# says so on stderr).
 set -euo pipefail
 cd "$(dirname "$0")"
 image_dir=$PWD
@@ -25,6 +35,15 @@ case "${1:-}" in
   --check) mode=check ;;
   *) echo "usage: $0 [--check]" >&2; exit 2 ;;
 esac
+
+if ! command -v qemu-system-arm >/dev/null; then
+  echo "qemu-system-arm not found (Debian: apt-get install qemu-system-arm): nothing measured, nothing written" >&2
+  exit 1
+fi
+if [ "$mode" = check ] && ! command -v qemu-system-riscv32 >/dev/null; then
+  echo "qemu-system-riscv32 not found (Debian: apt-get install qemu-system-misc): the RISC-V figures cannot be checked" >&2
+  exit 1
+fi
 
 arm_target=thumbv7em-none-eabihf
 rv_target=riscv32imc-unknown-none-elf
@@ -125,7 +144,7 @@ if command -v qemu-system-riscv32 >/dev/null; then
   run riscv qemu_rv
   have_rv=yes
 else
-  echo "qemu-system-riscv32 not found: the RISC-V variant is built, not run" >&2
+  echo "qemu-system-riscv32 not found: the RISC-V variant is built, not run; the page's RISC-V subsection is kept as it was" >&2
 fi
 
 echo "== checksums: target against host" >&2
@@ -178,6 +197,9 @@ sizes() {
       END { printf "%d %d %d %d %d %d\n", text, ro, data, bss, image, data + bss }'
 }
 
+perf=$root/docs/performance.md
+rv_begin='<!-- on-target-riscv:begin -->'
+rv_end='<!-- on-target-riscv:end -->'
 lists_bytes=$(cat scenes/*.scvl | wc -c)
 frame_bytes=$((512 * 256 * 2))
 qemu_version=$(qemu-system-arm --version | head -n 1 | sed 's/^QEMU emulator version //')
@@ -198,20 +220,14 @@ EOF
   awk '/^calibration:/ { sub(/^calibration: /, ""); print "Counter check: " $0 "." }' "$out/arm.log"
   cat <<'EOF'
 
-Each count is SysTick ticks × 40, read around `Controller::render`
-(list check, scan conversion and frame-buffer writes; the frame is
-cleared to black before, untimed), so it is a multiple of 40 and within
-40 of the true count. *Pixels* are those written: polygon pixels from
-the controller's `Stats`, plus the whole frame for each `clear`.
-*Without pixel writes* is the same render into a port that writes nothing
-(the image built with `--features discard`): list check, edge set-up,
-stepping and clipping. *Pixel writes* is the rest, as a share of the
-frame.
-
-The rates at 168 MHz are **estimates**: they assume one instruction per
-cycle. A real Cortex-M4 takes two or more cycles for many loads, stores
-and taken branches, and flash wait states at 168 MHz add more, so
-expect real rates to be lower.
+Each count is SysTick ticks × 40 around `Controller::render` (list
+check, scan conversion, frame-buffer writes; the frame cleared before,
+untimed): within 40 of the true count. *Pixels* are those written, a
+`clear` counting the whole frame. *Without pixel writes* is the same
+render into a port that writes nothing (`--features discard`).
+The rates at 168 MHz are **estimates** at one instruction a cycle; a
+real Cortex-M4 takes more cycles for many loads, stores and taken
+branches, and flash wait states add more.
 
 | scene | frame | polygons | spans | pixels | instructions per frame | per polygon | per pixel | without pixel writes | pixel writes | frames/s at 168 MHz (est.) | polygons/s at 168 MHz (est.) |
 |---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
@@ -223,25 +239,15 @@ EOF
 
 #### The 3D layer, stage by stage
 
-The `poly3-*` lists are the 3D layer alone on a 512 × 256 frame
-(`testkit::poly3_scenes`): 170 `poly3`s, one colour each, parallel to
-the screen at depths of their own (*layered*), or tilted and through
-each other (*tilted*). The image renders each twice, through
-`Controller::render_with` into a black frame with the host's checksum:
-with the default `Resolve::Crossing`, and again painted far to near
-with `Resolve::Paint` (the `-paint` rows, the same pixels and
-checksum; their *spans* and *pixels* in the table above count every
-span and pixel written, those painted over included). It reads the
-counter where the controller's hook reports the end of a
-stage (counted below; *whole render* is the table above). *Spans* are those the sweep resolves (empty, single,
-multiple and intersecting; a row with no trapezoid is one; painting
-resolves none, so n/a). *Cut* is the 3D commands through the one
-interpreter: the cull, and every drawn `poly3` into trapezoids in the
-store (plane, edge set-up, cut, scan-line index); *check* is
-`Workspace::check`; *resolve + decode* is `visible::draw` with
-crossing points (or painting), the background left as it is; *without pixel writes*
-is the same into the `discard` port. The whole render adds the list
-check and the 2D commands' pass to the stages.
+The `poly3-*` lists (`testkit::poly3_scenes`) are 170 faces on a
+512 × 256 frame, parallel to the screen (*layered*) or tilted through
+each other (*tilted*), rendered with `Resolve::Crossing` and again with
+`Resolve::Paint` (the `-paint` rows: the same checksum; their spans and
+pixels count those painted over too). The counter is read where the
+controller's hook reports the end of a stage. *Spans*: those the sweep
+resolves. *Cut*: the 3D commands, each `poly3` into trapezoids. *Check*:
+`Workspace::check`. *Resolve + decode*: `visible::draw`, the background
+left as it is.
 
 | scene | poly3 drawn | trapezoids | spans | cut | per poly3 | check | resolve + decode | per span | without pixel writes | whole render | frames/s at 168 MHz (est.) | resolve + decode only, frames/s (est.) |
 |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
@@ -251,13 +257,9 @@ EOF
 
 #### Two pixels to a word
 
-The image renders into `PackedFrameBuffer` (`port/packed.rs`): RGB565
-pixels packed two to a `u32`, a span stored as a half-word at an odd
-start or end and words in between, in two overlapping groups of 2 to 16
-words (a loop of 16 only past 32 words), and a rectangle (two vertical
-edges) with its addresses worked out once. Built with
-`--features halfword` it renders into `FrameBuffer<Rgb565>` instead, one
-`strh` a pixel; its checksums equal the host's too.
+The image renders into `PackedFrameBuffer` (`port/packed.rs`, two
+RGB565 pixels to a `u32`); built with `--features halfword`, into
+`FrameBuffer<Rgb565>`, one `strh` a pixel, with the same checksums.
 
 | scene | `FrameBuffer` | `PackedFrameBuffer` | packed per pixel | `FrameBuffer` ÷ packed |
 |---|--:|--:|--:|--:|
@@ -268,37 +270,34 @@ EOF
 #### Band by band, with no frame buffer
 
 Built with `--features bands`, the image renders every list again
-through `Controller::render_bands` into one band buffer of RGB565
-pixels, one half-word a pixel, in bands of 1, 8, 16 and 64 rows, each
-band shipped into a running checksum that equals the host's frame's
-for every list and height. The counts are of a run shipping nowhere,
-as the full frame's exclude its checksum; each ratio is over the
-`FrameBuffer` (half-word) full frame above, which writes its pixels
-the same way. W5 and the `poly3` lists have no `clear`: their full
-frame is cleared before, untimed, while each band is filled with the
-background (the 3D layer writes it itself where nothing 2D lies
-under it). The `-paint` rows are the 170-face lists with
-`Resolve::Paint`, each band painted far to near in turn into the band
-buffer, over the painted full frame.
+through `Controller::render_bands` into one RGB565 band buffer, in bands
+of 1, 8, 16 and 64 rows, each band's checksum chained into the frame's,
+which equals the host's. Each ratio is over the `FrameBuffer` full frame
+above, which writes its pixels the same way; a band is filled with the
+background where the full frame was cleared before, untimed.
 
 | list | full frame (`FrameBuffer`) | 1 row | 8 rows | 16 rows | 64 rows | 16 rows, instructions |
 |---|--:|--:|--:|--:|--:|--:|
 EOF
   bands_table "$out/arm-bands.log" "$out/arm-halfword.log"
+  echo
+  echo "$rv_begin"
   if [ "$have_rv" = yes ]; then
     cat <<'EOF'
-
 ### RV32IMC soft-core (`riscv32imc-unknown-none-elf`, QEMU `virt`)
 
-The same image and lists, counted exactly with `minstret`. No FPU and no
-atomics are needed. *vs M4F* is the instruction count over the
-Cortex-M4F's.
+The same image and lists, counted exactly with `minstret` (no FPU, no
+atomics). *vs M4F*: the instruction count over the Cortex-M4F's.
 
 | scene | instructions per frame | per polygon | per pixel | vs M4F |
 |---|--:|--:|--:|--:|
 EOF
     rv_table "$out/riscv.log" "$out/arm.log"
+  else
+    # Not run here: the page's subsection as it was.
+    block "$perf" "$rv_begin" "$rv_end"
   fi
+  echo "$rv_end"
   cat <<EOF
 
 ### Image size
@@ -352,26 +351,17 @@ budget_section() {
 
 ### RAM with no frame buffer: the budget variants
 
-The image built with \`--features budget\` renders only the README's 3D
-demo at 320 × 240, its 8 frames (\`scanvert demo\`'s default) written as
-display lists by \`scanvert_sim::demo::frame_list\` (each list's picture
-is the \`Scene\`'s, checked by the host test \`on_target_scenes\`), with
-\`Controller::render_bands\` in bands of $(field "$demo.log" budget band_rows) rows and no frame buffer; built
-with \`--features budget-poly3\`, the two 170-face lists at 512 × 256.
-Each band is shipped, in order, into a running checksum, which equals
-the host's for every frame. Their statics are only what that needs
-(\`src/budget.rs\`), each capacity the most any of their lists needs
-(\`controller::needs\`, \`raster::table::needs_table\`, the most
-trapezoids on a row of the host's render: \`src/scenes.rs\`).
-*Total* is \`.data\` + \`.bss\` from \`readelf -S\`; the statics are
-their symbols' sizes (\`nm -S\`, each with its "taken" flag); the scene
-storage's pools are slots × slot size, as the image prints them, and
-its workspace the rest of it (the active list). The lists have no
-\`poly\` or \`line\`, so the 2D edge table and the rasteriser's edges
-are empty (their statics are the flags alone). The stack is counted
-apart: *stack* is the deepest it went over the whole run, measured in
-QEMU (the lowest stack pointer at the start of any executed block,
-under the stack's top), so within the few words one block pushes.
+Built with \`--features budget\`, the image renders only the README's
+3D demo at 320 × 240 (its 8 frames, as display lists from
+\`scanvert_sim::demo::frame_list\`) with \`Controller::render_bands\` in
+bands of $(field "$demo.log" budget band_rows) rows and no frame buffer; with \`--features budget-poly3\`, the
+two 170-face lists at 512 × 256. Every band's checksum chains into the
+host's. The statics (\`src/budget.rs\`) hold only what the lists need
+(\`controller::needs\`, \`raster::table::needs_table\`). *Total* is
+\`.data\` + \`.bss\` (\`readelf -S\`); the parts are symbol sizes
+(\`nm -S\`) and the image's own count of its pools. *Stack* is the
+deepest it went in the run (the lowest stack pointer QEMU logs at the
+start of a block), to within what one block pushes.
 
 | part | demo, 320 × 240 | 170-face lists, 512 × 256 |
 |---|--:|--:|
@@ -403,14 +393,39 @@ EOF
   budget_row "against a z-buffer renderer's frame + 32-bit depth" "$(against $((320 * 240 * 6)) "$demo_ram")" "$(against $((512 * 256 * 6)) "$poly_ram")"
   cat <<'EOF'
 
+The demo's 8 frames in one row (the least and the most of each column):
+
 | list | frame | trapezoids | most on a row | instructions (bands and checksum) | frames/s at 168 MHz (est.) |
 |---|---|--:|--:|--:|--:|
 EOF
   awk '$1 == "bands" {
     for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
     print $2, $3, f["trapezoids"], f["max_active"], f["instructions"]
-  }' "$demo.log" "$poly.log" | while read -r name frame traps active instr; do
-    echo "| $name | ${frame/x/×} | $traps | $active | $(thousands "$instr") | $(fmt "$(awk -v i="$instr" 'BEGIN { print 168e6 / i }')" 1) |"
+  }' "$demo.log" "$poly.log" | awk '
+    # The demo frames (demo-WxH-NN) as one row: "demo-WxH-00..07 WxH lo-hi ...".
+    $1 ~ /^demo-/ {
+      n++; stem = $1; sub(/-[0-9]+$/, "", stem); frame = $2
+      if (n == 1) { first = $1; t0 = t1 = $3; a0 = a1 = $4; i0 = i1 = $5 }
+      last = $1
+      if ($3 < t0) t0 = $3; if ($3 > t1) t1 = $3
+      if ($4 < a0) a0 = $4; if ($4 > a1) a1 = $4
+      if ($5 < i0) i0 = $5; if ($5 > i1) i1 = $5
+      next
+    }
+    { rest[++m] = $0 }
+    END {
+      if (n) print stem "-" substr(first, length(stem) + 2) "…" substr(last, length(stem) + 2), frame, t0 "–" t1, a0 "–" a1, i0 "–" i1
+      for (j = 1; j <= m; j++) print rest[j]
+    }' | while read -r name frame traps active instr; do
+    local lo=${instr%–*} hi=${instr#*–} rate
+    rate=$(fmt "$(awk -v i="$hi" 'BEGIN { print 168e6 / i }')" 1)
+    if [ "$lo" != "$hi" ]; then
+      rate="$rate–$(fmt "$(awk -v i="$lo" 'BEGIN { print 168e6 / i }')" 1)"
+      instr="$(thousands "$lo")–$(thousands "$hi")"
+    else
+      instr=$(thousands "$instr")
+    fi
+    echo "| $name | ${frame/x/×} | $traps | $active | $instr | $rate |"
   done
 }
 
@@ -547,29 +562,125 @@ rv_table() { # RISCV-LOG ARM-LOG
   done
 }
 
+# The lines strictly between the marker lines BEGIN and END of FILE (each
+# marker a line of its own, surrounding spaces allowed).
+block() { # FILE BEGIN END
+  awk -v b="$2" -v e="$3" '
+    { line = $0; gsub(/^[ \t]+|[ \t]+$/, "", line) }
+    line == e && inside { exit }
+    inside { print }
+    line == b { inside = 1 }' "$1"
+}
+
+# FILE with the lines between the marker lines BEGIN and END replaced by
+# those of CONTENT; fails if FILE lacks either marker.
+splice() { # FILE BEGIN END CONTENT
+  if ! grep -qxF "$2" "$1" || ! grep -qxF "$3" "$1"; then
+    echo "$1 has no markers $2 ... $3" >&2
+    return 1
+  fi
+  awk -v b="$2" -v e="$3" -v f="$4" '
+    { line = $0; gsub(/^[ \t]+|[ \t]+$/, "", line) }
+    line == b && !done { print; while ((getline l < f) > 0) print l; skip = 1; next }
+    line == e && skip { print; skip = 0; done = 1; next }
+    !skip { print }' "$1"
+}
+
+# Frames per second at 168 MHz for an instruction count.
+fps() { fmt "$(awk -v i="$1" 'BEGIN { print 168e6 / i }')" 1; }
+
+# The first screen of docs/performance.md: the Cortex-M4 figures a reader
+# looks for first.
+headline() {
+  local demo=$out/arm-budget demo_ram demo_stack lo hi polys instr
+  read -r _ _ _ _ _ demo_ram < <(sizes "$demo.elf")
+  demo_stack=$(cat "$demo.stack")
+  read -r lo hi < <(awk '$1 == "bands" && $2 ~ /^demo-/ {
+      for (i = 4; i <= NF; i++) { split($i, kv, "="); if (kv[1] == "instructions") v = kv[2] }
+      if (min == "" || v + 0 < min + 0) min = v; if (v + 0 > max + 0) max = v
+    } END { print min, max }' "$demo.log")
+  read -r polys instr < <(frames "$out/arm.log" | awk '$1 == "w1" { print $4, $8 }')
+  cat <<EOF
+| Cortex-M4F, instructions counted in QEMU (rates at 168 MHz assume one instruction a cycle: upper estimates) | |
+|---|--:|
+| W1, 30 × 30 squares into a 256 × 256 frame | $(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print 168e6 * p / i }')" 0) polygons/s ($(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print i / p }')" 0) instructions a polygon) |
+| 2D demo (\`scenes/demo.dl\`), 320 × 200 | $(fps "$(instructions_of demo "$out/arm.log")") frames/s |
+| 170 faces, 512 × 256, layered / tilted (\`Resolve::Crossing\`) | $(fps "$(instructions_of poly3-layered "$out/arm.log")") / $(fps "$(instructions_of poly3-tilted "$out/arm.log")") frames/s |
+| the same painted far to near (\`Resolve::Paint\`) | $(fps "$(instructions_of poly3-layered-paint "$out/arm.log")") / $(fps "$(instructions_of poly3-tilted-paint "$out/arm.log")") frames/s |
+| 3D demo, 320 × 240, in 16-row bands with no frame buffer (8 frames) | $(fps "$hi") to $(fps "$lo") frames/s |
+| its static RAM (\`.data\` + \`.bss\`) | **$(thousands "$demo_ram") B** |
+| its static RAM and deepest stack ($(thousands "$demo_stack") B) | **$(thousands $((demo_ram + demo_stack))) B**: $(within $((demo_ram + demo_stack))) in 64 KiB |
+EOF
+}
+
+# The figures quoted in prose, one "NAME<tab>VALUE" a line: what a
+# `<!-- measure:NAME -->` span holds.
+figures() {
+  local name elf ram stack polys instr
+  for name in demo poly3; do
+    case $name in demo) elf=arm-budget ;; *) elf=arm-budget-poly3 ;; esac
+    read -r _ _ _ _ _ ram < <(sizes "$out/$elf.elf")
+    stack=$(cat "$out/$elf.stack")
+    printf 'budget-%s-static\t%s B\n' "$name" "$(thousands "$ram")"
+    printf 'budget-%s-stack\t%s B\n' "$name" "$(thousands "$stack")"
+    printf 'budget-%s-total\t%s B\n' "$name" "$(thousands $((ram + stack)))"
+  done
+  read -r polys instr < <(frames "$out/arm.log" | awk '$1 == "w1" { print $4, $8 }')
+  printf 'w1-polygons-per-second\t%s\n' "$(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print 168e6 * p / i }')" 0)"
+}
+
+# FILE with every `<!-- measure:NAME -->…<!-- /measure -->` span holding
+# NAME's value from FIGURES; an unknown NAME fails.
+spans() { # FIGURES FILE
+  perl -e '
+    my ($figures, $file) = @ARGV;
+    my %v;
+    open(my $f, "<", $figures) or die "$figures: $!";
+    while (<$f>) { chomp; my ($k, $x) = split /\t/, $_, 2; $v{$k} = $x }
+    open(my $t, "<", $file) or die "$file: $!";
+    my $bad = 0;
+    while (my $line = <$t>) {
+      $line =~ s{(<!-- measure:([A-Za-z0-9_-]+) -->)(.*?)(<!-- /measure -->)}{
+        if (exists $v{$2}) { "$1$v{$2}$4" }
+        else { print STDERR "$file:$.: no figure named $2\n"; $bad = 1; "$1$3$4" }
+      }ge;
+      print $line;
+    }
+    exit $bad;' "$1" "$2"
+}
+
 section >"$out/section.md"
 echo "== on-target figures" >&2
 cat "$out/section.md"
+headline >"$out/headline.md"
+figures >"$out/figures.tsv"
+echo "== figures quoted in prose" >&2
+cat "$out/figures.tsv" >&2
 
-perf=$root/docs/performance.md
-begin='<!-- on-target:begin -->'
-end='<!-- on-target:end -->'
-# The page with the section between the markers (each on a line of its own)
-# replaced by $out/section.md.
-awk -v b="$begin" -v e="$end" -v f="$out/section.md" '
-  { line = $0; gsub(/^[ \t]+|[ \t]+$/, "", line) }
-  line == b && !done { print; while ((getline l < f) > 0) print l; skip = 1; next }
-  line == e && skip { print; skip = 0; done = 1; next }
-  !skip { print }' "$perf" >"$out/performance.md"
-if ! grep -qxF "$begin" "$perf" || ! grep -qxF "$end" "$perf"; then
-  echo "docs/performance.md has no on-target markers" >&2
-  exit 1
-fi
-if [ "$mode" = write ]; then
-  cp "$out/performance.md" "$perf"
-  echo "wrote the on-target section of docs/performance.md" >&2
-elif cmp -s "$out/performance.md" "$perf"; then
-  echo "docs/performance.md: the on-target section is current" >&2
-else
-  echo "docs/performance.md: the on-target section differs from this run; rerun firmware/image/measure.sh" >&2
+# Each page as it should be, against the page as it is.
+mkdir -p "$out/pages"
+splice "$perf" '<!-- on-target:begin -->' '<!-- on-target:end -->' "$out/section.md" >"$out/pages/perf.1"
+splice "$out/pages/perf.1" '<!-- headline-target:begin -->' '<!-- headline-target:end -->' \
+  "$out/headline.md" >"$out/pages/perf.2"
+stale=0
+for page in README.md CHANGELOG.md $(cd "$root" && printf '%s\n' docs/*.md); do
+  src=$root/$page
+  [ "$page" = docs/performance.md ] && src=$out/pages/perf.2
+  spans "$out/figures.tsv" "$src" >"$out/pages/new"
+  if ! cmp -s "$out/pages/new" "$root/$page"; then
+    if [ "$mode" = write ]; then
+      cp "$out/pages/new" "$root/$page"
+      echo "wrote $page" >&2
+    else
+      diff -u "$root/$page" "$out/pages/new" | head -n 60 >&2 || true
+      echo "$page: differs from what this run measured; rerun firmware/image/measure.sh" >&2
+      stale=1
+    fi
+  fi
+done
+if [ "$mode" = check ]; then
+  if [ "$stale" = 1 ]; then
+    exit 1
+  fi
+  echo "every figure measure.sh owns is current" >&2
 fi

@@ -202,7 +202,7 @@ mod tests {
     #[test]
     fn a_concave_face_from_its_reflex_corner_is_front() {
         let [a, b, c, _] = ARROW;
-        // The old rule: the first corner alone says back.
+        // The first corner alone would say back.
         assert!(normal(a, b, c)[2] > 0);
         assert!(newell(&ARROW)[2] < 0);
         assert!(front(&persp(), &ARROW) && front(&ortho(), &ARROW));

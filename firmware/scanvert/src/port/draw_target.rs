@@ -40,7 +40,7 @@
 //! ```
 //!
 //! # Method names
-//! [`FrameBuffer`] now has two `size` methods ([`SpanTarget::size`] and
+//! [`FrameBuffer`] has two `size` methods ([`SpanTarget::size`] and
 //! [`OriginDimensions::size`]) and two `clear` methods
 //! ([`SpanTarget::clear`] and [`DrawTarget::clear`]). Where both traits
 //! are in scope, name the one meant: `DrawTarget::clear(&mut fb, c)`. Both

@@ -82,8 +82,8 @@ impl<'a, C: PixelColor> FrameBuffer<'a, C> {
 /// pixels are written instead as copies of 8 pixels (16 bytes of RGB565),
 /// the last copy overlapping the one before it, so that no tail loop is
 /// left; longer runs, where `slice::fill` is at the memory limit, and
-/// shorter ones still use it. `docs/performance.md` has the measurements
-/// (about +40 % on 30-pixel spans, nothing lost on long ones).
+/// shorter ones still use it. `docs/performance-log.md` has the
+/// measurements.
 #[inline(always)]
 pub(crate) fn fill_run<C: Copy>(run: &mut [C], color: C) {
     let n = run.len();

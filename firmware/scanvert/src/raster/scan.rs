@@ -201,11 +201,11 @@ pub(super) fn build_edges<S: Stepper>(
 
 /// Moves `edges[from]` into the slot `to < from`, whose contents are
 /// never read again. Written as a swap of two disjoint halves of the
-/// slice: `edges[to] = edges[from]` was a call to `memmove` (the slots
-/// might overlap, as far as the compiler knows), and so was a plain copy
-/// between the halves where the walk is inlined into the band path's
-/// table, about 65-100 instructions a call on a Cortex-M4; the swap is a
-/// few loads and stores.
+/// slice, which is a few loads and stores: `edges[to] = edges[from]`
+/// compiles to a call to `memmove` (the slots might overlap, as far as the
+/// compiler knows), and so does a plain copy between the halves where the
+/// walk is inlined into the band path's table, a call that costs many
+/// times the swap on a Cortex-M4.
 #[inline(always)]
 fn copy_down<S: Stepper>(edges: &mut [S], from: usize, to: usize) {
     let (low, high) = edges.split_at_mut(from);

@@ -270,7 +270,7 @@ impl<'a> EdgeTable<'a> {
     /// for the statistics ([`commands`](Self::commands)).
     ///
     /// Kept out of line: it runs once a frame, and inlined into a band
-    /// render it changed how the render's pixel loops were compiled.
+    /// render it changes how the render's pixel loops are compiled.
     #[inline(never)]
     pub fn build<V, I>(
         mem: TableMemory<'a>,

@@ -401,9 +401,10 @@ impl LabelStore<'_> {
         self.draw_some_rows(font, rows, target)
     }
 
-    /// [`draw_rows`](Self::draw_rows) with labels. Not inlined: inlined
-    /// into `ListBands::draw` it changed what the Cortex-M4 build made of
-    /// the 2D band path (1 to 2 % more instructions on some lists).
+    /// [`draw_rows`](Self::draw_rows) with labels. Not inlined, so that the
+    /// 2D band path in `ListBands::draw` compiles as it does without labels:
+    /// inlined there, it makes that path cost more instructions on the
+    /// Cortex-M4.
     #[inline(never)]
     fn draw_some_rows<T>(
         &self,

@@ -219,8 +219,8 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
 
 /// A polygon of model points through the geometry stage into `out`. Out
 /// of line, so that a list's `poly3`s are executed without the geometry
-/// stage's buffers in the frame (it took about 1.5 % off the image's
-/// cut stage on the Cortex-M4 when it was measured).
+/// stage's buffers in the frame, which makes the cut stage cheaper on the
+/// Cortex-M4.
 #[inline(never)]
 pub(crate) fn face<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,

@@ -3,7 +3,7 @@
 //!
 //! [`SceneStorage`] holds the store's pools, the visible-surface stage's
 //! workspace and the labels, as arrays. It is made by a `const fn`, so it
-//! can be a `static` (in `.bss`) or a local, and lends itself as a
+//! can be a `static` or a local, and lends itself as a
 //! [`SceneMemory`] — slices, the capacities erased — which is what
 //! [`Scene`](super::Scene) and
 //! [`Controller::with_3d`](crate::controller::Controller::with_3d) take.
@@ -16,7 +16,7 @@
 //! // 64 trapezoids, 16 faces, 2 segments, 48 rows, 8 edge slots,
 //! // 16 active entries, 64 runs, 4 labels, 32 bytes of text.
 //! type Storage = SceneStorage<64, 16, 2, 48, 8, 16, 64, 4, 32>;
-//! static SHARED: Storage = Storage::new(); // constant, in `.bss`
+//! static SHARED: Storage = Storage::new(); // constant: in `.data` (below)
 //! const EMPTY: Storage = Storage::new();
 //!
 //! let mut storage = EMPTY;
@@ -25,6 +25,30 @@
 //! assert_eq!(mem.runs.len(), 64);
 //! assert_eq!(SHARED.capacities().labels, 4);
 //! ```
+//!
+//! # `.data` or `.bss`
+//!
+//! An unused slot is not all zero bytes (its links hold `0xffff`, "none"),
+//! so a `static` initialised with `SceneStorage::new()` has a non-zero
+//! constant initialiser and lands in `.data`: its whole size is taken in
+//! flash as well as in RAM, and copied at start-up. To keep it in `.bss`
+//! (RAM only, zeroed at start-up), let the `static` start uninitialised
+//! and fill it once at run time, for example with the `static_cell` crate
+//! or, on a Cortex-M, `cortex_m::singleton!` (the firmware image's
+//! `budget` variant does so):
+//!
+//! ```ignore
+//! // static_cell, any target:
+//! use static_cell::StaticCell;
+//! static STORAGE: StaticCell<Storage> = StaticCell::new();
+//! let storage: &'static mut Storage = STORAGE.init(Storage::new());
+//!
+//! // cortex-m:
+//! let storage: &'static mut Storage = cortex_m::singleton!(: Storage = Storage::new()).unwrap();
+//! ```
+//!
+//! Either may build the value on the stack before moving it into place,
+//! so leave room for one `Storage` on the stack where it is made.
 
 use super::label::Label;
 use super::SceneMemory;

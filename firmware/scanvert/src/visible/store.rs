@@ -629,8 +629,8 @@ impl<'a> TrapezoidStore<'a> {
         }
         // The face is taken with the first trapezoid, so that a polygon
         // with none needs no face slot, and written there in place, its
-        // depth worked out then (built on the stack and copied, it cost
-        // about 40 instructions more a face on the Cortex-M4). What the
+        // depth worked out then: built on the stack and copied, it would
+        // cost a copy of the face on the Cortex-M4. What the
         // cut's closure changes is in one place it reaches by one pointer
         // (each pool and counter captured apart cost a store each to set
         // up and a load more each to reach), and goes back to the store
@@ -744,9 +744,8 @@ impl Adding<'_> {
         if let Some(h) = rows.get_mut(top) {
             *h = t;
         }
-        // Written in place, every field at once (built on the stack
-        // and copied, it cost about 10 instructions more a trapezoid
-        // on the Cortex-M4).
+        // Written in place, every field at once: built on the stack and
+        // copied, it would cost a copy of the trapezoid on the Cortex-M4.
         if let Some(slot) = traps.get_mut(t as usize) {
             *slot = Trapezoid {
                 segment: self.segment,

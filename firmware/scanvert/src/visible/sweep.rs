@@ -123,10 +123,10 @@
 //!
 //! Both modes give **0 mismatched pixels** against the exact reference
 //! (`testkit::reference3d`) on every scene the tests and the benchmark
-//! draw. The cost, on the host and on the Cortex-M4, and its history are
-//! in `docs/performance.md` (the 3D scenes, the depth-complexity sweep,
-//! P3 against P4, the on-target section and "History"), measured by one
-//! command each; `cargo run --release -p host-tests --example
+//! draw. The cost, on the host and on the Cortex-M4, is in
+//! `docs/performance.md` (the 3D scenes, the depth-complexity sweep, P3
+//! against P4, the on-target section), measured by one command each, and
+//! its history in `docs/performance-log.md`; `cargo run --release -p host-tests --example
 //! visible_modes` measures the four 512 × 256 scenes on the host and
 //! writes them as display lists with `-- --write-lists DIR`. A
 //! test-only module, `coherence`, counts what coherence between rows
@@ -784,8 +784,8 @@ impl Sweep {
     /// colours, the background filled with `background` or left as it is.
     ///
     /// Not inlined, so that a band renderer runs the sweep as compiled
-    /// for [`draw`] (inlined into `ListBands::draw` it cost the 170-face
-    /// lists about 6 % more on a Cortex-M4).
+    /// for [`draw`]: inlined into `ListBands::draw`, it compiles to more
+    /// instructions a row on a Cortex-M4.
     #[inline(never)]
     pub fn draw<T>(
         &mut self,
@@ -832,8 +832,8 @@ impl Sweep {
     /// trapezoid live after the rows, not of a step per row.
     ///
     /// Not inlined, as [`draw`](Self::draw) is not: inlined into
-    /// `ListBands::draw` it changed what the Cortex-M4 build made of the
-    /// 2D band path (W3 in 16-row bands 2.7 % more instructions).
+    /// `ListBands::draw`, it makes the Cortex-M4 build of the 2D band path
+    /// cost more instructions.
     #[inline(never)]
     pub fn skip(
         &mut self,
@@ -1016,7 +1016,7 @@ fn jump(
 /// ended onto the free stack `act[..nf]`, and reloads their pixels (in
 /// place, keeping the order); the new `k` and `nf`. Not inlined: kept out
 /// of the row loop's registers, it costs fewer instructions on the
-/// Cortex-M4 (figures in `docs/performance.md`).
+/// Cortex-M4 (figures in `docs/performance-log.md`).
 #[inline(never)]
 fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
     let k = k.min(act.len());
@@ -1045,7 +1045,7 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
 /// each element staying where it is with only its `l`, `r` and `z`
 /// changed; the position of that first (`k` if none). Not inlined: with
 /// registers of its own, its loop needs no moves between them on the
-/// Cortex-M4 (figures in `docs/performance.md`).
+/// Cortex-M4 (figures in `docs/performance-log.md`).
 #[inline(never)]
 fn step_in_place(act: &mut [Active], k: usize, y: i32) -> usize {
     // `k` bounded by the slice: no bound check on `act[w]` in the loop.
@@ -1070,10 +1070,10 @@ fn step_in_place(act: &mut [Active], k: usize, y: i32) -> usize {
 
 /// Steps an active trapezoid's edge down a row. On the hosts' out-of-order
 /// cores by a mask ([`Edge::step_masked`]): the carries of many unrelated
-/// edges follow no pattern, and a branch there was mispredicted about
-/// every other step (a tenth of the frame's time at 1000 faces, figures
-/// in `docs/performance.md`). Elsewhere by the branch, which costs fewer
-/// instructions (on the Cortex-M4 it is conditional execution, no jump).
+/// edges follow no pattern, so a branch there is mispredicted about
+/// every other step (figures in `docs/performance-log.md`). Elsewhere by
+/// the branch, which costs fewer instructions (on the Cortex-M4 it is
+/// conditional execution, no jump).
 #[inline(always)]
 fn step_edge(e: &mut Edge) {
     #[cfg(any(target_arch = "x86_64", target_arch = "x86", target_arch = "aarch64"))]
@@ -2126,9 +2126,9 @@ impl<O: RowOut> Ctx<'_, O> {
     /// faces are read from the live trapezoids `act[..k].hot` only when
     /// the fixed point does not decide.
     ///
-    /// Its fixed-point test repeats `nearer`'s (and `dominates_el`'s):
-    /// one helper returning `Option<bool>` for the three cost the 170-face
-    /// lists about 3 % more on the Cortex-M4 (`docs/performance.md`).
+    /// Its fixed-point test repeats `nearer`'s (and `dominates_el`'s) on
+    /// purpose: one helper returning `Option<bool>` for the three compiles
+    /// to more instructions on the Cortex-M4 (`docs/performance-log.md`).
     #[inline(always)]
     fn nearer_in(
         &mut self,
@@ -2770,7 +2770,7 @@ mod tests {
     }
 
     /// The crossing point's quotient in 32 bits where it fits equals the
-    /// 64-bit floor division it replaced, on both sides of 2³².
+    /// 64-bit floor division, on both sides of 2³².
     #[test]
     fn crossing_point_divides_as_in_64_bits() {
         let want = |a: &Cover, b: &Cover, s: i32, t: i32| {

@@ -738,8 +738,8 @@ impl Divisor {
 /// fits in `u32`), exactly, by long division in two 16-bit digits, each
 /// estimated with one 32-bit division and corrected at most twice (Knuth's
 /// algorithm D for a two-digit divisor): [`Divisor::new`]'s reciprocal.
-/// Out of line: inlined, its correction loop was unrolled into more
-/// work than it saves.
+/// Out of line: inlined, its correction loop is unrolled into more work
+/// than it saves.
 #[inline(never)]
 fn knuth_64_32(u: u64, v: u32) -> u32 {
     debug_assert!(v >= 1 << 31 && ((u >> 32) as u32) < v);
@@ -1177,8 +1177,8 @@ impl<'s> Polygon<'s> {
     /// misses the clip columns loads no edge.
     ///
     /// Always inlined: returned by value from a call, the polygon (about
-    /// 80 bytes on 32-bit targets) was copied with `memcpy`, about 100
-    /// instructions a face on the Cortex-M4.
+    /// 80 bytes on 32-bit targets) is copied with `memcpy`, a call per
+    /// face that inlining avoids.
     #[inline(always)]
     pub fn load<I>(
         slots: &'s mut [EdgeSlot],
