@@ -357,7 +357,7 @@ Built with \`--features budget\`, the image renders only the README's
 bands of $(field "$demo.log" budget band_rows) rows and no frame buffer; with \`--features budget-poly3\`, the
 two 170-face lists at 512 × 256. Every band's checksum chains into the
 host's. The statics (\`src/budget.rs\`) hold only what the lists need
-(\`controller::needs\`, \`raster::table::needs_table\`). *Total* is
+(\`controller::needs\`, \`DisplayList::table_needs\`). *Total* is
 \`.data\` + \`.bss\` (\`readelf -S\`); the parts are symbol sizes
 (\`nm -S\`) and the image's own count of its pools. *Stack* is the
 deepest it went in the run (the lowest stack pointer QEMU logs at the
