@@ -126,9 +126,10 @@ options:
 const HELP_DISASM: &str = "\
 usage: scanvert disasm LIST.scvl [--out SCENE.dl]
 
-Writes a display list (either form) in text form: one command a line, every value
-exact, label texts in double quotes where they need them. Assembling the text gives
-the same bytes back.
+Writes a display list (either form) in text form: one command a line, each value
+as the shortest decimal that assembles to the same bits (`perspective 50`, not
+49.998779296875), label texts in double quotes where they need them. Assembling the
+text gives the same bytes back.
 
 options:
   --out, -o SCENE.dl   the text file to write; without it, standard output. An
