@@ -522,18 +522,19 @@ fn timing_for(name: &str, w: u16, h: u16) -> Result<VideoTiming, CliError> {
 /// The `--stats` lines of the simulated write port: its busy time at its
 /// clock and the rates of the cycle model (see [`crate::dual_port`]).
 fn write_port_stats(path: &Path, ram: &DualPortRam) -> String {
+    let name = shown(path);
     let w = ram.write_counters();
     let rate = |r: Option<f64>| r.map_or_else(|| "n/a".to_string(), |r| format!("{r:.0}"));
     format!(
         "{}: write port at {} MHz: {} cycles ({} polygon set-ups, {} clear cycles), {:.3} us simulated\n\
          {}: write port rates: {} pixels/s, {} polygons/s, {} clears/s\n",
-        path.display(),
+        name,
         f64::from(w.clock.hz()) / 1e6,
         w.cycles,
         w.polygons,
         w.clear_cycles,
         w.time_ps() as f64 / 1e6,
-        path.display(),
+        name,
         rate(w.pixels_per_second()),
         rate(w.polygons_per_second()),
         rate(w.clears_per_second()),
