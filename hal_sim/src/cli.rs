@@ -66,9 +66,10 @@ refresh controller reads it out as a monitor would, in step with the sync signal
 generates. The PNG is what the monitor shows.
 
 options:
-  --out, -o IMAGE.png  the image to write (required). It is written to a new file
-                       next to it and renamed; an existing regular file is replaced,
-                       anything else (a link, a directory, a device) is refused.
+  --out, -o IMAGE.png  the image to write (required), not SCENE itself. It is
+                       written to a new file next to it and renamed; an existing
+                       regular file is replaced and keeps its mode, anything else
+                       (a link, a directory, a device) is refused.
   --timing MODE        the refresh timing the simulated monitor uses (pixel clock,
                        porches, sync pulses), and with it the visible area it shows,
                        which is the size of the image:
@@ -119,8 +120,9 @@ Assembles a display list in text form into the binary form the firmware reads (a
 binary input is checked and written unchanged). Faults are reported with their line.
 
 options:
-  --out, -o LIST.scvl  the binary list to write (required); an existing regular file
-                       is replaced, anything else is refused
+  --out, -o LIST.scvl  the binary list to write (required), not SCENE.dl itself; an
+                       existing regular file is replaced and keeps its mode,
+                       anything else is refused
   --help, -h           this help";
 
 const HELP_DISASM: &str = "\
@@ -132,8 +134,9 @@ as the shortest decimal that assembles to the same bits (`perspective 50`, not
 text gives the same bytes back.
 
 options:
-  --out, -o SCENE.dl   the text file to write; without it, standard output. An
-                       existing regular file is replaced, anything else is refused
+  --out, -o SCENE.dl   the text file to write, not LIST.scvl itself; without it,
+                       standard output. An existing regular file is replaced and
+                       keeps its mode, anything else is refused
   --help, -h           this help";
 
 const HELP_CHECKSUM: &str = "\
@@ -541,6 +544,40 @@ fn write_port_stats(path: &Path, ram: &DualPortRam) -> String {
     )
 }
 
+/// Whether `a` and `b` name one file that exists (through links, or as
+/// two hard links): the same device and inode on Unix, the same canonical
+/// path elsewhere.
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (std::fs::metadata(a), std::fs::metadata(b)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        match (a.canonicalize(), b.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
+/// `--out` of `cmd` must not be its input: replacing the scene with its
+/// own image (or a list with its text) loses the scene. Checked before
+/// anything is read or written.
+fn not_the_input(cmd: &str, input: &Path, out: &Path) -> Result<(), CliError> {
+    if same_file(input, out) {
+        return Err(usage(format_args!(
+            "{cmd}: --out {} is the input file; refusing to replace it",
+            out.display()
+        )));
+    }
+    Ok(())
+}
+
 fn one_input(a: &Args, cmd: &str) -> Result<PathBuf, CliError> {
     match a.positional.as_slice() {
         [p] => Ok(PathBuf::from(p)),
@@ -584,6 +621,7 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 .out
                 .clone()
                 .ok_or_else(|| usage("render: --out IMAGE.png is required"))?;
+            not_the_input("render", &path, &out)?;
             let scene = Scene::load(&path)?;
             let list = scene.list();
             let mode = a.timing.as_deref().unwrap_or("auto");
@@ -655,12 +693,16 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 .out
                 .clone()
                 .ok_or_else(|| usage("asm: --out LIST.scvl is required"))?;
+            not_the_input("asm", &path, &out)?;
             let scene = Scene::load(&path)?;
             write_output(&out, &scene.bytes)?;
             Ok(String::new())
         }
         "disasm" => {
             let path = one_input(&a, "disasm")?;
+            if let Some(out) = &a.out {
+                not_the_input("disasm", &path, out)?;
+            }
             let scene = Scene::load(&path)?;
             let txt = text::disassemble(&scene.list());
             match &a.out {
