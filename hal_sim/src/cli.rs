@@ -6,9 +6,14 @@
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
-//! scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed] [--race MHZ [--fifo K]]
+//! scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
+//!               [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
 //! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
+//!
+//! A usage error prints one line, the error, then the usage of that
+//! command alone (its lines of `scanvert help COMMAND`). A command takes
+//! only the options its usage lists.
 //!
 //! `SCENE` is either form of the display list, told apart by the magic
 //! number, in a file of at most [`INPUT_LIMIT`] bytes. Every error exits with a non-zero status and a message naming
@@ -40,7 +45,8 @@ usage:
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
-  scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed] [--race MHZ [--fifo K]]
+  scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
+                [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
   scanvert help [COMMAND]
 
 SCENE is a display list in text form or binary form (told apart by its magic number),
@@ -151,7 +157,7 @@ options:
 
 const HELP_DEMO: &str = "\
 usage: scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
-                    [--race MHZ [--fifo K]]
+                    [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
 512x256 (or --size) through the simulated display (double-buffered): first the threshold that
@@ -172,6 +178,9 @@ options:
                        mode of --timing (default: auto); prints a line
                        `frame NN: deadline misses: M of N lines` a frame instead
   --fifo K             with --race: the ring's rows (default: 2)
+  --timing MODE        with --race: the video timing of the simulated monitor, as
+                       for `scanvert render` (default: auto, a mode whose visible
+                       area is the 512x256 frame)
   --help, -h           this help";
 
 /// The help of `command`, or `None` for a command that does not exist.
@@ -186,10 +195,55 @@ fn command_help(command: &str) -> Option<&'static str> {
     })
 }
 
+/// A usage error: the message, on one line (escaped). [`run_reporting`]
+/// adds the usage of the command it is about.
 fn usage(msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_USAGE,
-        message: format!("{}\n{USAGE}", escape_for_terminal(&msg.to_string())),
+        message: escape_for_terminal(&msg.to_string()),
+    }
+}
+
+/// The usage of `command` alone: the lines of its help up to the first
+/// blank one. For no command, or one that does not exist, a line naming
+/// the commands.
+fn usage_of(command: Option<&str>) -> &'static str {
+    match command {
+        Some("help" | "--help" | "-h") => "usage: scanvert help [COMMAND]",
+        Some(c) => match command_help(c) {
+            Some(h) => h.split("\n\n").next().unwrap_or(h),
+            None => USAGE_COMMANDS,
+        },
+        None => USAGE_COMMANDS,
+    }
+}
+
+const USAGE_COMMANDS: &str = "usage: scanvert render|asm|disasm|checksum|demo|help ... (`scanvert help` shows each command's usage)";
+
+/// The options each command takes, besides `--help`: exactly those its
+/// usage lists (`-o` is `--out`).
+fn options_of(command: &str) -> &'static [&'static str] {
+    match command {
+        "render" => &[
+            "--out",
+            "--timing",
+            "--stats",
+            "--band-rows",
+            "--resolve",
+            "--race",
+            "--fifo",
+        ],
+        "asm" | "disasm" => &["--out"],
+        "demo" => &[
+            "--out",
+            "--frames",
+            "--size",
+            "--no-speed",
+            "--race",
+            "--fifo",
+            "--timing",
+        ],
+        _ => &[],
     }
 }
 
@@ -419,6 +473,8 @@ struct Args {
     resolve: Option<Resolve>,
     race: Option<crate::timing::Clock>,
     fifo: Option<u16>,
+    /// The options given, by their long names, in order.
+    given: Vec<&'static str>,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -435,9 +491,33 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         resolve: None,
         race: None,
         fifo: None,
+        given: Vec::new(),
     };
+    // Every option of some command: which a command takes is checked
+    // once the command is known (`options_of`).
+    const OPTIONS: [&str; 11] = [
+        "--out",
+        "--frames",
+        "--size",
+        "--no-speed",
+        "--timing",
+        "--stats",
+        "--resolve",
+        "--race",
+        "--fifo",
+        "--help",
+        "--band-rows",
+    ];
     let mut it = args.iter();
     while let Some(arg) = it.next() {
+        let long = match arg.as_str() {
+            "-o" => "--out",
+            "-h" => "--help",
+            s => s,
+        };
+        if let Some(&name) = OPTIONS.iter().find(|&&o| o == long) {
+            a.given.push(name);
+        }
         match arg.as_str() {
             "--out" | "-o" => {
                 let v = it.next().ok_or_else(|| usage("--out needs a file name"))?;
@@ -595,7 +675,23 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
 
 /// [`run`], handing each warning (a line starting `warning: `) to `warn`
 /// instead of printing it.
+///
+/// A usage error (exit status [`EXIT_USAGE`]) is one line, then the usage
+/// of the command it is about.
 pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, CliError> {
+    run_command(args, warn).map_err(|mut e| {
+        if e.status == EXIT_USAGE {
+            e.message = format!(
+                "{}\n{}",
+                e.message,
+                usage_of(args.first().map(String::as_str))
+            );
+        }
+        e
+    })
+}
+
+fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, CliError> {
     let Some((cmd, rest)) = args.split_first() else {
         return Err(usage("missing command"));
     };
@@ -612,6 +708,16 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
     if a.help {
         if let Some(h) = command_help(cmd) {
             return Ok(format!("{h}\n"));
+        }
+    }
+    if command_help(cmd).is_some() {
+        let takes = options_of(cmd);
+        if let Some(o) = a
+            .given
+            .iter()
+            .find(|o| **o != "--help" && !takes.contains(o))
+        {
+            return Err(usage(format_args!("{cmd}: {o} is not an option of {cmd}")));
         }
     }
     match cmd.as_str() {
@@ -741,6 +847,9 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             }
             if a.race.is_some() && a.size.is_some() {
                 return Err(usage("demo: --size does not go with --race"));
+            }
+            if a.timing.is_some() && a.race.is_none() {
+                return Err(usage("demo: --timing goes with --race"));
             }
             if let Some(cpu) = a.race {
                 let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);
