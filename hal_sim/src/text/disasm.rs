@@ -47,6 +47,18 @@ fn decimal(negative: bool, c: u128, decimals: u32) -> String {
 /// `reads_back` is the assembler's own parser compared with the bits, so
 /// what is written assembles to the same bits by construction.
 pub fn format_shortest(raw: i64, frac_bits: u32, reads_back: impl Fn(&str) -> bool) -> String {
+    shortest(raw, frac_bits, |_, _| true, reads_back)
+}
+
+/// [`format_shortest`], a candidate `c · 10^−d` given to the parser only
+/// when `may(c, 10^d)`, the parser's rounding computed on its magnitude,
+/// says it reads back: one parse a value instead of one a candidate.
+fn shortest(
+    raw: i64,
+    frac_bits: u32,
+    may: impl Fn(u128, u128) -> bool,
+    reads_back: impl Fn(&str) -> bool,
+) -> String {
     if raw == 0 {
         return "0".to_string();
     }
@@ -55,7 +67,8 @@ pub fn format_shortest(raw: i64, frac_bits: u32, reads_back: impl Fn(&str) -> bo
     let unit = 1u128 << frac_bits;
     for decimals in 0..frac_bits {
         // value · 10^d = lo + rem / 2^f.
-        let scaled = m * 10u128.pow(decimals);
+        let p = 10u128.pow(decimals);
+        let scaled = m * p;
         let (lo, rem) = (scaled >> frac_bits, scaled & (unit - 1));
         let candidates = if rem == 0 {
             [lo, lo]
@@ -65,6 +78,9 @@ pub fn format_shortest(raw: i64, frac_bits: u32, reads_back: impl Fn(&str) -> bo
             [lo + 1, lo]
         };
         for c in candidates.into_iter().filter(|&c| c != 0) {
+            if !may(c, p) {
+                continue;
+            }
             let s = decimal(negative, c, decimals);
             if reads_back(&s) {
                 return s;
@@ -74,22 +90,46 @@ pub fn format_shortest(raw: i64, frac_bits: u32, reads_back: impl Fn(&str) -> bo
     format_fixed(raw, frac_bits)
 }
 
+/// `n / d` rounded half up: the parser's rounding of a magnitude.
+fn round_half_up(n: u128, d: u128) -> u128 {
+    (2 * n + d) / (2 * d)
+}
+
 /// A coordinate in the fewest decimals that assemble to it: `12`, `-3.5`,
 /// `100.06` (100.0625).
 pub fn format_coord(c: Coord) -> String {
-    format_shortest(c.units() as i64, 4, |s| parse_coord(s) == Ok(c))
+    let m = u128::from(c.units().unsigned_abs());
+    shortest(
+        c.units() as i64,
+        4,
+        |k, p| round_half_up(k << 4, p) == m,
+        |s| parse_coord(s) == Ok(c),
+    )
 }
 
 /// A world value (Q16.16) in the fewest decimals that assemble to it.
 pub fn format_q16(q: Q16) -> String {
-    format_shortest(q.to_bits() as i64, 16, |s| parse_q16(s) == Ok(q))
+    let m = u128::from(q.to_bits().unsigned_abs());
+    shortest(
+        q.to_bits() as i64,
+        16,
+        |k, p| round_half_up(k << 16, p) == m,
+        |s| parse_q16(s) == Ok(q),
+    )
 }
 
 /// An angle in degrees, in the fewest decimals that assemble to it: its
 /// exact value is `bits · 360/65536 = bits · 45 / 2¹³` (`perspective 50`
 /// is stored as 49.998779296875° and written `50`).
 pub fn format_angle(a: Angle) -> String {
-    format_shortest(a.to_bits() as i64 * 45, 13, |s| parse_angle(s) == Ok(a))
+    let bits = u128::from(a.to_bits());
+    shortest(
+        a.to_bits() as i64 * 45,
+        13,
+        // Degrees to 1/65536 turn: · 2¹³/45.
+        |k, p| round_half_up(k << 13, 45 * p) == bits,
+        |s| parse_angle(s) == Ok(a),
+    )
 }
 
 fn point(p: Point3) -> String {
@@ -257,6 +297,30 @@ mod tests {
         assert_eq!(format_angle(Angle::from_bits(16384)), "90");
         assert_eq!(format_angle(parse_angle("50").unwrap()), "50");
         assert_eq!(format_angle(Angle::from_bits(1)), "0.005");
+    }
+
+    /// The parser's rounding computed on the magnitude lets the same
+    /// candidates through as the parser itself.
+    #[test]
+    fn the_quick_check_agrees_with_the_parser() {
+        for u in i16::MIN..=i16::MAX {
+            let c = Coord::from_bits(u);
+            let slow = format_shortest(u as i64, 4, |s| parse_coord(s) == Ok(c));
+            assert_eq!(format_coord(c), slow, "{u}");
+        }
+        for b in 0..=u16::MAX {
+            let a = Angle::from_bits(b);
+            let slow = format_shortest(b as i64 * 45, 13, |s| parse_angle(s) == Ok(a));
+            assert_eq!(format_angle(a), slow, "{b}");
+        }
+        for b in (i32::MIN..=i32::MAX)
+            .step_by(40_009)
+            .chain([i32::MAX, -1, 1])
+        {
+            let q = Q16::from_bits(b);
+            let slow = format_shortest(b as i64, 16, |s| parse_q16(s) == Ok(q));
+            assert_eq!(format_q16(q), slow, "{b}");
+        }
     }
 
     #[test]
