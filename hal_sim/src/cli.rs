@@ -6,9 +6,14 @@
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
-//! scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed] [--race MHZ [--fifo K]]
+//! scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
+//!               [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
 //! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
+//!
+//! A usage error prints one line, the error, then the usage of that
+//! command alone (its lines of `scanvert help COMMAND`). A command takes
+//! only the options its usage lists.
 //!
 //! `SCENE` is either form of the display list, told apart by the magic
 //! number, in a file of at most [`INPUT_LIMIT`] bytes. Every error exits with a non-zero status and a message naming
@@ -40,7 +45,8 @@ usage:
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert checksum SCENE...
-  scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed] [--race MHZ [--fifo K]]
+  scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
+                [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
   scanvert help [COMMAND]
 
 SCENE is a display list in text form or binary form (told apart by its magic number),
@@ -66,9 +72,10 @@ refresh controller reads it out as a monitor would, in step with the sync signal
 generates. The PNG is what the monitor shows.
 
 options:
-  --out, -o IMAGE.png  the image to write (required). It is written to a new file
-                       next to it and renamed; an existing regular file is replaced,
-                       anything else (a link, a directory, a device) is refused.
+  --out, -o IMAGE.png  the image to write (required), not SCENE itself. It is
+                       written to a new file next to it and renamed; an existing
+                       regular file is replaced and keeps its mode, anything else
+                       (a link, a directory, a device) is refused.
   --timing MODE        the refresh timing the simulated monitor uses (pixel clock,
                        porches, sync pulses), and with it the visible area it shows,
                        which is the size of the image:
@@ -119,20 +126,23 @@ Assembles a display list in text form into the binary form the firmware reads (a
 binary input is checked and written unchanged). Faults are reported with their line.
 
 options:
-  --out, -o LIST.scvl  the binary list to write (required); an existing regular file
-                       is replaced, anything else is refused
+  --out, -o LIST.scvl  the binary list to write (required), not SCENE.dl itself; an
+                       existing regular file is replaced and keeps its mode,
+                       anything else is refused
   --help, -h           this help";
 
 const HELP_DISASM: &str = "\
 usage: scanvert disasm LIST.scvl [--out SCENE.dl]
 
-Writes a display list (either form) in text form: one command a line, every value
-exact, label texts in double quotes where they need them. Assembling the text gives
-the same bytes back.
+Writes a display list (either form) in text form: one command a line, each value
+as the shortest decimal that assembles to the same bits (`perspective 50`, not
+49.998779296875), label texts in double quotes where they need them. Assembling the
+text gives the same bytes back.
 
 options:
-  --out, -o SCENE.dl   the text file to write; without it, standard output. An
-                       existing regular file is replaced, anything else is refused
+  --out, -o SCENE.dl   the text file to write, not LIST.scvl itself; without it,
+                       standard output. An existing regular file is replaced and
+                       keeps its mode, anything else is refused
   --help, -h           this help";
 
 const HELP_CHECKSUM: &str = "\
@@ -147,7 +157,7 @@ options:
 
 const HELP_DEMO: &str = "\
 usage: scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
-                    [--race MHZ [--fifo K]]
+                    [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
 512x256 (or --size) through the simulated display (double-buffered): first the threshold that
@@ -168,6 +178,9 @@ options:
                        mode of --timing (default: auto); prints a line
                        `frame NN: deadline misses: M of N lines` a frame instead
   --fifo K             with --race: the ring's rows (default: 2)
+  --timing MODE        with --race: the video timing of the simulated monitor, as
+                       for `scanvert render` (default: auto, a mode whose visible
+                       area is the 512x256 frame)
   --help, -h           this help";
 
 /// The help of `command`, or `None` for a command that does not exist.
@@ -182,10 +195,55 @@ fn command_help(command: &str) -> Option<&'static str> {
     })
 }
 
+/// A usage error: the message, on one line (escaped). [`run_reporting`]
+/// adds the usage of the command it is about.
 fn usage(msg: impl fmt::Display) -> CliError {
     CliError {
         status: EXIT_USAGE,
-        message: format!("{}\n{USAGE}", escape_for_terminal(&msg.to_string())),
+        message: escape_for_terminal(&msg.to_string()),
+    }
+}
+
+/// The usage of `command` alone: the lines of its help up to the first
+/// blank one. For no command, or one that does not exist, a line naming
+/// the commands.
+fn usage_of(command: Option<&str>) -> &'static str {
+    match command {
+        Some("help" | "--help" | "-h") => "usage: scanvert help [COMMAND]",
+        Some(c) => match command_help(c) {
+            Some(h) => h.split("\n\n").next().unwrap_or(h),
+            None => USAGE_COMMANDS,
+        },
+        None => USAGE_COMMANDS,
+    }
+}
+
+const USAGE_COMMANDS: &str = "usage: scanvert render|asm|disasm|checksum|demo|help ... (`scanvert help` shows each command's usage)";
+
+/// The options each command takes, besides `--help`: exactly those its
+/// usage lists (`-o` is `--out`).
+fn options_of(command: &str) -> &'static [&'static str] {
+    match command {
+        "render" => &[
+            "--out",
+            "--timing",
+            "--stats",
+            "--band-rows",
+            "--resolve",
+            "--race",
+            "--fifo",
+        ],
+        "asm" | "disasm" => &["--out"],
+        "demo" => &[
+            "--out",
+            "--frames",
+            "--size",
+            "--no-speed",
+            "--race",
+            "--fifo",
+            "--timing",
+        ],
+        _ => &[],
     }
 }
 
@@ -415,6 +473,8 @@ struct Args {
     resolve: Option<Resolve>,
     race: Option<crate::timing::Clock>,
     fifo: Option<u16>,
+    /// The options given, by their long names, in order.
+    given: Vec<&'static str>,
 }
 
 fn parse(args: &[String]) -> Result<Args, CliError> {
@@ -431,9 +491,33 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         resolve: None,
         race: None,
         fifo: None,
+        given: Vec::new(),
     };
+    // Every option of some command: which a command takes is checked
+    // once the command is known (`options_of`).
+    const OPTIONS: [&str; 11] = [
+        "--out",
+        "--frames",
+        "--size",
+        "--no-speed",
+        "--timing",
+        "--stats",
+        "--resolve",
+        "--race",
+        "--fifo",
+        "--help",
+        "--band-rows",
+    ];
     let mut it = args.iter();
     while let Some(arg) = it.next() {
+        let long = match arg.as_str() {
+            "-o" => "--out",
+            "-h" => "--help",
+            s => s,
+        };
+        if let Some(&name) = OPTIONS.iter().find(|&&o| o == long) {
+            a.given.push(name);
+        }
         match arg.as_str() {
             "--out" | "-o" => {
                 let v = it.next().ok_or_else(|| usage("--out needs a file name"))?;
@@ -521,22 +605,57 @@ fn timing_for(name: &str, w: u16, h: u16) -> Result<VideoTiming, CliError> {
 /// The `--stats` lines of the simulated write port: its busy time at its
 /// clock and the rates of the cycle model (see [`crate::dual_port`]).
 fn write_port_stats(path: &Path, ram: &DualPortRam) -> String {
+    let name = shown(path);
     let w = ram.write_counters();
     let rate = |r: Option<f64>| r.map_or_else(|| "n/a".to_string(), |r| format!("{r:.0}"));
     format!(
         "{}: write port at {} MHz: {} cycles ({} polygon set-ups, {} clear cycles), {:.3} us simulated\n\
          {}: write port rates: {} pixels/s, {} polygons/s, {} clears/s\n",
-        path.display(),
+        name,
         f64::from(w.clock.hz()) / 1e6,
         w.cycles,
         w.polygons,
         w.clear_cycles,
         w.time_ps() as f64 / 1e6,
-        path.display(),
+        name,
         rate(w.pixels_per_second()),
         rate(w.polygons_per_second()),
         rate(w.clears_per_second()),
     )
+}
+
+/// Whether `a` and `b` name one file that exists (through links, or as
+/// two hard links): the same device and inode on Unix, the same canonical
+/// path elsewhere.
+fn same_file(a: &Path, b: &Path) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        match (std::fs::metadata(a), std::fs::metadata(b)) {
+            (Ok(a), Ok(b)) => a.dev() == b.dev() && a.ino() == b.ino(),
+            _ => false,
+        }
+    }
+    #[cfg(not(unix))]
+    {
+        match (a.canonicalize(), b.canonicalize()) {
+            (Ok(a), Ok(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
+/// `--out` of `cmd` must not be its input: replacing the scene with its
+/// own image (or a list with its text) loses the scene. Checked before
+/// anything is read or written.
+fn not_the_input(cmd: &str, input: &Path, out: &Path) -> Result<(), CliError> {
+    if same_file(input, out) {
+        return Err(usage(format_args!(
+            "{cmd}: --out {} is the input file; refusing to replace it",
+            out.display()
+        )));
+    }
+    Ok(())
 }
 
 fn one_input(a: &Args, cmd: &str) -> Result<PathBuf, CliError> {
@@ -556,7 +675,23 @@ pub fn run(args: &[String]) -> Result<String, CliError> {
 
 /// [`run`], handing each warning (a line starting `warning: `) to `warn`
 /// instead of printing it.
+///
+/// A usage error (exit status [`EXIT_USAGE`]) is one line, then the usage
+/// of the command it is about.
 pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, CliError> {
+    run_command(args, warn).map_err(|mut e| {
+        if e.status == EXIT_USAGE {
+            e.message = format!(
+                "{}\n{}",
+                e.message,
+                usage_of(args.first().map(String::as_str))
+            );
+        }
+        e
+    })
+}
+
+fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, CliError> {
     let Some((cmd, rest)) = args.split_first() else {
         return Err(usage("missing command"));
     };
@@ -575,6 +710,16 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             return Ok(format!("{h}\n"));
         }
     }
+    if command_help(cmd).is_some() {
+        let takes = options_of(cmd);
+        if let Some(o) = a
+            .given
+            .iter()
+            .find(|o| **o != "--help" && !takes.contains(o))
+        {
+            return Err(usage(format_args!("{cmd}: {o} is not an option of {cmd}")));
+        }
+    }
     match cmd.as_str() {
         "render" => {
             let path = one_input(&a, "render")?;
@@ -582,6 +727,7 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 .out
                 .clone()
                 .ok_or_else(|| usage("render: --out IMAGE.png is required"))?;
+            not_the_input("render", &path, &out)?;
             let scene = Scene::load(&path)?;
             let list = scene.list();
             let mode = a.timing.as_deref().unwrap_or("auto");
@@ -653,12 +799,16 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
                 .out
                 .clone()
                 .ok_or_else(|| usage("asm: --out LIST.scvl is required"))?;
+            not_the_input("asm", &path, &out)?;
             let scene = Scene::load(&path)?;
             write_output(&out, &scene.bytes)?;
             Ok(String::new())
         }
         "disasm" => {
             let path = one_input(&a, "disasm")?;
+            if let Some(out) = &a.out {
+                not_the_input("disasm", &path, out)?;
+            }
             let scene = Scene::load(&path)?;
             let txt = text::disassemble(&scene.list());
             match &a.out {
@@ -697,6 +847,9 @@ pub fn run_reporting(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<Stri
             }
             if a.race.is_some() && a.size.is_some() {
                 return Err(usage("demo: --size does not go with --race"));
+            }
+            if a.timing.is_some() && a.race.is_none() {
+                return Err(usage("demo: --timing goes with --race"));
             }
             if let Some(cpu) = a.race {
                 let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);

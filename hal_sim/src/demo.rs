@@ -470,15 +470,34 @@ pub fn animate(frames: usize) -> Result<Vec<DemoFrame>, CliError> {
 }
 
 /// Runs the animation of `frames` frames through the simulator at `size`.
+/// Holds every frame: for a few small ones (tests); [`animate_each`] hands
+/// each over as it is made.
 pub fn animate_at(size: Size, frames: usize) -> Result<Vec<DemoFrame>, CliError> {
+    let mut out = Vec::with_capacity(frames);
+    animate_each(size, frames, |f| {
+        out.push(f);
+        Ok(())
+    })?;
+    Ok(out)
+}
+
+/// Runs the animation of `frames` frames through the simulator at `size`,
+/// handing each frame to `each` as soon as the monitor has shown it, in
+/// order, and stopping at the first error `each` returns. Only one frame
+/// shown is held at a time: the co-simulation keeps the newest frame
+/// read out, not all of them.
+pub fn animate_each(
+    size: Size,
+    frames: usize,
+    mut each: impl FnMut(DemoFrame) -> Result<(), CliError>,
+) -> Result<(), CliError> {
     let steps = steps(frames);
     let mut mem = Memory::new(size, &steps)?;
     let mut scene = mem.scene()?;
     let (w, h) = (size.width, size.height);
     let mut ram = DualPortRam::double_buffered(w, h);
     let mut refresh = RefreshController::new(VideoTiming::for_frame(w, h));
-    let mut co = CoSimulation::new(&mut ram, &mut refresh);
-    let mut out = Vec::new();
+    let mut co = CoSimulation::new(&mut ram, &mut refresh).keeping_last();
     let mut last = None;
     for step in steps {
         let update = advance(&mut scene, last, step)?;
@@ -494,16 +513,16 @@ pub fn animate_at(size: Size, frames: usize) -> Result<Vec<DemoFrame>, CliError>
         let shown = co.frames().last().cloned().expect("a frame was read out");
         let rebuilt =
             std::array::from_fn(|s| scene.store().segment(s).map_or(0, |g| g.counters().clears));
-        out.push(DemoFrame {
+        each(DemoFrame {
             step,
             update,
             trapezoids: scene.store().len(),
             drawn,
             shown,
             rebuilt,
-        });
+        })?;
     }
-    Ok(out)
+    Ok(())
 }
 
 /// The frame of `step` drawn from scratch into a plain frame buffer: what
@@ -596,10 +615,11 @@ pub fn run(dir: &Path, frames: usize, measure: bool) -> Result<String, CliError>
     run_at(DEFAULT_SIZE, dir, frames, measure)
 }
 
-/// `scanvert demo --size WxH`: [`run`] at `size`.
+/// `scanvert demo --size WxH`: [`run`] at `size`. Each frame's PNG is
+/// written as soon as the frame is shown, and its line of the report made
+/// then, so that no more than one frame is held at a time.
 pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<String, CliError> {
     std::fs::create_dir_all(dir).map_err(|e| error::io(dir, e))?;
-    let shown = animate_at(size, frames)?;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -611,7 +631,8 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
     );
     let mut prev = [0u32; 3];
     let mut trapezoids = 0;
-    for (i, f) in shown.iter().enumerate() {
+    let mut i = 0;
+    animate_each(size, frames, |f| {
         let path: PathBuf = dir.join(format!("frame-{i:02}.png"));
         let png = crate::image::encode_png(&f.shown).map_err(|e| error::io(&path, e))?;
         crate::output::write_output(&path, &png)?;
@@ -636,13 +657,11 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
             f.drawn.labels.drawn,
             crate::error::shown(&path)
         );
-    }
-    if !shown.is_empty() {
-        let _ = writeln!(
-            s,
-            "trapezoids per frame: {} on average",
-            trapezoids / shown.len()
-        );
+        i += 1;
+        Ok(())
+    })?;
+    if let Some(average) = trapezoids.checked_div(i) {
+        let _ = writeln!(s, "trapezoids per frame: {average} on average");
     }
     if measure {
         let (camera, threshold, still) = speeds_at(size)?;

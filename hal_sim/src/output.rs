@@ -73,13 +73,31 @@ fn create_temp(path: &Path) -> Result<(std::fs::File, PathBuf), CliError> {
     ))
 }
 
+/// The permissions a file that replaces one with `old` gets: its access
+/// bits (read, write, execute for owner, group and others), not the
+/// set-user-ID, set-group-ID or sticky bits.
+fn kept_permissions(old: std::fs::Permissions) -> std::fs::Permissions {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::Permissions::from_mode(old.mode() & 0o777)
+    }
+    #[cfg(not(unix))]
+    {
+        old
+    }
+}
+
 /// Writes `bytes` to `path`, safely: into a new temporary file next to it,
 /// then renamed over it, so that a failed write leaves no partial output
 /// and no link is ever followed. A destination that exists and is not a
 /// regular file (a symbolic link to anything, a directory, a device, a
-/// fifo) is refused and left as it is. Every failure is an [`EXIT_IO`]
-/// error naming `path`; the temporary file is removed.
+/// fifo) is refused and left as it is. A regular file that is replaced
+/// keeps its access mode (a file of mode 600 stays 600): the temporary
+/// file gets it before anything is written into it. Every failure is an
+/// [`EXIT_IO`] error naming `path`; the temporary file is removed.
 pub(crate) fn write_output(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
+    let mut keep = None;
     match std::fs::symlink_metadata(path) {
         Ok(m) => {
             if let Some(kind) = special_kind(m.file_type()) {
@@ -88,12 +106,18 @@ pub(crate) fn write_output(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
                     format_args!("is {kind}, not a regular file; refusing to replace it"),
                 ));
             }
+            keep = Some(kept_permissions(m.permissions()));
         }
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
         Err(e) => return Err(io(path, e)),
     }
     let (mut file, tmp) = create_temp(path)?;
-    let written = file.write_all(bytes).and_then(|()| file.sync_all());
+    let written = match keep {
+        Some(mode) => file.set_permissions(mode),
+        None => Ok(()),
+    }
+    .and_then(|()| file.write_all(bytes))
+    .and_then(|()| file.sync_all());
     drop(file);
     // `rename` replaces the name `path`: were a link put there meanwhile,
     // the link would be replaced, not followed.

@@ -291,6 +291,10 @@ impl RefreshController {
 /// Time is kept exactly, in cycles of both clocks: after `w` write cycles
 /// at `f_w` the refresh controller has run the `r` pixel clocks (at `f_p`)
 /// with `r / f_p ≥ w / f_w` and `(r − 1) / f_p < w / f_w`.
+///
+/// By default every frame completed is kept ([`frames`](Self::frames));
+/// [`keeping_last`](Self::keeping_last) keeps only the newest, so that a
+/// long run holds one frame, not all of them.
 #[derive(Debug)]
 pub struct CoSimulation<'a> {
     ram: &'a mut DualPortRam,
@@ -298,6 +302,10 @@ pub struct CoSimulation<'a> {
     write_cycles: u64,
     read_cycles: u64,
     frames: Vec<Frame>,
+    /// Frames completed so far, kept or not.
+    completed: u64,
+    /// Keep only the newest frame.
+    last_only: bool,
 }
 
 impl<'a> CoSimulation<'a> {
@@ -311,7 +319,16 @@ impl<'a> CoSimulation<'a> {
             write_cycles: 0,
             read_cycles: 0,
             frames: Vec::new(),
+            completed: 0,
+            last_only: false,
         }
+    }
+
+    /// Keeps only the newest frame completed: [`frames`](Self::frames)
+    /// holds at most one.
+    pub fn keeping_last(mut self) -> Self {
+        self.last_only = true;
+        self
     }
 
     /// Runs the refresh controller up to the writer's time.
@@ -322,6 +339,10 @@ impl<'a> CoSimulation<'a> {
         while u128::from(self.read_cycles) * fw < u128::from(self.write_cycles) * fp {
             self.read_cycles += 1;
             if let Some(frame) = self.refresh.tick(&mut port) {
+                self.completed += 1;
+                if self.last_only {
+                    self.frames.clear();
+                }
                 self.frames.push(frame);
             }
         }
@@ -349,10 +370,16 @@ impl<'a> CoSimulation<'a> {
     /// The writer idles until the refresh controller has completed
     /// another frame.
     pub fn wait_for_frame(&mut self) {
-        let n = self.frames.len();
-        while self.frames.len() == n {
+        let n = self.completed;
+        while self.completed == n {
             self.wait(1);
         }
+    }
+
+    /// How many frames the refresh controller has completed so far, kept
+    /// or not.
+    pub fn completed(&self) -> u64 {
+        self.completed
     }
 
     /// Cycles run so far: `(write port, pixel clock)`.
@@ -365,7 +392,8 @@ impl<'a> CoSimulation<'a> {
         self.ram
     }
 
-    /// Frames completed so far.
+    /// Frames completed so far (with [`keeping_last`](Self::keeping_last),
+    /// the newest only).
     pub fn frames(&self) -> &[Frame] {
         &self.frames
     }
@@ -476,6 +504,29 @@ mod tests {
         let f = &co.frames()[0];
         assert_eq!(f.pixel(2, 0), Some(BLACK));
         assert_eq!(f.pixel(3, 0), Some(Rgb565::new(1, 1, 1)));
+    }
+
+    #[test]
+    fn keeping_last_holds_the_newest_frame_only() {
+        let (mut ram_a, mut ram_b) = (DualPortRam::new(4, 3), DualPortRam::new(4, 3));
+        let (mut rc_a, mut rc_b) = (
+            RefreshController::new(tiny()),
+            RefreshController::new(tiny()),
+        );
+        let mut all = CoSimulation::new(&mut ram_a, &mut rc_a);
+        let mut last = CoSimulation::new(&mut ram_b, &mut rc_b).keeping_last();
+        for k in 0..3u8 {
+            for co in [&mut all, &mut last] {
+                co.clear(Rgb565::new(k, k, k)).unwrap();
+                co.wait_for_frame();
+                co.wait_for_frame();
+            }
+        }
+        assert_eq!((all.completed(), last.completed()), (6, 6));
+        assert_eq!(all.frames().len(), 6);
+        assert_eq!(last.frames().len(), 1);
+        assert!(last.frames()[0].pixels() == all.frames()[5].pixels());
+        assert_eq!(last.cycles(), all.cycles());
     }
 
     #[test]

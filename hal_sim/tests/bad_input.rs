@@ -660,3 +660,41 @@ fn control_characters_from_the_input_are_escaped_in_messages() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     let _ = std::fs::remove_dir_all(dir);
 }
+
+/// Every line `--stats` prints names the input, escaped as in the error
+/// messages: the write port's two lines printed it raw.
+#[test]
+fn stats_lines_escape_the_input_name() {
+    use std::ffi::OsStr;
+    use std::os::unix::ffi::OsStrExt;
+    let dir = case_dir("stats_name", 0);
+    let scene = dir.join(OsStr::from_bytes(b"\x1b]0;pwned\x07\x1b[2J.dl"));
+    std::fs::write(
+        &scene,
+        "frame 16 16\npoly 0 0 8 0 8 8\nperspective 50 1 100\nface 0 0 -5\n",
+    )
+    .expect("write scene");
+    let out = dir.join("image.png");
+    let o = Command::new(env!("CARGO_BIN_EXE_scanvert"))
+        .args([OsStr::new("render"), scene.as_os_str()])
+        .args([OsStr::new("--out"), out.as_os_str(), OsStr::new("--stats")])
+        .output()
+        .expect("run scanvert");
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert_eq!(unsafe_for_terminal(&o.stdout), None, "{stdout:?}");
+    let lines: Vec<&str> = stdout.lines().collect();
+    assert_eq!(lines.len(), 4, "{stdout}");
+    for line in lines {
+        assert!(
+            line.contains(r"\u{1b}]0;pwned\u{7}\u{1b}[2J.dl: "),
+            "{line:?}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -28,3 +28,21 @@ fn threshold_steps_rebuild_bars_alone_and_frames_are_whole_renders() {
         );
     }
 }
+
+/// The demo's memory is sized by running its frames, and a frame can need
+/// more while it is built than it uses once built (a rebuilt segment that
+/// grew is stored while a later one still holds its last frame): sized by
+/// use alone, `demo --size 256x256 --frames 16` ran out of trapezoids.
+#[test]
+fn the_memory_found_by_running_the_frames_is_enough() {
+    use scanvert_sim::demo::{run_at, Size};
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("demo_sizes");
+    for (w, h, frames) in [(256, 256, 16), (64, 64, 24), (300, 17, 12)] {
+        let _ = std::fs::remove_dir_all(&dir);
+        let size = Size::new(w, h).expect("a size");
+        let report = run_at(size, &dir, frames, false)
+            .unwrap_or_else(|e| panic!("{w}x{h}, {frames} frames: {e}"));
+        assert_eq!(report.lines().count(), frames + 2, "{report}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -246,3 +246,69 @@ fn demo_frames_are_written_safely() {
         assert!(m.file_type().is_char_device());
     }
 }
+
+/// `--out` naming the input (as written, spelled another way, through a
+/// hard or a symbolic link) is a usage error, exit 2, and nothing is
+/// written: the scene is not replaced by its own image.
+#[test]
+fn out_onto_the_input_is_refused() {
+    let dir = setup("out_is_input");
+    let scene = dir.join("scene.dl");
+    let hard = dir.join("hard.dl");
+    std::fs::hard_link(&scene, &hard).expect("hard link");
+    let soft = dir.join("soft.dl");
+    symlink(&scene, &soft).expect("symlink");
+    let other_spelling = dir
+        .join(".")
+        .join("..")
+        .join("out_is_input")
+        .join("scene.dl");
+    for cmd in ["render", "asm", "disasm"] {
+        for out in [&scene, &hard, &soft, &other_spelling] {
+            let o = scanvert(&[p(cmd), &scene, p("--out"), out]);
+            let stderr = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{cmd} {out:?}: {stderr}");
+            assert!(stderr.contains("is the input file"), "{cmd}: {stderr}");
+            assert!(stderr.contains(&out.display().to_string()), "{stderr}");
+            assert!(o.stdout.is_empty());
+            assert_eq!(std::fs::read_to_string(&scene).unwrap(), SCENE);
+            assert_eq!(names(&dir), ["hard.dl", "scene.dl", "soft.dl", "victim"]);
+        }
+    }
+    // The same input as another file is fine.
+    let copy = dir.join("copy.dl");
+    std::fs::write(&copy, SCENE).unwrap();
+    let o = scanvert(&[p("disasm"), &scene, p("--out"), &copy]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+}
+
+/// A regular file that `--out` replaces keeps its access mode: 600 stays
+/// 600 (it became 644, the default for a new file, before).
+#[test]
+fn a_replaced_file_keeps_its_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = setup("mode");
+    let scene = dir.join("scene.dl");
+    let runs = [
+        ("render", 0o600),
+        ("asm", 0o640),
+        ("disasm", 0o604),
+        ("render", 0o755),
+    ];
+    for (cmd, mode) in runs {
+        let out = dir.join(format!("out-{cmd}-{mode:o}"));
+        std::fs::write(&out, "old").unwrap();
+        std::fs::set_permissions(&out, std::fs::Permissions::from_mode(mode)).unwrap();
+        let o = scanvert(&[p(cmd), &scene, p("--out"), &out]);
+        assert_eq!(o.status.code(), Some(0), "{o:?}");
+        assert_ne!(std::fs::read(&out).unwrap(), b"old");
+        let m = std::fs::metadata(&out).unwrap().permissions().mode() & 0o7777;
+        assert_eq!(m, mode, "{cmd}: {m:o}, not {mode:o}");
+    }
+    // A new file: the usual mode, through the umask, never executable.
+    let out = dir.join("new.png");
+    let o = scanvert(&[p("render"), &scene, p("--out"), &out]);
+    assert_eq!(o.status.code(), Some(0), "{o:?}");
+    let m = std::fs::metadata(&out).unwrap().permissions().mode();
+    assert_eq!(m & 0o111, 0, "{m:o}");
+}

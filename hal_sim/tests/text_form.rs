@@ -160,3 +160,30 @@ fn the_demo_scene_round_trips() {
     let t1 = disassemble(&DisplayList::new_checked(&b1).unwrap());
     assert_eq!(assemble(&t1).expect("disassembly assembles").bytes, b1);
 }
+
+/// An angle is rounded once, from the exact decimal, to the nearest
+/// 1/65536 of a turn (ties away from zero); rounding first to 1/65536 of a
+/// degree made `rotate x 0.00274` (0.4988 of a step) a whole step.
+#[test]
+fn angles_are_rounded_once() {
+    let asm = assemble("frame 4 4\nrotate x 0.00274\nrotate y 0.0028\n").unwrap();
+    let text = disassemble(&DisplayList::new_checked(&asm.bytes).unwrap());
+    assert_eq!(text, "frame 4 4\nrotate x 0\nrotate y 0.005\n");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// `k / 10^6` degrees against the exact quotient `k · 65536 / (360 · 10^6)`.
+    #[test]
+    fn an_angle_is_its_nearest_step(k in -32_768_000_000i64..32_768_000_000) {
+        let sign = if k < 0 { "-" } else { "" };
+        let m = k.unsigned_abs();
+        let text = format!("{sign}{}.{:06}", m / 1_000_000, m % 1_000_000);
+        let got = scanvert_sim::text::parse_angle(&text).unwrap().to_bits();
+        let (num, den) = (m as i128 * 65536, 360_000_000i128);
+        let steps = (2 * num + den) / (2 * den); // half away from zero
+        let steps = if k < 0 { -steps } else { steps };
+        prop_assert_eq!(i128::from(got), steps.rem_euclid(65536), "{}", text);
+    }
+}

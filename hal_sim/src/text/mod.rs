@@ -7,9 +7,10 @@
 //! controller, at a byte offset) can still be reported by its line;
 //! [`disassemble`] turns a checked binary list back into text.
 //!
-//! Text → binary → text → binary is stable: the disassembler writes every
-//! value exactly (coordinates are multiples of 1/16, which have at most four
-//! decimals), so the second assembly gives the same bytes.
+//! Text → binary → text → binary is stable: the disassembler writes each
+//! value as the shortest decimal that the assembler reads back as the same
+//! bits, as Rust prints a float (`perspective 50` stores 49.998779296875°
+//! and is written `50`), so the second assembly gives the same bytes.
 //!
 //! ```
 //! use scanvert_sim::text;
@@ -24,7 +25,9 @@ mod disasm;
 mod number;
 
 pub use asm::{assemble, assemble_bytes, Assembled};
-pub use disasm::{disassemble, format_angle, format_coord, format_fixed, format_q16};
+pub use disasm::{
+    disassemble, format_angle, format_coord, format_fixed, format_q16, format_shortest,
+};
 pub use number::{parse_angle, parse_coord, parse_fixed, parse_int, parse_q16, NumberError};
 
 use std::fmt;

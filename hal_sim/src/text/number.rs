@@ -75,6 +75,21 @@ fn int_value(int: &[u8], limit: i64) -> Option<i64> {
     Some(v)
 }
 
+/// The decimal fraction `0.frac` (its digits) times 2^`frac_bits`
+/// (`frac_bits` ≤ 16), as `q + rest` with `rest` in [0, 1): returns `q`
+/// and whether `rest` ≥ 1/2. The digit string is multiplied from its last
+/// digit (9·2¹⁶ + 2¹⁶ fits `u32`), so no digit is lost.
+fn scale_fraction(frac: &[u8], frac_bits: u32) -> (u32, bool) {
+    let mut rest: Vec<u8> = frac.iter().map(|c| c - b'0').collect();
+    let mut carry = 0u32;
+    for digit in rest.iter_mut().rev() {
+        let v = ((*digit as u32) << frac_bits) + carry;
+        *digit = (v % 10) as u8;
+        carry = v / 10;
+    }
+    (carry, rest.first().is_some_and(|&first| first >= 5))
+}
+
 /// The exact decimal `word` rounded to the nearest multiple of
 /// 2^−`frac_bits` (ties away from zero), as a count of those steps, which
 /// must lie in `lo..=hi`. `frac_bits` is at most 16.
@@ -88,17 +103,8 @@ pub fn parse_fixed(
     let d = split(word)?;
     let limit = (lo.unsigned_abs().max(hi.unsigned_abs()) >> frac_bits) as i64 + 1;
     let int = int_value(d.int, limit).ok_or(NumberError::Range(range))?;
-    // frac × 2^k = q + rest, rest a decimal fraction in [0, 1): multiply
-    // the digit string by 2^k from its last digit (9·2¹⁶ + 2¹⁶ fits u32).
-    let mut rest: Vec<u8> = d.frac.iter().map(|c| c - b'0').collect();
-    let mut carry = 0u32;
-    for digit in rest.iter_mut().rev() {
-        let v = ((*digit as u32) << frac_bits) + carry;
-        *digit = (v % 10) as u8;
-        carry = v / 10;
-    }
+    let (carry, half_or_more) = scale_fraction(d.frac, frac_bits);
     // Round half up on the magnitude, which is ties away from zero.
-    let half_or_more = rest.first().is_some_and(|&first| first >= 5);
     let magnitude = (int << frac_bits) + carry as i64 + half_or_more as i64;
     let v = if d.negative { -magnitude } else { magnitude };
     if (lo..=hi).contains(&v) {
@@ -134,19 +140,29 @@ pub fn parse_q16(word: &str) -> Result<Q16, NumberError> {
     .map(|v| Q16::from_bits(v as i32))
 }
 
-/// An angle in degrees (any value in ±32768, wrapping at a turn), to the
-/// nearest 1/65536 of a turn.
+/// An angle in degrees (any value in ±32768, wrapping at a turn), rounded
+/// once, from the exact decimal, to the nearest 1/65536 of a turn (ties
+/// away from zero).
 pub fn parse_angle(word: &str) -> Result<Angle, NumberError> {
-    let q = parse_fixed(
+    // The range (and the syntax) is that of a world value.
+    parse_fixed(
         word,
         16,
         i32::MIN as i64,
         i32::MAX as i64,
         "-32768 … 32767 degrees",
     )?;
-    // Degrees in Q16.16 to 1/65536 turns: q / 360, rounded half away from zero.
-    let turns = (q.abs() + 180) / 360;
-    let turns = if q < 0 { -turns } else { turns };
+    let d = split(word)?;
+    let int = int_value(d.int, 1 << 16).ok_or(NumberError::Range("-32768 … 32767 degrees"))?;
+    // Turns = degrees · 65536/360 = degrees · 2¹³/45. The magnitude times
+    // 2¹³ is `n + rest`, rest in [0, 1); its quotient by 45 is `n / 45`
+    // and a fraction `(n % 45 + rest) / 45`, which is at least 1/2 when
+    // `n % 45 + rest` ≥ 22.5.
+    let (carry, half_or_more) = scale_fraction(d.frac, 13);
+    let n = (int << 13) + carry as i64;
+    let (q, r) = (n / 45, n % 45);
+    let magnitude = q + (r > 22 || (r == 22 && half_or_more)) as i64;
+    let turns = if d.negative { -magnitude } else { magnitude };
     Ok(Angle::from_bits(turns.rem_euclid(65536) as u16))
 }
 
@@ -227,6 +243,17 @@ mod tests {
         assert_eq!(parse_angle("-90").unwrap().to_bits(), 49152);
         assert_eq!(parse_angle("360").unwrap().to_bits(), 0);
         assert_eq!(parse_angle("720.0054931640625").unwrap().to_bits(), 1);
+        // Rounded once, from the decimal: 0.00274° is 0.4988 of a step.
+        // (Rounded first to 1/65536°, it was 0.5 of a step, and went up.)
+        assert_eq!(parse_angle("0.00274").unwrap().to_bits(), 0);
+        assert_eq!(parse_angle("-0.00274").unwrap().to_bits(), 0);
+        // Half a step, 45/16384 = 0.00274658203125°, is a tie: away from zero.
+        assert_eq!(parse_angle("0.00274658203125").unwrap().to_bits(), 1);
+        assert_eq!(parse_angle("-0.00274658203125").unwrap().to_bits(), 65535);
+        assert_eq!(parse_angle("0.00274658203124999").unwrap().to_bits(), 0);
+        // 32768° is 5965232.35 steps, 1456 past whole turns.
+        assert_eq!(parse_angle("-32768").unwrap().to_bits(), 64080); // -1456
+        assert!(parse_angle("32768").is_err());
     }
 
     #[test]
