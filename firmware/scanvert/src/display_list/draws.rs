@@ -10,10 +10,12 @@
 
 use super::reader::{Command, Commands, DisplayList};
 use crate::color::DEFAULT_COLOR;
+use crate::port::band::{DirtyRows, Mix};
 use crate::raster::clip::ClipRect;
 use crate::raster::draw::Draw;
 use crate::raster::table::TableNeeds;
-use embedded_graphics_core::pixelcolor::Rgb888;
+use core::fmt;
+use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::Vertices;
 
@@ -92,4 +94,144 @@ impl<'a> DisplayList<'a> {
     pub fn table_needs(&self) -> TableNeeds {
         TableNeeds::count(self.draws((self.width(), self.height())))
     }
+}
+
+/// The scratch memory given to [`DisplayList::mark_changes`] holds fewer
+/// than two hashes a row of the frame; nothing was marked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ScratchTooSmall {
+    /// `u64`s given.
+    pub len: usize,
+    /// `u64`s needed: twice the frame's height.
+    pub needed: usize,
+}
+
+impl fmt::Display for ScratchTooSmall {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "the scratch holds {} row hashes; marking changes needs {}",
+            self.len, self.needed
+        )
+    }
+}
+
+impl core::error::Error for ScratchTooSmall {}
+
+/// Rows `(y0, y1)` (end exclusive) that points from `lo` to `hi` (in
+/// sixteenths of a pixel, y) may draw on, one row of margin each side,
+/// cut to the clip rows.
+fn rows_between(lo: i32, hi: i32, clip: &ClipRect) -> (usize, usize) {
+    let y0 = (lo.div_euclid(16) - 1).max(clip.y0() as i32);
+    let y1 = (hi.div_euclid(16) + 2).min(clip.y1() as i32);
+    (y0 as usize, y1.max(y0) as usize)
+}
+
+impl<'a> DisplayList<'a> {
+    /// Writes into `sig[y]`, for each row `y < sig.len()` of the frame,
+    /// a hash of what the list's 2D commands draw on the row, in their
+    /// order: each `poly` and `line` (its vertices, colour and clip)
+    /// chained onto the rows it may touch, each `clear` starting every
+    /// row anew. Two lists whose 2D commands draw a row differently hash
+    /// it differently but with a chance of about 2⁻⁶⁴; lists that draw it
+    /// the same by the same commands hash it the same.
+    pub fn row_signatures(&self, sig: &mut [u64]) {
+        sig.fill(0);
+        let h = sig.len();
+        for (_, draw) in self.draws((self.width(), self.height())) {
+            let mut k = Mix::new();
+            let (rows, k) = match draw {
+                Draw::Clear(c) => {
+                    k.add(rgb_word(c));
+                    let k = k.finish();
+                    sig.fill(k);
+                    continue;
+                }
+                Draw::Poly {
+                    vertices,
+                    clip,
+                    color,
+                } => {
+                    k.add(1);
+                    let (mut lo, mut hi) = (i32::MAX, i32::MIN);
+                    for v in vertices {
+                        k.add((v.x.to_bits() as u16 as u64) << 16 | v.y.to_bits() as u16 as u64);
+                        (lo, hi) = (lo.min(v.y.units()), hi.max(v.y.units()));
+                    }
+                    k.add(rgb_word(color));
+                    k.add(clip_word(&clip));
+                    (rows_between(lo, hi, &clip), k.finish())
+                }
+                Draw::Line {
+                    from,
+                    to,
+                    clip,
+                    color,
+                } => {
+                    k.add(2);
+                    for v in [from, to] {
+                        k.add((v.x.to_bits() as u16 as u64) << 16 | v.y.to_bits() as u16 as u64);
+                    }
+                    k.add(rgb_word(color));
+                    k.add(clip_word(&clip));
+                    let (lo, hi) = (
+                        from.y.units().min(to.y.units()),
+                        from.y.units().max(to.y.units()),
+                    );
+                    (rows_between(lo, hi, &clip), k.finish())
+                }
+            };
+            for s in &mut sig[rows.0.min(h)..rows.1.min(h)] {
+                *s = Mix::chain(*s, k);
+            }
+        }
+    }
+
+    /// Marks in `dirty` the rows that this list draws differently from
+    /// `before`, the list shown last, by comparing their
+    /// [`row_signatures`](Self::row_signatures) in `scratch` (two `u64`s a
+    /// row of the frame). Every row is marked when the frames differ in
+    /// size or when either list has a 3D layer and the two differ at all
+    /// (a 3D layer's rows are known only once it is built: keep changing
+    /// 3D content in a [`Scene`](crate::scene::Scene), whose
+    /// [`update_marking`](crate::scene::Scene::update_marking) marks it
+    /// row by row). Too little scratch is an error, and nothing is marked.
+    pub fn mark_changes(
+        &self,
+        before: &DisplayList<'_>,
+        dirty: &mut DirtyRows<'_>,
+        scratch: &mut [u64],
+    ) -> Result<(), ScratchTooSmall> {
+        let h = self.height() as usize;
+        let len = scratch.len();
+        let Some(sigs) = scratch.get_mut(..2 * h) else {
+            return Err(ScratchTooSmall { len, needed: 2 * h });
+        };
+        let same_frame = (self.width(), self.height()) == (before.width(), before.height());
+        let has_3d = self.summary().first_3d.is_some() || before.summary().first_3d.is_some();
+        if !same_frame || (has_3d && self.as_bytes() != before.as_bytes()) {
+            dirty.mark_all();
+            return Ok(());
+        }
+        let (old, new) = sigs.split_at_mut(h);
+        before.row_signatures(old);
+        self.row_signatures(new);
+        for (y, (a, b)) in old.iter().zip(new.iter()).enumerate() {
+            if a != b {
+                dirty.mark(y as i32, y as i32 + 1);
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The clip rectangle in one word.
+fn clip_word(c: &ClipRect) -> u64 {
+    (c.x0() as u64) << 48 | (c.x1() as u64) << 32 | (c.y0() as u64) << 16 | c.y1() as u64
+}
+
+/// A colour in one word.
+fn rgb_word(c: Rgb888) -> u64 {
+    (c.r() as u64) << 16 | (c.g() as u64) << 8 | c.b() as u64
 }

@@ -68,7 +68,7 @@ pub mod layout;
 mod reader;
 mod writer;
 
-pub use draws::Draws;
+pub use draws::{Draws, ScratchTooSmall};
 pub use reader::{
     Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Points, Summary, Vertices,
     Vertices3,

@@ -398,6 +398,33 @@ impl<'d> DirtyRows<'d> {
     }
 }
 
+/// A 64-bit mix of words (splitmix64 steps), for row hashes.
+pub(crate) struct Mix(u64);
+
+impl Mix {
+    pub(crate) fn new() -> Mix {
+        Mix(0x9e37_79b9_7f4a_7c15)
+    }
+
+    pub(crate) fn add(&mut self, v: u64) {
+        let mut z = (self.0 ^ v).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        self.0 = z ^ (z >> 31);
+    }
+
+    pub(crate) fn finish(&self) -> u64 {
+        self.0
+    }
+
+    /// `a` followed by `b`: an order-dependent chain of hashes.
+    pub(crate) fn chain(a: u64, b: u64) -> u64 {
+        let mut m = Mix(a);
+        m.add(b);
+        m.finish()
+    }
+}
+
 /// The band's size is the frame's: embedded-graphics places a drawing in
 /// frame coordinates, and the band keeps the part on its rows.
 impl<C: PixelColor> OriginDimensions for Band<'_, C> {

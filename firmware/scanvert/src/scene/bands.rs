@@ -16,9 +16,10 @@
 //! once, each drawing some bands and skipping the others (two cores taking
 //! every other band).
 
-use super::{Frame, LabelStore, Scene};
+use super::{Frame, LabelStore, Scene, Update};
 use crate::color::ListColor;
 pub use crate::port::band::DirtyRows;
+use crate::port::band::Mix;
 use crate::port::band::{check_band, Band, BandsError};
 use crate::port::Counts;
 use crate::visible::store::TrapezoidStore;
@@ -273,7 +274,8 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// frame's height, a row is marked when the hash of what the rebuilt
     /// segments put on it (see below) differs before and after, so a
     /// segment rebuilt the same costs no row; with less, every row a
-    /// rebuilt segment showed on before or shows on after is marked.
+    /// rebuilt segment showed on before or shows on after is marked, and
+    /// the update says so ([`Update::coarse_marks`]).
     ///
     /// The hash of a row is the sum of 64-bit mixes of each trapezoid's
     /// and label's every field: two different contents of a row hash the
@@ -287,7 +289,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         font: &MonoFont<'_>,
         dirty: &mut DirtyRows<'_>,
         scratch: &mut [u64],
-    ) -> Result<super::Update, super::UpdateError> {
+    ) -> Result<Update, super::UpdateError> {
         let n = procedures.len();
         let h = self.store.height() as usize;
         let mut stale = [0u32; MARKED_SEGMENTS / 32];
@@ -329,27 +331,10 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
                 dirty.mark(y as i32, y as i32 + 1);
             }
         }
-        r
-    }
-}
-
-/// A 64-bit mix of words (splitmix64 steps), for row hashes.
-struct Mix(u64);
-
-impl Mix {
-    fn new() -> Mix {
-        Mix(0x9e37_79b9_7f4a_7c15)
-    }
-
-    fn add(&mut self, v: u64) {
-        let mut z = (self.0 ^ v).wrapping_add(0x9e37_79b9_7f4a_7c15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        self.0 = z ^ (z >> 31);
-    }
-
-    fn finish(&self) -> u64 {
-        self.0
+        r.map(|u| Update {
+            coarse_marks: !exact,
+            ..u
+        })
     }
 }
 

@@ -333,6 +333,11 @@ pub struct Update {
     pub trapezoids: u32,
     /// Labels placed.
     pub labels: u32,
+    /// From [`update_marking`](Scene::update_marking): `true` when its
+    /// scratch held fewer than two hashes a row, so every row a rebuilt
+    /// segment covered before or covers after was marked, changed or
+    /// not.
+    pub coarse_marks: bool,
 }
 
 /// What one [`Scene::draw`] did.
