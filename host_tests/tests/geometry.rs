@@ -1456,7 +1456,7 @@ proptest! {
     ) {
         let mut pipe = cam.pipeline();
         pipe.set_thickness(Coord::from_bits(thickness));
-        if let Some(l) = Light::new(light.0, light.1) {
+        if let Ok(l) = Light::new(light.0, light.1) {
             pipe.set_light(l);
         }
         // Polygons around the view first, in view space; then the others
@@ -1579,7 +1579,7 @@ proptest! {
         c in any::<(i16, i16)>(),
     ) {
         let p = |v: [i32; 3]| Point3::from_bits(v[0], v[1], v[2]);
-        if let Some(v) = View::look_at(p(a), p(b)) {
+        if let Ok(v) = View::look_at(p(a), p(b)) {
             let _ = v.matrix();
         }
         let _ = trig::atan2(y, x);

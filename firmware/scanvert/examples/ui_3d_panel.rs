@@ -165,11 +165,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Q16::from_int(100),
     )?;
     let mut pipeline = Pipeline::new(persp, Viewport::centred(W, H)?);
-    pipeline.set_light(Light::new([1, 2, 3], 70).ok_or("light")?);
+    pipeline.set_light(Light::new([1, 2, 3], 70)?);
     let mut scene = Scene::new(storage.as_memory(), pipeline)?;
-    scene.set_view(
-        &View::look_at(Point3::from_int(4, 3, 7), Point3::from_int(0, 0, 0)).ok_or("view")?,
-    )?;
+    scene.set_view(&View::look_at(
+        Point3::from_int(4, 3, 7),
+        Point3::from_int(0, 0, 0),
+    )?)?;
     let (mut clock_layer, mut dot_layer) =
         (DrawableLayer::new(clock(0)), DrawableLayer::new(dot(0)));
     let mut bits = [0u32; DirtyRows::words(H)];

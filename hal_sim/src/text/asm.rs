@@ -452,7 +452,7 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
             )?;
             let (eye, target) = (point(operands)?, point(&operands[3..])?);
             Ok(Cmd::View(
-                View::look_at(eye, target).ok_or(TextErrorKind::LookAt)?,
+                View::look_at(eye, target).map_err(|_| TextErrorKind::LookAt)?,
             ))
         }
         "light" => {

@@ -63,10 +63,11 @@ impl Light {
     /// A light shining from direction `toward` (from the scene toward the
     /// source, in world coordinates, any length), providing `percent` of the
     /// illumination; the rest is ambient. `percent` above 100 counts as
-    /// 100. `None` when `toward` is zero.
-    pub fn new(toward: [i32; 3], percent: u8) -> Option<Light> {
-        let direction = unit([toward[0] as i64, toward[1] as i64, toward[2] as i64])?;
-        Some(Light {
+    /// 100. [`ZeroDirection`] when `toward` is zero.
+    pub fn new(toward: [i32; 3], percent: u8) -> Result<Light, ZeroDirection> {
+        let direction =
+            unit([toward[0] as i64, toward[1] as i64, toward[2] as i64]).ok_or(ZeroDirection)?;
+        Ok(Light {
             direction,
             percent: percent.min(100),
         })
@@ -82,6 +83,21 @@ impl Light {
         self.percent
     }
 }
+
+/// A direction of length zero: a light's toward nothing, or a view whose
+/// eye is its target. `?` carries it into a
+/// [`SceneError`](crate::scene::SceneError).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ZeroDirection;
+
+impl core::fmt::Display for ZeroDirection {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("a direction of length zero (a light toward nothing, or an eye at its target)")
+    }
+}
+
+impl core::error::Error for ZeroDirection {}
 
 /// `v` scaled by a power of two so that its largest component has 15
 /// bits; `None` for the zero vector. Components are `i64` below 2⁶³.
@@ -172,8 +188,8 @@ mod tests {
         assert_eq!(unit([0, 0, 5]), Some([0, 0, 65536]));
         assert_eq!(unit([-3, 4, 0]), Some([-39322, 52429, 0]));
         assert_eq!(unit([0, 0, 0]), None);
-        assert!(Light::new([0, 0, 0], 50).is_none());
-        assert_eq!(Light::new([1, 1, 1], 250).map(|l| l.percent()), Some(100));
+        assert_eq!(Light::new([0, 0, 0], 50), Err(ZeroDirection));
+        assert_eq!(Light::new([1, 1, 1], 250).map(|l| l.percent()), Ok(100));
         let big = i64::MAX;
         let u = unit([big, -big, big]).unwrap();
         assert!(

@@ -107,7 +107,7 @@ pub mod transform;
 pub mod trig;
 pub mod window_clip;
 
-pub use light::Light;
+pub use light::{Light, ZeroDirection};
 pub use project::{
     Anchor, Orthographic, Perspective, Projection, ProjectionError, Viewport, Z_FAR, Z_NEAR,
 };

@@ -50,6 +50,7 @@
 //! restores it; the depth is a const generic, and overflow and underflow
 //! are errors, not panics.
 
+use super::light::ZeroDirection;
 use super::trig::{atan2, cos, sin, Angle};
 use core::fmt;
 
@@ -362,15 +363,15 @@ pub struct View {
 }
 
 impl View {
-    /// The eye at `eye` looking at `target`, without roll; `None` when the
-    /// two are the same point. Yaw and pitch come from [`atan2`], within
+    /// The eye at `eye` looking at `target`, without roll;
+    /// [`ZeroDirection`] when the two are the same point. Yaw and pitch come from [`atan2`], within
     /// 0.011° of the exact direction.
-    pub fn look_at(eye: Point3, target: Point3) -> Option<View> {
+    pub fn look_at(eye: Point3, target: Point3) -> Result<View, ZeroDirection> {
         let (e, t) = (eye.to_bits(), target.to_bits());
         // Differences of i32 fit i64 (|·| < 2³²).
         let d = [0, 1, 2].map(|k| t[k] as i64 - e[k] as i64);
         if d == [0, 0, 0] {
-            return None;
+            return Err(ZeroDirection);
         }
         // Forward = (−sin yaw · cos pitch, sin pitch, −cos yaw · cos pitch).
         let yaw = atan2(-d[0], -d[2]);
@@ -379,7 +380,7 @@ impl View {
         let s = super::light::scale15(d).unwrap_or([0, 0, 0]);
         let h = super::light::length15([s[0], 0, s[2]]);
         let pitch = atan2(s[1] as i64, h as i64);
-        Some(View { eye, yaw, pitch })
+        Ok(View { eye, yaw, pitch })
     }
 
     /// The world-to-view matrix: `F · Rx(−pitch) · Ry(−yaw) · T(−eye)`,
@@ -624,7 +625,7 @@ mod tests {
         assert_eq!((v.yaw, v.pitch), (Angle::QUARTER, Angle::ZERO));
         let v = View::look_at(p(0, 0, 0), p(0, 4, 0)).unwrap();
         assert_eq!(v.pitch, Angle::QUARTER);
-        assert!(View::look_at(p(1, 2, 3), p(1, 2, 3)).is_none());
+        assert_eq!(View::look_at(p(1, 2, 3), p(1, 2, 3)), Err(ZeroDirection));
         // The target lands on the view axis.
         let (eye, target) = (p(7, 5, -9), p(-2, 1, 4));
         let m = View::look_at(eye, target).unwrap().matrix().unwrap();
@@ -637,7 +638,7 @@ mod tests {
             Point3::new(Q16::MIN, Q16::MIN, Q16::MIN),
             Point3::new(Q16::MAX, Q16::MAX, Q16::MAX),
         );
-        assert!(far.is_some());
+        assert!(far.is_ok());
         // Both horizontal components at the scaled range's corner.
         let v = View::look_at(
             Point3::from_bits(65535, 0, 65535),

@@ -180,7 +180,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
             out.changed();
         }
         Command::Light { toward, percent } => {
-            pipe.set_light(Light::new(toward.to_bits(), percent).ok_or(SceneError::Light)?);
+            pipe.set_light(Light::new(toward.to_bits(), percent)?);
             out.changed();
         }
         Command::Thickness(t) => {

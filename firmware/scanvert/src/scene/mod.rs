@@ -226,7 +226,7 @@ pub enum SceneError {
     },
     /// A projection or window was refused.
     Projection(ProjectionError),
-    /// A light's direction is zero.
+    /// A light's direction is zero, or a view's eye is its target.
     Light,
 }
 
@@ -241,12 +241,18 @@ impl fmt::Display for SceneError {
                 write!(f, "polygon needs more than {capacity} vertices")
             }
             SceneError::Projection(e) => write!(f, "{e}"),
-            SceneError::Light => write!(f, "the light's direction is zero"),
+            SceneError::Light => write!(f, "{}", crate::geometry::light::ZeroDirection),
         }
     }
 }
 
 impl core::error::Error for SceneError {}
+
+impl From<crate::geometry::light::ZeroDirection> for SceneError {
+    fn from(_: crate::geometry::light::ZeroDirection) -> Self {
+        SceneError::Light
+    }
+}
 
 impl From<StoreError> for SceneError {
     fn from(e: StoreError) -> Self {
