@@ -749,9 +749,18 @@ impl<'e> Controller<'e> {
             _ => None,
         };
         stats.commands = list.summary().commands as u32;
+        // The colour in the target's format, converted when it changes.
+        let mut rgb = crate::color::DEFAULT_COLOR;
+        let mut pixel = T::Color::from_rgb888(rgb);
+        let mut convert = |c: Rgb888| {
+            if c != rgb {
+                (rgb, pixel) = (c, T::Color::from_rgb888(c));
+            }
+            pixel
+        };
         // The list's one 2D interpreter: a list with no `clear`, `poly`
         // or `line` draws nothing here, and is not read again.
-        for (offset, draw) in list.draws((w, h)) {
+        list.for_each_draw((w, h), |offset, draw| {
             match draw {
                 Draw::Clear(c) => {
                     target
@@ -764,7 +773,7 @@ impl<'e> Controller<'e> {
                     clip,
                     color,
                 } => {
-                    let color = T::Color::from_rgb888(color);
+                    let color = convert(color);
                     let counts =
                         raster
                             .fill(vertices, &clip, color, target)
@@ -786,14 +795,15 @@ impl<'e> Controller<'e> {
                     clip,
                     color,
                 } => {
-                    let color = T::Color::from_rgb888(color);
+                    let color = convert(color);
                     let counts = line::draw_line(from, to, &clip, color, target)
                         .map_err(|error| RenderError::Target { offset, error })?;
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;
                 }
             }
-        }
+            Ok(())
+        })?;
         hook.stage(Stage::Painted);
         if let (Some(scene), Some(first)) = (built.as_mut(), layer) {
             draw_layer(scene, first, *resolve, target, &mut stats, hook)?;

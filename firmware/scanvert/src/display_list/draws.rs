@@ -19,14 +19,62 @@ use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::Vertices;
 
+/// The state the 2D commands carry: the clip registers, cut to the frame,
+/// and the current colour.
+#[derive(Clone, Copy, Debug)]
+struct State {
+    clip: ClipRect,
+    color: Rgb888,
+    frame: (u16, u16),
+}
+
+impl State {
+    fn new((width, height): (u16, u16)) -> Self {
+        State {
+            clip: ClipRect::full(width, height),
+            color: DEFAULT_COLOR,
+            frame: (width, height),
+        }
+    }
+
+    /// Executes `cmd`: what it draws, or `None` for a command that only
+    /// changes the state or belongs to the 3D layer.
+    #[inline(always)]
+    fn step<'a>(&mut self, cmd: Command<'a>) -> Option<Draw<Vertices<'a>>> {
+        let (clip, color) = (self.clip, self.color);
+        Some(match cmd {
+            Command::Clear(c) => Draw::Clear(c),
+            Command::Clip(win) => {
+                self.clip = ClipRect::from_window(win, self.frame.0, self.frame.1);
+                return None;
+            }
+            Command::Color(c) => {
+                self.color = c;
+                return None;
+            }
+            Command::Poly(vertices) => Draw::Poly {
+                vertices,
+                clip,
+                color,
+            },
+            Command::Line(from, to) => Draw::Line {
+                from,
+                to,
+                clip,
+                color,
+            },
+            // The 3D layer's commands.
+            _ => return None,
+        })
+    }
+}
+
 /// The 2D drawing operations of a list, each with the byte offset of its
 /// command: from [`DisplayList::draws`].
 #[derive(Clone, Debug)]
 pub struct Draws<'a> {
     commands: core::iter::Take<Commands<'a>>,
-    clip: ClipRect,
-    color: Rgb888,
-    frame: (u16, u16),
+    state: State,
 }
 
 impl<'a> Iterator for Draws<'a> {
@@ -36,32 +84,9 @@ impl<'a> Iterator for Draws<'a> {
     #[inline]
     fn next(&mut self) -> Option<Self::Item> {
         for (offset, cmd) in self.commands.by_ref() {
-            let (clip, color) = (self.clip, self.color);
-            let draw = match cmd {
-                Command::Clear(c) => Draw::Clear(c),
-                Command::Clip(win) => {
-                    self.clip = ClipRect::from_window(win, self.frame.0, self.frame.1);
-                    continue;
-                }
-                Command::Color(c) => {
-                    self.color = c;
-                    continue;
-                }
-                Command::Poly(vertices) => Draw::Poly {
-                    vertices,
-                    clip,
-                    color,
-                },
-                Command::Line(from, to) => Draw::Line {
-                    from,
-                    to,
-                    clip,
-                    color,
-                },
-                // The 3D layer's commands.
-                _ => continue,
-            };
-            return Some((offset, draw));
+            if let Some(draw) = self.state.step(cmd) {
+                return Some((offset, draw));
+            }
         }
         None
     }
@@ -74,16 +99,36 @@ impl<'a> DisplayList<'a> {
     /// whole frame and the colour [`DEFAULT_COLOR`]. A list with no
     /// `clear`, `poly` or `line` ([`Summary::draws_2d`](super::Summary))
     /// yields nothing without being read.
-    pub fn draws(&self, (width, height): (u16, u16)) -> Draws<'a> {
-        let n = match self.summary().draws_2d {
+    pub fn draws(&self, frame: (u16, u16)) -> Draws<'a> {
+        Draws {
+            commands: self.commands().take(self.drawn_2d()),
+            state: State::new(frame),
+        }
+    }
+
+    /// [`draws`](Self::draws), each handed to `f` in order, until `f`
+    /// fails: the same operations, with the state in the loop's own
+    /// variables (the controller's render takes them so).
+    #[inline]
+    pub fn for_each_draw<E, F>(&self, frame: (u16, u16), mut f: F) -> Result<(), E>
+    where
+        F: FnMut(usize, Draw<Vertices<'a>>) -> Result<(), E>,
+    {
+        let mut state = State::new(frame);
+        for (offset, cmd) in self.commands().take(self.drawn_2d()) {
+            if let Some(draw) = state.step(cmd) {
+                f(offset, draw)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// How many commands to read for the 2D draws: none for a list with
+    /// no `clear`, `poly` or `line`.
+    fn drawn_2d(&self) -> usize {
+        match self.summary().draws_2d {
             true => usize::MAX,
             false => 0,
-        };
-        Draws {
-            commands: self.commands().take(n),
-            clip: ClipRect::full(width, height),
-            color: DEFAULT_COLOR,
-            frame: (width, height),
         }
     }
 

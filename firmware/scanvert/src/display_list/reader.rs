@@ -709,11 +709,8 @@ impl<'a, V: FromBytes + 'a> Packed<'a, V> {
     }
 
     /// Iterates the items.
-    pub fn iter(&self) -> Items<'a, V> {
-        Items {
-            chunks: self.bytes.chunks_exact(V::SIZE),
-            item: PhantomData,
-        }
+    pub fn iter(&self) -> impl ExactSizeIterator<Item = V> + Clone + 'a {
+        self.bytes.chunks_exact(V::SIZE).map(V::from_bytes)
     }
 }
 
@@ -723,7 +720,10 @@ impl<'a, V: FromBytes + 'a> IntoIterator for Packed<'a, V> {
 
     /// The items, in order (as [`Packed::iter`]).
     fn into_iter(self) -> Items<'a, V> {
-        self.iter()
+        Items {
+            chunks: self.bytes.chunks_exact(V::SIZE),
+            item: PhantomData,
+        }
     }
 }
 
@@ -746,9 +746,19 @@ impl<V: FromBytes> Iterator for Items<'_, V> {
     fn size_hint(&self) -> (usize, Option<usize>) {
         self.chunks.size_hint()
     }
+
+    #[inline]
+    fn fold<B, F: FnMut(B, V) -> B>(self, init: B, f: F) -> B {
+        self.chunks.map(V::from_bytes).fold(init, f)
+    }
 }
 
-impl<V: FromBytes> ExactSizeIterator for Items<'_, V> {}
+impl<V: FromBytes> ExactSizeIterator for Items<'_, V> {
+    #[inline]
+    fn len(&self) -> usize {
+        self.chunks.len()
+    }
+}
 
 /// The vertices of a `poly`: at least 3, each `(x, y)` in Q12.4.
 pub type Vertices<'a> = Packed<'a, Vertex>;

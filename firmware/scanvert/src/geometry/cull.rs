@@ -47,30 +47,6 @@
 //! polygons of fewer than 2³² vertices (a pipeline's `N` is far below).
 
 use super::project::Projection;
-use crate::fixed::Vertex3;
-
-/// `true` when a `poly3` (screen space, Q12.4) is drawn: the shoelace sum
-/// of its vertices `v` is negative (counter-clockwise as displayed, y
-/// down). Each term is below 2³¹ in magnitude, so the sum of up to 2³²
-/// of them (a list's `poly3` has at most 65535) fits in `i64`.
-pub fn front_facing<I: IntoIterator<Item = Vertex3>>(v: I) -> bool {
-    let mut it = v.into_iter();
-    let Some(first) = it.next() else {
-        return false;
-    };
-    // Each term one pair of 32 × 32 → 64-bit multiplies; the closing
-    // edge after the loop (chaining it in cost a check a vertex).
-    let term = |p: Vertex3, q: Vertex3| {
-        p.x.units() as i64 * q.y.units() as i64 - q.x.units() as i64 * p.y.units() as i64
-    };
-    let mut s = 0i64;
-    let mut prev = first;
-    for p in it {
-        s += term(prev, p);
-        prev = p;
-    }
-    s + term(prev, first) < 0
-}
 
 /// `(v₁ − v₀) × (v₂ − v₀)` of view-space vertices (each below 2³⁰, so the
 /// differences fit `i32` and the products are 32 × 32 bits).

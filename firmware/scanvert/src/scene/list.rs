@@ -15,12 +15,12 @@
 use crate::color::DEFAULT_COLOR;
 use crate::display_list::{Axis, Command, Vertices3};
 use crate::fixed::Vertex3;
-use crate::geometry::cull::front_facing;
 use crate::geometry::{
     Angle, Light, Orthographic, Outcome, Perspective, Pipeline, PipelineError, Point3, PolygonSink,
     View, Viewport, Q16,
 };
 use crate::raster::clip::ClipRect;
+use crate::visible::store::front_facing;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 use super::{label, SceneError};
@@ -99,7 +99,7 @@ pub(crate) trait Out {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<bool, SceneError> {
-        let drawn = front_facing(vertices.iter());
+        let drawn = front_facing(vertices);
         if drawn {
             self.polygon(vertices.iter(), color, clip)?;
         }

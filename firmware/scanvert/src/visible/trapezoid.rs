@@ -245,7 +245,7 @@ impl PlaneSums {
 /// The first pass of [`Polygon::load`] over a polygon's vertices:
 /// Newell's sums, the depth range and the columns' range, in units. Its
 /// `c` is twice the signed area, the shoelace sum of
-/// [`front_facing`](crate::geometry::cull::front_facing) exactly (the terms
+/// [`front_facing`](crate::visible::store::front_facing) exactly (the terms
 /// `xₖyₖ` it adds cancel round the polygon).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Outline {
@@ -412,7 +412,7 @@ impl Outline {
     }
 
     /// `true` when the polygon is counter-clockwise as displayed (y
-    /// down): [`front_facing`](crate::geometry::cull::front_facing).
+    /// down): [`front_facing`](crate::visible::store::front_facing).
     #[inline(always)]
     pub(crate) fn front(&self) -> bool {
         self.sums.is_some_and(|s| s.c < 0)
