@@ -287,7 +287,8 @@ impl<'e> Controller<'e> {
         self.prepare(list, table, &mut bands)
             .map_err(BandsError::Render)?;
         let black = P::Color::from_rgb888(Rgb888::BLACK);
-        let pass = FramePass::new(size, black).draw(&mut [&mut bands], rows, band, target);
+        let all = core::iter::once((0, size.1));
+        let pass = FramePass::new(size, black).draw_runs(&mut bands, all, rows, band, target);
         if let Err(e) = pass {
             return Err(match e {
                 BandsError::Band(b) => BandsError::Band(b),

@@ -127,6 +127,30 @@ pub trait Layer<C: PixelColor> {
     }
 }
 
+/// A stack of layers is a layer: each draws in turn, lowest first, the
+/// lowest with the background (an empty stack fills the band with it).
+impl<C: PixelColor> Layer<C> for [&mut dyn Layer<C>] {
+    fn draw(
+        &mut self,
+        band: &mut Band<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        let mut background = background;
+        let mut counts = Counts::default();
+        for layer in self.iter_mut() {
+            counts += layer.draw(band, background.take())?;
+        }
+        fill_background(band, background);
+        Ok(counts)
+    }
+
+    fn take_changes(&mut self, mut dirty: Option<&mut DirtyRows<'_>>) {
+        for layer in self.iter_mut() {
+            layer.take_changes(dirty.as_deref_mut());
+        }
+    }
+}
+
 impl<C: PixelColor, L: Layer<C> + ?Sized> Layer<C> for &mut L {
     fn draw(
         &mut self,
@@ -193,16 +217,24 @@ impl<C: PixelColor> FramePass<C> {
         rows: u16,
         pixels: &mut [C],
     ) -> Result<u16, FrameError<Infallible>> {
+        self.band_of(layers, y, rows, pixels)
+    }
+
+    /// [`draw_band`](Self::draw_band) through a stack of layers or one:
+    /// one layer's drawing is compiled into the pass, with what it can
+    /// know of the background.
+    fn band_of<L: Layer<C> + ?Sized>(
+        &mut self,
+        layers: &mut L,
+        y: u16,
+        rows: u16,
+        pixels: &mut [C],
+    ) -> Result<u16, FrameError<Infallible>> {
         check_band(y, rows, self.next, self.size.1)?;
         let mut band = Band::new(pixels, self.size, y, rows)?;
-        let mut background = Some(self.background);
-        for layer in layers.iter_mut() {
-            self.counts += layer
-                .draw(&mut band, background.take())
-                .map_err(BandsError::Render)?;
-        }
-        // No layer: the band is the background.
-        fill_background(&mut band, background);
+        self.counts += layers
+            .draw(&mut band, Some(self.background))
+            .map_err(BandsError::Render)?;
         self.next = band.end();
         Ok(band.rows())
     }
@@ -222,9 +254,7 @@ impl<C: PixelColor> FramePass<C> {
         P: BandTarget<Color = C> + ?Sized,
     {
         let h = self.size.1;
-        for layer in layers.iter_mut() {
-            layer.take_changes(None);
-        }
+        layers.take_changes(None);
         self.draw_runs(layers, core::iter::once((0, h)), rows, band, target)
             .map(|(counts, _)| counts)
     }
@@ -246,24 +276,23 @@ impl<C: PixelColor> FramePass<C> {
     where
         P: BandTarget<Color = C> + ?Sized,
     {
-        for layer in layers.iter_mut() {
-            layer.take_changes(Some(dirty));
-        }
+        layers.take_changes(Some(dirty));
         self.draw_runs(layers, dirty.runs(), rows, band, target)
             .map(|(_, shipped)| shipped)
     }
 
     /// Draws and ships the runs of rows `runs` (top to bottom), in bands
     /// of at most `rows` rows; returns the counts and the rows shipped.
-    pub(crate) fn draw_runs<P, R>(
+    pub(crate) fn draw_runs<L, P, R>(
         mut self,
-        layers: &mut [&mut dyn Layer<C>],
+        layers: &mut L,
         runs: R,
         rows: u16,
         band: &mut [C],
         target: &mut P,
     ) -> Result<(Counts, u32), FrameError<P::Error>>
     where
+        L: Layer<C> + ?Sized,
         P: BandTarget<Color = C> + ?Sized,
         R: IntoIterator<Item = (u16, u16)>,
     {
@@ -274,7 +303,7 @@ impl<C: PixelColor> FramePass<C> {
             let mut y = y0;
             while y < y1 {
                 let n = self
-                    .draw_band(layers, y, rows.min(y1 - y), band)
+                    .band_of(layers, y, rows.min(y1 - y), band)
                     .map_err(widen)?;
                 target
                     .ship(y, n, &band[..n as usize * w])
@@ -332,7 +361,14 @@ impl<const DEPTH: usize, const N: usize> Scene<'_, DEPTH, N> {
         let mut pass = self
             .bands(resolve, background, font)
             .map_err(BandsError::Render)?;
-        FramePass::new(size, background).draw(&mut [&mut pass], rows, band, target)?;
+        let h = size.1;
+        FramePass::new(size, background).draw_runs(
+            &mut pass,
+            core::iter::once((0, h)),
+            rows,
+            band,
+            target,
+        )?;
         Ok(pass.frame())
     }
 
@@ -363,7 +399,7 @@ impl<const DEPTH: usize, const N: usize> Scene<'_, DEPTH, N> {
             .bands(resolve, background, font)
             .map_err(BandsError::Render)?;
         let (_, shipped) = FramePass::new(size, background).draw_runs(
-            &mut [&mut pass],
+            &mut pass,
             dirty.runs(),
             rows,
             band,

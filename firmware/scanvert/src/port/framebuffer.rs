@@ -81,13 +81,20 @@ impl<'a, C: PixelColor> FrameBuffer<'a, C> {
 /// few dozen pixels, the common length of a polygon's span. Runs of 8 to 63
 /// pixels are written instead as copies of 8 pixels (16 bytes of RGB565),
 /// the last copy overlapping the one before it, so that no tail loop is
-/// left; longer runs, where `slice::fill` is at the memory limit, and
-/// shorter ones still use it. `docs/performance-log.md` has the
-/// measurements.
+/// left; shorter runs still use `slice::fill`. So do longer ones on
+/// 64-bit hosts, where `slice::fill` is at the memory limit; on 32-bit
+/// targets (Cortex-M, RV32) the copies of 8 stay cheaper at any length,
+/// where `slice::fill`'s loop depends on what the compiler makes of its
+/// caller (in a band, about 0.7 Cortex-M4 instructions a pixel more).
+/// `docs/performance-log.md` has the measurements.
 #[inline(always)]
 pub(crate) fn fill_run<C: Copy>(run: &mut [C], color: C) {
+    const LONGEST: usize = match cfg!(target_pointer_width = "64") {
+        true => 64,
+        false => usize::MAX,
+    };
     let n = run.len();
-    if (8..64).contains(&n) {
+    if (8..LONGEST).contains(&n) {
         let splat = [color; 8];
         // Whole chunks need no bounds check; the last, overlapping copy
         // covers the tail.
