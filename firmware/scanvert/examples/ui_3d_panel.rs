@@ -31,7 +31,7 @@ use scanvert::frame::{DrawableLayer, FramePass, Layer};
 use scanvert::port::band::{BandTarget, DirtyRows};
 use scanvert::prelude::*;
 use scanvert::raster::table::{TableMemory, TablePolygon};
-use scanvert::scene::{SceneStorage, DEFAULT_FONT};
+use scanvert::scene::{Capacities, DEFAULT_FONT};
 use scanvert::{Angle, Builder, Light, Perspective, Pipeline, Point3, Procedure, Resolve, Scene};
 use scanvert::{SceneError, View, Viewport, Q16};
 
@@ -40,9 +40,19 @@ const H: u16 = 240;
 const ROWS: u16 = 16;
 const FRAMES: u32 = 24;
 type Segment<'s, 'a> = Builder<'s, 'a, 4, 16>;
-/// 64 trapezoids, 16 faces, 2 segments, H rows, 16 edge slots, 32 active
-/// entries, W runs, 2 labels, 32 bytes of label text.
-type Storage = SceneStorage<64, 16, 2, { H as usize }, 16, 32, { W as usize }, 2, 32>;
+/// The scene's memory, by name.
+const CAPS: Capacities = Capacities {
+    trapezoids: 64,
+    faces: 16,
+    segments: 2,
+    rows: H as usize,
+    edges: 16,
+    active: 32,
+    runs: W as usize,
+    labels: 2,
+    text: 32,
+};
+type Storage = scanvert::scene_storage!(CAPS);
 
 /// The panel: keeps the rows it is sent, and counts them.
 struct Panel {

@@ -123,6 +123,38 @@ pub struct Capacities {
 }
 
 impl Capacities {
+    /// `true` when each capacity is at least `needed`'s: storage of these
+    /// capacities holds what `needed` describes. A `const` check of
+    /// declared storage against measured needs:
+    ///
+    /// ```
+    /// use scanvert::scene::Capacities;
+    /// const CAPS: Capacities = Capacities {
+    ///     trapezoids: 64, faces: 16, segments: 2, rows: 240, edges: 16,
+    ///     active: 32, runs: 240, labels: 2, text: 32,
+    /// };
+    /// // What `Scene::usage` reported over the frames the program shows.
+    /// const NEEDED: Capacities = Capacities {
+    ///     trapezoids: 41, faces: 9, segments: 1, rows: 240, edges: 8,
+    ///     active: 12, runs: 240, labels: 1, text: 9,
+    /// };
+    /// const _: () = assert!(CAPS.covers(&NEEDED));
+    /// type Storage = scanvert::scene_storage!(CAPS);
+    /// static STORAGE_CAPS: Capacities = Storage::CAPACITIES;
+    /// assert_eq!(STORAGE_CAPS, CAPS);
+    /// ```
+    pub const fn covers(&self, needed: &Capacities) -> bool {
+        self.trapezoids >= needed.trapezoids
+            && self.faces >= needed.faces
+            && self.segments >= needed.segments
+            && self.rows >= needed.rows
+            && self.edges >= needed.edges
+            && self.active >= needed.active
+            && self.runs >= needed.runs
+            && self.labels >= needed.labels
+            && self.text >= needed.text
+    }
+
     /// The larger of each capacity: storage for both.
     pub const fn max(self, o: Capacities) -> Capacities {
         const fn m(a: usize, b: usize) -> usize {
@@ -174,6 +206,19 @@ impl<
     }
 
     /// The capacities, as the const generics give them.
+    pub const CAPACITIES: Capacities = Capacities {
+        trapezoids: TRAPEZOIDS,
+        faces: FACES,
+        segments: SEGMENTS,
+        rows: ROWS,
+        edges: EDGES,
+        active: ACTIVE,
+        runs: RUNS,
+        labels: LABELS,
+        text: TEXT,
+    };
+
+    /// The capacities, as the const generics give them.
     pub const fn capacities(&self) -> Capacities {
         Capacities {
             trapezoids: TRAPEZOIDS,
@@ -223,6 +268,36 @@ impl<
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// The [`SceneStorage`] type of the capacities named in a `const`
+/// [`Capacities`], instead of nine numbers in their order:
+///
+/// ```
+/// use scanvert::scene::Capacities;
+/// const CAPS: Capacities = Capacities {
+///     trapezoids: 64, faces: 16, segments: 2, rows: 240, edges: 16,
+///     active: 32, runs: 240, labels: 2, text: 32,
+/// };
+/// type Storage = scanvert::scene_storage!(CAPS);
+/// let storage = Storage::new();
+/// assert_eq!(storage.capacities(), CAPS);
+/// ```
+#[macro_export]
+macro_rules! scene_storage {
+    ($caps:path) => {
+        $crate::scene::SceneStorage<
+            { $caps.trapezoids },
+            { $caps.faces },
+            { $caps.segments },
+            { $caps.rows },
+            { $caps.edges },
+            { $caps.active },
+            { $caps.runs },
+            { $caps.labels },
+            { $caps.text },
+        >
+    };
 }
 
 #[cfg(test)]
