@@ -356,20 +356,9 @@ impl<const DEPTH: usize, const N: usize> Scene<'_, DEPTH, N> {
         P: BandTarget + ?Sized,
         P::Color: ListColor,
     {
-        let size = (self.store().width(), self.store().height());
-        check_buffer(rows, size, band.len())?;
-        let mut pass = self
-            .bands(resolve, background, font)
-            .map_err(BandsError::Render)?;
-        let h = size.1;
-        FramePass::new(size, background).draw_runs(
-            &mut pass,
-            core::iter::once((0, h)),
-            rows,
-            band,
-            target,
-        )?;
-        Ok(pass.frame())
+        let all = core::iter::once((0, self.store().height()));
+        self.draw_runs(resolve, background, font, all, rows, band, target)
+            .map(|(frame, _)| frame)
     }
 
     /// Draws only the rows marked in `dirty`, in bands of at most `rows`
@@ -393,18 +382,33 @@ impl<const DEPTH: usize, const N: usize> Scene<'_, DEPTH, N> {
         P: BandTarget + ?Sized,
         P::Color: ListColor,
     {
+        self.draw_runs(resolve, background, font, dirty.runs(), rows, band, target)
+    }
+
+    /// The scene's rows `runs` through a frame pass of its one layer.
+    #[allow(clippy::too_many_arguments)]
+    fn draw_runs<P, R>(
+        &mut self,
+        resolve: Resolve,
+        background: P::Color,
+        font: &MonoFont<'_>,
+        runs: R,
+        rows: u16,
+        band: &mut [P::Color],
+        target: &mut P,
+    ) -> Result<(Frame, u32), SceneBandsError<P::Error>>
+    where
+        P: BandTarget + ?Sized,
+        P::Color: ListColor,
+        R: IntoIterator<Item = (u16, u16)>,
+    {
         let size = (self.store().width(), self.store().height());
         check_buffer(rows, size, band.len())?;
         let mut pass = self
             .bands(resolve, background, font)
             .map_err(BandsError::Render)?;
-        let (_, shipped) = FramePass::new(size, background).draw_runs(
-            &mut pass,
-            dirty.runs(),
-            rows,
-            band,
-            target,
-        )?;
+        let (_, shipped) =
+            FramePass::new(size, background).draw_runs(&mut pass, runs, rows, band, target)?;
         Ok((pass.frame(), shipped))
     }
 }

@@ -220,17 +220,7 @@ impl<
 
     /// The capacities, as the const generics give them.
     pub const fn capacities(&self) -> Capacities {
-        Capacities {
-            trapezoids: TRAPEZOIDS,
-            faces: FACES,
-            segments: SEGMENTS,
-            rows: ROWS,
-            edges: EDGES,
-            active: ACTIVE,
-            runs: RUNS,
-            labels: LABELS,
-            text: TEXT,
-        }
+        Self::CAPACITIES
     }
 
     /// The memory as slices, the capacities erased: what
