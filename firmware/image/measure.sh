@@ -690,7 +690,7 @@ for page in README.md CHANGELOG.md $(cd "$root" && printf '%s\n' docs/*.md); do
       cp "$out/pages/new" "$root/$page"
       echo "wrote $page" >&2
     elif sizes_near "$root/$page" "$out/pages/new"; then
-      echo "$page: the image sizes differ by at most 64 B (linked in another folder): current" >&2
+      echo "$page: the image sizes differ by at most 64 B (built in another clone): current" >&2
     else
       diff -u "$root/$page" "$out/pages/new" | head -n 60 >&2 || true
       echo "$page: differs from what this run measured; rerun firmware/image/measure.sh" >&2
