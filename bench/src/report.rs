@@ -252,17 +252,7 @@ fn section_3d(run: &Run) -> String {
             mem(Z16)
         );
     }
-    let bad: u64 = run
-        .rows3
-        .iter()
-        .filter(|r| {
-            r.contender == CROSSING
-                || r.contender == crate::visible3d::BISECT
-                || r.contender == crate::visible3d::PAINT
-        })
-        .filter_map(|r| r.err.map(|e| e.total))
-        .sum();
-    let covered: f64 = run.scenes3.iter().map(|st| st.covered * VIEWS as f64).sum();
+    let (bad, covered) = exact_3d(run);
     let _ = writeln!(
         s,
         "\n*÷ faster z*: scanvert's time over the faster z-buffer's (below 1:\n\
@@ -345,17 +335,7 @@ fn headline_host(run: &Run) -> String {
         exact_err,
         thousands(checked as f64)
     );
-    let bad: u64 = run
-        .rows3
-        .iter()
-        .filter(|r| {
-            r.contender == CROSSING
-                || r.contender == crate::visible3d::BISECT
-                || r.contender == crate::visible3d::PAINT
-        })
-        .filter_map(|r| r.err.map(|e| e.total))
-        .sum();
-    let covered: f64 = run.scenes3.iter().map(|st| st.covered * VIEWS as f64).sum();
+    let (bad, covered) = exact_3d(run);
     let _ = writeln!(
         s,
         "| Exact, 3D: each of the three resolves against the exact reference, covered pixels | **{}** mismatches in {} |",
@@ -739,6 +719,23 @@ pub fn section_depth(depth: &[DepthRow], split: &[SplitRow], seconds: f64) -> St
     }
     let _ = writeln!(s, "{DEPTH_END}\n");
     s
+}
+
+/// Mismatched pixels of scanvert's three resolves against the exact
+/// reference, over all 3D scenes and views, and the pixels covered.
+fn exact_3d(run: &Run) -> (u64, f64) {
+    let bad = run
+        .rows3
+        .iter()
+        .filter(|r| {
+            r.contender == CROSSING
+                || r.contender == crate::visible3d::BISECT
+                || r.contender == crate::visible3d::PAINT
+        })
+        .filter_map(|r| r.err.map(|e| e.total))
+        .sum();
+    let covered = run.scenes3.iter().map(|st| st.covered * VIEWS as f64).sum();
+    (bad, covered)
 }
 
 #[cfg(test)]
