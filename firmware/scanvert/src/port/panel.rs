@@ -103,7 +103,7 @@ impl<SPI: SpiDevice, DC: OutputPin> BandTarget for Panel<'_, SPI, DC> {
 
     fn ship(&mut self, y: u16, rows: u16, pixels: &[Rgb565]) -> Result<(), Self::Error> {
         let rows_n = usize::from(rows);
-        if rows_n == 0 || pixels.len() % rows_n != 0 || self.buf.len() < 2 {
+        if rows_n == 0 || !pixels.len().is_multiple_of(rows_n) || self.buf.len() < 2 {
             return Err(PanelError::Shape);
         }
         let width = pixels.len() / rows_n;
