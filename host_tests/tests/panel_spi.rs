@@ -18,6 +18,9 @@ use scanvert::port::Panel;
 const W: u16 = 240;
 const H: u16 = 240;
 
+/// An address window: first and last column, first and last row.
+type Window = (u16, u16, u16, u16);
+
 #[derive(Default)]
 struct Log {
     dc: bool,
@@ -63,7 +66,7 @@ impl OutputPin for Dc {
 }
 
 /// Replays the log into a panel memory; returns the windows (x0, x1, y0, y1).
-fn replay(log: &Log, mem: &mut [u16], xo: u16, yo: u16) -> Vec<(u16, u16, u16, u16)> {
+fn replay(log: &Log, mem: &mut [u16], xo: u16, yo: u16) -> Vec<Window> {
     let (mut cmd, mut params) = (0u8, Vec::new());
     let mut win = Vec::new();
     let (mut cx, mut cy) = ((0, 0), (0, 0));
@@ -159,7 +162,7 @@ fn run(
     rows: u16,
     marked: Option<(i32, i32)>,
     chunk: usize,
-) -> (Vec<u16>, Vec<(u16, u16, u16, u16)>, Rc<RefCell<Log>>) {
+) -> (Vec<u16>, Vec<Window>, Rc<RefCell<Log>>) {
     let log = Rc::new(RefCell::new(Log::default()));
     let mut buf = vec![0u8; chunk];
     let mut panel = Panel::new(Spi(log.clone()), Dc(log.clone()), &mut buf);
