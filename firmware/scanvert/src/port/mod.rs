@@ -13,10 +13,12 @@ pub mod checksum;
 pub mod draw_target;
 pub mod framebuffer;
 pub mod packed;
+pub mod panel;
 
 pub use checksum::Checksum;
 pub use framebuffer::FrameBuffer;
 pub use packed::PackedFrameBuffer;
+pub use panel::{Panel, PanelError};
 
 use embedded_graphics_core::pixelcolor::PixelColor;
 

@@ -1,0 +1,128 @@
+//! Shipping bands to a MIPI-DCS panel (ST7789, ILI9341 and the like)
+//! over `embedded-hal` 1.0's blocking [`SpiDevice`] and a data/command
+//! [`OutputPin`].
+//!
+//! Per band: CASET (0x2a) for the columns, RASET (0x2b) for the rows,
+//! RAMWR (0x2c), then the pixels as big-endian RGB565 bytes, converted
+//! through a caller-owned byte buffer in chunks (no allocation).
+//!
+//! Not done here: panel initialisation (reset, SLPOUT, COLMOD, MADCTL,
+//! DISPON) is the application's or its panel driver's, and there is no
+//! async (DMA) variant yet; shipping blocks until the bytes are sent.
+
+use embedded_graphics_core::pixelcolor::{raw::RawU16, Rgb565};
+use embedded_graphics_core::prelude::RawData;
+use embedded_hal::digital::OutputPin;
+use embedded_hal::spi::SpiDevice;
+
+use super::band::BandTarget;
+
+/// DCS column address set.
+pub const CASET: u8 = 0x2a;
+/// DCS row address set.
+pub const RASET: u8 = 0x2b;
+/// DCS memory write.
+pub const RAMWR: u8 = 0x2c;
+
+/// Why a band could not be shipped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PanelError<S, P> {
+    /// The SPI device failed.
+    Spi(S),
+    /// The data/command pin failed.
+    Pin(P),
+    /// The byte buffer holds fewer than 2 bytes, or the band's pixels are
+    /// not `rows × width` for a whole width, or an address overflows `u16`.
+    Shape,
+}
+
+/// A [`BandTarget`] that ships bands to a MIPI-DCS panel.
+///
+/// # Limits
+/// - Pixels are RGB565 only (the panel in COLMOD 0x55).
+/// - The band's width is `pixels.len() / rows`; columns are
+///   `x_offset..x_offset + width`, rows `y_offset + y..`.
+/// - `buf` is the chunk size: each chunk is one SPI transaction; an odd
+///   length uses one byte less. It must hold at least 2 bytes.
+/// - DC is driven low for each command byte, high for its parameters
+///   and the pixels; chip select is the [`SpiDevice`]'s.
+#[derive(Debug)]
+pub struct Panel<'b, SPI, DC> {
+    spi: SPI,
+    dc: DC,
+    buf: &'b mut [u8],
+    x_offset: u16,
+    y_offset: u16,
+}
+
+impl<'b, SPI: SpiDevice, DC: OutputPin> Panel<'b, SPI, DC> {
+    /// A panel with no address offset.
+    pub fn new(spi: SPI, dc: DC, buf: &'b mut [u8]) -> Self {
+        Self::with_offset(spi, dc, buf, 0, 0)
+    }
+
+    /// A panel whose visible area starts at column `x_offset`, row
+    /// `y_offset` of its memory (the 240×135 Pico Display: 40, 53).
+    pub fn with_offset(spi: SPI, dc: DC, buf: &'b mut [u8], x_offset: u16, y_offset: u16) -> Self {
+        Self {
+            spi,
+            dc,
+            buf,
+            x_offset,
+            y_offset,
+        }
+    }
+
+    /// The SPI device and pin back.
+    pub fn release(self) -> (SPI, DC) {
+        (self.spi, self.dc)
+    }
+
+    fn command(&mut self, cmd: u8, params: &[u8]) -> Result<(), PanelError<SPI::Error, DC::Error>> {
+        self.dc.set_low().map_err(PanelError::Pin)?;
+        self.spi.write(&[cmd]).map_err(PanelError::Spi)?;
+        if !params.is_empty() {
+            self.dc.set_high().map_err(PanelError::Pin)?;
+            self.spi.write(params).map_err(PanelError::Spi)?;
+        }
+        Ok(())
+    }
+}
+
+fn window(start: u16, len: usize) -> Option<[u8; 4]> {
+    let len = u16::try_from(len).ok()?;
+    let end = start.checked_add(len)?.checked_sub(1)?;
+    let [a, b] = start.to_be_bytes();
+    let [c, d] = end.to_be_bytes();
+    Some([a, b, c, d])
+}
+
+impl<SPI: SpiDevice, DC: OutputPin> BandTarget for Panel<'_, SPI, DC> {
+    type Color = Rgb565;
+    type Error = PanelError<SPI::Error, DC::Error>;
+
+    fn ship(&mut self, y: u16, rows: u16, pixels: &[Rgb565]) -> Result<(), Self::Error> {
+        let rows_n = usize::from(rows);
+        if rows_n == 0 || !pixels.len().is_multiple_of(rows_n) || self.buf.len() < 2 {
+            return Err(PanelError::Shape);
+        }
+        let width = pixels.len() / rows_n;
+        let cols = window(self.x_offset, width).ok_or(PanelError::Shape)?;
+        let row0 = self.y_offset.checked_add(y).ok_or(PanelError::Shape)?;
+        let rws = window(row0, rows_n).ok_or(PanelError::Shape)?;
+        self.command(CASET, &cols)?;
+        self.command(RASET, &rws)?;
+        self.command(RAMWR, &[])?;
+        self.dc.set_high().map_err(PanelError::Pin)?;
+        let per = self.buf.len() / 2;
+        for chunk in pixels.chunks(per) {
+            let mut n = 0;
+            for (p, out) in chunk.iter().zip(self.buf.chunks_exact_mut(2)) {
+                out.copy_from_slice(&RawU16::from(*p).into_inner().to_be_bytes());
+                n += 2;
+            }
+            self.spi.write(&self.buf[..n]).map_err(PanelError::Spi)?;
+        }
+        Ok(())
+    }
+}
