@@ -134,6 +134,7 @@ mod tests {
         is_error::<crate::geometry::ProjectionError>();
         is_error::<crate::geometry::PipelineError<Infallible>>();
         is_error::<crate::port::band::BandError>();
+        is_error::<crate::port::panel::PanelError<Infallible, Infallible>>();
         is_error::<crate::controller::ListBandsError<Infallible>>();
         is_error::<crate::controller::PrepareError>();
         is_error::<crate::raster::table::TableError>();

@@ -26,6 +26,7 @@ pub const RAMWR: u8 = 0x2c;
 
 /// Why a band could not be shipped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub enum PanelError<S, P> {
     /// The SPI device failed.
     Spi(S),
@@ -35,6 +36,20 @@ pub enum PanelError<S, P> {
     /// not `rows × width` for a whole width, or an address overflows `u16`.
     Shape,
 }
+
+impl<S: core::fmt::Debug, P: core::fmt::Debug> core::fmt::Display for PanelError<S, P> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            PanelError::Spi(e) => write!(f, "the panel's SPI device failed: {e:?}"),
+            PanelError::Pin(e) => write!(f, "the panel's data/command pin failed: {e:?}"),
+            PanelError::Shape => f.write_str(
+                "the band is not rows × width pixels, the byte buffer holds under 2 bytes, or an address passes 65535",
+            ),
+        }
+    }
+}
+
+impl<S: core::fmt::Debug, P: core::fmt::Debug> core::error::Error for PanelError<S, P> {}
 
 /// A [`BandTarget`] that ships bands to a MIPI-DCS panel.
 ///
