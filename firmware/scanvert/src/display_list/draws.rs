@@ -75,6 +75,8 @@ impl State {
 pub struct Draws<'a> {
     commands: core::iter::Take<Commands<'a>>,
     state: State,
+    /// The byte offset of the first command drawn: the last `clear`.
+    start: usize,
 }
 
 impl<'a> Iterator for Draws<'a> {
@@ -85,7 +87,9 @@ impl<'a> Iterator for Draws<'a> {
     fn next(&mut self) -> Option<Self::Item> {
         for (offset, cmd) in self.commands.by_ref() {
             if let Some(draw) = self.state.step(cmd) {
-                return Some((offset, draw));
+                if offset >= self.start {
+                    return Some((offset, draw));
+                }
             }
         }
         None
@@ -99,10 +103,17 @@ impl<'a> DisplayList<'a> {
     /// whole frame and the colour [`DEFAULT_COLOR`]. A list with no
     /// `clear`, `poly` or `line` ([`Summary::draws_2d`](super::Summary))
     /// yields nothing without being read.
+    ///
+    /// A `clear` fills the whole frame, so what is drawn before the last
+    /// one cannot show: those draws are not yielded (their `clip` and
+    /// `color` still take effect). The work of a list is then bounded by
+    /// one frame's clear and the commands after it, however many `clear`s
+    /// it holds.
     pub fn draws(&self, frame: (u16, u16)) -> Draws<'a> {
         Draws {
             commands: self.commands().take(self.drawn_2d()),
             state: State::new(frame),
+            start: self.summary().last_clear.unwrap_or(0),
         }
     }
 
@@ -115,9 +126,12 @@ impl<'a> DisplayList<'a> {
         F: FnMut(usize, Draw<Vertices<'a>>) -> Result<(), E>,
     {
         let mut state = State::new(frame);
+        let start = self.summary().last_clear.unwrap_or(0);
         for (offset, cmd) in self.commands().take(self.drawn_2d()) {
             if let Some(draw) = state.step(cmd) {
-                f(offset, draw)?;
+                if offset >= start {
+                    f(offset, draw)?;
+                }
             }
         }
         Ok(())

@@ -41,6 +41,10 @@ pub struct Summary {
     /// `true` when the list has a `clear`, a `poly` or a `line`: a
     /// command that draws in painter's order.
     pub draws_2d: bool,
+    /// Byte offset of the last `clear`, if there is one. A `clear` fills
+    /// the whole frame, so nothing drawn before it in painter's order
+    /// shows: the 2D draws start there.
+    pub last_clear: Option<usize>,
     /// Most vertices of one `poly` (0 without one).
     pub poly: u16,
     /// Most vertices of one `poly3` (0 without one).
@@ -54,7 +58,12 @@ impl Summary {
     fn add(&mut self, op: Opcode, offset: usize, b: &[u8]) {
         self.commands += 1;
         let most = match op {
-            Opcode::Clear | Opcode::Line => {
+            Opcode::Clear => {
+                self.draws_2d = true;
+                self.last_clear = Some(offset);
+                return;
+            }
+            Opcode::Line => {
                 self.draws_2d = true;
                 return;
             }

@@ -231,23 +231,27 @@ impl<'a> LabelStore<'a> {
         }
         // Kept in segment order, so that overlapping labels are drawn in
         // the same order however the segments were rebuilt: after the
-        // last label of a segment up to `segment`.
-        let at = self.slots[..self.len]
-            .iter()
-            .position(|l| l.segment > segment)
-            .unwrap_or(self.len);
-        let start = self
-            .slots
-            .get(at)
-            .filter(|_| at < self.len)
-            .map_or(self.text_len, |l| l.start as usize);
+        // last label of a segment up to `segment`. The slots are sorted by
+        // segment, so the place is a binary search, and a label of the
+        // last segment (how a segment is built) is appended at once.
+        let placed = &self.slots[..self.len];
+        let at = match placed.last() {
+            Some(l) if l.segment > segment => placed.partition_point(|l| l.segment <= segment),
+            _ => self.len,
+        };
         let n = bytes.len();
-        self.text.copy_within(start..self.text_len, start + n);
+        let start = if at < self.len {
+            let start = self.slots[at].start as usize;
+            self.text.copy_within(start..self.text_len, start + n);
+            self.slots.copy_within(at..self.len, at + 1);
+            for l in &mut self.slots[at + 1..=self.len] {
+                l.start += n as u32;
+            }
+            start
+        } else {
+            self.text_len
+        };
         self.text[start..start + n].copy_from_slice(bytes);
-        self.slots.copy_within(at..self.len, at + 1);
-        for l in &mut self.slots[at + 1..=self.len] {
-            l.start += n as u32;
-        }
         self.slots[at] = Label {
             x,
             y,
@@ -522,6 +526,36 @@ mod tests {
         }
         let order: heapless::Vec<&str, 5> = s.iter().map(|(_, t)| t).collect();
         assert_eq!(&order[..], &["a1", "a2", "b1", "c1", "c2"]);
+    }
+
+    #[test]
+    fn any_order_of_adds_and_removals_keeps_segment_order() {
+        // A model: the labels, stably sorted by segment.
+        let (mut slots, mut text) = ([Label::EMPTY; 64], [0u8; 256]);
+        let mut s = store(&mut slots, &mut text);
+        let mut model: heapless::Vec<(u16, u8), 64> = heapless::Vec::new();
+        let mut seed = 12345u32;
+        for step in 0..2000u32 {
+            seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            let segment = ((seed >> 16) % 5) as u16;
+            if (seed >> 8) % 7 == 0 {
+                s.clear_segment(segment);
+                model.retain(|&(g, _)| g != segment);
+            } else if model.len() < 64 {
+                let c = b'a' + (step % 26) as u8;
+                let t = [c; 3];
+                let len = 1 + (step % 3) as usize;
+                let t = core::str::from_utf8(&t[..len]).unwrap();
+                if s.add(segment, (0, 0), Rgb888::RED, t).is_ok() {
+                    let at = model.partition_point(|&(g, _)| g <= segment);
+                    model.insert(at, (segment, c)).unwrap();
+                }
+            }
+            let got = s.iter().map(|(l, t)| (l.segment(), t.as_bytes()[0]));
+            assert!(got.eq(model.iter().copied()), "step {step}");
+            let text: usize = s.iter().map(|(_, t)| t.len()).sum();
+            assert_eq!(text, s.text_len());
+        }
     }
 
     #[test]
