@@ -16,9 +16,10 @@
 //! only the options its usage lists.
 //!
 //! `SCENE` is either form of the display list, told apart by the magic
-//! number, in a file of at most [`INPUT_LIMIT`] bytes. Every error exits with a non-zero status and a message naming
-//! the file and the line (text) or byte offset (binary); no output file is
-//! written on an error.
+//! number, in a file of at most [`INPUT_LIMIT`] bytes (binary) or
+//! [`TEXT_LIMIT`] (text). Every error exits with a non-zero status and a
+//! message naming the file and the line (text) or byte offset (binary);
+//! no output file is written on an error.
 //!
 //! Output files are written through a new temporary file next to them,
 //! renamed into place; a destination that is not a regular file (a link, a
@@ -49,11 +50,12 @@ usage:
                 [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
   scanvert help [COMMAND]
 
-SCENE is a display list in text form or binary form (told apart by its magic number),
-at most 16 MiB. render draws it through the simulated display hardware into a PNG;
---timing picks the video timing of the simulated monitor, whose visible area is the
-image (auto, the default: the frame's own size); --band-rows N renders through the
-library's band path, N >= 1 rows at a time (the image is the same, pixel for pixel).
+SCENE is a display list in text form (at most 80 MiB) or binary form (at most
+16 MiB), told apart by its magic number. render draws it through the simulated
+display hardware into a PNG; --timing picks the video timing of the simulated
+monitor, whose visible area is the image (auto, the default: the frame's own
+size); --band-rows N renders through the library's band path, N >= 1 rows at a
+time (the image is the same, pixel for pixel).
 asm and disasm convert between the two forms. demo animates 3D bars over a map with
 labels through the simulated display (double-buffered), writes DIR/frame-NN.png
 (default: demo/, 8 frames) and prints the segments regenerated, trapezoids per frame
@@ -247,29 +249,39 @@ fn options_of(command: &str) -> &'static [&'static str] {
     }
 }
 
-/// The largest input file, in bytes: 16 MiB. A scene, in either form, is
-/// far smaller (the largest binary polygon is 256 KiB); the limit keeps a
-/// mistaken input (`/dev/zero`, a disk image) from filling the memory.
+/// The largest binary input, in bytes: 16 MiB. A scene is far smaller
+/// (the largest binary polygon is 256 KiB); the limit keeps a mistaken
+/// input (`/dev/zero`, a disk image) from filling the memory.
 pub const INPUT_LIMIT: u64 = 16 << 20;
 
-fn too_large(path: &Path) -> CliError {
-    input(path, "input larger than the 16 MiB limit")
+/// The largest text input, in bytes: 80 MiB, five times
+/// [`INPUT_LIMIT`]. `disasm` writes at most five characters for a byte of
+/// list (`push` and its newline for the one-byte command; every other
+/// command takes fewer), so the text of any binary list the program reads
+/// is read back by `asm`.
+pub const TEXT_LIMIT: u64 = 5 * INPUT_LIMIT;
+
+fn too_large(path: &Path, binary: bool) -> CliError {
+    match binary {
+        true => input(path, "binary input larger than the 16 MiB limit"),
+        false => input(path, "text input larger than the 80 MiB limit"),
+    }
 }
 
 /// The contents of the input file `path`, refused as soon as they exceed
-/// [`INPUT_LIMIT`]: a regular file by its size, before reading; anything
-/// else (a device, a pipe) after at most `INPUT_LIMIT + 1` bytes, never
-/// holding more than the limit in memory.
+/// their limit ([`INPUT_LIMIT`] for a binary list, told by its magic
+/// number, [`TEXT_LIMIT`] for text): a regular file by its size, before
+/// reading more than its magic number; anything else (a device, a pipe)
+/// after at most `TEXT_LIMIT + 1` bytes, never holding more than the
+/// limit in memory.
 pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
     use std::io::Read;
     let file = std::fs::File::open(path).map_err(|e| input(path, e))?;
     let size = file.metadata().map_err(|e| input(path, e))?;
-    if size.is_file() && size.len() > INPUT_LIMIT {
-        return Err(too_large(path));
-    }
-    let mut reader = file.take(INPUT_LIMIT + 1);
+    let mut reader = file.take(TEXT_LIMIT + 1);
     let mut bytes = Vec::new();
     let mut chunk = vec![0u8; 1 << 16];
+    let mut checked = false;
     loop {
         let n = match reader.read(&mut chunk) {
             Ok(0) => return Ok(bytes),
@@ -277,10 +289,20 @@ pub fn read_input(path: &Path) -> Result<Vec<u8>, CliError> {
             Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
             Err(e) => return Err(input(path, e)),
         };
-        if (bytes.len() + n) as u64 > INPUT_LIMIT {
-            return Err(too_large(path));
-        }
         bytes.extend_from_slice(&chunk[..n]);
+        let binary = bytes.starts_with(&MAGIC);
+        if !checked && (bytes.len() >= MAGIC.len() || binary) {
+            // A regular file is judged by its size once its form is known.
+            checked = true;
+            let limit = if binary { INPUT_LIMIT } else { TEXT_LIMIT };
+            if size.is_file() && size.len() > limit {
+                return Err(too_large(path, binary));
+            }
+        }
+        let limit = if binary { INPUT_LIMIT } else { TEXT_LIMIT };
+        if bytes.len() as u64 > limit {
+            return Err(too_large(path, binary));
+        }
     }
 }
 
@@ -301,14 +323,16 @@ impl Scene {
         Scene::from_bytes(path, raw)
     }
 
-    /// Checks `raw` (text or binary, at most [`INPUT_LIMIT`] bytes) read
-    /// from `path`.
+    /// Checks `raw` (binary, at most [`INPUT_LIMIT`] bytes, or text, at
+    /// most [`TEXT_LIMIT`]) read from `path`.
     pub fn from_bytes(path: &Path, raw: Vec<u8>) -> Result<Scene, CliError> {
-        if raw.len() as u64 > INPUT_LIMIT {
-            return Err(too_large(path));
+        let binary = raw.starts_with(&MAGIC);
+        let limit = if binary { INPUT_LIMIT } else { TEXT_LIMIT };
+        if raw.len() as u64 > limit {
+            return Err(too_large(path, binary));
         }
         let path = path.to_path_buf();
-        if raw.starts_with(&MAGIC) {
+        if binary {
             DisplayList::new_checked(&raw).map_err(|e| input(&path, e))?;
             Ok(Scene {
                 path,

@@ -35,6 +35,7 @@ fn the_program_help_lists_every_command() {
     }
     for word in [
         "--timing",
+        "80 MiB",
         "16 MiB",
         "scanvert COMMAND --help",
         "Exit status",

@@ -26,7 +26,7 @@ pub struct Assembled {
     pub bytes: Vec<u8>,
     /// `(byte offset of a command, its line)`, by offset; the first entry is
     /// the header and the `frame` line.
-    lines: Vec<(usize, usize)>,
+    lines: Vec<(u32, u32)>,
 }
 
 impl Assembled {
@@ -36,8 +36,10 @@ impl Assembled {
         if offset >= self.bytes.len() {
             return None;
         }
-        let i = self.lines.partition_point(|&(at, _)| at <= offset);
-        self.lines.get(i.checked_sub(1)?).map(|&(_, line)| line)
+        let i = self.lines.partition_point(|&(at, _)| at as usize <= offset);
+        self.lines
+            .get(i.checked_sub(1)?)
+            .map(|&(_, line)| line as usize)
     }
 }
 
@@ -140,12 +142,57 @@ const BOM: &[u8] = b"\xef\xbb\xbf";
 /// Assembles a scene given as raw bytes (a file's contents, which need not
 /// be UTF-8 outside the words that are read). A UTF-8 byte-order mark at
 /// the very start is skipped.
+///
+/// The text is read twice: once to check it and size the list, then again
+/// to write each command as it is parsed. No parsed command is kept, so
+/// the memory is the text, the list, and 8 bytes of line table a command.
 pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
     let raw = raw.strip_prefix(BOM).unwrap_or(raw);
+    // First pass: every error, the frame, the version, and the size.
+    let (mut size, mut count) = (HEADER_LEN, 0usize);
+    let head = walk(raw, |_, cmd| {
+        size += cmd.size();
+        count += 1;
+        Ok(())
+    })?;
+    let (width, height, frame_line) = head.frame;
+    let mut bytes = vec![0u8; size];
+    let mut lines = Vec::with_capacity(count + 1);
+    lines.push((0, frame_line as u32));
+    let mut w = Writer::new(&mut bytes, width, height).map_err(|e| internal(frame_line, e))?;
+    if let Some((v, line)) = head.version {
+        w.require_version(v).map_err(|e| internal(line, e))?;
+    }
+    // Second pass: the same commands, written as they are parsed.
+    let mut at = HEADER_LEN;
+    walk(raw, |line, cmd| {
+        // Text of the program's input limit makes a list of a few hundred
+        // MiB at most, and has fewer lines: both fit in `u32`.
+        lines.push((at as u32, line as u32));
+        at += cmd.size();
+        cmd.write(&mut w).map_err(|e| internal(line, e))
+    })?;
+    let len = w.finish().len();
+    debug_assert_eq!(len, size);
+    Ok(Assembled { bytes, lines })
+}
+
+/// What the text says besides its commands: the `frame` (width, height,
+/// line) and the `version` (version, line), if given.
+struct Head {
+    frame: (u16, u16, usize),
+    version: Option<(u16, usize)>,
+}
+
+/// Parses every line of `raw` in order, handing each command with its line
+/// to `each`; returns the frame and version, or the first error.
+fn walk(
+    raw: &[u8],
+    mut each: impl FnMut(usize, Cmd) -> Result<(), TextError>,
+) -> Result<Head, TextError> {
     let mut frame: Option<(u16, u16, usize)> = None;
     // `version N`: the header's version, at least (see the docs).
     let mut version: Option<(u16, usize)> = None;
-    let mut cmds: Vec<(usize, Cmd)> = Vec::new();
     let mut last_line = 1;
     for (k, line) in raw.split(|&b| b == b'\n').enumerate() {
         let number = k + 1;
@@ -179,33 +226,17 @@ pub fn assemble_bytes(raw: &[u8]) -> Result<Assembled, TextError> {
             (_, None) if is_command(name) => {
                 return Err(err(TextErrorKind::FrameFirst(name.to_string())))
             }
-            _ => cmds.push((number, parse_command(name, operands, line).map_err(err)?)),
+            _ => each(number, parse_command(name, operands, line).map_err(err)?)?,
         }
     }
-    let Some((width, height, frame_line)) = frame else {
+    let Some(frame) = frame else {
         let line = if raw.is_empty() { 1 } else { last_line };
         return Err(TextError {
             line,
             kind: TextErrorKind::Empty,
         });
     };
-    let size = HEADER_LEN + cmds.iter().map(|(_, c)| c.size()).sum::<usize>();
-    let mut bytes = vec![0u8; size];
-    let mut lines = Vec::with_capacity(cmds.len() + 1);
-    lines.push((0, frame_line));
-    let mut w = Writer::new(&mut bytes, width, height).map_err(|e| internal(frame_line, e))?;
-    if let Some((v, line)) = version {
-        w.require_version(v).map_err(|e| internal(line, e))?;
-    }
-    let mut at = HEADER_LEN;
-    for (line, cmd) in &cmds {
-        lines.push((at, *line));
-        at += cmd.size();
-        cmd.write(&mut w).map_err(|e| internal(*line, e))?;
-    }
-    let len = w.finish().len();
-    debug_assert_eq!(len, size);
-    Ok(Assembled { bytes, lines })
+    Ok(Head { frame, version })
 }
 
 /// A command the parser checked but the writer refused: cannot happen (the
