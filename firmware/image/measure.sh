@@ -14,8 +14,8 @@
 # What it owns: in docs/performance.md the blocks between
 # `<!-- on-target:begin -->` and `<!-- on-target:end -->` and between
 # `<!-- headline-target:begin -->` and `<!-- headline-target:end -->`
-# (each marker on a line of its own); and in README.md, CHANGELOG.md and
-# docs/*.md every figure written as `<!-- measure:NAME -->VALUE<!-- /measure -->`
+# (each marker on a line of its own); and in README.md, CHANGELOG.md,
+# docs/*.md and firmware/boards/*/README.md every figure written as `<!-- measure:NAME -->VALUE<!-- /measure -->`
 # on one line, NAME one of those `figures` below prints.
 #
 # Every frame's checksum must equal the host's (`scanvert checksum` of the
@@ -86,6 +86,13 @@ build arm-halfword "$arm_target" --features halfword
 build arm-bands "$arm_target" --features bands
 build arm-budget "$arm_target" --features budget
 build arm-budget-poly3 "$arm_target" --features budget-poly3
+# The Pico board's rendering core, in the RP2040's instruction set.
+build arm-pico thumbv6m-none-eabi --features pico
+# The Pico board's firmware itself, for its sections.
+pico_dir=$root/firmware/boards/pico-st7789
+(cd "$pico_dir" && cargo build --locked --release \
+  --config "target.thumbv6m-none-eabi.rustflags=[\"--remap-path-prefix=$root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" >&2)
+cp "$pico_dir/target/thumbv6m-none-eabi/release/scanvert-pico-st7789" "$out/pico.elf"
 if [ "$(uname -m)" != riscv32 ]; then
   build riscv "$rv_target"
 fi
@@ -120,6 +127,7 @@ run arm-bands qemu_arm
 # Band by band with no frame buffer, in statics sized for the lists.
 run arm-budget qemu_arm
 run arm-budget-poly3 qemu_arm
+run arm-pico qemu_arm
 # Their stack: QEMU logs the registers at the start of every executed
 # block (-d cpu,nochain), and the lowest SP (R13) under the stack's top
 # (_stack_start) is the deepest the stack went, to within what one block
@@ -139,6 +147,7 @@ stack_depth() { # NAME: writes $out/NAME.stack, in bytes
 }
 stack_depth arm-budget
 stack_depth arm-budget-poly3
+stack_depth arm-pico
 have_rv=no
 if command -v qemu-system-riscv32 >/dev/null; then
   run riscv qemu_rv
@@ -627,6 +636,33 @@ figures() {
   done
   read -r polys instr < <(frames "$out/arm.log" | awk '$1 == "w1" { print $4, $8 }')
   printf 'w1-polygons-per-second\t%s\n' "$(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print 168e6 * p / i }')" 0)"
+  pico_figures
+}
+
+# The Pico board (firmware/boards/pico-st7789): its firmware's sections,
+# and its rendering core's frames and stack from the `pico` variant. A
+# frame's time is its instructions at 125 MHz, one a cycle (an upper
+# estimate of the speed: the Cortex-M0+ takes two cycles for loads and
+# taken branches, and runs from the flash's cache), plus its rows sent
+# over SPI at 62.5 MHz (240 pixels of 16 bits a row), which blocks.
+pico_figures() {
+  local text data bss rows frames most median stack
+  read -r text _ data bss _ _ < <(sizes "$out/pico.elf")
+  stack=$(cat "$out/arm-pico.stack")
+  read -r frames rows most < <(awk '$1 == "pico" && $2 ~ /^frames=/ {
+      sub("frames=", "", $2); sub("rows=", "", $3); sub("most=", "", $4); print $2, $3, $4 }' "$out/arm-pico.log")
+  median=$(awk '$1 == "pico" && $2 == "frame" { sub("instructions=", "", $5); print $5 }' "$out/arm-pico.log" |
+    sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }')
+  printf 'pico-bss\t%s B\n' "$(thousands "$bss")"
+  printf 'pico-data\t%s B\n' "$(thousands "$data")"
+  printf 'pico-text\t%s KiB\n' "$(( (text + 512) / 1024 ))"
+  printf 'pico-stack\t%s B\n' "$(thousands "$stack")"
+  printf 'pico-ram\t%s B\n' "$(thousands $((data + bss + stack)))"
+  printf 'pico-instructions-median\t%s\n' "$(thousands "$median")"
+  printf 'pico-instructions-most\t%s\n' "$(thousands "$most")"
+  printf 'pico-rows\t%s of %s\n' "$(thousands "$rows")" "$(thousands $((frames * 240)))"
+  printf 'pico-fps-full\t%s\n' "$(fmt "$(awk -v i="$most" 'BEGIN { print 1 / (i / 125e6 + 240 * 240 * 16 / 62.5e6) }')" 0)"
+  printf 'pico-fps-median\t%s\n' "$(fmt "$(awk -v i="$median" -v r="$rows" -v f="$frames" 'BEGIN { print 1 / (i / 125e6 + r / f * 240 * 16 / 62.5e6) }')" 0)"
 }
 
 # FILE with every `<!-- measure:NAME -->…<!-- /measure -->` span holding
@@ -681,7 +717,7 @@ splice "$perf" '<!-- on-target:begin -->' '<!-- on-target:end -->' "$out/section
 splice "$out/pages/perf.1" '<!-- headline-target:begin -->' '<!-- headline-target:end -->' \
   "$out/headline.md" >"$out/pages/perf.2"
 stale=0
-for page in README.md CHANGELOG.md $(cd "$root" && printf '%s\n' docs/*.md); do
+for page in README.md CHANGELOG.md $(cd "$root" && printf '%s\n' docs/*.md firmware/boards/*/README.md); do
   src=$root/$page
   [ "$page" = docs/performance.md ] && src=$out/pages/perf.2
   spans "$out/figures.tsv" "$src" >"$out/pages/new"

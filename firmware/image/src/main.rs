@@ -49,6 +49,18 @@ compile_error!("the `bands` feature of the image checks the bands' pixels: not w
 ))]
 compile_error!("the `budget` variant of the image is built alone: its statics are all it measures");
 
+#[cfg(all(
+    feature = "pico",
+    any(
+        feature = "defmt",
+        feature = "discard",
+        feature = "halfword",
+        feature = "bands",
+        feature = "budget"
+    )
+))]
+compile_error!("the `pico` variant of the image is built alone");
+
 #[cfg_attr(target_arch = "arm", path = "arm.rs")]
 #[cfg_attr(target_arch = "riscv32", path = "riscv.rs")]
 mod platform;
@@ -57,6 +69,8 @@ mod platform;
 mod bands;
 mod budget;
 mod log;
+#[cfg(feature = "pico")]
+mod pico;
 #[cfg(feature = "rows")]
 mod rows;
 mod scenes;
@@ -411,6 +425,10 @@ pub fn run() -> bool {
     // frame memory and the rest are then never made.
     if cfg!(feature = "budget") {
         return budget::run(&counter, ok);
+    }
+    #[cfg(feature = "pico")]
+    if cfg!(feature = "pico") {
+        return pico::run(&counter, ok);
     }
     let Some(pixels) = platform::frame_memory() else {
         log::fault("the frame memory is taken");
