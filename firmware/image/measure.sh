@@ -653,8 +653,7 @@ pico_figures() {
       sub("frames=", "", $2); sub("rows=", "", $3); sub("most=", "", $4); print $2, $3, $4 }' "$out/arm-pico.log")
   median=$(awk '$1 == "pico" && $2 == "frame" { sub("instructions=", "", $5); print $5 }' "$out/arm-pico.log" |
     sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }')
-  printf 'pico-bss\t%s B\n' "$(thousands "$bss")"
-  printf 'pico-data\t%s B\n' "$(thousands "$data")"
+  printf 'pico-static\t%s B\n' "$(thousands $((data + bss)))"
   printf 'pico-text\t%s KiB\n' "$(( (text + 512) / 1024 ))"
   printf 'pico-stack\t%s B\n' "$(thousands "$stack")"
   printf 'pico-ram\t%s B\n' "$(thousands $((data + bss + stack)))"

@@ -75,5 +75,9 @@ fn the_panel_equals_a_full_render_every_frame() {
         assert!(panel.pixels == full_render(frame), "frame {frame}");
     }
     // The first frame sends every row; the others send what changed.
-    assert!(panel.rows < frames * H as u32 * 6 / 10, "{} rows", panel.rows);
+    assert!(
+        panel.rows < frames * H as u32 * 6 / 10,
+        "{} rows",
+        panel.rows
+    );
 }

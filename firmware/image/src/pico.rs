@@ -17,6 +17,7 @@ use core::convert::Infallible;
 use scanvert::pixelcolor::Rgb565;
 use scanvert::port::band::BandTarget;
 use semihosting::println;
+use static_cell::ConstStaticCell;
 
 /// Frames drawn: the first (every row) and the changes of 23 more.
 const FRAMES: u32 = 24;
@@ -35,7 +36,9 @@ impl BandTarget for Rows {
 
 /// Draws the frames; `true` when every one was drawn.
 pub fn run(counter: &platform::Counter, ok: bool) -> bool {
-    let Some(mem) = cortex_m::singleton!(: ui::Memory = ui::Memory::new()) else {
+    // As the board keeps it: made at compile time, taken once.
+    static MEMORY: ConstStaticCell<ui::Memory> = ConstStaticCell::new(ui::Memory::new());
+    let Some(mem) = MEMORY.try_take() else {
         crate::log::fault("the Pico's memory is taken");
         return false;
     };

@@ -24,11 +24,17 @@ use hal::pac;
 use panic_halt as _;
 use rp2040_hal as hal;
 use scanvert::port::panel::Panel;
+use static_cell::ConstStaticCell;
 
 /// The second-stage boot loader, for the Pico's W25Q080 flash.
 #[link_section = ".boot2"]
 #[used]
 pub static BOOT2: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
+
+/// The drawing's memory.
+static MEMORY: ConstStaticCell<ui::Memory> = ConstStaticCell::new(ui::Memory::new());
+/// The SPI byte buffer: pixels are converted into it, big-endian, and sent.
+static BYTES: ConstStaticCell<[u8; 512]> = ConstStaticCell::new([0; 512]);
 
 /// The Pico's crystal.
 const XTAL_HZ: u32 = 12_000_000;
@@ -129,10 +135,10 @@ fn main() -> ! {
     start_panel(&mut spi, &mut dc, &mut rst, &mut timer);
     let _ = bl.set_high();
 
-    // All of the drawing memory, in `.bss`, taken once.
-    let mem: &'static mut ui::Memory =
-        cortex_m::singleton!(: ui::Memory = ui::Memory::new()).unwrap();
-    let bytes: &'static mut [u8; 512] = cortex_m::singleton!(: [u8; 512] = [0; 512]).unwrap();
+    // All of the drawing memory, made at compile time (in `.bss`, being
+    // zeros) and taken once, never copied through the stack.
+    let mem: &'static mut ui::Memory = MEMORY.take();
+    let bytes: &'static mut [u8; 512] = BYTES.take();
     let mut panel = Panel::new(spi, dc, bytes);
     let mut core = ui::Ui::new(mem).unwrap();
     loop {

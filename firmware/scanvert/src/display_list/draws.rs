@@ -75,8 +75,6 @@ impl State {
 pub struct Draws<'a> {
     commands: core::iter::Take<Commands<'a>>,
     state: State,
-    /// The byte offset of the first command drawn: the last `clear`.
-    start: usize,
 }
 
 impl<'a> Iterator for Draws<'a> {
@@ -87,9 +85,7 @@ impl<'a> Iterator for Draws<'a> {
     fn next(&mut self) -> Option<Self::Item> {
         for (offset, cmd) in self.commands.by_ref() {
             if let Some(draw) = self.state.step(cmd) {
-                if offset >= self.start {
-                    return Some((offset, draw));
-                }
+                return Some((offset, draw));
             }
         }
         None
@@ -110,11 +106,33 @@ impl<'a> DisplayList<'a> {
     /// one frame's clear and the commands after it, however many `clear`s
     /// it holds.
     pub fn draws(&self, frame: (u16, u16)) -> Draws<'a> {
+        let (state, start) = self.state_at_last_clear(frame);
         Draws {
-            commands: self.commands().take(self.drawn_2d()),
-            state: State::new(frame),
-            start: self.summary().last_clear.unwrap_or(0),
+            commands: self.commands_from(start).take(self.drawn_2d()),
+            state,
         }
+    }
+
+    /// The state in force at the last `clear` (the clip registers and
+    /// colour the commands before it leave), and its byte offset: where
+    /// the draws start. With no `clear`, the first state and offset 0.
+    fn state_at_last_clear(&self, frame: (u16, u16)) -> (State, usize) {
+        let mut state = State::new(frame);
+        let Some(start) = self.summary().last_clear else {
+            return (state, 0);
+        };
+        for (offset, cmd) in self.commands() {
+            if offset >= start {
+                break;
+            }
+            match cmd {
+                Command::Clip(_) | Command::Color(_) => {
+                    state.step(cmd);
+                }
+                _ => {}
+            }
+        }
+        (state, start)
     }
 
     /// [`draws`](Self::draws), each handed to `f` in order, until `f`
@@ -125,13 +143,10 @@ impl<'a> DisplayList<'a> {
     where
         F: FnMut(usize, Draw<Vertices<'a>>) -> Result<(), E>,
     {
-        let mut state = State::new(frame);
-        let start = self.summary().last_clear.unwrap_or(0);
-        for (offset, cmd) in self.commands().take(self.drawn_2d()) {
+        let (mut state, start) = self.state_at_last_clear(frame);
+        for (offset, cmd) in self.commands_from(start).take(self.drawn_2d()) {
             if let Some(draw) = state.step(cmd) {
-                if offset >= start {
-                    f(offset, draw)?;
-                }
+                f(offset, draw)?;
             }
         }
         Ok(())

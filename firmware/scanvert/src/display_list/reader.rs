@@ -328,6 +328,16 @@ impl<'a> DisplayList<'a> {
             at: 0,
         }
     }
+
+    /// The commands from the one at byte `offset` on (an offset the list
+    /// gave, such as [`Summary::last_clear`]); from the first when
+    /// `offset` is the header's end or before it.
+    pub(crate) fn commands_from(&self, offset: usize) -> Commands<'a> {
+        Commands {
+            body: &self.bytes[HEADER_LEN..],
+            at: offset.saturating_sub(HEADER_LEN),
+        }
+    }
 }
 
 /// One command of a checked display list.

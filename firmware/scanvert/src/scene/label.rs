@@ -538,7 +538,7 @@ mod tests {
         for step in 0..2000u32 {
             seed = seed.wrapping_mul(1_103_515_245).wrapping_add(12345);
             let segment = ((seed >> 16) % 5) as u16;
-            if (seed >> 8) % 7 == 0 {
+            if (seed >> 8).is_multiple_of(7) {
                 s.clear_segment(segment);
                 model.retain(|&(g, _)| g != segment);
             } else if model.len() < 64 {
