@@ -40,6 +40,14 @@
 //! and ships only the marked rows. A panel that keeps its pixels then
 //! shows the whole frame.
 //!
+//! # Two buffers
+//!
+//! With a target that ships by DMA ([`AsyncBandTarget`], such as
+//! [`AsyncPanel`](crate::port::panel::AsyncPanel) over
+//! `embedded-hal-async`), [`FramePass::draw_async`] and
+//! [`FramePass::draw_marked_async`] draw each band while the one before
+//! it is on its way, alternating two buffers the caller lends.
+//!
 //! ```
 //! use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 //! use embedded_graphics::prelude::*;
@@ -82,11 +90,14 @@
 
 use crate::color::ListColor;
 use crate::port::band::{check_band, check_buffer, fill_background};
-use crate::port::band::{Band, BandTarget, BandsError, DirtyRows};
+use crate::port::band::{AsyncBandTarget, Band, BandTarget, BandsError, DirtyRows};
 use crate::port::Counts;
 use crate::scene::{Frame, Scene, SceneBands, SceneBandsError};
 use crate::visible::{Resolve, VisibleError};
 use core::convert::Infallible;
+use core::future::{poll_fn, Future};
+use core::pin::pin;
+use core::task::Poll;
 use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::PixelColor;
 
@@ -279,6 +290,105 @@ impl<C: PixelColor> FramePass<C> {
         layers.take_changes(Some(dirty));
         self.draw_runs(layers, dirty.runs(), rows, band, target)
             .map(|(_, shipped)| shipped)
+    }
+
+    /// [`draw`](Self::draw) with shipping that overlaps drawing: bands go
+    /// alternately into `buffers.0` and `buffers.1` (each at least
+    /// `rows × width` pixels), and each band is drawn while the one
+    /// before it is on its way to `target`.
+    pub async fn draw_async<P>(
+        self,
+        layers: &mut [&mut dyn Layer<C>],
+        rows: u16,
+        buffers: (&mut [C], &mut [C]),
+        target: &mut P,
+    ) -> Result<Counts, FrameError<P::Error>>
+    where
+        P: AsyncBandTarget<Color = C> + ?Sized,
+    {
+        let h = self.size.1;
+        layers.take_changes(None);
+        self.ship_runs_async(layers, core::iter::once((0, h)), rows, buffers, target)
+            .await
+            .map(|(counts, _)| counts)
+    }
+
+    /// [`draw_marked`](Self::draw_marked) with shipping that overlaps
+    /// drawing, through two buffers as [`draw_async`](Self::draw_async).
+    /// Returns the rows shipped.
+    pub async fn draw_marked_async<P>(
+        self,
+        layers: &mut [&mut dyn Layer<C>],
+        dirty: &mut DirtyRows<'_>,
+        rows: u16,
+        buffers: (&mut [C], &mut [C]),
+        target: &mut P,
+    ) -> Result<u32, FrameError<P::Error>>
+    where
+        P: AsyncBandTarget<Color = C> + ?Sized,
+    {
+        layers.take_changes(Some(dirty));
+        self.ship_runs_async(layers, dirty.runs(), rows, buffers, target)
+            .await
+            .map(|(_, shipped)| shipped)
+    }
+
+    /// Draws the runs of rows `runs` into the two buffers in turn; each
+    /// band's place is sent, its transfer started (the future polled
+    /// once), the next band drawn, then the transfer awaited. A band that
+    /// fails to draw is reported once the transfer before it is done.
+    async fn ship_runs_async<L, P, R>(
+        mut self,
+        layers: &mut L,
+        runs: R,
+        rows: u16,
+        (a, b): (&mut [C], &mut [C]),
+        target: &mut P,
+    ) -> Result<(Counts, u32), FrameError<P::Error>>
+    where
+        L: Layer<C> + ?Sized,
+        P: AsyncBandTarget<Color = C> + ?Sized,
+        R: IntoIterator<Item = (u16, u16)>,
+    {
+        check_buffer(rows, self.size, a.len())?;
+        check_buffer(rows, self.size, b.len())?;
+        let w = self.size.0 as usize;
+        let mut bands = runs.into_iter().flat_map(move |(y0, y1)| {
+            (y0..y1)
+                .step_by(rows as usize)
+                .map(move |y| (y, rows.min(y1 - y)))
+        });
+        let Some((mut y, first)) = bands.next() else {
+            return Ok((self.counts, 0));
+        };
+        let (mut cur, mut next) = (a, b);
+        let mut n = self.band_of(layers, y, first, cur).map_err(widen)?;
+        let mut shipped = 0u32;
+        loop {
+            let following = bands.next();
+            let mut drawn = None;
+            let ship = |error| BandsError::Ship { y, error };
+            target.begin(y, n, self.size.0).await.map_err(ship)?;
+            {
+                let mut send = pin!(target.send(&cur[..n as usize * w]));
+                // The first poll starts the transfer.
+                let started = poll_fn(|cx| Poll::Ready(send.as_mut().poll(cx))).await;
+                if let Some((y2, n2)) = following {
+                    drawn = Some((y2, self.band_of(layers, y2, n2, next)));
+                }
+                let sent = match started {
+                    Poll::Ready(r) => r,
+                    Poll::Pending => send.await,
+                };
+                sent.map_err(ship)?;
+            }
+            shipped += n as u32;
+            let Some((y2, band)) = drawn else {
+                return Ok((self.counts, shipped));
+            };
+            (y, n) = (y2, band.map_err(widen)?);
+            core::mem::swap(&mut cur, &mut next);
+        }
     }
 
     /// Draws and ships the runs of rows `runs` (top to bottom), in bands

@@ -16,10 +16,11 @@
 //! to hand out a `&mut` slice that outlives its own call, which with no
 //! `alloc` and no `unsafe` means the provider owns the memory anyway; the
 //! one case that needs two buffers (draw one while the other is on its way
-//! by DMA) is served by calling the band API of
-//! [`ListBands`](crate::controller::ListBands) or
-//! [`SceneBands`](crate::scene::SceneBands) directly, one band at a time,
-//! with the buffer of the caller's choice each time.
+//! by DMA) is served by an [`AsyncBandTarget`] and
+//! [`FramePass::draw_async`](crate::frame::FramePass::draw_async), which
+//! alternate two buffers the caller lends, or by
+//! [`FramePass::draw_band`](crate::frame::FramePass::draw_band), one band
+//! at a time into the buffer of the caller's choice.
 //!
 //! # Rows no command writes
 //!
@@ -62,6 +63,38 @@ pub trait BandTarget {
     /// row, `rows × width` pixels. The slice is the caller's band buffer;
     /// it is filled again with the next band once this returns.
     fn ship(&mut self, y: u16, rows: u16, pixels: &[Self::Color]) -> Result<(), Self::Error>;
+}
+
+/// Where finished bands go when shipping takes time the drawing can use:
+/// a DMA transfer, through `embedded-hal-async`
+/// ([`AsyncPanel`](crate::port::panel::AsyncPanel)).
+///
+/// A band is shipped in two steps. [`begin`](Self::begin) says where it
+/// goes (a panel's address window) and is awaited to the end; then the
+/// first poll of [`send`](Self::send)'s future starts the transfer of the
+/// pixels. [`FramePass::draw_async`](crate::frame::FramePass::draw_async)
+/// draws the next band between that first poll and awaiting the rest, so
+/// a band is drawn while the last one is on its way.
+pub trait AsyncBandTarget {
+    /// The pixel format of the band.
+    type Color: PixelColor;
+    /// What shipping can fail with.
+    type Error;
+
+    /// Makes ready for rows `y..y + rows` of `width` pixels each.
+    fn begin(
+        &mut self,
+        y: u16,
+        rows: u16,
+        width: u16,
+    ) -> impl core::future::Future<Output = Result<(), Self::Error>>;
+
+    /// Sends the band's pixels, row by row. The slice is not written
+    /// until the future completes.
+    fn send(
+        &mut self,
+        pixels: &[Self::Color],
+    ) -> impl core::future::Future<Output = Result<(), Self::Error>>;
 }
 
 impl<B: BandTarget + ?Sized> BandTarget for &mut B {

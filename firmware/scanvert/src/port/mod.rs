@@ -18,7 +18,7 @@ pub mod panel;
 pub use checksum::Checksum;
 pub use framebuffer::FrameBuffer;
 pub use packed::PackedFrameBuffer;
-pub use panel::{Panel, PanelError};
+pub use panel::{AsyncPanel, Panel, PanelError};
 
 use embedded_graphics_core::pixelcolor::PixelColor;
 

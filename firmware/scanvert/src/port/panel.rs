@@ -6,16 +6,20 @@
 //! RAMWR (0x2c), then the pixels as big-endian RGB565 bytes, converted
 //! through a caller-owned byte buffer in chunks (no allocation).
 //!
+//! [`Panel`] blocks until the bytes are sent. [`AsyncPanel`] does the same
+//! over `embedded-hal-async`'s [`SpiDevice`](embedded_hal_async::spi::SpiDevice),
+//! so that with a DMA-driven SPI the band is sent while the next one is
+//! drawn ([`FramePass::draw_async`](crate::frame::FramePass::draw_async)).
+//!
 //! Not done here: panel initialisation (reset, SLPOUT, COLMOD, MADCTL,
-//! DISPON) is the application's or its panel driver's, and there is no
-//! async (DMA) variant yet; shipping blocks until the bytes are sent.
+//! DISPON) is the application's or its panel driver's.
 
 use embedded_graphics_core::pixelcolor::{raw::RawU16, Rgb565};
 use embedded_graphics_core::prelude::RawData;
 use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiDevice;
 
-use super::band::BandTarget;
+use super::band::{AsyncBandTarget, BandTarget};
 
 /// DCS column address set.
 pub const CASET: u8 = 0x2a;
@@ -137,6 +141,110 @@ impl<SPI: SpiDevice, DC: OutputPin> BandTarget for Panel<'_, SPI, DC> {
                 n += 2;
             }
             self.spi.write(&self.buf[..n]).map_err(PanelError::Spi)?;
+        }
+        Ok(())
+    }
+}
+
+/// A MIPI-DCS panel over `embedded-hal-async`'s SPI: [`Panel`]'s bytes,
+/// sent by DMA where the HAL does so.
+///
+/// [`begin`](AsyncBandTarget::begin) sends CASET, RASET and RAMWR; the
+/// first poll of [`send`](AsyncBandTarget::send) converts the pixels into
+/// `buf` (big-endian RGB565) and starts their transfer. With `buf` of at
+/// least `2 × rows × width` bytes the whole band goes in one transfer,
+/// all of it while the next band is drawn; with less, it goes in chunks of
+/// `buf`, and only the first overlaps the drawing.
+///
+/// # Limits
+/// Those of [`Panel`].
+#[derive(Debug)]
+pub struct AsyncPanel<'b, SPI, DC> {
+    spi: SPI,
+    dc: DC,
+    buf: &'b mut [u8],
+    x_offset: u16,
+    y_offset: u16,
+}
+
+impl<'b, SPI, DC> AsyncPanel<'b, SPI, DC>
+where
+    SPI: embedded_hal_async::spi::SpiDevice,
+    DC: OutputPin,
+{
+    /// A panel with no address offset.
+    pub fn new(spi: SPI, dc: DC, buf: &'b mut [u8]) -> Self {
+        Self::with_offset(spi, dc, buf, 0, 0)
+    }
+
+    /// A panel whose visible area starts at column `x_offset`, row
+    /// `y_offset` of its memory.
+    pub fn with_offset(spi: SPI, dc: DC, buf: &'b mut [u8], x_offset: u16, y_offset: u16) -> Self {
+        Self {
+            spi,
+            dc,
+            buf,
+            x_offset,
+            y_offset,
+        }
+    }
+
+    /// The SPI device and pin back.
+    pub fn release(self) -> (SPI, DC) {
+        (self.spi, self.dc)
+    }
+
+    async fn command(
+        &mut self,
+        cmd: u8,
+        params: &[u8],
+    ) -> Result<(), PanelError<SPI::Error, DC::Error>> {
+        self.dc.set_low().map_err(PanelError::Pin)?;
+        self.spi.write(&[cmd]).await.map_err(PanelError::Spi)?;
+        if !params.is_empty() {
+            self.dc.set_high().map_err(PanelError::Pin)?;
+            self.spi.write(params).await.map_err(PanelError::Spi)?;
+        }
+        Ok(())
+    }
+}
+
+impl<SPI, DC> AsyncBandTarget for AsyncPanel<'_, SPI, DC>
+where
+    SPI: embedded_hal_async::spi::SpiDevice,
+    DC: OutputPin,
+{
+    type Color = Rgb565;
+    type Error = PanelError<SPI::Error, DC::Error>;
+
+    async fn begin(&mut self, y: u16, rows: u16, width: u16) -> Result<(), Self::Error> {
+        if rows == 0 || self.buf.len() < 2 {
+            return Err(PanelError::Shape);
+        }
+        let cols = window(self.x_offset, width.into()).ok_or(PanelError::Shape)?;
+        let row0 = self.y_offset.checked_add(y).ok_or(PanelError::Shape)?;
+        let rws = window(row0, rows.into()).ok_or(PanelError::Shape)?;
+        self.command(CASET, &cols).await?;
+        self.command(RASET, &rws).await?;
+        self.command(RAMWR, &[]).await?;
+        self.dc.set_high().map_err(PanelError::Pin)
+    }
+
+    async fn send(&mut self, pixels: &[Rgb565]) -> Result<(), Self::Error> {
+        let per = self.buf.len() / 2;
+        if per == 0 {
+            return Err(PanelError::Shape);
+        }
+        for chunk in pixels.chunks(per) {
+            let mut n = 0;
+            for (p, out) in chunk.iter().zip(self.buf.chunks_exact_mut(2)) {
+                out.copy_from_slice(&RawU16::from(*p).into_inner().to_be_bytes());
+                n += 2;
+            }
+            self.spi
+                .write(&self.buf[..n])
+                .await
+                .map_err(PanelError::Spi)?;
         }
         Ok(())
     }
