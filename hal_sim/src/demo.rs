@@ -356,7 +356,7 @@ impl Memory {
             let mut last = None;
             for &step in steps {
                 apply(&mut scene, last, step)?;
-                most = most.max(scene.usage()?);
+                most = most.max(scene.needed()?);
                 last = Some(step);
             }
             Ok(most)

@@ -225,36 +225,23 @@ impl SceneHeap {
     /// The capacities a program's scene needs: `run` builds the scene in
     /// the memory it is given, frame after frame as the program does, and
     /// returns the [`Capacities::max`] of
-    /// [`Scene::usage`](scanvert::scene::Scene::usage) over its frames.
-    /// `start` gives the frame's rows and width, the segments and the
-    /// edge slots (the pipeline's `N`), and the first size of the pools;
-    /// whenever a pool runs out (trapezoids, faces, labels, text, active
-    /// slots) it is doubled and `run` starts again from nothing. Any other
-    /// failure, or a pool past 65,535, is returned.
-    ///
-    /// What a frame uses once it is built can be less than the frame
-    /// needed while it was being built: a segment is emptied only when it
-    /// is rebuilt, so a rebuilt segment that grew is stored while a later
-    /// one still holds its last frame's trapezoids. So the capacities
-    /// found are tried once more, from nothing, and a pool that runs out
-    /// then grows from there by an eighth, until `run` succeeds in them:
-    /// what is returned is always enough for `run`.
+    /// [`Scene::needed`](scanvert::scene::Scene::needed) over its frames
+    /// (the library's planning: the most each pool held at once, so
+    /// enough for every moment of the run). `start` gives the frame's rows
+    /// and width, the segments and the edge slots (the pipeline's `N`),
+    /// and the first size of the pools; whenever a pool runs out
+    /// (trapezoids, faces, labels, text, active slots) it is doubled and
+    /// `run` starts again from nothing. Any other failure, or a pool past
+    /// 65,535, is returned.
     pub fn fit(
         start: Capacities,
         mut run: impl FnMut(SceneMemory<'_>) -> Result<Capacities, Shortfall>,
     ) -> Result<Capacities, Shortfall> {
         let mut caps = start;
-        let mut found = false;
         loop {
             let mut heap = SceneHeap::new(caps);
             let e = match run(heap.memory()) {
-                Ok(_) if found => return Ok(caps),
-                Ok(used) => {
-                    // Sized by what the frames used: try it.
-                    caps = used;
-                    found = true;
-                    continue;
-                }
+                Ok(needed) => return Ok(needed),
                 Err(e) => e,
             };
             let pool = match e {
@@ -270,10 +257,7 @@ impl SceneHeap {
             if *pool >= u16::MAX as usize {
                 return Err(e);
             }
-            // While searching, doubled; once found, by an eighth, to stay
-            // near what is needed.
-            let grown = if found { *pool + *pool / 8 } else { *pool * 2 };
-            *pool = grown.clamp(8, u16::MAX as usize);
+            *pool = (*pool * 2).clamp(8, u16::MAX as usize);
         }
     }
 }

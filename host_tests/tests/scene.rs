@@ -93,7 +93,7 @@ fn needs(pipe: &P, frames: &mut [&mut [&mut dyn Procedure<8, 32>]]) -> Capacitie
         for procs in frames.iter_mut() {
             scene.invalidate_all();
             scene.update(procs)?;
-            most = most.max(scene.usage()?);
+            most = most.max(scene.needed()?);
         }
         Ok(most)
     })
@@ -810,4 +810,66 @@ fn a_concave_face_from_its_reflex_corner_is_drawn() {
     }
     assert_eq!(frames[0], frames[1]);
     assert!(frames[0].contains(&Rgb888::BLACK));
+}
+
+/// `Scene::needed` counts the moments inside an update: a rebuilt segment
+/// that grew is stored while the next still holds its last frame. Here
+/// segment 0 goes from 1 quad to 6 while segment 1 goes from 6 to 1, so
+/// every frame ends holding 7 quads, but the second held 12 while it was
+/// built. Storage of `Capacities::max` of `usage` runs out; of `needed`,
+/// it does not.
+#[test]
+fn needed_counts_what_an_update_holds_while_it_builds() {
+    let pipe = pipeline(persp(60, 1.0, 100.0), p(0.0, 0.0, 10.0), p(0.0, 0.0, 0.0));
+    let quads = |n: usize, x: f64| {
+        (0..n)
+            .map(|k| {
+                let y = k as f64 * 0.5 - 2.0;
+                vec![
+                    p(x, y, 0.0),
+                    p(x + 1.0, y, 0.0),
+                    p(x + 1.0, y + 0.3, 0.0),
+                    p(x, y + 0.3, 0.0),
+                ]
+            })
+            .collect::<Vec<_>>()
+    };
+    let frames = [
+        (quads(1, -2.0), quads(6, 1.0)),
+        (quads(6, -2.0), quads(1, 1.0)),
+    ];
+    let run = |scene: &mut Scene<'_, 8, 32>| -> Result<(Capacities, Capacities), SceneError> {
+        let (mut used, mut needed) = (Capacities::default(), Capacities::default());
+        for (a, b) in &frames {
+            let mut seg_a = |bd: &mut B<'_, '_>| {
+                a.iter()
+                    .try_for_each(|f| bd.face(f, Rgb888::RED).map(|_| ()))
+            };
+            let mut seg_b = |bd: &mut B<'_, '_>| {
+                b.iter()
+                    .try_for_each(|f| bd.face(f, Rgb888::BLUE).map(|_| ()))
+            };
+            scene.invalidate_all();
+            scene
+                .update(&mut [&mut seg_a, &mut seg_b])
+                .map_err(|e| e.error)?;
+            used = used.max(scene.usage().unwrap());
+            needed = needed.max(scene.needed().unwrap());
+        }
+        Ok((used, needed))
+    };
+    let mut big = Mem::with_trapezoids(2, 1000);
+    let (used, needed) = run(&mut big.scene(pipe.clone())).unwrap();
+    assert!(
+        needed.trapezoids > used.trapezoids,
+        "{needed:?} against {used:?}"
+    );
+    assert_eq!(needed.faces, 12);
+    assert_eq!(used.faces, 7);
+    // In what the frames used once built, the second frame runs out.
+    let short = run(&mut Mem::of(used).scene(pipe.clone()));
+    assert!(matches!(short, Err(SceneError::Store(_))), "{short:?}");
+    // In what they needed, it does not, and needs the same again.
+    let (_, again) = run(&mut Mem::of(needed).scene(pipe)).unwrap();
+    assert_eq!(again, needed);
 }

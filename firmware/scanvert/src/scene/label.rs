@@ -164,6 +164,8 @@ pub struct LabelStore<'a> {
     text: &'a mut [u8],
     len: usize,
     text_len: usize,
+    /// The most labels, and bytes of text, held at once.
+    most: (usize, usize),
 }
 
 impl<'a> LabelStore<'a> {
@@ -175,6 +177,7 @@ impl<'a> LabelStore<'a> {
             text,
             len: 0,
             text_len: 0,
+            most: (0, 0),
         }
     }
 
@@ -191,6 +194,13 @@ impl<'a> LabelStore<'a> {
     /// Bytes of text held.
     pub fn text_len(&self) -> usize {
         self.text_len
+    }
+
+    /// The most labels, and bytes of their text, held at once since the
+    /// store was made: slots and text of these sizes would have held
+    /// every label placed.
+    pub fn peak(&self) -> (usize, usize) {
+        self.most
     }
 
     /// The placed labels with their text, by segment, and in the order
@@ -263,6 +273,7 @@ impl<'a> LabelStore<'a> {
         };
         self.len += 1;
         self.text_len = end;
+        self.most = (self.most.0.max(self.len), self.most.1.max(end));
         Ok(true)
     }
 

@@ -561,9 +561,8 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// trapezoids on one row ([`Scene::check`]), the frame's rows and
     /// width, its segments, and the pipeline's `N` edge slots (scratch
     /// for one polygon, whose need is its vertices after clipping: at most
-    /// `N`). The most of each over a program's frames is the storage the
-    /// program needs: a procedure-built scene is sized by running it, on
-    /// the host, and taking the [`Capacities::max`] of its frames.
+    /// `N`). A frame can need more while it is built than it holds once
+    /// built: to size storage, take [`needed`](Self::needed) instead.
     ///
     /// Fails as [`Scene::check`] does when the active list is too short.
     pub fn usage(&mut self) -> Result<Capacities, VisibleError<core::convert::Infallible>> {
@@ -578,6 +577,65 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             runs: self.store.width() as usize,
             labels: self.labels.len(),
             text: self.labels.text_len(),
+        })
+    }
+
+    /// The storage the scene has needed so far, as [`SceneStorage`]
+    /// capacities: the most trapezoids and faces its store held at once
+    /// since the scene was made, the most labels and bytes of label text,
+    /// and, as [`usage`](Self::usage) gives them, the most trapezoids on
+    /// one row of the frame as it is now, the frame's rows and width, the
+    /// segments and the pipeline's `N` edge slots.
+    ///
+    /// This is capacity planning in the library: run the program's frames
+    /// (its procedures, its views) in storage large enough, call this after
+    /// each frame, and the [`Capacities::max`] of the results is storage
+    /// that runs the same frames without running out. Pools hand out any
+    /// free slot, so a pool that holds the most ever held at once is never
+    /// short; the peaks count the moments inside an update, when a segment
+    /// being rebuilt is stored while another still holds its last frame.
+    ///
+    /// ```
+    /// # use scanvert::prelude::*;
+    /// # use scanvert::{Angle, Perspective, Pipeline, Point3, Procedure, Scene, SceneError, View, Viewport, Q16};
+    /// # use scanvert::scene::{Capacities, SceneStorage};
+    /// // Generous storage, on the host or in a spare region of RAM.
+    /// let mut big = Box::new(SceneStorage::<512, 64, 2, 64, 16, 64, 64, 4, 64>::new());
+    /// let persp = Perspective::from_fov(Angle::from_degrees(50), 64, Q16::from_int(1), Q16::from_int(100)).unwrap();
+    /// let mut scene = Scene::new(big.as_memory(), Pipeline::<4, 16>::new(persp, Viewport::centred(64, 64).unwrap()))?;
+    /// scene.set_view(&View { eye: Point3::from_int(0, 0, 10), yaw: Angle::ZERO, pitch: Angle::ZERO })?;
+    /// let mut needed: Option<Capacities> = None;
+    /// for frame in 0..8 {
+    ///     // The program's frame: here a quad that grows.
+    ///     let mut quad = |b: &mut scanvert::Builder<'_, '_, 4, 16>| {
+    ///         let s = 1 + frame;
+    ///         let p = |x, y| Point3::from_int(x, y, 0);
+    ///         b.face(&[p(-s, -s), p(s, -s), p(s, s), p(-s, s)], Rgb888::RED).map(|_| ())
+    ///     };
+    ///     scene.invalidate(0)?;
+    ///     let procs: &mut [&mut dyn Procedure<4, 16>] = &mut [&mut quad];
+    ///     scene.update(procs).unwrap();
+    ///     let now = scene.needed().unwrap();
+    ///     needed = Some(needed.map_or(now, |n| n.max(now)));
+    /// }
+    /// let needed = needed.unwrap();
+    /// // Declare exactly that, by name, and check it at compile time
+    /// // with `Capacities::covers` (see `scene_storage!`).
+    /// assert!(needed.trapezoids >= 1 && needed.faces == 1, "{needed:?}");
+    /// # Ok::<(), SceneError>(())
+    /// ```
+    ///
+    /// Fails as [`Scene::check`] does when the active list is too short.
+    pub fn needed(&mut self) -> Result<Capacities, VisibleError<core::convert::Infallible>> {
+        let now = self.usage()?;
+        let (trapezoids, faces) = self.store.peak();
+        let (labels, text) = self.labels.peak();
+        Ok(Capacities {
+            trapezoids,
+            faces,
+            labels,
+            text,
+            ..now
         })
     }
 

@@ -98,7 +98,7 @@ pub struct SceneStorage<
 }
 
 /// The capacities of a [`SceneStorage`] (or what a list or a scene needs
-/// of one: [`Scene::usage`](super::Scene::usage)).
+/// of one: [`Scene::needed`](super::Scene::needed)).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct Capacities {
@@ -133,7 +133,7 @@ impl Capacities {
     ///     trapezoids: 64, faces: 16, segments: 2, rows: 240, edges: 16,
     ///     active: 32, runs: 240, labels: 2, text: 32,
     /// };
-    /// // What `Scene::usage` reported over the frames the program shows.
+    /// // What `Scene::needed` reported over the frames the program shows.
     /// const NEEDED: Capacities = Capacities {
     ///     trapezoids: 41, faces: 9, segments: 1, rows: 240, edges: 8,
     ///     active: 12, runs: 240, labels: 1, text: 9,

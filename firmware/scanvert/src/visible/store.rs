@@ -389,6 +389,15 @@ impl<'a> TrapezoidStore<'a> {
         self.live_faces as usize
     }
 
+    /// The most trapezoids and faces the store has held at once since it
+    /// was made. A pool hands out any free slot, so pools of these sizes
+    /// would have held everything the store was asked to hold.
+    pub fn peak(&self) -> (usize, usize) {
+        // A never-used slot is taken only when every used one is in use,
+        // so the never-used mark is the most in use at once.
+        (self.unused_trap as usize, self.unused_face as usize)
+    }
+
     /// Trapezoid slots (at most [`MAX_POOL`]).
     pub fn capacity(&self) -> usize {
         self.traps.len()
