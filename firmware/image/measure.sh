@@ -88,6 +88,8 @@ build arm-budget "$arm_target" --features budget
 build arm-budget-poly3 "$arm_target" --features budget-poly3
 # The Pico board's rendering core, in the RP2040's instruction set.
 build arm-pico thumbv6m-none-eabi --features pico
+# The same core on the Cortex-M4F: the panel UI's RAM there.
+build arm-ui "$arm_target" --features pico
 # The Pico board's firmware itself, for its sections.
 pico_dir=$root/firmware/boards/pico-st7789
 (cd "$pico_dir" && cargo build --locked --release \
@@ -128,6 +130,7 @@ run arm-bands qemu_arm
 run arm-budget qemu_arm
 run arm-budget-poly3 qemu_arm
 run arm-pico qemu_arm
+run arm-ui qemu_arm
 # Their stack: QEMU logs the registers at the start of every executed
 # block (-d cpu,nochain), and the lowest SP (R13) under the stack's top
 # (_stack_start) is the deepest the stack went, to within what one block
@@ -148,6 +151,7 @@ stack_depth() { # NAME: writes $out/NAME.stack, in bytes
 stack_depth arm-budget
 stack_depth arm-budget-poly3
 stack_depth arm-pico
+stack_depth arm-ui
 have_rv=no
 if command -v qemu-system-riscv32 >/dev/null; then
   run riscv qemu_rv
@@ -661,6 +665,12 @@ pico_figures() {
   printf 'pico-instructions-most\t%s\n' "$(thousands "$most")"
   printf 'pico-rows\t%s of %s\n' "$(thousands "$rows")" "$(thousands $((frames * 240)))"
   printf 'pico-fps-full\t%s\n' "$(fmt "$(awk -v i="$most" 'BEGIN { print 1 / (i / 125e6 + 240 * 240 * 16 / 62.5e6) }')" 0)"
+  local ui_memory ui_stack
+  ui_memory=$(awk '$1 == "pico" && $2 ~ /^frames=/ { sub("memory=", "", $5); print $5 }' "$out/arm-ui.log")
+  ui_stack=$(cat "$out/arm-ui.stack")
+  printf 'ui-m4-memory\t%s B\n' "$(thousands "$ui_memory")"
+  printf 'ui-m4-stack\t%s B\n' "$(thousands "$ui_stack")"
+  printf 'ui-m4-ram\t%s B\n' "$(thousands $((ui_memory + ui_stack)))"
   printf 'pico-fps-median\t%s\n' "$(fmt "$(awk -v i="$median" -v r="$rows" -v f="$frames" 'BEGIN { print 1 / (i / 125e6 + r / f * 240 * 16 / 62.5e6) }')" 0)"
 }
 

@@ -1,8 +1,9 @@
 //! The `pico` variant: the Pico board's rendering core
 //! (`firmware/boards/pico-st7789/src/ui.rs`, the very file the board's
 //! firmware builds), built for `thumbv6m-none-eabi` (the RP2040's
-//! Cortex-M0+ instruction set, which the M4 machine runs unchanged), its
-//! frames counted.
+//! Cortex-M0+ instruction set, which the M4 machine runs unchanged) or for
+//! `thumbv7em-none-eabihf` (the `ui_3d_panel` example's core on a
+//! Cortex-M4F), its frames counted.
 //!
 //! Printed: a line `pico` a frame, with the rows it sent and the
 //! instructions it took, then the largest; measure.sh reads them and the
@@ -64,6 +65,9 @@ pub fn run(counter: &platform::Counter, ok: bool) -> bool {
             rows.0
         );
     }
-    println!("pico frames={FRAMES} rows={rows_total} most={most}");
+    println!(
+        "pico frames={FRAMES} rows={rows_total} most={most} memory={}",
+        core::mem::size_of::<ui::Memory>()
+    );
     ok
 }
