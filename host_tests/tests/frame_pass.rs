@@ -302,3 +302,63 @@ fn an_unchanged_list_marks_nothing_and_a_short_scratch_is_an_error() {
         })
     );
 }
+
+/// A drawable anchored at a 3D point lands where a label anchored there
+/// does, moves with the view (its rows marked, old and new), and hides
+/// when the point goes behind the eye.
+#[test]
+fn a_drawable_anchored_at_a_3d_point_follows_it() {
+    use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, View, Viewport, Q16};
+    use scanvert::scene::label::to_pixels;
+    let (w, h) = (96u16, 64u16);
+    let persp = Perspective::from_fov(
+        Angle::from_degrees(60),
+        w,
+        Q16::from_int(1),
+        Q16::from_int(50),
+    )
+    .unwrap();
+    let mut pipe = Pipeline::<4, 16>::new(persp, Viewport::centred(w, h).unwrap());
+    let at = Point3::new(Q16::from_bits(40_000), Q16::from_int(1), Q16::from_int(-2));
+    let marker = Rectangle::new(Point::zero(), Size::new(5, 3))
+        .into_styled(PrimitiveStyle::with_fill(Rgb565::YELLOW));
+    let mut layer = DrawableLayer::new(marker);
+    let mut bits = [0u32; DirtyRows::words(64)];
+    let mut dirty = DirtyRows::new(&mut bits, h).unwrap();
+    let mut origin = Point::zero();
+    let mut panel = Panel {
+        width: w as usize,
+        pixels: vec![Rgb565::BLACK; w as usize * h as usize],
+        rows: 0,
+    };
+    let mut band = vec![Rgb565::BLACK; 8 * w as usize];
+    for (eye_x, eye_z) in [(0, 10), (3, 8), (-2, 12), (0, -5)] {
+        pipe.set_view(
+            &View::look_at(
+                Point3::from_int(eye_x, 0, eye_z),
+                Point3::from_int(0, 0, -20),
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        let before = origin;
+        origin = layer.anchor(&pipe, at, origin);
+        let a = pipe.project_point(at).unwrap();
+        let mut want = vec![Rgb565::BLACK; w as usize * h as usize];
+        if a.in_front {
+            // The label's anchor, whole pixels: the marker's corner.
+            let (x, y) = to_pixels(a);
+            assert_eq!(origin, Point::new(x, y), "eye at ({eye_x}, {eye_z})");
+            let mut fb = FrameBuffer::new(&mut want, w, h).unwrap();
+            marker.translate(origin).draw(&mut fb).unwrap();
+        } else {
+            assert_eq!(origin, before, "behind the eye: the anchor stays");
+        }
+        dirty.clear();
+        let layers: &mut [&mut dyn Layer<Rgb565>] = &mut [&mut layer];
+        FramePass::new((w, h), Rgb565::BLACK)
+            .draw_marked(layers, &mut dirty, 8, &mut band, &mut panel)
+            .unwrap();
+        assert!(panel.pixels == want, "eye at ({eye_x}, {eye_z})");
+    }
+}

@@ -12,8 +12,8 @@ use embedded_graphics_core::pixelcolor::Rgb565;
 use embedded_hal::digital::{ErrorType as PinErrorType, OutputPin};
 use embedded_hal::spi::{ErrorType, Operation, SpiDevice};
 use scanvert::frame::{DrawableLayer, FramePass, Layer};
-use scanvert::port::band::DirtyRows;
-use scanvert::port::Panel;
+use scanvert::port::band::{BandTarget, DirtyRows};
+use scanvert::port::{Panel, PanelError};
 
 const W: u16 = 240;
 const H: u16 = 240;
@@ -240,4 +240,100 @@ fn marked_pass_ships_marked_rows_equal_a_full_render() {
             assert_eq!((w.0, w.1), (0, W - 1));
         }
     }
+}
+
+/// A panel whose visible area starts at an offset in its memory (the
+/// 240×135 Pico Display at 40, 53): every window is moved by it, and the
+/// pixels land where they would with none.
+#[test]
+fn an_offset_moves_every_window() {
+    let (xo, yo) = (40u16, 53u16);
+    let log = Rc::new(RefCell::new(Log::default()));
+    let mut buf = vec![0u8; 256];
+    let mut panel = Panel::with_offset(Spi(log.clone()), Dc(log.clone()), &mut buf, xo, yo);
+    let mut a = DrawableLayer::new(
+        Circle::new(Point::new(30, 40), 150).into_styled(PrimitiveStyle::with_fill(Rgb565::RED)),
+    );
+    let mut b = DrawableLayer::new(
+        Rectangle::new(Point::new(100, 5), Size::new(90, 200))
+            .into_styled(PrimitiveStyle::with_stroke(Rgb565::GREEN, 3)),
+    );
+    let mut layers: [&mut dyn Layer<Rgb565>; 2] = [&mut a, &mut b];
+    let mut band = vec![Rgb565::BLACK; 16 * usize::from(W)];
+    FramePass::new((W, H), Rgb565::BLUE)
+        .draw(&mut layers, 16, &mut band, &mut panel)
+        .unwrap();
+    let mut mem = vec![0u16; usize::from(W) * usize::from(H)];
+    let win = replay(&log.borrow(), &mut mem, xo, yo);
+    assert_eq!(mem, reference());
+    for (k, &(x0, x1, y0, y1)) in win.iter().enumerate() {
+        let y = k as u16 * 16;
+        assert_eq!((x0, x1, y0, y1), (xo, xo + W - 1, yo + y, yo + y + 15));
+    }
+    // An offset that would carry an address past 65,535 is refused.
+    let mut far = Panel::with_offset(
+        Spi(log.clone()),
+        Dc(log.clone()),
+        &mut buf,
+        u16::MAX - 10,
+        0,
+    );
+    let e = far.ship(0, 1, &[Rgb565::RED; 240]).unwrap_err();
+    assert!(matches!(e, PanelError::Shape), "{e:?}");
+}
+
+/// What the panel refuses, before sending anything, and the errors of
+/// its link.
+#[test]
+fn errors_are_typed() {
+    let log = Rc::new(RefCell::new(Log::default()));
+    // A byte buffer of fewer than two bytes, a band that is not whole rows.
+    let mut tiny = [0u8; 1];
+    let mut p = Panel::new(Spi(log.clone()), Dc(log.clone()), &mut tiny);
+    assert!(matches!(
+        p.ship(0, 1, &[Rgb565::RED; 4]),
+        Err(PanelError::Shape)
+    ));
+    let mut buf = [0u8; 64];
+    let mut p = Panel::new(Spi(log.clone()), Dc(log.clone()), &mut buf);
+    assert!(matches!(
+        p.ship(0, 3, &[Rgb565::RED; 10]),
+        Err(PanelError::Shape)
+    ));
+    assert!(matches!(p.ship(0, 0, &[]), Err(PanelError::Shape)));
+    assert!(log.borrow().writes.is_empty(), "nothing is sent");
+    // A pin that fails, and a bus that fails: each as its own variant.
+    struct BadPin;
+    impl PinErrorType for BadPin {
+        type Error = embedded_hal::digital::ErrorKind;
+    }
+    impl OutputPin for BadPin {
+        fn set_low(&mut self) -> Result<(), Self::Error> {
+            Err(embedded_hal::digital::ErrorKind::Other)
+        }
+        fn set_high(&mut self) -> Result<(), Self::Error> {
+            Err(embedded_hal::digital::ErrorKind::Other)
+        }
+    }
+    let mut p = Panel::new(Spi(log.clone()), BadPin, &mut buf);
+    assert!(matches!(
+        p.ship(0, 1, &[Rgb565::RED; 8]),
+        Err(PanelError::Pin(embedded_hal::digital::ErrorKind::Other))
+    ));
+    struct BadSpi;
+    impl ErrorType for BadSpi {
+        type Error = embedded_hal::spi::ErrorKind;
+    }
+    impl SpiDevice for BadSpi {
+        fn transaction(&mut self, _: &mut [Operation<'_, u8>]) -> Result<(), Self::Error> {
+            Err(embedded_hal::spi::ErrorKind::Other)
+        }
+    }
+    let mut p = Panel::new(BadSpi, Dc(log.clone()), &mut buf);
+    let e = p.ship(0, 1, &[Rgb565::RED; 8]).unwrap_err();
+    assert!(matches!(
+        e,
+        PanelError::Spi(embedded_hal::spi::ErrorKind::Other)
+    ));
+    assert!(!e.to_string().is_empty());
 }

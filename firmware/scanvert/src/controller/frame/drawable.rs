@@ -118,7 +118,9 @@ impl<D: Dimensions> DrawableLayer<D> {
     {
         match pipeline.project_point(at) {
             Ok(a) if a.in_front => {
-                let to = Point::new(a.x >> 4, a.y >> 4);
+                // Rounded as a label's anchor is.
+                let (x, y) = crate::scene::label::to_pixels(a);
+                let to = Point::new(x, y);
                 let moved = self.item.translate(to - origin);
                 self.set(moved);
                 self.show();
