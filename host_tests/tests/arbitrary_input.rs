@@ -103,6 +103,7 @@ fn check_render(
             let ran_out = sized
                 && e.message.contains("this renderer holds")
                 && !e.message.contains("vertices of a face");
+            // ("vertices of a face after clipping" contains it too.)
             prop_assert!(
                 !ran_out && !e.message.contains("not supported"),
                 "memory sized from the scene ran out: {}",

@@ -281,3 +281,69 @@ fn filling_a_pool_of_65536_ends_with_a_capacity_error_and_clears() {
     );
     assert!(store.is_empty());
 }
+
+/// A planar concave `face`: a comb of `teeth` teeth in the plane y = −1,
+/// its base far ahead of the eye and its tips `tip` (view z), wound
+/// counter-clockwise seen from above.
+fn comb(teeth: usize, tip: f64) -> String {
+    let mut pts = Vec::new();
+    for k in 0..teeth {
+        let x = -12.5 + k as f64;
+        pts.push((x, -5.0));
+        pts.push((x + 0.5, tip));
+    }
+    pts.extend([(12.5, -5.0), (12.5, -20.0), (-12.5, -20.0)]);
+    let face: Vec<String> = pts.iter().map(|(x, z)| format!("{x} -1 {z}")).collect();
+    format!(
+        "frame 200 150\nclear #000000\nperspective 60 1 100\nlookat 0 3 0 0 -1 -10\nsegment 1\ncolor #ff0000\nface {}\n",
+        face.join(" ")
+    )
+}
+
+/// A face within 58 vertices is drawn whole when clipping leaves it
+/// within 64; a concave one whose 25 teeth the near plane cuts off one by
+/// one needs 78 and is refused at its line, with that reason, and nothing
+/// is written.
+#[test]
+fn a_concave_face_that_clipping_takes_past_64_is_refused_at_its_line() {
+    // 53 vertices, all in front of the eye: drawn.
+    let (png, r) = render("comb_in_front", &comb(25, -2.0));
+    let out = r.expect("drawn");
+    assert!(png.exists() && out.contains("1 faces (0 culled"), "{out}");
+    // The same with its tips behind the eye: 25 teeth cut off.
+    let (png, r) = render("comb_cut", &comb(25, 2.0));
+    let e = r.expect_err("refused");
+    assert!(e.contains("line 7"), "{e}");
+    assert!(e.contains("64 vertices of a face after clipping"), "{e}");
+    assert!(!png.exists());
+    // Five teeth cut: 13 + 5 = 18 vertices, drawn.
+    let (png, r) = render("comb_few", &comb(5, 2.0));
+    let out = r.expect("drawn");
+    assert!(png.exists() && out.contains("1 faces (0 culled"), "{out}");
+}
+
+/// A convex face of 58 vertices crossing the near plane and all four
+/// window sides gains one vertex a plane: drawn.
+#[test]
+fn a_convex_face_of_58_vertices_is_drawn_whatever_clips_it() {
+    let ring: Vec<String> = (0..58)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / 58.0;
+            // A disc around the eye's axis, wider than the window, from
+            // behind the eye to far ahead.
+            format!(
+                "{:.4} {:.4} {:.4}",
+                40.0 * a.cos(),
+                30.0 * a.sin(),
+                -30.0 + 35.0 * a.sin()
+            )
+        })
+        .collect();
+    let text = format!(
+        "frame 160 120\nclear #000000\nperspective 60 1 100\nsegment 1\ncolor #00ff00\nface {}\n",
+        ring.join(" ")
+    );
+    let (png, r) = render("convex_58", &text);
+    let out = r.expect("drawn");
+    assert!(png.exists() && out.contains("1 faces (0 culled"), "{out}");
+}

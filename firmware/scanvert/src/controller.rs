@@ -106,8 +106,12 @@ pub use bands::{ListBands, ListBandsError, PrepareError};
 pub const LIST_STACK: usize = 16;
 
 /// Vertices of one 3D polygon of a list, at every stage of clipping: a
-/// `face` may have up to `LIST_VERTICES − 6` (each of the six clip planes
-/// adds at most one to a convex face).
+/// `face` may have up to `LIST_VERTICES − 6`, and is drawn whole when each
+/// clip pass leaves it at most `LIST_VERTICES`. A pass adds at most one
+/// vertex for each separate part of the polygon it cuts off, so a convex
+/// face (one part a plane) always fits; a concave one whose teeth a plane
+/// cuts off one by one can need more, and is then refused at its command
+/// ([`Resource::ClippedVertices`]), before anything is drawn.
 pub const LIST_VERTICES: usize = 64;
 
 /// The most slots of one pool that a list may need: the store's pools
@@ -232,6 +236,9 @@ pub enum Resource {
     Runs,
     /// Vertices of one 3D `face` ([`LIST_VERTICES`] less six).
     FaceVertices,
+    /// Vertices of one 3D polygon after a clip pass ([`LIST_VERTICES`]): a
+    /// concave face gains a vertex for each part of it a plane cuts off.
+    ClippedVertices,
     /// Label slots.
     Labels,
     /// Bytes of label text.
@@ -249,6 +256,7 @@ impl fmt::Display for Resource {
             Resource::Active => "active entries",
             Resource::Runs => "runs",
             Resource::FaceVertices => "vertices of a face",
+            Resource::ClippedVertices => "vertices of a face after clipping",
             Resource::Labels => "labels",
             Resource::LabelText => "bytes of label text",
         })
@@ -276,7 +284,7 @@ fn error_at(offset: usize, error: SceneError) -> RenderError<core::convert::Infa
         SceneError::Store(e) => Resource::of_store(e),
         SceneError::Labels(LabelError::Labels { capacity }) => (Resource::Labels, capacity),
         SceneError::Labels(LabelError::Text { capacity }) => (Resource::LabelText, capacity),
-        SceneError::Vertices { .. } => (Resource::FaceVertices, LIST_VERTICES - 6),
+        SceneError::Vertices { .. } => (Resource::ClippedVertices, LIST_VERTICES),
         _ => return RenderError::Scene { offset, error },
     };
     RenderError::Capacity3d {
