@@ -14,10 +14,13 @@
 //! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
 //! alone, for callgrind. `-- --only bands` times band rendering
 //! against the full frame and writes only `docs/performance.md`'s section
-//! on bands (which the full run keeps).
+//! on bands (which the full run keeps). `-- --only model` counts the
+//! simulated write port's cycles on the image's 2D lists (the model
+//! calibrated on W1, the others predicted) and rewrites its section.
 
 mod bands;
 mod contenders;
+mod dual_port;
 mod heap;
 mod numbers;
 mod plot;
@@ -227,6 +230,8 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
                             demo, two threads); rewrites its section of the page
   --only worst              the worst cases (staggered faces, 1,000 to 38,835);
                             rewrites its section of the page and its plot
+  --only model              the write port's cycle model on the image's 2D lists
+                            (counted, not timed); rewrites its section of the page
   --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
   --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind
                             ($PROFILE_FACES=N: of N faces; $PROFILE_VERSION=layered:
@@ -267,6 +272,10 @@ fn main() -> std::io::Result<()> {
     }
     if only.as_deref() == Some("worst") {
         return only_worst();
+    }
+    if only.as_deref() == Some("model") {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
+        return dual_port::write_section(&path);
     }
     if only.as_deref() == Some("bands") {
         eprintln!("bands against the full frame (ms per frame, ratios):");
