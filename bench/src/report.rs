@@ -380,7 +380,8 @@ pub fn markdown(run: &Run, old: &str) -> String {
          {:.0} s; the 3D scenes {:.0} s of it). The benchmark keeps the blocks\n\
          other tools write (between `NAME:begin` and `NAME:end` HTML comments)\n\
          and everything after the on-target block as it finds them; `-- --only\n\
-         depth`, `-- --only bands` and `-- --only worst` rewrite their own block.\n",
+         depth`, `-- --only bands`, `-- --only worst` and `-- --only model`\n\
+         rewrite their own block.\n",
         kept(
             old,
             HEADLINE_BEGIN,
