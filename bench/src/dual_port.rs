@@ -155,7 +155,11 @@ fn fill_rate(rows: &[ModelRow]) -> (f64, f64, f64) {
     let mpx = w1.pixels() as f64 * hz / w1.cycles(&model) as f64 / 1e6;
     let per_polygon = w1.pixels() as f64 / w.polygons as f64;
     let cycles = per_polygon * hz / (REFERENCE_MPIXELS_PER_SECOND * 1e6);
-    (mpx, cycles, (1.0 - REFERENCE_MPIXELS_PER_SECOND / mpx) * 100.0)
+    (
+        mpx,
+        cycles,
+        (1.0 - REFERENCE_MPIXELS_PER_SECOND / mpx) * 100.0,
+    )
 }
 
 /// The section of `docs/performance.md`, markers included.

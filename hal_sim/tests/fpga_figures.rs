@@ -12,8 +12,7 @@ use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
 use scanvert_sim::cli::{self, Scene};
 use scanvert_sim::dual_port::{
-    CycleModel, DualPortRam, WriteCounters, POLYGON_SETUP_CYCLES, ROW_STEP_CYCLES,
-    WRITE_PORT_CLOCK,
+    CycleModel, DualPortRam, WriteCounters, POLYGON_SETUP_CYCLES, ROW_STEP_CYCLES, WRITE_PORT_CLOCK,
 };
 use scanvert_sim::refresh::{CoSimulation, RefreshController};
 use scanvert_sim::timing::VideoTiming;
