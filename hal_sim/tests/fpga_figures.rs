@@ -210,9 +210,13 @@ fn w1_calibrates_the_set_up_to_the_reference_rate() {
         let m = CycleModel::calibrate(row, &w, 54_945).expect("calibrates");
         assert_eq!(m.setup_cycles(), 10, "stepper of {row}");
     }
-    // A stepper that held the writes a cycle a row would leave 910 − 900 −
-    // 30 < 0 cycles for the set-up: W1's rate rules it out.
-    assert!(910 < 900 + 30);
+    // A stepper that held the writes a cycle a span: the writes and those
+    // cycles alone take longer than the reference unit's time for W1
+    // (930 against 910 cycles a square), so no set-up can make it.
+    let held = w.pixels_written + w.spans;
+    let reference = u64::from(WRITE_PORT_CLOCK.hz()) * w.polygons / 54_945;
+    assert_eq!((held / w.polygons, reference / w.polygons), (930, 910));
+    assert!(held > reference);
 }
 
 #[test]
