@@ -1,5 +1,5 @@
 //! Speed against error: scanvert's rasterisers, their faster options and
-//! their peers on the 2D workloads of issue 5, and its scan-line visible
+//! their peers on the 2D workloads W1–W5, and its scan-line visible
 //! surfaces against z-buffers on the 3D scenes, timed in one process run.
 //!
 //! `cargo run --release -p scanvert-bench` writes `docs/performance.md`,

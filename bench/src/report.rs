@@ -13,7 +13,8 @@ pub const ON_TARGET_BEGIN: &str = "<!-- on-target:begin -->";
 /// End marker.
 pub const ON_TARGET_END: &str = "<!-- on-target:end -->";
 
-/// The reference design's figures (issue 5).
+/// The reference design's figures: polygons/s on W1, clears/s of
+/// 256 × 256.
 const REF_W1: f64 = 54_945.0;
 const REF_W2: f64 = 763.0;
 
