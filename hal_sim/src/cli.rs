@@ -608,10 +608,11 @@ fn write_port_stats(path: &Path, ram: &DualPortRam) -> String {
     let name = shown(path);
     let w = ram.write_counters();
     let m = ram.cycle_model();
+    let reference = m == crate::dual_port::CycleModel::REFERENCE;
     let rate = |r: Option<f64>| r.map_or_else(|| "n/a".to_string(), |r| format!("{r:.0}"));
     format!(
         "{name}: write port at {} MHz: {} cycles ({} polygon set-ups, {} spans, {} cycles waiting for the edge stepper, {} clear cycles), {:.3} us simulated\n\
-         {name}: write port model: {} cycles a polygon's set-up (calibrated on W1's 54,945 polygons/s), {} cycles a span for the edge stepper overlapped with the writes (assumed), 1 cycle a pixel\n\
+         {name}: write port model: {} cycles a polygon's set-up ({}), {} cycles a span for the edge stepper overlapped with the writes ({}), 1 cycle a pixel\n\
          {name}: write port rates predicted by the model: {} pixels/s, {} polygons/s, {} clears/s\n",
         f64::from(w.clock.hz()) / 1e6,
         w.cycles,
@@ -621,7 +622,13 @@ fn write_port_stats(path: &Path, ram: &DualPortRam) -> String {
         w.clear_cycles,
         w.time_ps() as f64 / 1e6,
         m.setup_cycles(),
+        if reference {
+            "calibrated on W1's 54,945 polygons/s"
+        } else {
+            "set by the caller"
+        },
         m.row_cycles(),
+        if reference { "assumed" } else { "set by the caller" },
         rate(w.pixels_per_second()),
         rate(w.polygons_per_second()),
         rate(w.clears_per_second()),
