@@ -1,5 +1,5 @@
 //! Speed against error: scanvert's rasterisers, their faster options and
-//! their peers on the 2D workloads of issue 5, and its scan-line visible
+//! their peers on the 2D workloads W1–W5, and its scan-line visible
 //! surfaces against z-buffers on the 3D scenes, timed in one process run.
 //!
 //! `cargo run --release -p scanvert-bench` writes `docs/performance.md`,
@@ -14,13 +14,21 @@
 //! runs W1 alone and `-- --profile-3d MODE PASSES` the 170-face 3D scene
 //! alone, for callgrind. `-- --only bands` times band rendering
 //! against the full frame and writes only `docs/performance.md`'s section
-//! on bands (which the full run keeps).
+//! on bands (which the full run keeps). `-- --only model` counts the
+//! simulated write port's cycles on the image's 2D lists (the model
+//! calibrated on W1, the others predicted) and rewrites its section;
+//! `-- --only race` fits the racing cost model to the image's row counts
+//! and rewrites the racing tables; `-- --only ram` counts the RAM of band
+//! rendering by part and rewrites its table.
 
 mod bands;
 mod contenders;
+mod dual_port;
 mod heap;
 mod numbers;
 mod plot;
+mod race;
+mod ram;
 mod report;
 mod visible3d;
 mod worst;
@@ -227,6 +235,14 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
                             demo, two threads); rewrites its section of the page
   --only worst              the worst cases (staggered faces, 1,000 to 38,835);
                             rewrites its section of the page and its plot
+  --only model              the write port's cycle model on the image's 2D lists
+                            (counted, not timed); rewrites its section of the page
+  --only race               racing the beam: the M4 cost model's fit and error, the
+                            lowest clocks (not timed); rewrites its section
+  --only ram                the RAM of band rendering by part (counted, not
+                            timed); rewrites its table
+  --write-worst DIR         writes the worst-case lists (nearer-N.dl, reversed-N.dl,
+                            farther-N.dl) into DIR, for timing `scanvert render`
   --profile-w1 MODE PASSES  W1 alone, for callgrind (null, framebuffer, tiny-skia)
   --profile-3d MODE PASSES  the 170-face 3D scene alone, for callgrind
                             ($PROFILE_FACES=N: of N faces; $PROFILE_VERSION=layered:
@@ -239,7 +255,7 @@ fn main() -> std::io::Result<()> {
     if args.len() > 1
         && !matches!(
             args[1].as_str(),
-            "--only" | "--profile-3d" | "--profile-w1" | "--profile-bands"
+            "--only" | "--profile-3d" | "--profile-w1" | "--profile-bands" | "--write-worst"
         )
     {
         eprintln!("{USAGE}");
@@ -256,6 +272,9 @@ fn main() -> std::io::Result<()> {
         );
         return Ok(());
     }
+    if args.len() == 3 && args[1] == "--write-worst" {
+        return worst::write_lists(std::path::Path::new(&args[2]));
+    }
     if args.len() == 4 && args[1] == "--profile-w1" {
         profile_w1(&args[2], args[3].parse().unwrap_or(100));
         return Ok(());
@@ -267,6 +286,18 @@ fn main() -> std::io::Result<()> {
     }
     if only.as_deref() == Some("worst") {
         return only_worst();
+    }
+    if only.as_deref() == Some("race") {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
+        return race::write_section(&path);
+    }
+    if only.as_deref() == Some("ram") {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
+        return ram::write_section(&path);
+    }
+    if only.as_deref() == Some("model") {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
+        return dual_port::write_section(&path);
     }
     if only.as_deref() == Some("bands") {
         eprintln!("bands against the full frame (ms per frame, ratios):");

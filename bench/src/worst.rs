@@ -1,8 +1,7 @@
 //! The visible-surface sweep's worst case, timed in one process: the
 //! staggered faces of `testkit::staggered` (1,000 to 38,835 of them, each
 //! nearer than the last, the same listed last to first, each farther),
-//! written as display lists as `host_tests/tests/worst_case.rs` writes
-//! them and rendered through the controller into a 1024 × 1024 RGB565
+//! written as display lists (a colour and a `poly3` a face) and rendered through the controller into a 1024 × 1024 RGB565
 //! frame. `--only worst` rewrites the section between [`BEGIN`] and
 //! [`END`] of `docs/performance.md` and `docs/worst-case.png`.
 
@@ -45,7 +44,7 @@ pub struct WorstRow {
 }
 
 /// The display list of `faces`: a black clear, then each face's colour
-/// and the face (25 bytes a face), as the worst-case test writes it.
+/// and the face (25 bytes a face).
 fn list(faces: &[Poly3]) -> Vec<u8> {
     let size = 20 + faces.iter().map(|p| 7 + 6 * p.poly.len()).sum::<usize>();
     let mut buf = vec![0u8; size];
@@ -62,6 +61,22 @@ fn list(faces: &[Poly3]) -> Vec<u8> {
         w.poly3(p.poly.iter().copied().map(v)).expect("3 vertices");
     }
     w.finish().to_vec()
+}
+
+/// `--write-worst DIR`: writes the lists timed here into `dir`, as
+/// `nearer-N.dl`, `reversed-N.dl` and `farther-N.dl` for each of
+/// [`SIZES`], for timing `scanvert render` on them.
+pub fn write_lists(dir: &std::path::Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    for &n in &SIZES {
+        for (order, name) in ORDERS {
+            std::fs::write(
+                dir.join(format!("{name}-{n}.dl")),
+                list(&staggered(n, order)),
+            )?;
+        }
+    }
+    Ok(())
 }
 
 /// Renders each list until at least `budget` has passed (at least once,

@@ -627,21 +627,32 @@ fn timing_for(name: &str, w: u16, h: u16) -> Result<VideoTiming, CliError> {
 }
 
 /// The `--stats` lines of the simulated write port: its busy time at its
-/// clock and the rates of the cycle model (see [`crate::dual_port`]).
+/// clock, the cycle model and what it predicts (see [`crate::dual_port`]).
 fn write_port_stats(path: &Path, ram: &DualPortRam) -> String {
     let name = shown(path);
     let w = ram.write_counters();
+    let m = ram.cycle_model();
+    let reference = m == crate::dual_port::CycleModel::REFERENCE;
     let rate = |r: Option<f64>| r.map_or_else(|| "n/a".to_string(), |r| format!("{r:.0}"));
     format!(
-        "{}: write port at {} MHz: {} cycles ({} polygon set-ups, {} clear cycles), {:.3} us simulated\n\
-         {}: write port rates: {} pixels/s, {} polygons/s, {} clears/s\n",
-        name,
+        "{name}: write port at {} MHz: {} cycles ({} polygon set-ups, {} spans, {} cycles waiting for the edge stepper, {} clear cycles), {:.3} us simulated\n\
+         {name}: write port model: {} cycles a polygon's set-up ({}), {} cycles a span for the edge stepper overlapped with the writes ({}), 1 cycle a pixel\n\
+         {name}: write port rates predicted by the model: {} pixels/s, {} polygons/s, {} clears/s\n",
         f64::from(w.clock.hz()) / 1e6,
         w.cycles,
         w.polygons,
+        w.spans,
+        w.stepper_wait_cycles,
         w.clear_cycles,
         w.time_ps() as f64 / 1e6,
-        name,
+        m.setup_cycles(),
+        if reference {
+            "calibrated on W1's 54,945 polygons/s"
+        } else {
+            "set by the caller"
+        },
+        m.row_cycles(),
+        if reference { "assumed" } else { "set by the caller" },
         rate(w.pixels_per_second()),
         rate(w.polygons_per_second()),
         rate(w.clears_per_second()),

@@ -12,29 +12,52 @@
 //! [`DualPortRam::reset_counters`].
 //!
 //! # Cycle model
-//! The write port stores one pixel per cycle of its clock: a span of `n`
-//! pixels (after clipping) takes `n` cycles, a clear takes `width × height`.
-//! Each polygon costs [`POLYGON_SETUP_CYCLES`] (10) more, charged when the
-//! rasteriser begins it ([`SpanTarget::begin_polygon`]), whether or not any
-//! of it is drawn. The reference design's write port runs at 50 MHz
-//! (50 Mpixel/s, [`WRITE_PORT_CLOCK`]). The read port delivers one pixel per
+//! The write port charges what the reference design's scan-conversion
+//! unit (an FPGA at 50 MHz) would spend, in three terms ([`CycleModel`]):
+//!
+//! | term | cycles | where the constant comes from |
+//! |---|--:|---|
+//! | a pixel written (spans and clears) | 1 | the reference unit's 20 ns a pixel (50 Mpixel/s); its 763 clears/s of 256 × 256 are 65,536 cycles each |
+//! | a polygon's set-up ([`SpanTarget::begin_polygon`]), whether or not any of it is drawn | 10 ([`POLYGON_SETUP_CYCLES`]) | **calibrated on W1**: its 54,945 polygons/s are 910 cycles a 30 × 30 square, of which 900 are pixel writes and none a wait for the stepper |
+//! | a span: the edge stepper's update of the span's two edges | 2 ([`ROW_STEP_CYCLES`]), overlapped with the writes | **assumed**: one cycle an edge (the error-counter step of `raster/edge.rs`: `x += q`, `e += r`, a carry when `e ≥ dy`) |
+//!
+//! The stepper works out the next span while the port writes the current
+//! one, so a span costs `max(pixels, 2)` cycles: the writes wait for the
+//! stepper only after a span of fewer than 2 pixels (a span wholly outside
+//! the RAM costs the 2). It cannot be otherwise: W1 leaves 10 cycles a
+//! square beside its 900 writes for 30 rows, so a stepper that held the
+//! writes for even one cycle a row would cost 930 cycles, 53,763
+//! polygons/s, against the reference unit's 54,945. On W1 the stepper is
+//! never waited for, whatever its time up to 30 cycles a span, so W1 fixes
+//! the set-up alone ([`CycleModel::calibrate`]) and the stepper's time is
+//! a design assumption; the other lists' rates are **predictions**. The
+//! rates ([`WriteCounters::polygons_per_second`] and the others) divide
+//! each count by the simulated time of the cycles it took: polygons by all
+//! busy cycles but the clears', clears by the clears' own.
+//!
+//! What the model gives on the firmware image's 2D lists
+//! (`firmware/image/scenes`), clears left out: the spans the simulator
+//! writes, counted exactly. `cargo run --release -p scanvert-bench --
+//! --only model` prints this table and writes it to `docs/performance.md`,
+//! and the benchmark's tests fail when either copy is stale; `scanvert
+//! render LIST --out x.png --stats` prints a list's counts and rates. The
+//! last column is the prediction with a stepper of another time, the
+//! set-up calibrated on W1 again:
+//!
+//! | list | polygons | spans | pixels | waits for the stepper (cycles) | cycles a polygon | polygons/s | Mpixel/s | | polygons/s with a stepper of 1 / 4 / 8 cycles a span |
+//! |---|--:|--:|--:|--:|--:|--:|--:|---|--:|
+//! | W1, 30 × 30 squares | 226 | 6,780 | 203,400 | 0 | 910.0 | 54,945 | 49.45 | calibrated | 54,945 / 54,945 / 54,945 |
+//! | W4, W1 rotated by 17° | 218 | 8,284 | 196,200 | 436 | 912.0 | 54,825 | 49.34 | predicted | 54,945 / 54,585 / 53,648 |
+//! | W3, 10,000 small triangles | 10,000 | 178,202 | 1,217,803 | 29,476 | 134.7 | 371,118 | 45.19 | predicted | 379,419 / 340,653 / 267,085 |
+//! | W5, one 12-gon | 1 | 250 | 95,268 | 0 | 95,278.0 | 525 | 49.99 | predicted | 525 / 525 / 525 |
+//! | the 2D demo (`scenes/demo.dl`) | 19 | 881 | 47,490 | 221 | 2,521.1 | 19,833 | 49.57 | predicted | 19,924 / 19,499 / 18,783 |
+//!
+//! The reference unit's own measured fill rate, 49.3 Mpixel/s, is 0.3 %
+//! below the model's 49.45 Mpixel/s on W1: at 900 pixels a square it is
+//! 912.8 cycles, 2.8 more than the model (less than a cycle in ten rows),
+//! which the model does not place. The read port delivers one pixel per
 //! cycle of its clock, which the refresh controller drives at the pixel
 //! clock and also ticks, without an access, through the blanking intervals.
-//!
-//! The model is the reference unit's own figures, and reproduces them
-//! (`hal_sim/tests/fpga_figures.rs`):
-//!
-//! | reference figure | cycles | model |
-//! |---|--:|---|
-//! | 20 ns a pixel | 1 | one cycle a pixel at 50 MHz |
-//! | 54,945 polygons/s of 30 × 30 px | 910 = 50 MHz ÷ 54,945 | 900 pixel writes + 10 of set-up |
-//! | 763 clears/s of 256 × 256 | 65,536 = 50 MHz ÷ 763 | one cycle a pixel |
-//!
-//! The set-up of 10 cycles is what the second figure leaves over the pixel
-//! writes: 50,000,000 ÷ 54,945 = 910.0 cycles a polygon. The rates
-//! ([`WriteCounters::polygons_per_second`] and the others) divide each
-//! count by the simulated time of the cycles it took: polygons by all busy
-//! cycles but the clears', clears by the clears' own.
 //!
 //! # Double buffering
 //! A RAM made with [`DualPortRam::double_buffered`] has two banks. The
@@ -63,10 +86,103 @@ pub const WRITE_PORT_CLOCK: Clock = match Clock::from_hz(50_000_000) {
     None => panic!(),
 };
 
-/// Write-port cycles of a polygon's set-up, beyond its pixel writes: the
-/// reference unit's 54,945 polygons/s of 900 pixels at 50 MHz are 910
-/// cycles a polygon (see the module docs).
+/// Write-port cycles of a polygon's set-up, beyond its pixel writes:
+/// calibrated on W1, whose 54,945 polygons/s of 900 pixels at 50 MHz are
+/// 910 cycles a polygon (see the module docs and [`CycleModel::calibrate`]).
 pub const POLYGON_SETUP_CYCLES: u64 = 10;
+
+/// Write-port cycles the edge stepper takes for a span, one an edge of its
+/// pair, overlapped with the writing of the span before: assumed, as W1
+/// cannot show it (see the module docs).
+pub const ROW_STEP_CYCLES: u64 = 2;
+
+/// Spans are counted by their stored length below this
+/// ([`WriteCounters::short_spans`]), so that a [`CycleModel`] with a
+/// stepper of up to this many cycles a span can re-cost a render.
+pub const SHORT_SPANS: usize = 8;
+
+/// The write port's cycle model: a polygon's set-up, the edge stepper's
+/// time a span (overlapped with the writes), one cycle a pixel (see the
+/// module docs).
+///
+/// # Guarantees
+/// `1 <= row_cycles() <= SHORT_SPANS`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CycleModel {
+    setup: u64,
+    row: u64,
+}
+
+impl CycleModel {
+    /// The reference unit's: [`POLYGON_SETUP_CYCLES`] and
+    /// [`ROW_STEP_CYCLES`].
+    pub const REFERENCE: CycleModel = CycleModel {
+        setup: POLYGON_SETUP_CYCLES,
+        row: ROW_STEP_CYCLES,
+    };
+
+    /// A model of `setup` cycles a polygon and a stepper of `row` cycles a
+    /// span; `None` unless `1 <= row <= SHORT_SPANS`.
+    pub const fn new(setup: u64, row: u64) -> Option<CycleModel> {
+        if row >= 1 && row <= SHORT_SPANS as u64 {
+            Some(CycleModel { setup, row })
+        } else {
+            None
+        }
+    }
+
+    /// Cycles of a polygon's set-up.
+    pub const fn setup_cycles(&self) -> u64 {
+        self.setup
+    }
+
+    /// Cycles the stepper takes for a span.
+    pub const fn row_cycles(&self) -> u64 {
+        self.row
+    }
+
+    /// Cycles the writes wait for the stepper after a span of `stored`
+    /// pixels.
+    pub const fn wait_after(&self, stored: u64) -> u64 {
+        self.row.saturating_sub(stored)
+    }
+
+    /// The stepper's waits over the spans counted in `w`.
+    pub fn waits(&self, w: &WriteCounters) -> u64 {
+        (0..self.row)
+            .zip(w.short_spans)
+            .map(|(n, spans)| spans * self.wait_after(n))
+            .sum()
+    }
+
+    /// The busy cycles this model gives the accesses counted in `w`:
+    /// set-ups, pixels and the stepper's waits.
+    pub fn cycles(&self, w: &WriteCounters) -> u64 {
+        self.setup * w.polygons + w.pixels_written + self.waits(w)
+    }
+
+    /// The model with a stepper of `row` cycles a span whose set-up makes
+    /// the render counted in `w` (polygons only, no clear) run at
+    /// `polygons_per_second` on `w`'s clock: the set-up is what a polygon's
+    /// share of the time leaves beside its pixels and waits, rounded to
+    /// the nearest cycle. `None` for no polygon, a rate of zero, a `row`
+    /// out of range, or when the pixels and waits alone take longer (the
+    /// model cannot reach the rate).
+    pub fn calibrate(row: u64, w: &WriteCounters, polygons_per_second: u64) -> Option<Self> {
+        let model = CycleModel::new(0, row)?;
+        if w.polygons == 0 || polygons_per_second == 0 {
+            return None;
+        }
+        let hz = u128::from(w.clock.hz());
+        let (polygons, rate) = (u128::from(w.polygons), u128::from(polygons_per_second));
+        let other = u128::from(w.pixels_written + model.waits(w));
+        // setup = hz / rate − other / polygons, over one denominator.
+        let num = (hz * polygons).checked_sub(rate * other)?;
+        let den = rate * polygons;
+        let setup = u64::try_from((num + den / 2) / den).ok()?;
+        CycleModel::new(setup, row)
+    }
+}
 
 /// The read port's clock until the refresh controller sets it: the
 /// reference design's 25 MHz pixel clock.
@@ -88,15 +204,20 @@ pub struct WriteCounters {
     pub discarded_spans: u64,
     /// Whole-RAM clears.
     pub clears: u64,
-    /// Polygons begun, each charged [`POLYGON_SETUP_CYCLES`].
+    /// Polygons begun, each charged its set-up.
     pub polygons: u64,
     /// Pixels stored.
     pub pixels_written: u64,
-    /// Clock cycles the port was busy: pixel writes, clears and polygon
-    /// set-ups.
+    /// Spans by the pixels stored of them, `0..SHORT_SPANS`: the spans
+    /// after which the writes may wait for the stepper.
+    pub short_spans: [u64; SHORT_SPANS],
+    /// Clock cycles the port was busy: pixel writes, clears, polygon
+    /// set-ups and waits for the stepper.
     pub cycles: u64,
     /// The part of `cycles` spent on clears.
     pub clear_cycles: u64,
+    /// The part of `cycles` the writes waited for the stepper.
+    pub stepper_wait_cycles: u64,
 }
 
 impl WriteCounters {
@@ -110,8 +231,10 @@ impl WriteCounters {
             clears: 0,
             polygons: 0,
             pixels_written: 0,
+            short_spans: [0; SHORT_SPANS],
             cycles: 0,
             clear_cycles: 0,
+            stepper_wait_cycles: 0,
         }
     }
 
@@ -192,6 +315,7 @@ pub struct DualPortRam {
     swaps: u64,
     write: WriteCounters,
     read: ReadCounters,
+    model: CycleModel,
 }
 
 impl DualPortRam {
@@ -228,6 +352,7 @@ impl DualPortRam {
             swaps: 0,
             write: WriteCounters::new(write),
             read: ReadCounters::new(read),
+            model: CycleModel::REFERENCE,
         }
     }
 
@@ -320,6 +445,16 @@ impl DualPortRam {
         self.read = ReadCounters::new(self.read.clock);
     }
 
+    /// The write port's cycle model ([`CycleModel::REFERENCE`] until set).
+    pub fn cycle_model(&self) -> CycleModel {
+        self.model
+    }
+
+    /// Charges the write port's accesses from now on by `model`.
+    pub fn set_cycle_model(&mut self, model: CycleModel) {
+        self.model = model;
+    }
+
     /// Drives the write port from `clock`.
     pub fn set_write_clock(&mut self, clock: Clock) {
         self.write.clock = clock;
@@ -359,22 +494,29 @@ impl SpanTarget for WritePort<'_> {
         let ram = &mut *self.ram;
         ram.write.spans += 1;
         let x1 = span.x1.min(ram.width);
+        let mut stored = 0;
         if span.y >= ram.height || span.x0 >= x1 {
             ram.write.discarded_spans += 1;
-            return Ok(());
+        } else {
+            if x1 < span.x1 {
+                ram.write.clipped_spans += 1;
+            }
+            let base = ram.back() as usize * ram.area() + span.y as usize * ram.width as usize;
+            if let Some(run) = ram
+                .cells
+                .get_mut(base + span.x0 as usize..base + x1 as usize)
+            {
+                run.fill(color);
+                stored = run.len() as u64;
+            }
         }
-        if x1 < span.x1 {
-            ram.write.clipped_spans += 1;
+        if let Some(n) = ram.write.short_spans.get_mut(stored as usize) {
+            *n += 1;
         }
-        let base = ram.back() as usize * ram.area() + span.y as usize * ram.width as usize;
-        if let Some(run) = ram
-            .cells
-            .get_mut(base + span.x0 as usize..base + x1 as usize)
-        {
-            run.fill(color);
-            ram.write.pixels_written += run.len() as u64;
-            ram.write.cycles += run.len() as u64;
-        }
+        let wait = ram.model.wait_after(stored);
+        ram.write.pixels_written += stored;
+        ram.write.stepper_wait_cycles += wait;
+        ram.write.cycles += stored + wait;
         Ok(())
     }
 
@@ -393,9 +535,10 @@ impl SpanTarget for WritePort<'_> {
     }
 
     fn begin_polygon(&mut self) {
+        let setup = self.ram.model.setup;
         let w = &mut self.ram.write;
         w.polygons += 1;
-        w.cycles += POLYGON_SETUP_CYCLES;
+        w.cycles += setup;
     }
 }
 
@@ -507,9 +650,13 @@ mod tests {
             (7, 1, 5),
             "{w:?}"
         );
-        assert_eq!((w.pixels_written, w.cycles), (4, 4));
-        // 50 MHz: 20 ns per pixel.
-        assert_eq!(w.time_ps(), 80_000);
+        // Two spans of 2 pixels; the 5 discarded ones cost the stepper's 2
+        // cycles each.
+        assert_eq!((w.pixels_written, w.stepper_wait_cycles), (4, 10));
+        assert_eq!(w.cycles, 14);
+        assert_eq!(w.short_spans[..3], [5, 0, 2]);
+        // 50 MHz: 20 ns per cycle.
+        assert_eq!(w.time_ps(), 280_000);
         let lit: Vec<usize> = (0..12).filter(|&i| ram.contents()[i] == c).collect();
         assert_eq!(lit, [2, 3, 5, 6]);
     }
@@ -548,6 +695,64 @@ mod tests {
             WriteCounters::new(WRITE_PORT_CLOCK).pixels_per_second(),
             None
         );
+    }
+
+    #[test]
+    fn the_writes_wait_for_the_stepper_after_short_spans_only() {
+        let mut ram = DualPortRam::new(16, 4);
+        let c = Rgb565::new(0, 0, 31);
+        let mut port = ram.write_port();
+        port.begin_polygon();
+        for (y, x0, x1) in [(0, 5, 6), (1, 4, 6), (2, 3, 9), (3, 7, 7)] {
+            port.fill_span(Span { y, x0, x1 }, c).unwrap();
+        }
+        let w = port.counters();
+        // 1 + 2 + 6 pixels; after the 1-pixel span 1 cycle's wait, after
+        // the empty one 2.
+        assert_eq!((w.pixels_written, w.stepper_wait_cycles), (9, 3));
+        assert_eq!(w.cycles, 10 + 9 + 3);
+        assert_eq!(CycleModel::REFERENCE.cycles(&w), w.cycles);
+        assert_eq!(w.short_spans[..3], [1, 1, 1]);
+        // Re-costed with other steppers.
+        let m = |setup, row| CycleModel::new(setup, row).expect("in range");
+        assert_eq!(m(0, 1).cycles(&w), 9 + 1);
+        assert_eq!(m(4, 8).cycles(&w), 4 + 9 + 8 + 7 + 6 + 2);
+        assert_eq!(CycleModel::new(10, 0), None);
+        assert_eq!(CycleModel::new(10, SHORT_SPANS as u64 + 1), None);
+        // A RAM charging another model.
+        let mut other = DualPortRam::new(16, 4);
+        other.set_cycle_model(m(3, 4));
+        assert_eq!(other.cycle_model(), m(3, 4));
+        let mut port = other.write_port();
+        port.begin_polygon();
+        port.fill_span(Span { y: 0, x0: 0, x1: 3 }, c).unwrap();
+        assert_eq!(port.counters().cycles, 3 + 3 + 1);
+    }
+
+    #[test]
+    fn calibration_gives_the_set_up_that_the_rate_leaves() {
+        // 4 polygons of one 30-pixel span each, at 50 MHz: 1,000,000
+        // polygons/s are 50 cycles a polygon, 30 of them writes.
+        let mut ram = DualPortRam::new(40, 4);
+        let c = Rgb565::new(1, 1, 1);
+        let mut port = ram.write_port();
+        for y in 0..4 {
+            port.begin_polygon();
+            port.fill_span(Span { y, x0: 0, x1: 30 }, c).unwrap();
+        }
+        let w = port.counters();
+        let cal = |row, rate| CycleModel::calibrate(row, &w, rate).map(|m| m.setup_cycles());
+        assert_eq!(cal(2, 1_000_000), Some(20));
+        assert_eq!(cal(8, 1_000_000), Some(20));
+        // To the nearest cycle: 49.4 and 49.6 cycles a polygon.
+        assert_eq!(cal(2, 1_012_146), Some(19));
+        assert_eq!(cal(2, 1_008_065), Some(20));
+        // Faster than the writes alone: no set-up can give it.
+        assert_eq!(cal(2, 2_000_000), None);
+        assert_eq!(cal(2, 0), None);
+        assert_eq!(cal(9, 1_000_000), None);
+        let none = WriteCounters::new(WRITE_PORT_CLOCK);
+        assert_eq!(CycleModel::calibrate(2, &none, 1), None);
     }
 
     #[test]

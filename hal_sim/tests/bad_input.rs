@@ -662,7 +662,7 @@ fn control_characters_from_the_input_are_escaped_in_messages() {
 }
 
 /// Every line `--stats` prints names the input, escaped as in the error
-/// messages: the write port's two lines printed it raw.
+/// messages, so that no name can drive the terminal.
 #[test]
 fn stats_lines_escape_the_input_name() {
     use std::ffi::OsStr;
@@ -689,7 +689,7 @@ fn stats_lines_escape_the_input_name() {
     );
     assert_eq!(unsafe_for_terminal(&o.stdout), None, "{stdout:?}");
     let lines: Vec<&str> = stdout.lines().collect();
-    assert_eq!(lines.len(), 4, "{stdout}");
+    assert_eq!(lines.len(), 5, "{stdout}");
     for line in lines {
         assert!(
             line.contains(r"\u{1b}]0;pwned\u{7}\u{1b}[2J.dl: "),

@@ -1,7 +1,7 @@
 //! `scanvert demo` holds one frame at a time: each frame's PNG is written
 //! as the frame is shown, and the co-simulation keeps only the newest frame
-//! read out. Before, every frame read out was kept until the end
-//! (`demo --size 2047x2047 --frames 100` peaked at 2.5 GB).
+//! read out. Kept until the end, the frames of `demo --size 2047x2047
+//! --frames 100` would take about 2.5 GB.
 //!
 //! The allocator of this test binary counts the bytes in use and their
 //! peak; the file holds this one test, so nothing else allocates meanwhile.

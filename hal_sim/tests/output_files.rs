@@ -283,7 +283,7 @@ fn out_onto_the_input_is_refused() {
 }
 
 /// A regular file that `--out` replaces keeps its access mode: 600 stays
-/// 600 (it became 644, the default for a new file, before).
+/// 600, not the 644 a new file gets by default.
 #[test]
 fn a_replaced_file_keeps_its_mode() {
     use std::os::unix::fs::PermissionsExt;

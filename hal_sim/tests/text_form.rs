@@ -163,7 +163,7 @@ fn the_demo_scene_round_trips() {
 
 /// An angle is rounded once, from the exact decimal, to the nearest
 /// 1/65536 of a turn (ties away from zero); rounding first to 1/65536 of a
-/// degree made `rotate x 0.00274` (0.4988 of a step) a whole step.
+/// degree would make `rotate x 0.00274` (0.4988 of a step) a whole step.
 #[test]
 fn angles_are_rounded_once() {
     let asm = assemble("frame 4 4\nrotate x 0.00274\nrotate y 0.0028\n").unwrap();

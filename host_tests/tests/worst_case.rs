@@ -2,7 +2,8 @@
 //! staggered overlapping faces, each nearer than the last, in the three
 //! orders, against the exact reference and in both ways of resolving
 //! intersecting spans; and the 1 MB display list of 38,835 of them that
-//! `docs/performance.md` ("Worst cases") times with `scanvert render`.
+//! `docs/performance.md` ("Worst cases") times (`scanvert-bench --
+//! --write-worst DIR` writes the lists).
 
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 use host_tests::harness3d::{color_of, compare, render3, vertex3};
@@ -75,29 +76,4 @@ fn the_big_list_is_one_megabyte() {
     DisplayList::new_checked(&bytes).expect("valid");
     assert!(bytes.len() <= 1 << 20, "{} bytes", bytes.len());
     assert!(bytes.len() > 900_000, "{} bytes", bytes.len());
-}
-
-/// Writes the worst-case lists that `docs/performance.md` times into the
-/// folder `$SCANVERT_WORST_DIR`: `nearer-N.dl`, `reversed-N.dl` and
-/// `farther-N.dl` for N in 1k … 38,835 faces.
-/// `SCANVERT_WORST_DIR=/tmp/worst cargo test --release -p host-tests
-/// --test worst_case -- --ignored`.
-#[test]
-#[ignore]
-fn write_worst_lists() {
-    let Some(dir) = std::env::var_os("SCANVERT_WORST_DIR") else {
-        return;
-    };
-    let dir = std::path::PathBuf::from(dir);
-    std::fs::create_dir_all(&dir).expect("folder");
-    for n in [1_000, 2_000, 4_000, 8_000, 16_000, BIG] {
-        for (name, order) in [
-            ("nearer", Order::Nearer),
-            ("reversed", Order::Reversed),
-            ("farther", Order::Farther),
-        ] {
-            let bytes = list(&staggered(n, order));
-            std::fs::write(dir.join(format!("{name}-{n}.dl")), bytes).expect("write");
-        }
-    }
 }

@@ -202,10 +202,10 @@ fn calibrate(counter: &platform::Counter) -> bool {
 /// frame's statistics and cost. `None` (logged) if the render failed.
 ///
 /// Never inlined, so that the code measured is compiled the same whatever
-/// the rest of the image does around it: inlined into `run`, small edits
-/// elsewhere changed the frame buffer's fill loop (the colour kept in a
-/// register, or reloaded from the stack every pixel) and W5's count by
-/// 30 %.
+/// the rest of the image does around it: inlined into `run`, the frame
+/// buffer's fill loop depends on the registers left to it there (the
+/// colour kept in a register, or reloaded from the stack every pixel),
+/// which moves W5's count by as much as 30 %.
 #[inline(never)]
 fn render<T>(
     name: &str,

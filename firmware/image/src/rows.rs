@@ -9,8 +9,9 @@
 //! 40, within 40 of the row's instructions. The counted span is what the
 //! producer of the simulator's ring does for a row: the draw call, then
 //! the row encoded into colour runs (`encode`); nothing is shipped. With the feature `rows` (which implies
-//! `bands`): `cargo run --release --features rows`; `fit_rows.py` in this
-//! folder fits the cost model to the printed counts.
+//! `bands`): `cargo run --release --features rows`; the counts are kept in
+//! `rows-m4.txt`, to which `cargo run --release -p scanvert-bench --
+//! --only race` fits the cost model.
 
 use crate::bands::{Table, TABLE_EDGES, TABLE_LINES, TABLE_POLYGONS};
 use crate::{platform, Memory3d, Scene};

@@ -216,9 +216,9 @@ impl Edge {
         // `i32`, and a 32-bit division is one instruction on a 32-bit
         // core where a 64-bit one is a library call.
         let drop = n as i64 * self.rem as i64 - self.err as i64;
-        // ⌈drop/dy⌉ = (drop − 1)/dy + 1 for drop > 0 (not by the
-        // `fixed` helpers: more callers of those made the Cortex-M4 build
-        // stop inlining them into `Edge::new`).
+        // ⌈drop/dy⌉ = (drop − 1)/dy + 1 for drop > 0, written out here:
+        // the `fixed` helpers have callers enough that the Cortex-M4
+        // build does not inline them into `Edge::new`.
         let carries = if drop <= 0 {
             0
         } else if let Ok(d) = i32::try_from(drop) {

@@ -1,6 +1,7 @@
-//! How much of a frame coherence between rows could reuse: a count, not a
-//! check (`#[ignore]`d; run with `cargo test -p scanvert --release
-//! coherence -- --ignored --nocapture`). For each row of the 170-face
+//! How much of a frame coherence between rows could reuse, counted; the
+//! test checks that the counts are consistent, and prints them (`cargo
+//! test -p scanvert --release coherence -- --nocapture`, the figures
+//! `docs/performance-log.md` quotes). For each row of the 170-face
 //! `poly3` scenes (`testkit::poly3_scenes`, the image's `poly3-layered`
 //! and `poly3-tilted`) and the first view of the benchmark's 170-, 300-
 //! and 1000-face scenes (`testkit::scenes3d`), it resolves the row with
@@ -249,7 +250,6 @@ fn count(polys: &[Vec<Vertex3>], w: u16, h: u16) -> Counts {
     c
 }
 
-/// `part` of `all` in per mille.
 /// A named scene: its faces and its frame.
 pub(super) type Named = (std::string::String, Vec<Vec<Vertex3>>, u16, u16);
 
@@ -296,12 +296,12 @@ pub(super) fn scenes() -> Vec<Named> {
     scenes
 }
 
+/// `part` of `all` in per mille.
 fn per_mille(part: u32, all: u32) -> u32 {
     part * 1000 / all.max(1)
 }
 
 #[test]
-#[ignore]
 fn coherence_between_rows() {
     let scenes = scenes();
     std::println!("scene | rows | spans | runs | rows, same live set | rows as above | their spans | runs shaped as above | of those, same face | trapezoid-rows | shown | trapezoids never shown | rows with an intersecting span");
@@ -325,5 +325,18 @@ fn coherence_between_rows() {
             c.never_shown,
             c.rows_crossed,
         );
+        // Each count is a part of the one it refines.
+        assert_eq!(c.rows, u32::from(*h), "{name}");
+        assert!(c.rows_same <= c.live_same && c.live_same < c.rows, "{name}");
+        assert!(c.spans_same <= c.spans, "{name}");
+        assert!(
+            c.runs_face <= c.runs_shape && c.runs_shape < c.runs,
+            "{name}"
+        );
+        assert!(c.trapezoid_rows_shown <= c.trapezoid_rows, "{name}");
+        assert!(c.rows_crossed < c.rows, "{name}");
+        // A layered scene has no intersecting span, a tilted one has.
+        let tilted = name.contains("tilted") || name.starts_with("3D");
+        assert_eq!(c.rows_crossed > 0, tilted, "{name}");
     }
 }

@@ -1,7 +1,12 @@
-//! The cost model of racing the beam (`race::CostModel::M4`) against the
-//! instructions the Cortex-M4 image counted for every row of the lists it
-//! embeds (`firmware/image/rows-m4.txt`): its error, and (with
-//! `--ignored`) the least-squares fit that gave its coefficients.
+//! Racing the beam (`scanvert_sim::race`): the cost model
+//! `race::CostModel::M4` fitted to the instructions the Cortex-M4 image
+//! counted for every row of the lists it embeds
+//! (`firmware/image/rows-m4.txt`), its error, and the table of lowest
+//! clocks and missed lines. Nothing here is timed. `--only race` prints
+//! the fit and rewrites the section between [`BEGIN`] and [`END`] of
+//! `docs/performance.md`; the tests below fail when the fit no longer
+//! gives `CostModel::M4`, when its error exceeds the published one, or
+//! when the section is stale.
 //!
 //! The fit weighs each row by the inverse square of its count, so it
 //! minimises the sum of squared *relative* errors; the coefficients are
@@ -9,10 +14,17 @@
 //! lists, so their coefficient stays 0: a label costs its spans and
 //! pixels.
 
+use crate::numbers::thousands;
 use scanvert::display_list::DisplayList;
 use scanvert_sim::race::{list_work, CostModel, PrepareWork, RowWork};
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Markers of the section `--only race` rewrites.
+pub const BEGIN: &str = "<!-- race-table:begin -->";
+/// End marker.
+pub const END: &str = "<!-- race-table:end -->";
 
 const SCENES: [&str; 8] = [
     "demo",
@@ -132,32 +144,9 @@ fn errors(model: &CostModel, rows: &[(&str, RowWork, u64)]) -> (f64, f64) {
     )
 }
 
-#[test]
-fn the_m4_model_is_within_its_published_error() {
-    let (prep, rows) = samples();
-    let (mean, worst) = errors(&CostModel::M4, &rows);
-    for name in SCENES {
-        let of: Vec<_> = rows.iter().filter(|r| r.0 == name).cloned().collect();
-        let (m, w) = errors(&CostModel::M4, &of);
-        println!("{name}: mean {:.1}%, worst {:.1}%", 100.0 * m, 100.0 * w);
-    }
-    for (name, w, m) in &prep {
-        let p = CostModel::M4.prepare(w);
-        println!("prepare {name}: model {p}, measured {m}");
-    }
-    println!(
-        "rows: mean {:.1}%, worst {:.1}%",
-        100.0 * mean,
-        100.0 * worst
-    );
-    // The figures published in CostModel::M4's docs and docs/performance.md.
-    assert!(mean <= 0.034, "mean relative error {mean}");
-    assert!(worst <= 0.32, "worst relative error {worst}");
-}
-
-#[test]
-#[ignore = "prints the fit that gave CostModel::M4"]
-fn fit_the_m4_model() {
+/// The model's coefficients fitted to the measured rows and
+/// preparations, in 1/16 instruction.
+pub fn fitted() -> CostModel {
     let (prep, rows) = samples();
     let x: Vec<_> = rows.iter().map(|(_, w, m)| (row_features(w), *m)).collect();
     let c = fit(&x).map(|v| (v * 16.0).round() as i64);
@@ -166,11 +155,72 @@ fn fit_the_m4_model() {
         .map(|(_, w, m)| ([1.0, f64::from(w.commands), f64::from(w.trapezoids)], *m))
         .collect();
     let p = fit(&px).map(|v| (v * 16.0).round() as i64);
-    println!(
-        "row: {}, width: {}, span: {}, pixel: {}, run: {}, entered: {}, resolved: {}, live: {}",
-        c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]
+    CostModel {
+        row: c[0],
+        width: c[1],
+        span: c[2],
+        pixel: c[3],
+        run: c[4],
+        entered: c[5],
+        resolved: c[6],
+        label: 0,
+        live: c[7],
+        frame: p[0],
+        command: p[1],
+        trapezoid: p[2],
+    }
+}
+
+fn percent(v: f64) -> String {
+    format!("{:.1} %", 100.0 * v)
+}
+
+/// The table of the model's error: all rows, the 2D lists' range, the 3D
+/// lists one by one.
+fn error_table() -> String {
+    let (_, rows) = samples();
+    let of = |name: &str| {
+        let r: Vec<_> = rows.iter().filter(|r| r.0 == name).cloned().collect();
+        errors(&CostModel::M4, &r)
+    };
+    let (mean, worst) = errors(&CostModel::M4, &rows);
+    let two_d: Vec<(f64, f64)> = ["demo", "w1", "w2", "w3", "w4", "w5"]
+        .iter()
+        .map(|n| of(n))
+        .collect();
+    let range = |f: fn(&(f64, f64)) -> f64| {
+        let lo = two_d.iter().map(f).fold(f64::INFINITY, f64::min);
+        let hi = two_d.iter().map(f).fold(0.0, f64::max);
+        format!("{} to {}", percent(lo), percent(hi))
+    };
+    let (layered, tilted) = (of("poly3-layered"), of("poly3-tilted"));
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "| rows of | mean relative error | worst |\n|---|--:|--:|"
     );
-    println!("frame: {}, command: {}, trapezoid: {}", p[0], p[1], p[2]);
+    let _ = writeln!(
+        s,
+        "| all eight lists ({} rows) | {} | {} |",
+        thousands(rows.len() as f64),
+        percent(mean),
+        percent(worst)
+    );
+    let _ = writeln!(
+        s,
+        "| 2D lists (demo, W1–W5) | {} | {} |",
+        range(|e| e.0),
+        range(|e| e.1)
+    );
+    let _ = writeln!(
+        s,
+        "| 3D lists (poly3-layered, poly3-tilted) | {}, {} | {}, {} |",
+        percent(layered.0),
+        percent(tilted.0),
+        percent(layered.1),
+        percent(tilted.1)
+    );
+    s
 }
 
 /// The `p`-th percentile (nearest rank) of `v`.
@@ -190,9 +240,8 @@ fn mhz(c: Option<scanvert_sim::timing::Clock>) -> String {
 /// model, and of each row measured on the M4 if it was.
 type Costs = (String, u64, Vec<u64>, Option<Vec<u64>>);
 
-#[test]
-#[ignore = "prints the table of docs/performance.md's racing-the-beam section"]
-fn race_table() {
+/// The racing table: each scene's lowest clocks, misses and worst rows.
+fn race_table() -> String {
     use scanvert_sim::race::{demo_costs, lowest_clock, schedule};
     use scanvert_sim::timing::{Clock, VideoTiming};
     let (_, measured_rows) = measured();
@@ -254,8 +303,9 @@ fn race_table() {
         ("reference", VideoTiming::REFERENCE_640X480),
         ("VGA", VideoTiming::VGA_640X480_60),
     ];
-    println!("| scene | lowest MHz, reference, K = 2 / 4 / 16 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 | misses at 168 MHz, reference, K = 2 / 4 / 16 | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |");
-    println!("|---|---|---|---|---|---|---|");
+    let mut s = String::new();
+    s.push_str("| scene | lowest MHz, reference, K = 2 / 4 / 16 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 | misses at 168 MHz, reference, K = 2 / 4 / 16 | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |\n");
+    s.push_str("|---|---|---|---|---|---|---|\n");
     let cpu = Clock::from_mhz(168).expect("168 MHz");
     for (name, prep, rows, m4rows) in &scenes {
         let mut cells = Vec::new();
@@ -283,16 +333,86 @@ fn race_table() {
             None => ("model", rows),
         };
         let (worst, p99) = (*r.iter().max().unwrap(), percentile(r, 99));
-        cells.push(format!("{worst} ({src})"));
-        cells.push(format!("{p99} ({src})"));
+        cells.push(format!("{} ({src})", thousands(worst as f64)));
+        cells.push(format!("{} ({src})", thousands(p99 as f64)));
         cells.push(format!(
             "{:.2}× / {:.2}×",
             worst as f64 / 5376.0,
             p99 as f64 / 5376.0
         ));
-        println!("| {name} | {} |", cells.join(" | "));
+        let _ = writeln!(s, "| {name} | {} |", cells.join(" | "));
     }
     for (name, prep, ..) in &scenes {
-        println!("prepare {name}: {prep}");
+        eprintln!("prepare {name}: {prep}");
+    }
+    s
+}
+
+/// The section of `docs/performance.md`, markers included.
+pub fn section() -> String {
+    format!(
+        "{BEGIN}\n{}\n\
+         The lowest clock with no missed line, the lines missed at 168 MHz, and\n\
+         the worst and 99th-percentile row (*M4*: measured; *model*: predicted)\n\
+         against the 5,376 instructions of a 32 µs line at 168 MHz. Both tables are\n\
+         written by `cargo run --release -p scanvert-bench -- --only race` (no\n\
+         timing; the benchmark's tests fail when they are stale).\n\n{}\n{END}\n\n",
+        error_table(),
+        race_table()
+    )
+}
+
+/// `--only race`: the fit printed against `CostModel::M4`, and the
+/// section of `docs/performance.md` rewritten in place.
+pub fn write_section(page: &Path) -> std::io::Result<()> {
+    let f = fitted();
+    eprintln!(
+        "fit: row {}, width {}, span {}, pixel {}, run {}, entered {}, resolved {}, live {}; frame {}, command {}, trapezoid {} ({})",
+        f.row, f.width, f.span, f.pixel, f.run, f.entered, f.resolved, f.live, f.frame, f.command, f.trapezoid,
+        if f == CostModel::M4 { "CostModel::M4" } else { "differs from CostModel::M4" }
+    );
+    let old = std::fs::read_to_string(page).unwrap_or_default();
+    let md = crate::report::splice(
+        &old,
+        BEGIN,
+        END,
+        &section(),
+        "## RAM without a frame buffer",
+    );
+    std::fs::write(page, md)?;
+    eprintln!("rewrote the racing section of docs/performance.md");
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_m4_model_is_within_its_published_error() {
+        let (_, rows) = samples();
+        let (mean, worst) = errors(&CostModel::M4, &rows);
+        // The figures published in CostModel::M4's docs and
+        // docs/performance.md.
+        assert!(mean <= 0.034, "mean relative error {mean}");
+        assert!(worst <= 0.32, "worst relative error {worst}");
+    }
+
+    #[test]
+    fn the_fit_of_the_measured_rows_is_cost_model_m4() {
+        assert_eq!(fitted(), CostModel::M4);
+    }
+
+    #[test]
+    fn the_performance_page_has_the_current_section() {
+        let page = std::fs::read_to_string(
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md"),
+        )
+        .expect("the page");
+        let section = section();
+        assert!(
+            page.contains(&section),
+            "docs/performance.md: run `cargo run --release -p scanvert-bench -- --only race`; it should hold\n{section}"
+        );
     }
 }

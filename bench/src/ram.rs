@@ -1,13 +1,14 @@
 //! The RAM of rendering with no frame buffer, by part, at the sizes the
 //! scenes actually need: the 3D demo scene (every frame, the worst one)
 //! and the 170-face lists the image embeds, against a full RGB565 frame
-//! buffer and a z-buffer renderer's frame and depth buffer.
+//! buffer and a z-buffer renderer's frame and depth buffer. Nothing here
+//! is timed.
 //!
 //! The slot sizes are those of 32-bit targets (asserted at the end of
 //! `scene/storage.rs` and in `raster/table.rs`), so the figures are the
-//! Cortex-M4's whatever the host. The table of `docs/performance.md`
-//! ("RAM without a frame buffer") is printed by
-//! `cargo test -p host-tests --release --test ram_budget ram_table -- --ignored --nocapture`.
+//! Cortex-M4's whatever the host. `--only ram` rewrites the table of
+//! `docs/performance.md` ("RAM without a frame buffer", between [`BEGIN`]
+//! and [`END`]); the tests below fail when it is stale.
 
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use scanvert::display_list::DisplayList;
@@ -15,7 +16,13 @@ use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::raster::table::TableNeeds;
 use scanvert::visible::Resolve;
 use scanvert_sim::memory::ListMemory;
+use std::fmt::Write as _;
 use std::path::Path;
+
+/// Markers of the table `--only ram` rewrites.
+pub const BEGIN: &str = "<!-- ram-table:begin -->";
+/// End marker.
+pub const END: &str = "<!-- ram-table:end -->";
 
 /// Bytes of one slot on a 32-bit target.
 mod slot {
@@ -124,6 +131,7 @@ fn z_buffer(w: usize, h: usize, depth_bytes: usize) -> usize {
     w * h * (slot::PIXEL + depth_bytes)
 }
 
+#[cfg(test)]
 #[test]
 fn the_arithmetic_of_the_parts() {
     let c = Counts {
@@ -173,6 +181,7 @@ fn the_arithmetic_of_the_parts() {
 
 /// The slot sizes above are the library's where it can be checked on the
 /// host too (the 32-bit ones are asserted in the cross builds).
+#[cfg(test)]
 #[test]
 fn the_slot_sizes_are_the_library_s_on_32_bit_targets() {
     use core::mem::size_of;
@@ -304,14 +313,14 @@ fn row(name: &str, c: &Counts) -> String {
     )
 }
 
-/// Prints the table of `docs/performance.md`.
-#[test]
-#[ignore = "prints the RAM table of docs/performance.md"]
-fn ram_table() {
-    println!(
-        "| scene | trapezoids / faces / most on a row | trapezoids | faces | segments | index | edge slots | active | runs | labels + text | 2D table | band (16 rows) | total, bytes (KiB) | RGB565 frame buffer (× total) | frame + i16 / i32 depth |"
+/// The table of `docs/performance.md`; the demo's frames and the
+/// projections of other slot sizes go to stderr.
+pub fn table() -> String {
+    let mut s = String::new();
+    s.push_str(
+        "| scene | trapezoids / faces / most on a row | trapezoids | faces | segments | index | edge slots | active | runs | labels + text | 2D table | band (16 rows) | total, bytes (KiB) | RGB565 frame buffer (× total) | frame + i16 / i32 depth |\n",
     );
-    println!("|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|");
+    s.push_str("|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
     // Every frame of the default animation (8) and of a full orbit.
     for frames in [8, 34] {
         let all = demo_counts(frames);
@@ -328,7 +337,9 @@ fn ram_table() {
             .enumerate()
             .max_by_key(|(_, (_, c))| Ram::of(c).total())
             .expect("frames");
-        println!(
+        if frames == 8 {
+            let _ = writeln!(
+            s,
             "{}",
             row(
                 &format!(
@@ -338,6 +349,7 @@ fn ram_table() {
                 worst
             )
         );
+        }
         let most = |f: fn(&Counts) -> usize| all.iter().map(|(_, c)| f(c)).max().unwrap_or(0);
         eprintln!(
             "demo over {frames} frames, most of each: trapezoids {} faces {} active {} labels {} text {}",
@@ -357,20 +369,20 @@ fn ram_table() {
             text: most(|c| c.text),
             ..*worst
         };
-        println!(
-            "{}",
-            row(
-                &format!("3D demo, pools for all {frames} frames (the most of each), 512×256"),
-                &pools
-            )
-        );
+        if frames == 34 {
+            let _ = writeln!(
+                s,
+                "{}",
+                row(
+                    &format!("3D demo, pools for all {frames} frames (the most of each), 512×256"),
+                    &pools
+                )
+            );
+        }
         if frames == 34 {
             // The pools for every frame at 512×256 and with the rows,
-            // runs and band at 320×240: as measured, with the 96-byte
-            // trapezoid and 64-byte face the store had before (the
-            // faces' 8 bytes added back below), and projections (not
-            // implemented) of a smaller active entry and 8-row bands, as
-            // `docs/performance.md` describes them.
+            // runs and band at 320×240: as measured, and projections (not
+            // implemented) of a smaller active entry and 8-row bands.
             let small = Counts {
                 width: 320,
                 height: 240,
@@ -379,7 +391,6 @@ fn ram_table() {
             for (size, c) in [("512×256", &pools), ("320×240", &small)] {
                 for (what, t, a, rows) in [
                     ("as measured", slot::TRAPEZOID, slot::ACTIVE, 16),
-                    ("before: trapezoid 96 B, face 64 B", 96, slot::ACTIVE, 16),
                     (
                         "projection: an active slot of 68 B",
                         slot::TRAPEZOID,
@@ -393,11 +404,8 @@ fn ram_table() {
                         8,
                     ),
                 ] {
-                    let mut p = Ram::projected(c, t, a, rows);
-                    if t == 96 {
-                        p.faces = c.faces * 64;
-                    }
-                    println!(
+                    let p = Ram::projected(c, t, a, rows);
+                    eprintln!(
                         "demo pools for {frames} frames, {size}, {what}: trapezoids {} faces {} active {} band {} total {} ({} KiB), {} under 65536",
                         p.trapezoids,
                         p.faces,
@@ -418,7 +426,8 @@ fn ram_table() {
                 height: 240,
                 ..*worst
             };
-            println!(
+            let _ = writeln!(
+                s,
                 "{}",
                 row(
                     "3D demo at 320×240, **estimate**: the worst frame's counts, the rows, runs and band at 320×240",
@@ -429,6 +438,38 @@ fn ram_table() {
     }
     for name in ["poly3-layered", "poly3-tilted"] {
         let c = list_counts(&root().join(format!("firmware/image/scenes/{name}.scvl")));
-        println!("{}", row(&format!("{name} (170 faces), 512×256"), &c));
+        let _ = writeln!(s, "{}", row(&format!("{name} (170 faces), 512×256"), &c));
     }
+    s
+}
+
+/// The table between its markers.
+pub fn section() -> String {
+    format!("{BEGIN}\n{}{END}\n\n", table())
+}
+
+/// `--only ram`: the table of `docs/performance.md` rewritten in place.
+pub fn write_section(page: &Path) -> std::io::Result<()> {
+    let old = std::fs::read_to_string(page).unwrap_or_default();
+    let md = crate::report::splice(
+        &old,
+        BEGIN,
+        END,
+        &section(),
+        "The 320×240 row is an estimate",
+    );
+    std::fs::write(page, md)?;
+    eprintln!("rewrote the RAM table of docs/performance.md");
+    Ok(())
+}
+
+#[cfg(test)]
+#[test]
+fn the_performance_page_has_the_current_table() {
+    let page = std::fs::read_to_string(root().join("docs/performance.md")).expect("the page");
+    let section = section();
+    assert!(
+        page.contains(&section),
+        "docs/performance.md: run `cargo run --release -p scanvert-bench -- --only ram`; it should hold\n{section}"
+    );
 }
