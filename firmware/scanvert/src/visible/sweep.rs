@@ -58,18 +58,23 @@
 //!   a subdivision `O(c)` per part);
 //! * the sweep, on a longer row (`sweep_many`): a trapezoid that starts
 //!   costs `O(log c)` compares to find its place in the cover array (kept
-//!   by increasing `r`, so one that ends last is appended) and moves the
-//!   covers that end after it; a front costs no compare while the covers
-//!   form a *chain* (each in front of the next on their common pixels),
-//!   kept by at most six depth compares a trapezoid that starts, and
-//!   `O(c)` otherwise.
+//!   by increasing `r`, so one that ends last is appended, and one that
+//!   ends with others goes after them, or takes the place of the first of
+//!   them when it hides them) and moves the covers that end after it; a
+//!   front costs no compare while the covers form a *chain* (each in
+//!   front of the next on their common pixels), kept by at most eight
+//!   depth compares a trapezoid that starts, and `O(c)` otherwise.
 //!
 //! A cover is a trapezoid that has started on the row and has neither
 //! ended nor been hidden: when a trapezoid that starts breaks the front,
 //! the covers that end by the front's end are behind it on all their
 //! pixels left and leave the array (once each), so a front is never
 //! compared again with what the last one hid. Staggered faces each nearer
-//! than the last so keep `c` at 2 however many overlap. What stays is
+//! than the last so keep `c` at 2 however many overlap (in a chain, each
+//! takes the place of the last when they end on one column). Trapezoids
+//! that start where nothing covers the sweep's position are compared with
+//! the first of them as they enter, and those it hides are left out:
+//! faces of one extent stacked keep `c` at 1. What stays is
 //! `c` trapezoids that overlap in depth and outlast the front: faces each
 //! farther than the last, visible one sliver each, make `s` and `c` both
 //! of the order of `a`, which would make a row `O(a²)`; but they form a
