@@ -1682,11 +1682,17 @@ fn sweep_many<O: RowOut>(
                 continue;
             }
             if let Some(h) = first {
-                if c.r <= h.r && cx.dominates(&h, &c, x, c.r - 1) {
+                // Faces of one plane: the key decides on every pixel, so
+                // one comparison does for both ends.
+                let one = cx.one_plane(&h, &c);
+                if c.r <= h.r && one.unwrap_or_else(|| cx.dominates(&h, &c, x, c.r - 1)) {
                     cx.stats.hidden += 1;
                     continue;
                 }
-                if nc - lo == 1 && c.r == h.r && cx.dominates(&c, &h, x, c.r - 1) {
+                if nc - lo == 1
+                    && c.r == h.r
+                    && one.map_or_else(|| cx.dominates(&c, &h, x, c.r - 1), |h_first| !h_first)
+                {
                     // The first, alone in the array, hidden: its place.
                     act[lo].cover = c.element();
                     first = Some(c);
@@ -2178,6 +2184,21 @@ impl<O: RowOut> Ctx<'_, O> {
     fn dominates(&mut self, f: &Cover, g: &Cover, s: i32, e: i32) -> bool {
         self.nearer(f.face, f.z_at(s), g.face, g.z_at(s), s)
             && self.nearer(f.face, f.z_at(e), g.face, g.z_at(e), e)
+    }
+
+    /// When `a` and `b` are faces of one plane (their fixed-point depths
+    /// the same on the row, then their planes), whether `a` is in front
+    /// of `b` on every pixel: the lower key.
+    #[inline(always)]
+    fn one_plane(&mut self, a: &Cover, b: &Cover) -> Option<bool> {
+        if a.z != b.z || a.zx != b.zx {
+            return None;
+        }
+        self.stats.exact += 1;
+        match (self.store.face(a.face), self.store.face(b.face)) {
+            (Some(fa), Some(fb)) if fa.plane() == fb.plane() => Some(fa.key() < fb.key()),
+            _ => None,
+        }
     }
 
     /// `true` when face `c` (depth `cz` at pixel `i`) is in front of face
