@@ -270,6 +270,40 @@ impl BandTarget for Fails {
     }
 }
 
+/// Points of a 3D scene at one place, and faces staggered each a little
+/// right of and nearer than the last, ending on one column (or nearly): hundreds on a
+/// row, in every resolve and in bands, the earliest in front where they
+/// are at one depth.
+#[test]
+fn faces_at_one_place_and_ending_on_one_column_are_the_same_in_bands() {
+    use scanvert_sim::cli::render_scene_with;
+    use std::fmt::Write as _;
+    let mut points = String::from("frame 40 30\nperspective 50 1 100\nlookat 0 0 10  0 0 0\n");
+    points.push_str("thickness 6\ncolor #ff0000\nface 0 0 -5\ncolor #00ff00\n");
+    let mut faces = String::from("frame 60 30\nperspective 50 1 100\nlookat 0 0 10  0 0 0\n");
+    for k in 0..300 {
+        points.push_str("face 0 0 -5\n");
+        // Each 1/64 unit right of the last and 1/4096 nearer.
+        let (x, z) = (-4.0 + k as f64 / 64.0, k as f64 / 4096.0);
+        let _ = writeln!(faces, "color #{:06x}", 0x100 * k + 0x40);
+        let _ = writeln!(faces, "face {x} -3 {z}  4 -3 {z}  4 3 {z}  {x} 3 {z}");
+    }
+    for text in [&points, &faces] {
+        let s = scene(text);
+        all_heights_match(&s);
+        let full = render_scene(&s).expect("full render");
+        for mode in [Resolve::Bisect, Resolve::Paint] {
+            let other = render_scene_with(&s, mode).expect("render");
+            assert!(other.ram.contents() == full.ram.contents(), "{mode:?}");
+        }
+    }
+    // The first point shows, not the 300 after it.
+    let full = render_scene(&scene(&points)).expect("full render");
+    let px = full.ram.contents();
+    assert!(px.contains(&Rgb565::RED));
+    assert!(!px.contains(&Rgb565::GREEN));
+}
+
 #[test]
 fn bad_bands_are_typed_errors() {
     let s = scene(FLAT);

@@ -1,13 +1,14 @@
 //! Hard cases of `poly3` against the exact reference, in both ways of
 //! resolving intersecting spans: a closed cube (shared edges), depths at
 //! the ends of Q12.4, trapezoids one pixel tall, edge-on and nearly
-//! edge-on faces, concave and self-intersecting polygons.
+//! edge-on faces, concave and self-intersecting polygons, many faces
+//! ending on one column (stacked, staggered).
 
-use host_tests::harness3d::{compare, render3};
+use host_tests::harness3d::{compare, render3, render3_bands};
 use proptest::prelude::*;
 use scanvert::visible::sweep::Resolve;
 use testkit::reference::{rasterize, Window};
-use testkit::reference3d::Poly3;
+use testkit::reference3d::{resolve, Poly3};
 
 const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
 
@@ -302,4 +303,65 @@ fn clip_registers_apply_to_each_poly3() {
     };
     assert_exact(&[a.clone(), b.clone(), c.clone()], 40, 30);
     assert_exact(&[c, b, a], 40, 30);
+}
+
+/// Faces that end on one column on every row, many more than a short row
+/// of the sweep holds (so through its long rows' cover array): quads of
+/// one extent stacked at one depth (the earliest shows), each nearer and
+/// each farther than the last, and full-height rectangles staggered ½ px,
+/// each nearer or each farther, all ending on the last column; in every
+/// mode, and in bands of 1, 7 and 16 rows.
+#[test]
+fn faces_sharing_their_right_end() {
+    let rect = |(w, h): (i32, i32), x0: i32, z: i32| {
+        poly(&[
+            (x0, 0, z),
+            (x0, 16 * h, z),
+            (16 * w, 16 * h, z),
+            (16 * w, 0, z),
+        ])
+    };
+    let stacked = (40, 24);
+    let staggered = (96, 20);
+    let scenes: [(Vec<Poly3>, (i32, i32)); 6] = [
+        ((0..200).map(|_| rect(stacked, 0, 500)).collect(), stacked),
+        (
+            (0..200).map(|k| rect(stacked, 0, 1000 - 4 * k)).collect(),
+            stacked,
+        ),
+        (
+            (0..200).map(|k| rect(stacked, 0, -1000 + 4 * k)).collect(),
+            stacked,
+        ),
+        (
+            (0..150)
+                .map(|k| rect(staggered, 8 * k, 1000 - 8 * k))
+                .collect(),
+            staggered,
+        ),
+        (
+            (0..150)
+                .map(|k| rect(staggered, 8 * k, -1000 + 8 * k))
+                .collect(),
+            staggered,
+        ),
+        // Pairs at one place and depth, each pair nearer.
+        (
+            (0..150)
+                .map(|k| rect(staggered, 8 * (k / 2), 1000 - 8 * (k / 2)))
+                .collect(),
+            staggered,
+        ),
+    ];
+    for (scene, (w, h)) in &scenes {
+        let (w, h) = (*w as u16, *h as u16);
+        assert_exact(scene, w, h);
+        let want = resolve(scene, w.into(), h.into());
+        for mode in [Resolve::Crossing, Resolve::Paint] {
+            for rows in [1, 7, 16] {
+                let got = render3_bands(scene, w, h, mode, rows);
+                assert!(got == want, "{mode:?} in bands of {rows}");
+            }
+        }
+    }
 }

@@ -58,18 +58,23 @@
 //!   a subdivision `O(c)` per part);
 //! * the sweep, on a longer row (`sweep_many`): a trapezoid that starts
 //!   costs `O(log c)` compares to find its place in the cover array (kept
-//!   by increasing `r`, so one that ends last is appended) and moves the
-//!   covers that end after it; a front costs no compare while the covers
-//!   form a *chain* (each in front of the next on their common pixels),
-//!   kept by at most six depth compares a trapezoid that starts, and
-//!   `O(c)` otherwise.
+//!   by increasing `r`, so one that ends last is appended, and one that
+//!   ends with others goes after them, or takes the place of the first of
+//!   them when it hides them) and moves the covers that end after it; a
+//!   front costs no compare while the covers form a *chain* (each in
+//!   front of the next on their common pixels), kept by at most eight
+//!   depth compares a trapezoid that starts, and `O(c)` otherwise.
 //!
 //! A cover is a trapezoid that has started on the row and has neither
 //! ended nor been hidden: when a trapezoid that starts breaks the front,
 //! the covers that end by the front's end are behind it on all their
 //! pixels left and leave the array (once each), so a front is never
 //! compared again with what the last one hid. Staggered faces each nearer
-//! than the last so keep `c` at 2 however many overlap. What stays is
+//! than the last so keep `c` at 2 however many overlap (in a chain, each
+//! takes the place of the last when they end on one column). Trapezoids
+//! that start where nothing covers the sweep's position are compared with
+//! the first of them as they enter, and those it hides are left out:
+//! faces of one extent stacked keep `c` at 1. What stays is
 //! `c` trapezoids that overlap in depth and outlast the front: faces each
 //! farther than the last, visible one sliver each, make `s` and `c` both
 //! of the order of `a`, which would make a row `O(a²)`; but they form a
@@ -1662,15 +1667,42 @@ fn sweep_many<O: RowOut>(
         if lo >= nc {
             (lo, nc, chain, try_from) = (0, 0, false, chain_from);
         }
-        // Enter the trapezoids starting here (l = x).
+        // Enter the trapezoids starting here (l = x). Where nothing else
+        // covers x, the first of them is compared with each of the others
+        // first: when one is in front of the other on all its pixels
+        // (faces of one extent stacked), that one is hidden, and the
+        // cover array stays at one.
+        let fresh = lo >= nc;
+        let mut first: Option<Cover> = None;
         while p < k && act[p].hot.l <= x {
             let c = cover_of(act, p);
             p += 1;
             if chain {
                 chain = cx.enter_chain(act, lo, &mut nc, c, x, None).chain;
-            } else {
-                insert_many(act, &mut lo, &mut nc, c.element());
+                continue;
             }
+            if let Some(h) = first {
+                // Faces of one plane: the key decides on every pixel, so
+                // one comparison does for both ends.
+                let one = cx.one_plane(&h, &c);
+                if c.r <= h.r && one.unwrap_or_else(|| cx.dominates(&h, &c, x, c.r - 1)) {
+                    cx.stats.hidden += 1;
+                    continue;
+                }
+                if nc - lo == 1
+                    && c.r == h.r
+                    && one.map_or_else(|| cx.dominates(&c, &h, x, c.r - 1), |h_first| !h_first)
+                {
+                    // The first, alone in the array, hidden: its place.
+                    act[lo].cover = c.element();
+                    first = Some(c);
+                    cx.stats.hidden += 1;
+                    continue;
+                }
+            } else if fresh {
+                first = Some(c);
+            }
+            insert_many(act, &mut lo, &mut nc, c.element());
         }
         let mut next = next_l(act, p);
         if lo >= nc {
@@ -1778,9 +1810,13 @@ fn prune_many(act: &mut [Active], lo: usize, nc: usize, f: &Cover) -> usize {
 }
 
 /// Inserts `c` into `act[lo..nc].cover`, kept by increasing `r`: first
-/// when it ends first and there is room before, else from the end, moving
-/// up those that end with it or later (found by a binary search past [`FAR`] of
-/// them). The array has a place for every trapezoid that enters the row
+/// when it ends first and there is room before, else from the end, after
+/// those that end with it and before those that end later (found by a
+/// binary search past [`FAR`] of them), moving those up. After, not
+/// before, those that end with it: faces of one extent enter in the order
+/// of their keys, so each is appended (and they form a chain), where
+/// going before them would move them all, `O(a)` a face and `O(a²)` a
+/// row. The array has a place for every trapezoid that enters the row
 /// (`nc` grows by one at most for each), so it never overflows.
 fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Covered) {
     if *nc >= act.len() {
@@ -1791,15 +1827,16 @@ fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Covered) {
         act[*lo].cover = c;
         return;
     }
-    if *nc - *lo > FAR && act[*nc - FAR].cover.r >= c.r {
-        let q = place(act, *lo, *nc - FAR, c.r);
+    if *nc - *lo > FAR && act[*nc - FAR].cover.r > c.r {
+        let q = place(act, *lo, *nc - FAR, c.r + 1);
         insert_at(act, q, nc, c);
         return;
     }
     // Near the end: found and made room for in one pass.
     let mut q = *nc;
-    while q > *lo && act[q - 1].cover.r >= c.r {
+    while q > *lo && act[q - 1].cover.r > c.r {
         act[q].cover = act[q - 1].cover;
+        moved(1);
         q -= 1;
     }
     act[q].cover = c;
@@ -1810,10 +1847,8 @@ fn insert_many(act: &mut [Active], lo: &mut usize, nc: &mut usize, c: Covered) {
 /// search.
 const FAR: usize = 8;
 
-/// Where a cover ending at `r` goes in `act[lo..nc].cover` (by increasing
-/// `r`): before every cover that ends at `r` or after, by a binary search.
-/// (Before those that end with it: staggered faces that end on one pixel
-/// enter farthest first, and so stay a chain.)
+/// The first cover of `act[lo..nc].cover` (by increasing `r`) that ends
+/// at `r` or after, by a binary search.
 fn place(act: &[Active], lo: usize, nc: usize, r: i32) -> usize {
     let (mut a, mut b) = (lo, nc.min(act.len()));
     while a < b {
@@ -1832,6 +1867,7 @@ fn insert_at(act: &mut [Active], q: usize, nc: &mut usize, c: Covered) {
     if *nc >= act.len() || q > *nc {
         return;
     }
+    moved(*nc - q);
     let mut i = *nc;
     while i > q {
         act[i].cover = act[i - 1].cover;
@@ -1839,6 +1875,23 @@ fn insert_at(act: &mut [Active], q: usize, nc: &mut usize, c: Covered) {
     }
     act[q].cover = c;
     *nc += 1;
+}
+
+#[cfg(test)]
+extern crate std;
+
+#[cfg(test)]
+std::thread_local! {
+    /// Covers moved to make room in the cover array, on this thread
+    /// (counted for the tests that bound the work of degenerate rows).
+    static MOVED: core::cell::Cell<u64> = const { core::cell::Cell::new(0) };
+}
+
+/// Counts `n` covers moved (in tests; nothing otherwise).
+#[inline(always)]
+fn moved(_n: usize) {
+    #[cfg(test)]
+    MOVED.with(|m| m.set(m.get() + _n as u64));
 }
 
 /// What a trapezoid entering a chain did (see [`Ctx::enter_chain`]).
@@ -1984,6 +2037,15 @@ impl<O: RowOut> Ctx<'_, O> {
     /// see [`sweep_many`]) at `x`. With the front `f` (the first cover,
     /// unless a trapezoid that broke it entered since), `c` is left out
     /// when a cover is in front of it on all its pixels left (*hidden*).
+    ///
+    /// Among the covers that end with it, `c` goes first when it is in
+    /// front of the first of them, and then takes that one's place (which
+    /// it hides on all its pixels left, as it hides the rest of them by
+    /// transitivity), else after them. So staggered faces that end on one
+    /// pixel, each in front of the last, keep one cover there, and faces
+    /// of one extent entering behind those before them are appended: no
+    /// cover moves in either, where going before them all would move them
+    /// all, `O(a)` a face.
     fn enter_chain(
         &mut self,
         act: &mut [Active],
@@ -1994,13 +2056,24 @@ impl<O: RowOut> Ctx<'_, O> {
         f: Option<&Cover>,
     ) -> Entered {
         let n = (*nc).min(act.len());
-        let q = place(act, lo, n, c.r);
+        let mut q = place(act, lo, n, c.r);
         let mut e = Entered {
             breaks: false,
             chain: true,
         };
+        // The first of those that end with it, when it is in front of
+        // that one: its place, taken.
+        let mut take = false;
+        if let Some(d) = act[..n].get(q).map(|a| cover_of(act, a.cover.p as usize)) {
+            if d.r == c.r {
+                take = self.dominates(&c, &d, x, c.r - 1);
+                if !take {
+                    q = place(act, q, n, c.r + 1);
+                }
+            }
+        }
         if q > lo {
-            // It ends after the first.
+            // It ends after the first, or with it and behind it.
             let u = cover_of(act, act[q - 1].cover.p as usize);
             if self.dominates(&u, &c, x, u.r.min(c.r) - 1) {
                 // So is the first (the front), by transitivity.
@@ -2021,11 +2094,13 @@ impl<O: RowOut> Ctx<'_, O> {
                     }
                 }
             }
-            if let Some(d) = act[..n].get(q).map(|a| cover_of(act, a.cover.p as usize)) {
+            if take {
+                // In front of the one after it, whose place it takes.
+            } else if let Some(d) = act[..n].get(q).map(|a| cover_of(act, a.cover.p as usize)) {
                 e.chain = e.chain && self.dominates(&c, &d, x, c.r.min(d.r) - 1);
             }
         } else if let Some(t) = act[..n].get(lo).map(|a| cover_of(act, a.cover.p as usize)) {
-            // It ends first (or with the first).
+            // It ends first (or with the first, in front of it).
             if let Some(f) = f {
                 if self.dominates(f, &c, x, f.r.min(c.r) - 1) {
                     if c.r <= f.r {
@@ -2036,9 +2111,14 @@ impl<O: RowOut> Ctx<'_, O> {
                     e.breaks = true;
                 }
             }
-            e.chain = self.dominates(&c, &t, x, c.r.min(t.r) - 1);
+            e.chain = take || self.dominates(&c, &t, x, c.r.min(t.r) - 1);
         }
-        insert_at(act, q, nc, c.element());
+        if take {
+            // The one it hides leaves; those after it are behind it too.
+            act[q].cover = c.element();
+        } else {
+            insert_at(act, q, nc, c.element());
+        }
         e
     }
 
@@ -2104,6 +2184,21 @@ impl<O: RowOut> Ctx<'_, O> {
     fn dominates(&mut self, f: &Cover, g: &Cover, s: i32, e: i32) -> bool {
         self.nearer(f.face, f.z_at(s), g.face, g.z_at(s), s)
             && self.nearer(f.face, f.z_at(e), g.face, g.z_at(e), e)
+    }
+
+    /// When `a` and `b` are faces of one plane (their fixed-point depths
+    /// the same on the row, then their planes), whether `a` is in front
+    /// of `b` on every pixel: the lower key.
+    #[inline(always)]
+    fn one_plane(&mut self, a: &Cover, b: &Cover) -> Option<bool> {
+        if a.z != b.z || a.zx != b.zx {
+            return None;
+        }
+        self.stats.exact += 1;
+        match (self.store.face(a.face), self.store.face(b.face)) {
+            (Some(fa), Some(fb)) if fa.plane() == fb.plane() => Some(fa.key() < fb.key()),
+            _ => None,
+        }
     }
 
     /// `true` when face `c` (depth `cz` at pixel `i`) is in front of face
@@ -2197,6 +2292,9 @@ impl<O: RowOut> Ctx<'_, O> {
 #[inline(never)]
 fn exact_nearer(store: &TrapezoidStore<'_>, c: u16, b: u16, (i, j): (i32, i32), d: i32) -> bool {
     match (store.face(c), store.face(b)) {
+        // One plane (faces of one extent stacked, points at one place):
+        // equal depth everywhere, the key decides, without the products.
+        (Some(fc), Some(fb)) if fc.plane() == fb.plane() => fc.key() < fb.key(),
         (Some(fc), Some(fb)) => fc
             .plane()
             .cmp_at(fb.plane(), i, j)
@@ -2297,13 +2395,16 @@ mod tests {
         x
     }
 
-    fn brute(polys: &[[Vertex3; 3]], store: &TrapezoidStore<'_>) -> [u16; (W * H) as usize] {
+    fn brute<P: AsRef<[Vertex3]>>(
+        polys: &[P],
+        store: &TrapezoidStore<'_>,
+    ) -> [u16; (W * H) as usize] {
         let mut out = [Run::BACKGROUND; (W * H) as usize];
         for j in 0..H as i32 {
             for i in 0..W as i32 {
                 let mut best: Option<(usize, &Face)> = None;
                 for (k, p) in polys.iter().enumerate() {
-                    if !covers(p, i, j) {
+                    if !covers(p.as_ref(), i, j) {
                         continue;
                     }
                     // Face k is the k-th added to segment 0.
@@ -2336,8 +2437,8 @@ mod tests {
         run_scene_many_from(polys, mode, (MANY, CHAIN_FROM))
     }
 
-    fn run_scene_many_from(
-        polys: &[[Vertex3; 3]],
+    fn run_scene_many_from<P: AsRef<[Vertex3]> + core::fmt::Debug>(
+        polys: &[P],
         mode: Resolve,
         many: (usize, usize),
     ) -> VisibleStats {
@@ -2561,6 +2662,49 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Resolves `polys` with every row through `sweep_many` (the chain
+    /// looked for from the first front, and from [`CHAIN_FROM`] covers),
+    /// against brute force; the covers moved to make room, in all.
+    fn moves_many<P: AsRef<[Vertex3]> + core::fmt::Debug>(polys: &[P], mode: Resolve) -> u64 {
+        let before = MOVED.with(|m| m.get());
+        for many in [(0, 0), (0, CHAIN_FROM)] {
+            run_scene_many_from(polys, mode, many);
+        }
+        MOVED.with(|m| m.get()) - before
+    }
+
+    #[test]
+    fn faces_ending_on_one_column_move_no_cover() {
+        // Quads of one extent stacked at one depth (each behind those
+        // before it, by its key) and staggered ½ px, each nearer or each
+        // farther, all ending past the last column: each enters after
+        // those that end with it, or takes the place of the one it
+        // hides, and none moves (going before them all moved them all,
+        // O(n²) a row).
+        let quad = |x0: i32, z: i32| {
+            [
+                v(x0, 0, z),
+                v(x0, 16 * H as i32, z),
+                v(16 * W as i32 + 40, 16 * H as i32, z),
+                v(16 * W as i32 + 40, 0, z),
+            ]
+        };
+        let stacked: [[Vertex3; 4]; 60] = core::array::from_fn(|_| quad(0, 700));
+        let nearer: [[Vertex3; 4]; 60] =
+            core::array::from_fn(|k| quad(8 * k as i32, 900 - 9 * k as i32));
+        let farther: [[Vertex3; 4]; 60] =
+            core::array::from_fn(|k| quad(8 * k as i32, -900 + 9 * k as i32));
+        for mode in [Resolve::Bisect, Resolve::Crossing] {
+            for polys in [&stacked, &nearer, &farther] {
+                assert_eq!(moves_many(polys, mode), 0, "{mode:?} {polys:?}");
+                run_scene_many_from(polys, mode, (MANY, CHAIN_FROM));
+            }
+        }
+        // Stacked in front of one another: most hidden where they start.
+        let stats = run_scene_many_from(&stacked, Resolve::Crossing, (0, 0));
+        assert!(stats.hidden >= 59 * H as u32, "{stats:?}");
     }
 
     #[test]
