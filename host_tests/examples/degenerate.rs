@@ -18,7 +18,10 @@
 //! * `points`: N identical points `face 0 0 -5` in a 3D scene;
 //! * `staggered`: K full-height rectangles on a 2047 × 256 frame, each
 //!   starting ½ px right of the last and nearer, all ending on the last
-//!   column.
+//!   column;
+//! * `labels`: N one-letter labels of one segment, at scattered points;
+//! * `clears-4096`: N `clear`s of a 4096 × 4096 frame, each followed by a
+//!   small `poly` (only the last clear and what follows it can show).
 //!
 //! `--small` uses sizes an eighth as large (for code that is still
 //! quadratic); `--write DIR` writes the largest list of each family as
@@ -66,7 +69,29 @@ fn staggered(k: usize) -> String {
     s
 }
 
-const FAMILIES: [Family; 4] = [
+fn labels(n: usize) -> String {
+    let mut s =
+        String::from("frame 320 240\nperspective 50 1 100\nlookat 0 0 10  0 0 0\nsegment 1\n");
+    for i in 0..n {
+        // Scattered over the view, a fixed pattern.
+        let (x, y) = (
+            (i * 37 % 600) as f64 / 100.0 - 3.0,
+            (i * 91 % 600) as f64 / 100.0 - 3.0,
+        );
+        let _ = writeln!(s, "label {x:.2} {y:.2} 0 a");
+    }
+    s
+}
+
+fn clears(n: usize) -> String {
+    let mut s = String::from("frame 4096 4096\n");
+    for i in 0..n {
+        let _ = writeln!(s, "clear #{:06x}\npoly 0 0 40 0 20 30", i % 0xff_ffff);
+    }
+    s
+}
+
+const FAMILIES: [Family; 6] = [
     Family {
         name: "stacked-64",
         sizes: [4000, 8000, 16000, 32000],
@@ -86,6 +111,16 @@ const FAMILIES: [Family; 4] = [
         name: "staggered",
         sizes: [500, 1000, 2000, 4000],
         list: staggered,
+    },
+    Family {
+        name: "labels",
+        sizes: [25_000, 50_000, 100_000, 200_000],
+        list: labels,
+    },
+    Family {
+        name: "clears-4096",
+        sizes: [1000, 2000, 4000, 8000],
+        list: clears,
     },
 ];
 
