@@ -45,6 +45,24 @@
 //! added to the segment since it was last emptied. Where two faces have
 //! the same depth at a pixel, the lower key is in front: the lower
 //! segment, then the earlier polygon.
+//!
+//! # Points and lines
+//!
+//! A point or a line (a face of one or two vertices, which the geometry
+//! stage delivers as a small polygon with `two_sided` set, and
+//! [`TrapezoidStore::add_point_or_line`] adds) is compared at its plane
+//! moved [`LINE_BIAS`] = 256 units of depth (16 Q12.4 units, 1/256 of the
+//! depth range) toward the eye: at every pixel, its depth is its plane's
+//! less 256, and the rule above (the nearer, then the lower key) decides.
+//! So a point or a line lying on a face is in front of it wherever the
+//! face's depth differs from the line's by less than 256 units at the
+//! pixel centres the line covers: a face whose depth changes by less than
+//! about `256 / (t/2 + ½)` units a pixel across a line of thickness `t`
+//! px. A point or line less than 256 units behind a face shows through it
+//! too, as with a polygon offset. Points and lines are moved alike, so
+//! among themselves nothing changes. The move is made where the face's
+//! plane is made ([`Polygon::load_lifted`](crate::visible::trapezoid::Polygon::load_lifted)), so every way of resolving,
+//! whole or in bands, compares the same moved plane.
 
 use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
@@ -56,8 +74,8 @@ use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// How far the plane of a point or a line is moved toward the eye, in
-/// units of depth (1/16 of a Q12.4 unit, the step of
-/// [`Vertex3`]'s `z`): see *Ties* in the [module](self) docs.
+/// units of depth (1/16 of a Q12.4 unit, the step of [`Vertex3`]'s `z`):
+/// see *Points and lines* in the [module](self) docs.
 pub const LINE_BIAS: u16 = 256;
 
 /// A polygon of the store: its exact plane and fixed-point depth (read by
@@ -543,8 +561,8 @@ impl<'a> TrapezoidStore<'a> {
     /// [`add_polygon`](Self::add_polygon) for the polygon a point or a line
     /// became ([`geometry::primitive`](crate::geometry::primitive)): its
     /// face's plane is moved [`LINE_BIAS`] units of depth toward the eye
-    /// (see *Ties* in the [module](self) docs), so that it shows on the
-    /// faces it lies on.
+    /// (see *Points and lines* in the [module](self) docs), so that it
+    /// shows on the faces it lies on.
     pub fn add_point_or_line<I>(
         &mut self,
         s: usize,

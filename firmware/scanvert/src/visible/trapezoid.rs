@@ -105,14 +105,27 @@
 //! flattened when that leaves them. That plane is compared exactly, in
 //! both ways of resolving, so both draw the same pixels.
 //!
+//! A point's or a line's polygon ([`Polygon::load_lifted`], `lift` units
+//! toward the eye, at most 2¹³) is bounded the same way by
+//! `[z_min − lift, z_max + lift]`, then moved ([`Plane::toward_eye`]):
+//! its depth lies in `[z_min − 2·lift, z_max]`. A line's quad is planar
+//! as the geometry stage delivers it unless the window clip cut it;
+//! then rounding tilts it by a few units, and as its two ends' corners
+//! are at the extremes of its depths, bounded by `[z_min, z_max]` it
+//! would be flattened, often to a constant depth, losing its slope along
+//! the line.
+//!
 //! # Depth ranges
 //!
 //! Every plane a polygon is loaded with has, at every pixel centre the
 //! polygon covers, an exact depth between its vertices' depths, inside
-//! the Q12.4 range \[−2¹⁵, 2¹⁵) units. Scaled by 2¹⁴ (below) that is
-//! \[−2²⁹, 2²⁹), and the fixed-point value `Z̃` is within 2¹² of it, so
-//! `|Z̃| < 2²⁹ + 2¹²` at every covered pixel, and the difference of two
-//! faces' `Z̃` at a pixel both cover is below `2³⁰ + 2¹³ < 2³¹`: the
+//! the Q12.4 range \[−2¹⁵, 2¹⁵) units; a point's or a line's, moved
+//! toward the eye, between its vertices' least depth less 2¹⁴ and their
+//! greatest: inside \[−2¹⁵ − 2¹⁴, 2¹⁵). Scaled by 2¹⁴ (below) that is
+//! \[−2²⁹ − 2²⁸, 2²⁹), and the fixed-point value `Z̃` is within 2¹² of it,
+//! so `|Z̃| < 2²⁹ + 2²⁸ + 2¹²` at every covered pixel, and the difference
+//! of two faces' `Z̃` at a pixel both cover is below
+//! `2³⁰ + 2²⁸ + 2¹³ < 2³¹`: the
 //! visible-surface stage's `i32` depth differences never wrap, and its
 //! `i64` crossing-point products (a difference times a run of at most
 //! 2¹² pixels) stay below 2⁴³. Both ways of resolving a span therefore
