@@ -1303,19 +1303,15 @@ impl<'s> Polygon<'s> {
         // its slope along the line. Bounded by `[z_min − lift, z_max +
         // lift]`, it keeps it unless the tilt exceeds `lift`; moved, it
         // lies in `[z_min − 2·lift, z_max]`.
-        let lifted = |p: Plane| match lift {
-            0 => p,
-            _ => p.toward_eye(lift),
-        };
-        let (zlo, zhi) = sums.z;
-        let lift32 = lift as i32;
+        let (zlo, zhi) = (sums.z.0 - lift as i32, sums.z.1 + lift as i32);
         self.plane = match sums.n {
-            ..=3 => sums.finish().map(lifted),
-            _ if sums.within => sums.finish().map(lifted),
-            _ => sums
-                .finish()
-                .map(|p| lifted(self.bounded(p, (zlo - lift32, zhi + lift32)))),
+            ..=3 => sums.finish(),
+            _ if sums.within => sums.finish(),
+            _ => sums.finish().map(|p| self.bounded(p, (zlo, zhi))),
         };
+        if let (Some(p), 1..) = (&mut self.plane, lift) {
+            *p = p.toward_eye(lift);
+        }
     }
 
     /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
