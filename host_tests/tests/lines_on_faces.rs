@@ -373,3 +373,94 @@ fn lines_along_edges_that_faces_share_show_as_the_reference_shows_them() {
     }
     assert!(total > 3000, "{total}");
 }
+
+// ---------------------------------------------------------------------
+// The edges of the depth range
+
+/// Lines and points at the nearest and the farthest depth of the format,
+/// on a face running from one to the other and on a face at the near
+/// plane: moved past the near plane, they are drawn, compared exactly
+/// and nothing wraps (overflow checks are on), in every resolve mode.
+#[test]
+fn lines_at_the_ends_of_the_depth_range_show_as_the_reference_shows_them() {
+    use scanvert::visible::{
+        draw, Active, EdgeSlot, Face, Run, Segment, StoreMemory, Trapezoid, TrapezoidStore,
+        Workspace,
+    };
+    let (w, h) = (64u16, 48u16);
+    let (near, far) = (i16::MIN as i32, i16::MAX as i32);
+    // A rectangle counter-clockwise as displayed, its depth `z(x)`.
+    let rect = |x0: i32, y0: i32, x1: i32, y1: i32, z: &dyn Fn(i32) -> i32| {
+        vec![
+            (x0, y0, z(x0)),
+            (x0, y1, z(x0)),
+            (x1, y1, z(x1)),
+            (x1, y0, z(x1)),
+        ]
+    };
+    let ramp = |x: i32| near + (x * (far - near)) / 1024;
+    let polys: Vec<(Vec<(i32, i32, i32)>, bool)> = vec![
+        // The ramp from the near plane (x = 0) to the far one (x = 64 px).
+        (rect(0, 0, 1024, 400, &ramp), false),
+        // A face at the near plane.
+        (rect(0, 400, 1024, 768, &|_| near), false),
+        // Lines on them: at the near plane at the ramp's near end, at the
+        // far plane at its far end, along the ramp, and across the flat
+        // face; a point on the flat face.
+        (rect(0, 40, 40, 360, &|_| near), true),
+        (rect(984, 40, 1024, 360, &|_| far), true),
+        (rect(0, 180, 1024, 204, &ramp), true),
+        (rect(100, 560, 900, 584, &|_| near), true),
+        (rect(500, 640, 540, 680, &|_| near), true),
+    ];
+    let (want, lifted): (Vec<Poly3>, Vec<bool>) = polys
+        .iter()
+        .map(|(p, l)| {
+            (
+                Poly3 {
+                    poly: p.clone(),
+                    clip: None,
+                },
+                *l,
+            )
+        })
+        .unzip();
+    let want = resolve_lifted(&want, &lifted, w.into(), h.into());
+    let shown = want.iter().filter(|k| k.is_some_and(|k| k >= 2)).count();
+    assert!(shown > 200, "{shown}");
+    let mut traps = vec![Trapezoid::EMPTY; 64];
+    let mut faces = [Face::EMPTY; 16];
+    let mut segs = [Segment::EMPTY; 1];
+    let mut rows = vec![0u16; h as usize];
+    let mut slots = [EdgeSlot::EMPTY; 8];
+    let mut store = TrapezoidStore::new(
+        StoreMemory {
+            trapezoids: &mut traps,
+            faces: &mut faces,
+            segments: &mut segs,
+            rows: &mut rows,
+            edges: &mut slots,
+        },
+        w,
+        h,
+    )
+    .unwrap();
+    let clip = scanvert::raster::clip::ClipRect::full(w, h);
+    for (k, (p, line)) in polys.iter().enumerate() {
+        let v = p.iter().map(|&v| host_tests::harness3d::vertex3(v));
+        let n = match line {
+            true => store.add_point_or_line(0, v, color_of(k), &clip),
+            false => store.add_polygon(0, v, color_of(k), &clip),
+        };
+        assert!(n.unwrap() > 0);
+    }
+    let (mut active, mut runs) = (vec![Active::EMPTY; 16], vec![Run::EMPTY; w as usize]);
+    for mode in MODES {
+        let mut px = vec![Rgb888::WHITE; w as usize * h as usize];
+        let mut fb = FrameBuffer::new(&mut px, w, h).unwrap();
+        let mut ws = Workspace::new(&mut active, &mut runs);
+        draw(&store, &mut ws, mode, &mut fb, Some(Rgb888::BLACK)).unwrap();
+        let got: Vec<Option<usize>> = px.iter().map(|&c| index_of(c)).collect();
+        assert_eq!(got, want, "{mode:?}");
+    }
+}

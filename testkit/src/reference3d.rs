@@ -250,6 +250,34 @@ mod tests {
     }
 
     #[test]
+    fn points_and_lines_are_moved_toward_the_eye_by_the_bias() {
+        let px = |x: i32, y: i32, z: i32| (x * 16, y * 16, z);
+        let face = |z: i32| Poly3 {
+            poly: vec![px(0, 0, z), px(0, 2, z), px(2, 2, z), px(2, 0, z)],
+            clip: None,
+        };
+        let b = LINE_BIAS as i32;
+        // Whether a line's polygon `d` units behind a face shows, listed
+        // before or after the face.
+        let shows = |d: i32, line_first: bool| {
+            let (f, l) = (face(1000), face(1000 + d));
+            let (polys, lifted, line) = match line_first {
+                false => (vec![f, l], [false, true], 1),
+                true => (vec![l, f], [true, false], 0),
+            };
+            resolve_lifted(&polys, &lifted, 2, 2)[0] == Some(line)
+        };
+        for (d, want) in [(-5, true), (0, true), (b - 1, true), (b + 1, false)] {
+            assert_eq!(shows(d, false), want, "{d}");
+            assert_eq!(shows(d, true), want, "{d}");
+        }
+        // Exactly the bias behind: a tie, which the earlier wins.
+        assert!(!shows(b, false) && shows(b, true));
+        // Unmarked, the rule is the plain one.
+        assert_eq!(resolve(&[face(1000), face(1000)], 2, 2)[0], Some(0));
+    }
+
+    #[test]
     fn clip_registers_and_edge_on_polygons() {
         let px = |x: i32, y: i32, z: i32| (x * 16, y * 16, z * 16);
         let sq = vec![px(0, 0, 1), px(0, 4, 1), px(4, 4, 1), px(4, 0, 1)];
