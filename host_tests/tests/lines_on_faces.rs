@@ -399,7 +399,9 @@ fn lines_at_the_ends_of_the_depth_range_show_as_the_reference_shows_them() {
         ]
     };
     let ramp = |x: i32| near + (x * (far - near)) / 1024;
-    let polys: Vec<(Vec<(i32, i32, i32)>, bool)> = vec![
+    // Each polygon, and whether a point or a line became it.
+    type Marked = (Vec<(i32, i32, i32)>, bool);
+    let polys: Vec<Marked> = vec![
         // The ramp from the near plane (x = 0) to the far one (x = 64 px).
         (rect(0, 0, 1024, 400, &ramp), false),
         // A face at the near plane.
