@@ -11,7 +11,10 @@
 //!    registers in force at its place in the list (cut to the frame);
 //! 3. of the drawn `poly3`s covering a pixel, the one nearest at the pixel
 //!    centre wins; at equal depth, the earlier one (the list's tie rule,
-//!    which is also a z-buffer's with a strict test).
+//!    which is also a z-buffer's with a strict test). A polygon that a
+//!    scene's point or line became ([`resolve_lifted`]) is compared at its
+//!    depth less [`LINE_BIAS`] units: moved toward the eye, so that it
+//!    shows on a face it lies on.
 //!
 //! Depth is not taken from a plane equation (as scanvert's faces and a
 //! z-buffer do) but by barycentric interpolation over three vertices of
@@ -132,9 +135,26 @@ impl Bary {
     }
 }
 
+/// How far the rules of `docs/display-list.md` move a point or a line
+/// toward the eye, in units of depth (1/16 of a Q12.4 unit): 16 units of
+/// Q12.4 depth.
+pub const LINE_BIAS: i128 = 16 * 16;
+
 /// The winner at every pixel of a `width × height` frame (row-major): the
 /// index of the `poly3` in `polys` that the rules show there, or `None`.
 pub fn resolve(polys: &[Poly3], width: u32, height: u32) -> Vec<Option<usize>> {
+    resolve_lifted(polys, &[], width, height)
+}
+
+/// [`resolve`] where `polys[k]` stands for (a part of) a point or a line
+/// of a scene when `lifted[k]` is `true` (missing: `false`): its depth at
+/// a pixel centre is taken less [`LINE_BIAS`].
+pub fn resolve_lifted(
+    polys: &[Poly3],
+    lifted: &[bool],
+    width: u32,
+    height: u32,
+) -> Vec<Option<usize>> {
     let (w, h) = (width as u16, height as u16);
     let full = Window::full(w, h);
     let mut best: Vec<Option<(usize, i128, i128)>> = vec![None; width as usize * height as usize];
@@ -143,6 +163,10 @@ pub fn resolve(polys: &[Poly3], width: u32, height: u32) -> Vec<Option<usize>> {
             continue;
         }
         let Some(b) = Bary::of(&p.poly) else { continue };
+        let bias = match lifted.get(k) {
+            Some(true) => LINE_BIAS,
+            _ => 0,
+        };
         let flat: Vec<(i32, i32)> = p.poly.iter().map(|v| (v.0, v.1)).collect();
         let win = p.clip.unwrap_or(full);
         let (x0, y0, x1, y1) = pixel_box(&flat, 1, w, h);
@@ -152,6 +176,8 @@ pub fn resolve(polys: &[Poly3], width: u32, height: u32) -> Vec<Option<usize>> {
                     continue;
                 }
                 let (n, d) = b.depth(16 * i as i128 + 8, 16 * j as i128 + 8);
+                // z − bias = (n − bias·d) / d.
+                let n = n - bias * d;
                 let cell = &mut best[j as usize * width as usize + i as usize];
                 // Strictly nearer only: at equal depth the earlier stays.
                 if !matches!(*cell, Some((_, bn, bd)) if n * bd >= bn * d) {
@@ -221,6 +247,34 @@ mod tests {
         assert_eq!(r[1], Some(0), "tie: the earlier");
         let r = resolve(&[strip(8, -16, 48), flat], 4, 1);
         assert_eq!(r[1], Some(0), "tie: the earlier");
+    }
+
+    #[test]
+    fn points_and_lines_are_moved_toward_the_eye_by_the_bias() {
+        let px = |x: i32, y: i32, z: i32| (x * 16, y * 16, z);
+        let face = |z: i32| Poly3 {
+            poly: vec![px(0, 0, z), px(0, 2, z), px(2, 2, z), px(2, 0, z)],
+            clip: None,
+        };
+        let b = LINE_BIAS as i32;
+        // Whether a line's polygon `d` units behind a face shows, listed
+        // before or after the face.
+        let shows = |d: i32, line_first: bool| {
+            let (f, l) = (face(1000), face(1000 + d));
+            let (polys, lifted, line) = match line_first {
+                false => (vec![f, l], [false, true], 1),
+                true => (vec![l, f], [true, false], 0),
+            };
+            resolve_lifted(&polys, &lifted, 2, 2)[0] == Some(line)
+        };
+        for (d, want) in [(-5, true), (0, true), (b - 1, true), (b + 1, false)] {
+            assert_eq!(shows(d, false), want, "{d}");
+            assert_eq!(shows(d, true), want, "{d}");
+        }
+        // Exactly the bias behind: a tie, which the earlier wins.
+        assert!(!shows(b, false) && shows(b, true));
+        // Unmarked, the rule is the plain one.
+        assert_eq!(resolve(&[face(1000), face(1000)], 2, 2)[0], Some(0));
     }
 
     #[test]

@@ -437,6 +437,7 @@ impl Out for Count<'_> {
         v: I,
         _: Rgb888,
         clip: &ClipRect,
+        _: bool,
     ) -> Result<(), SceneError> {
         let poly = Polygon::load(&mut *self.edges, v, clip)
             .map_err(|e| SceneError::Store(StoreError::from(e)))?;

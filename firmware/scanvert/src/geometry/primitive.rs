@@ -16,8 +16,12 @@
 //! The perpendicular is normalised in integers: the direction is scaled by
 //! a power of two to 15 bits, its length taken by `isqrt`, and the offset
 //! is `(−dy, dx) · (t/2) / len` (`|·| < 2¹⁵ · 2¹⁹`, `i64`), within 1/256 px
-//! of the exact one. Both ends share the one offset, so the quad is a
-//! parallelogram exactly. The vertices run counter-clockwise as displayed.
+//! of the exact one. The ends and the offset are rounded to the output's
+//! grid (1/16 px, a Q12.4 step of depth) and both ends share the one
+//! offset, so the quad is a parallelogram exactly, in 3D too: its corners
+//! are not rounded again, and its plane is the one the visible-surface
+//! stage compares (a point's square is at one depth: planar anyway). The
+//! vertices run counter-clockwise as displayed.
 
 use super::light::{length15, scale15};
 
@@ -34,6 +38,11 @@ pub(super) fn point_quad(p: [i64; 3], half: i64) -> [[i64; 3]; 4] {
 }
 
 /// The quad of half-width `half` (1/256 px) along `a`–`b`.
+///
+/// Its ends and offset are rounded to the output's grid first (x, y to
+/// 1/16 px, depth to a Q12.4 step, as `project::to_vertex3` rounds), so
+/// its corners are on the grid and it is a parallelogram in 3D after the
+/// rounding too: planar, unless the window clip cuts it.
 #[inline]
 pub(super) fn line_quad(a: [i64; 3], b: [i64; 3], half: i64) -> [[i64; 3]; 4] {
     let Some(s) = scale15([b[0] - a[0], b[1] - a[1], 0]) else {
@@ -41,8 +50,11 @@ pub(super) fn line_quad(a: [i64; 3], b: [i64; 3], half: i64) -> [[i64; 3]; 4] {
         return point_quad(nearer, half);
     };
     let len = length15(s) as i64;
-    let off = |c: i32| (c as i64 * half + len / 2).div_euclid(len);
+    let grid = |v: i64, shift: u32| ((v + (1 << (shift - 1))) >> shift) << shift;
+    let snap = |p: [i64; 3]| [grid(p[0], 4), grid(p[1], 4), grid(p[2], 8)];
+    let off = |c: i32| grid((c as i64 * half + len / 2).div_euclid(len), 4);
     let (ox, oy) = (off(-s[1]), off(s[0]));
+    let (a, b) = (snap(a), snap(b));
     [
         [a[0] + ox, a[1] + oy, a[2]],
         [b[0] + ox, b[1] + oy, b[2]],
@@ -68,13 +80,16 @@ mod tests {
     fn squares_and_quads_run_counter_clockwise_as_displayed() {
         let sq = point_quad([100, 100, 7], 10);
         assert_eq!(shoelace(&sq), -2 * 20 * 20);
-        let q = line_quad([0, 0, 1], [1000, 0, 9], 16);
-        assert_eq!(q, [[0, 16, 1], [1000, 16, 9], [1000, -16, 9], [0, -16, 1]]);
+        let q = line_quad([0, 0, 1], [1000, 0, 300], 16);
+        assert_eq!(
+            q,
+            [[0, 16, 0], [1008, 16, 256], [1008, -16, 256], [0, -16, 0]]
+        );
         assert!(shoelace(&q) < 0);
         let q = line_quad([1000, 0, 1], [0, 0, 9], 16);
         assert!(shoelace(&q) < 0);
         let q = line_quad([0, 0, 1], [300, 400, 9], 500);
-        assert_eq!(q[0], [-400, 300, 1]);
+        assert_eq!(q[0], [-400, 304, 0]);
     }
 
     #[test]

@@ -83,12 +83,14 @@ pub enum Executed {
 /// Where the interpreter puts what it makes: a segment of a scene, or
 /// counters.
 pub(crate) trait Out {
-    /// A polygon of the layer in screen space, `clip` applied.
+    /// A polygon of the layer in screen space, `clip` applied; the one a
+    /// point or a line became when `point_or_line` is set.
     fn polygon<I: IntoIterator<Item = Vertex3>>(
         &mut self,
         vertices: I,
         color: Rgb888,
         clip: &ClipRect,
+        point_or_line: bool,
     ) -> Result<(), SceneError>;
     /// A `poly3`: its vertices as [`polygon`](Out::polygon) when they are
     /// front-facing ([`front_facing`]); `Ok(false)`, nothing done, when
@@ -101,7 +103,7 @@ pub(crate) trait Out {
     ) -> Result<bool, SceneError> {
         let drawn = front_facing(vertices);
         if drawn {
-            self.polygon(vertices.iter(), color, clip)?;
+            self.polygon(vertices.iter(), color, clip, false)?;
         }
         Ok(drawn)
     }
@@ -119,8 +121,8 @@ struct Faces<'o, O> {
 
 impl<O: Out> PolygonSink for Faces<'_, O> {
     type Error = SceneError;
-    fn polygon(&mut self, v: &[Vertex3], color: Rgb888, _: bool) -> Result<(), SceneError> {
-        self.out.polygon(v.iter().copied(), color, &self.clip)
+    fn polygon(&mut self, v: &[Vertex3], color: Rgb888, two: bool) -> Result<(), SceneError> {
+        self.out.polygon(v.iter().copied(), color, &self.clip, two)
     }
 }
 

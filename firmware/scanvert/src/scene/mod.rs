@@ -119,7 +119,7 @@ use crate::geometry::{
 use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::visible::rle::Run;
-use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore};
+use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore, LINE_BIAS};
 use crate::visible::{self, Active, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
@@ -704,9 +704,11 @@ impl list::Out for SegmentOut<'_, '_> {
         vertices: I,
         color: Rgb888,
         clip: &ClipRect,
+        point_or_line: bool,
     ) -> Result<(), SceneError> {
+        let lift = if point_or_line { LINE_BIAS } else { 0 };
         self.store
-            .add_polygon(self.segment, vertices, color, clip)
+            .add_lifted(self.segment, vertices, color, clip, lift)
             .map(|_| ())
             .map_err(SceneError::Store)
     }

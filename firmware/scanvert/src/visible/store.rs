@@ -45,6 +45,24 @@
 //! added to the segment since it was last emptied. Where two faces have
 //! the same depth at a pixel, the lower key is in front: the lower
 //! segment, then the earlier polygon.
+//!
+//! # Points and lines
+//!
+//! A point or a line (a face of one or two vertices, which the geometry
+//! stage delivers as a small polygon with `two_sided` set, and
+//! [`TrapezoidStore::add_point_or_line`] adds) is compared at its plane
+//! moved [`LINE_BIAS`] = 256 units of depth (16 Q12.4 units, 1/256 of the
+//! depth range) toward the eye: at every pixel, its depth is its plane's
+//! less 256, and the rule above (the nearer, then the lower key) decides.
+//! So a point or a line lying on a face is in front of it wherever the
+//! face's depth differs from the line's by less than 256 units at the
+//! pixel centres the line covers: a face whose depth changes by less than
+//! about `256 / (t/2 + ½)` units a pixel across a line of thickness `t`
+//! px. A point or line less than 256 units behind a face shows through it
+//! too, as with a polygon offset. Points and lines are moved alike, so
+//! among themselves nothing changes. The move is made where the face's
+//! plane is made ([`Polygon::load_lifted`](crate::visible::trapezoid::Polygon::load_lifted)), so every way of resolving,
+//! whole or in bands, compares the same moved plane.
 
 use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
@@ -54,6 +72,11 @@ use crate::visible::trapezoid::{
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
+
+/// How far the plane of a point or a line is moved toward the eye, in
+/// units of depth (1/16 of a Q12.4 unit, the step of [`Vertex3`]'s `z`):
+/// see *Points and lines* in the [module](self) docs.
+pub const LINE_BIAS: u16 = 256;
 
 /// A polygon of the store: its exact plane and fixed-point depth (read by
 /// every trapezoid of it), colour and tie key.
@@ -541,7 +564,41 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        self.add_from(s, Source::Once(vertices.into_iter()), color, clip)
+        self.add_lifted(s, vertices, color, clip, 0)
+    }
+
+    /// [`add_polygon`](Self::add_polygon) for the polygon a point or a line
+    /// became ([`geometry::primitive`](crate::geometry::primitive)): its
+    /// face's plane is moved [`LINE_BIAS`] units of depth toward the eye
+    /// (see *Points and lines* in the [module](self) docs), so that it
+    /// shows on the faces it lies on.
+    pub fn add_point_or_line<I>(
+        &mut self,
+        s: usize,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<u32, StoreError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
+        self.add_lifted(s, vertices, color, clip, LINE_BIAS)
+    }
+
+    /// [`add_polygon`](Self::add_polygon) with the plane moved `lift`
+    /// units toward the eye (`lift ≤ 2¹⁴`): one body for both adders.
+    pub(crate) fn add_lifted<I>(
+        &mut self,
+        s: usize,
+        vertices: I,
+        color: Rgb888,
+        clip: &ClipRect,
+        lift: u16,
+    ) -> Result<u32, StoreError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
+        self.add_from(s, Source::Once(vertices.into_iter()), color, clip, lift)
     }
 
     /// A `poly3`'s vertices into segment `s` as
@@ -559,19 +616,20 @@ impl<'a> TrapezoidStore<'a> {
         match Outline::of(it.clone()) {
             Ok(o) if !o.front() => Ok(false),
             Ok(o) => self
-                .add_from(s, Source::Outlined(it, Ok(o)), color, clip)
+                .add_from(s, Source::Outlined(it, Ok(o)), color, clip, 0)
                 .map(|_| true),
             // Too many vertices: an error only for a drawn one.
             Err(e) => match front_facing(vertices) {
                 true => self
-                    .add_from(s, Source::Outlined(it, Err(e.into())), color, clip)
+                    .add_from(s, Source::Outlined(it, Err(e.into())), color, clip, 0)
                     .map(|_| true),
                 false => Ok(false),
             },
         }
     }
 
-    /// [`add_polygon`](Self::add_polygon) of the vertices of `src`.
+    /// [`add_polygon`](Self::add_polygon) of the vertices of `src`, the
+    /// plane moved `lift` units toward the eye.
     #[inline(always)]
     fn add_from<I>(
         &mut self,
@@ -579,11 +637,12 @@ impl<'a> TrapezoidStore<'a> {
         src: Source<I>,
         color: Rgb888,
         clip: &ClipRect,
+        lift: u16,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
     {
-        match self.add_inner(s, src, color, clip) {
+        match self.add_inner(s, src, color, clip, lift) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -601,6 +660,7 @@ impl<'a> TrapezoidStore<'a> {
         src: Source<I>,
         color: Rgb888,
         clip: &ClipRect,
+        lift: u16,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
@@ -626,7 +686,7 @@ impl<'a> TrapezoidStore<'a> {
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
         let poly = match src {
-            Source::Once(it) => Polygon::load(self.edges, it, &clip)?,
+            Source::Once(it) => Polygon::load_lifted(self.edges, it, &clip, lift)?,
             Source::Outlined(it, o) => Polygon::load_edges(self.edges, it, o?, &clip)?,
         };
         let Some(plane) = poly.plane().copied() else {
@@ -772,7 +832,9 @@ impl Adding<'_> {
 /// One segment of a store as the geometry stage's
 /// [`PolygonSink`](crate::geometry::PolygonSink): every polygon delivered
 /// is cut into that segment's trapezoids under `clip` (winding is not
-/// looked at: the geometry stage has culled).
+/// looked at: the geometry stage has culled), and points and lines (the
+/// polygons delivered `two_sided`) as
+/// [`add_point_or_line`](TrapezoidStore::add_point_or_line) adds them.
 #[derive(Debug)]
 pub struct SegmentSink<'s, 'a> {
     store: &'s mut TrapezoidStore<'a>,
@@ -798,10 +860,12 @@ impl crate::geometry::PolygonSink for SegmentSink<'_, '_> {
         &mut self,
         vertices: &[Vertex3],
         color: Rgb888,
-        _two_sided: bool,
+        point_or_line: bool,
     ) -> Result<(), StoreError> {
+        let lift = if point_or_line { LINE_BIAS } else { 0 };
+        let v = vertices.iter().copied();
         self.store
-            .add_polygon(self.segment, vertices.iter().copied(), color, &self.clip)
+            .add_lifted(self.segment, v, color, &self.clip, lift)
             .map(|_| ())
     }
 }

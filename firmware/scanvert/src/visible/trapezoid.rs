@@ -105,14 +105,27 @@
 //! flattened when that leaves them. That plane is compared exactly, in
 //! both ways of resolving, so both draw the same pixels.
 //!
+//! A point's or a line's polygon ([`Polygon::load_lifted`], `lift` units
+//! toward the eye, at most 2¹³) is bounded the same way by
+//! `[z_min − lift, z_max + lift]`, then moved ([`Plane::toward_eye`]):
+//! its depth lies in `[z_min − 2·lift, z_max]`. A line's quad is planar
+//! as the geometry stage delivers it unless the window clip cut it;
+//! then rounding tilts it by a few units, and as its two ends' corners
+//! are at the extremes of its depths, bounded by `[z_min, z_max]` it
+//! would be flattened, often to a constant depth, losing its slope along
+//! the line.
+//!
 //! # Depth ranges
 //!
 //! Every plane a polygon is loaded with has, at every pixel centre the
 //! polygon covers, an exact depth between its vertices' depths, inside
-//! the Q12.4 range \[−2¹⁵, 2¹⁵) units. Scaled by 2¹⁴ (below) that is
-//! \[−2²⁹, 2²⁹), and the fixed-point value `Z̃` is within 2¹² of it, so
-//! `|Z̃| < 2²⁹ + 2¹²` at every covered pixel, and the difference of two
-//! faces' `Z̃` at a pixel both cover is below `2³⁰ + 2¹³ < 2³¹`: the
+//! the Q12.4 range \[−2¹⁵, 2¹⁵) units; a point's or a line's, moved
+//! toward the eye, between its vertices' least depth less 2¹⁴ and their
+//! greatest: inside \[−2¹⁵ − 2¹⁴, 2¹⁵). Scaled by 2¹⁴ (below) that is
+//! \[−2²⁹ − 2²⁸, 2²⁹), and the fixed-point value `Z̃` is within 2¹² of it,
+//! so `|Z̃| < 2²⁹ + 2²⁸ + 2¹²` at every covered pixel, and the difference
+//! of two faces' `Z̃` at a pixel both cover is below
+//! `2³⁰ + 2²⁸ + 2¹³ < 2³¹`: the
 //! visible-surface stage's `i32` depth differences never wrap, and its
 //! `i64` crossing-point products (a difference times a run of at most
 //! 2¹² pixels) stay below 2⁴³. Both ways of resolving a span therefore
@@ -183,10 +196,13 @@ pub struct Plane {
     a: i64,
     b: i64,
     c: i64,
-    /// The point it was made through (the first vertex), in units. The
-    /// right-hand side `d = a·x₀ + b·y₀ + c·z₀` is not kept: every use
-    /// works relative to this point ([`Plane::offset`] computes `d`).
-    origin: (i16, i16, i16),
+    /// The point it was made through (the first vertex, its depth less
+    /// [`LINE_BIAS`](crate::visible::store::LINE_BIAS) for a point or a
+    /// line: [`Plane::toward_eye`]), in
+    /// units. The right-hand side `d = a·x₀ + b·y₀ + c·z₀` is not kept:
+    /// every use works relative to this point ([`Plane::offset`]
+    /// computes `d`).
+    origin: (i16, i16, i32),
 }
 
 /// The running sums of [`Plane::of`], fed one edge at a time.
@@ -237,7 +253,7 @@ impl PlaneSums {
             a,
             b,
             c,
-            origin: (f.x.to_bits(), f.y.to_bits(), f.z.to_bits()),
+            origin: (f.x.to_bits(), f.y.to_bits(), f.z.units()),
         })
     }
 }
@@ -463,11 +479,20 @@ impl Plane {
     /// The first vertex, in units.
     #[inline]
     pub(crate) fn origin_units(&self) -> (i32, i32, i32) {
-        (
-            self.origin.0 as i32,
-            self.origin.1 as i32,
-            self.origin.2 as i32,
-        )
+        (self.origin.0 as i32, self.origin.1 as i32, self.origin.2)
+    }
+
+    /// The same plane moved `steps` units of depth toward the eye: its
+    /// depth less `steps` everywhere (`0 ≤ steps ≤ 2¹⁴`). For a polygon's
+    /// plane (depth within the Q12.4 range at every pixel it covers), the
+    /// depth stays within \[−2¹⁵ − 2¹⁴, 2¹⁵) units: see *Depth ranges* in
+    /// the [module](self) docs.
+    pub fn toward_eye(&self, steps: u16) -> Plane {
+        let steps = steps.min(1 << 14) as i32;
+        Plane {
+            origin: (self.origin.0, self.origin.1, self.origin.2 - steps),
+            ..*self
+        }
     }
 
     /// `d − a·x − b·y = a·(x₀ − x) + b·(y₀ − y) + c·z₀` for `x`, `y` in
@@ -482,7 +507,7 @@ impl Plane {
     }
 
     /// `true` when the plane's depth at the point `(x, y)` (units, each
-    /// within `i16`) lies in `lo..=hi` (units, each within `i16`).
+    /// within `i16`) lies in `lo..=hi` (units, each within `±2¹⁶`).
     pub fn depth_within(&self, x: i32, y: i32, (lo, hi): (i32, i32)) -> bool {
         // e < 2⁶⁷ (see `rhs_at`), lo·c and hi·c below 2⁶³.
         let e = self.rhs_at(x as i128, y as i128);
@@ -1188,12 +1213,31 @@ impl<'s> Polygon<'s> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
+        Polygon::load_lifted(slots, vertices, clip, 0)
+    }
+
+    /// [`Polygon::load`] with the plane moved `lift` units of depth
+    /// toward the eye ([`Plane::toward_eye`]; `lift ≤ 2¹³`, more is
+    /// taken as 2¹³), as the store does for points and lines: the plane
+    /// is kept within `[z_min − lift, z_max + lift]`, then moved, so its
+    /// depth lies within `[z_min − 2·lift, z_max]` (see *Non-planar
+    /// polygons* in the [module](self) docs).
+    #[inline(always)]
+    pub fn load_lifted<I>(
+        slots: &'s mut [EdgeSlot],
+        vertices: I,
+        clip: &ClipRect,
+        lift: u16,
+    ) -> Result<Self, LoadError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
         let rows = (clip.y0() as i32, clip.y1() as i32);
         let mut poly = Polygon::empty(slots, clip);
         // `Outline::of` and the edges in one loop.
         let outline = Outline::walk(vertices.into_iter(), |p, q| poly.push(p, q, rows))?;
         if let Some(sums) = outline.sums {
-            poly.finish(&sums, outline.x, clip);
+            poly.finish(&sums, outline.x, clip, lift.min(1 << 13));
         }
         Ok(poly)
     }
@@ -1225,7 +1269,7 @@ impl<'s> Polygon<'s> {
             (px, py) = (x, y);
         }
         poly.push((px, py), (fx, fy), rows)?;
-        poly.finish(&sums, outline.x, clip);
+        poly.finish(&sums, outline.x, clip, 0);
         Ok(poly)
     }
 
@@ -1241,9 +1285,10 @@ impl<'s> Polygon<'s> {
     }
 
     /// After the edges: none when the polygon's columns (`x`, the least
-    /// and greatest vertex x in units) miss the clip's, and the plane.
+    /// and greatest vertex x in units) miss the clip's, and the plane,
+    /// moved `lift` toward the eye.
     #[inline(always)]
-    fn finish(&mut self, sums: &PlaneSums, (lo, hi): (i32, i32), clip: &ClipRect) {
+    fn finish(&mut self, sums: &PlaneSums, (lo, hi): (i32, i32), clip: &ClipRect, lift: u16) {
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉.
         let cols = self.cols;
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
@@ -1251,11 +1296,22 @@ impl<'s> Polygon<'s> {
         }
         // A triangle's plane passes through its three vertices: nothing to
         // check.
+        // A line's quad is planar but for the rounding of its corners,
+        // and the corners at each end are at an extreme of its depths:
+        // bounded by `[z_min, z_max]`, a plane that rounding tilts past
+        // one of them is flattened, down to a constant depth, and loses
+        // its slope along the line. Bounded by `[z_min − lift, z_max +
+        // lift]`, it keeps it unless the tilt exceeds `lift`; moved, it
+        // lies in `[z_min − 2·lift, z_max]`.
+        let (zlo, zhi) = (sums.z.0 - lift as i32, sums.z.1 + lift as i32);
         self.plane = match sums.n {
             ..=3 => sums.finish(),
             _ if sums.within => sums.finish(),
-            _ => sums.finish().map(|p| self.bounded(p, sums.z)),
+            _ => sums.finish().map(|p| self.bounded(p, (zlo, zhi))),
         };
+        if let (Some(p), 1..) = (&mut self.plane, lift) {
+            *p = p.toward_eye(lift);
+        }
     }
 
     /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
@@ -2286,13 +2342,15 @@ mod tests {
         let m = (1i64 << 31) - 1;
         let ends = [-m, -m + 1, -1, 0, 1, m - 1, m, 1 << 20, -(1 << 20), 3];
         let origins = [i16::MIN, -8, -1, 0, 7, 8, 4095, i16::MAX];
+        // Depths down to those of a plane moved 2¹⁴ toward the eye.
+        let depths = [-(1 << 15) - (1 << 14), -8, -1, 0, 7, 8, 4095, 32767];
         for &a in &ends {
             for &b in &ends {
                 for c in [1, 2, 3, m - 1, m, 1 << 16, m + 1, 1 << 40] {
                     let origin = (
                         origins[rng.below(8) as usize],
                         origins[rng.below(8) as usize],
-                        origins[rng.below(8) as usize],
+                        depths[rng.below(8) as usize],
                     );
                     let p = Plane { a, b, c, origin };
                     assert_eq!(p.depth(), wide(&p), "{p:?}");
@@ -2490,7 +2548,152 @@ mod tests {
                         let _ = d.at(4095, 4095);
                         let _ = p.cmp_at(p, 4096, 4096);
                     }
+                    // Moved as far toward the eye as a plane may be.
+                    let poly = Polygon::load_lifted(&mut wide, bow, &clip, 1 << 13).unwrap();
+                    if let Some(p) = poly.plane() {
+                        let d = p.depth();
+                        let _ = d.at(4095, 4095);
+                        let _ = p.cmp_at(p, 4096, 4096);
+                    }
                 }
+            }
+        }
+    }
+
+    /// A moved plane is the same plane, its depth less the move at every
+    /// pixel, exactly and in fixed point.
+    #[test]
+    fn a_plane_moved_toward_the_eye_is_nearer_by_the_move_everywhere() {
+        let mut rng = Rng(0x11f7_e71e);
+        for _ in 0..2000 {
+            let mut r = |m: u32| rng.below(2 * m) - m as i32;
+            let tri = [
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+                v3(r(32767), r(32767), r(32767)),
+            ];
+            let Some(p) = Plane::of(tri) else { continue };
+            for lift in [1u16, 256, 1 << 14] {
+                let q = p.toward_eye(lift);
+                assert_eq!(q.normal(), p.normal());
+                for (i, j) in [(0, 0), (4095, 0), (0, 4095), (4095, 4095), (17, 3000)] {
+                    let (e, c) = p.depth_at(i, j);
+                    let (f, d) = q.depth_at(i, j);
+                    assert_eq!((f, d), (e - lift as i128 * c as i128, c));
+                    let z = p.depth().at(i, j);
+                    let want = z.wrapping_sub((lift as i32) << Z_FRAC_BITS);
+                    assert_eq!(q.depth().at(i, j), want, "{tri:?} {lift}");
+                }
+            }
+        }
+        // Beyond 2¹⁴, the move is 2¹⁴.
+        let p = Plane::of([v3(0, 0, 0), v3(0, 16, 0), v3(16, 0, 0)]).unwrap();
+        assert_eq!(p.toward_eye(u16::MAX), p.toward_eye(1 << 14));
+    }
+
+    /// The quad of a line, made as the geometry stage makes it (ends in
+    /// 1/256 px, the offset across shared, then each corner rounded to
+    /// Q12.4): depth `za` at both corners of one end and `zb` at the
+    /// other's.
+    fn line_quad(rng: &mut Rng) -> [Vertex3; 4] {
+        let a = [
+            rng.below(256 * 200) + 256 * 20,
+            rng.below(256 * 140) + 256 * 20,
+        ];
+        let (dx, dy) = loop {
+            let d = (rng.below(2001) - 1000, rng.below(2001) - 1000);
+            if d.0 * d.0 + d.1 * d.1 > 10_000 {
+                break d;
+            }
+        };
+        let len = ((dx * dx + dy * dy) as u32).isqrt() as i32;
+        // 4 to 64 px long, 1 to 3 px thick.
+        let (along, half) = (256 * (4 + rng.below(60)), 128 + rng.below(256));
+        let b = [a[0] + dx * along / len, a[1] + dy * along / len];
+        let (ox, oy) = (-dy * half / len, dx * half / len);
+        let za = rng.below(60000) - 30000;
+        let zb = (za + rng.below(4000) - 2000).clamp(-32768, 32767);
+        let c = |p: [i32; 2], s: i32, z: i32| {
+            let r = |v: i32| (v + 8).div_euclid(16);
+            v3(r(p[0] + s * ox), r(p[1] + s * oy), z)
+        };
+        [c(a, 1, za), c(b, 1, zb), c(b, -1, zb), c(a, -1, za)]
+    }
+
+    /// Rounding tilts a line's quad off its plane; bounded by its depth
+    /// range, Newell's plane is then flattened (often to a constant
+    /// depth: the corners of one end are at an extreme of the range);
+    /// bounded by the range widened by the move, it is kept.
+    #[test]
+    fn a_line_quad_moved_toward_the_eye_keeps_its_slope() {
+        let mut rng = Rng(0x0715_e0ff);
+        let clip = ClipRect::full(320, 240);
+        let mut slots = [EdgeSlot::EMPTY; 4];
+        let (mut flat, mut kept) = (0, 0);
+        for _ in 0..3000 {
+            let quad = line_quad(&mut rng);
+            let Some(newell) = Plane::of(quad) else {
+                continue;
+            };
+            let plain = Polygon::load(&mut slots, quad, &clip).unwrap();
+            flat += (plain.plane() != Some(&newell)) as u32;
+            let lifted = Polygon::load_lifted(&mut slots, quad, &clip, 256).unwrap();
+            let lifted = lifted.plane().copied();
+            if lifted == Some(newell.toward_eye(256)) {
+                kept += 1;
+            }
+        }
+        assert!(flat > 300, "{flat}");
+        assert!(kept >= 2990, "{kept}");
+    }
+
+    /// A moved plane stays within `[z_min − 2·lift, z_max]` (the
+    /// vertices' depth range) at every pixel the polygon covers, planar
+    /// or not; and is Newell's plane moved whenever Newell's stays within
+    /// `[z_min − lift, z_max + lift]` at the vertices.
+    #[test]
+    fn lifted_planes_stay_within_the_widened_range() {
+        let mut rng = Rng(0x1f7e_d5ee);
+        let clip = ClipRect::full(W as u16, H as u16);
+        let mut slots = [EdgeSlot::EMPTY; 8];
+        for case in 0..2000 {
+            let n = 3 + rng.below(5) as usize;
+            let mut poly = [Vertex3::default(); 8];
+            for v in poly.iter_mut().take(n) {
+                let z = match case % 2 {
+                    0 => rng.below(65536) - 32768,
+                    _ => rng.below(64) - 32768,
+                };
+                *v = v3(rng.below(16 * W as u32), rng.below(16 * H as u32), z);
+            }
+            let poly = &poly[..n];
+            let lift = [1, 256, 1 << 13][case % 3];
+            let (zmin, zmax) = poly.iter().fold((i32::MAX, i32::MIN), |(a, b), v| {
+                (a.min(v.z.units()), b.max(v.z.units()))
+            });
+            let zmin = zmin - 2 * lift as i32;
+            let loaded = Polygon::load_lifted(&mut slots, poly.iter().copied(), &clip, lift);
+            let Some(got) = loaded.unwrap().plane().copied() else {
+                continue;
+            };
+            let inside = |pl: &Plane| {
+                (0..H).all(|j| {
+                    (0..W).all(|i| {
+                        !covers(poly, i, j) || {
+                            let (e, c) = pl.depth_at(i, j);
+                            zmin as i128 * c as i128 <= e && e <= zmax as i128 * c as i128
+                        }
+                    })
+                })
+            };
+            assert!(inside(&got), "{poly:?}");
+            let newell = Plane::of(poly.iter().copied()).unwrap();
+            let wide = (zmin + lift as i32, zmax + lift as i32);
+            if poly.iter().all(|&v| {
+                let (x, y) = (v.x.units(), v.y.units());
+                newell.depth_within(x, y, wide)
+            }) {
+                assert_eq!(got, newell.toward_eye(lift), "{poly:?}");
             }
         }
     }

@@ -738,7 +738,7 @@ fn depth_range(
 }
 
 /// Beyond every fixed-point depth at a pixel a polygon covers (see
-/// `trapezoid`: below `2²⁹ + 2¹²` in magnitude).
+/// `trapezoid`: below `2²⁹ + 2²⁸ + 2¹²` in magnitude).
 const WIDEST: i32 = 1 << 30;
 
 /// The high word of an unwrapped depth for a plane whose slopes wrap: it
