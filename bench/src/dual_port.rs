@@ -199,12 +199,12 @@ pub fn section(rows: &[ModelRow]) -> String {
 }
 
 /// `--only model`: the section of `docs/performance.md` rewritten in
-/// place (before the display path's section when it is not there yet).
+/// place (before the racing section when it is not there yet).
 pub fn write_section(page: &Path) -> std::io::Result<()> {
     let rows = measure();
     eprint!("{}", table(&rows));
     let old = std::fs::read_to_string(page).unwrap_or_default();
-    let md = crate::report::splice(&old, BEGIN, END, &section(&rows), "## Display path");
+    let md = crate::report::splice(&old, BEGIN, END, &section(&rows), "## Racing the beam");
     std::fs::write(page, md)?;
     eprintln!("rewrote the write-port model section of docs/performance.md");
     Ok(())

@@ -572,21 +572,15 @@ pub fn after_on_target(old: &str) -> &str {
 /// of the profiles behind them are in `docs/performance-log.md`.
 pub const NOTES: &str = r#"## What limits the figures
 
-Counted with callgrind on the benchmark's profiling modes
-(`cargo build --release -p scanvert-bench`, then
-`valgrind --tool=callgrind target/release/scanvert-bench --profile-w1 MODE 100`
-with MODE `null`, `framebuffer` or `tiny-skia`, or `--profile-3d MODE 25`):
-
-- **2D**: scan conversion is about half of the exact path's
-  instructions, the span writes the other half (runs of 8 to 63 pixels
-  as overlapping 8-pixel copies, as `slice::fill`'s loops cost more to set
-  up than a short run's stores). The DDA saves a compare and an add per
-  edge and row, at the error shown; snapping vertices saves nothing in
-  software. W5 and W2 are bounded by the pixel writes.
-- **3D**: the sweep executes about as many instructions as the z-buffers
-  but branches on the data at every span, while the z-buffer's loop is
-  regular and its depth buffer stays in this host's cache; the depth
-  sweep above shows which wins where.
+Counted with callgrind on the benchmark's profiling modes (`valgrind
+--tool=callgrind target/release/scanvert-bench --profile-w1 MODE 100`,
+MODE `null`, `framebuffer` or `tiny-skia`; `--profile-3d MODE 25`). **2D**:
+scan conversion is about half of the exact path's instructions, the span
+writes the other half; the DDA saves a compare and an add per edge and
+row, at the error shown; W5 and W2 are bounded by the pixel writes.
+**3D**: the sweep executes about as many instructions as the z-buffers
+but branches on the data at every span, while the z-buffer's loop is
+regular and its depth buffer stays in this host's cache.
 "#;
 
 /// Markers of the section `--only depth` rewrites.
