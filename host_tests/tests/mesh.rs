@@ -339,3 +339,103 @@ fn binary_text_binary_is_byte_exact() {
     let again = asm("rt2", &text);
     assert_eq!(again, bytes);
 }
+
+/// `Builder::mesh` against `Builder::face` through the same points: the
+/// same pixels, each vertex transformed once, the counts in its stats.
+#[test]
+fn builder_mesh_draws_what_its_faces_draw() {
+    use scanvert::geometry::ViewPoint;
+    use scanvert::prelude::*;
+    use scanvert::scene::{MeshStats, SceneStorage, DEFAULT_FONT};
+    use scanvert::visible::Resolve;
+    use scanvert::{Angle, Builder, Perspective, Pipeline, Point3, Scene, View, Viewport, Q16};
+    const W: u16 = 96;
+    const H: u16 = 72;
+    // An octahedron, counter-clockwise seen from outside.
+    let q = |x: f64, y: f64, z: f64| {
+        Point3::from_bits(
+            (x * 65536.0) as i32,
+            (y * 65536.0) as i32,
+            (z * 65536.0) as i32,
+        )
+    };
+    let vs = [
+        q(1.5, 0.0, 0.0),
+        q(-1.5, 0.0, 0.0),
+        q(0.0, 1.5, 0.0),
+        q(0.0, -1.5, 0.0),
+        q(0.0, 0.0, 1.5),
+        q(0.0, 0.0, -1.5),
+    ];
+    let tris: [u16; 24] = [
+        0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+    ];
+    let draw = |mesh: bool| {
+        let mut storage = Box::new(SceneStorage::<
+            512,
+            64,
+            1,
+            { H as usize },
+            16,
+            64,
+            { W as usize },
+            0,
+            0,
+        >::new());
+        let persp = Perspective::from_fov(
+            Angle::from_degrees(60),
+            W,
+            Q16::from_int(1),
+            Q16::from_int(100),
+        )
+        .unwrap();
+        let mut scene = Scene::new(
+            storage.as_memory(),
+            Pipeline::<4, 16>::new(persp, Viewport::centred(W, H).unwrap()),
+        )
+        .unwrap();
+        scene
+            .set_view(&View {
+                eye: Point3::from_int(0, 0, 6),
+                yaw: Angle::ZERO,
+                pitch: Angle::ZERO,
+            })
+            .unwrap();
+        let mut stats = MeshStats::default();
+        let mut slots = [ViewPoint::EMPTY; 6];
+        let mut proc = |b: &mut Builder<'_, '_, 4, 16>| {
+            b.rotate(scanvert::display_list::Axis::Y, Angle::from_degrees(30))?;
+            b.rotate(scanvert::display_list::Axis::X, Angle::from_degrees(20))?;
+            if mesh {
+                stats = b.mesh(&vs, &tris, 3, Rgb888::new(255, 160, 40), &mut slots)?;
+            } else {
+                for t in tris.chunks(3) {
+                    let p = [vs[t[0] as usize], vs[t[1] as usize], vs[t[2] as usize]];
+                    b.face(&p, Rgb888::new(255, 160, 40))?;
+                }
+            }
+            Ok(())
+        };
+        scene.update(&mut [&mut proc]).unwrap();
+        let mut pixels = vec![Rgb565::BLACK; W as usize * H as usize];
+        let mut fb = FrameBuffer::new(&mut pixels, W, H).unwrap();
+        scene
+            .draw(
+                Resolve::Crossing,
+                Some(Rgb565::BLACK),
+                DEFAULT_FONT,
+                &mut fb,
+            )
+            .unwrap();
+        (pixels, stats)
+    };
+    let (a, stats) = draw(true);
+    let (b, _) = draw(false);
+    assert!(a.iter().filter(|&&c| c != Rgb565::BLACK).count() > 300);
+    assert_eq!(a, b);
+    assert_eq!(stats.vertices, 6);
+    assert_eq!(stats.faces + stats.culled + stats.clipped_away, 8);
+    // Seen in perspective from outside, at most half the faces show.
+    assert!((3..=4).contains(&stats.faces), "{stats:?}");
+    assert_eq!(stats.clipped_away, 0);
+}
