@@ -45,6 +45,7 @@ usage:
                   [--resolve crossing|bisect|paint] [--race MHZ [--fifo K]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
+  scanvert import MODEL --out LIST.dl [--size WxH] [--color #rrggbb]
   scanvert checksum SCENE...
   scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
                 [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
@@ -56,7 +57,8 @@ display hardware into a PNG; --timing picks the video timing of the simulated
 monitor, whose visible area is the image (auto, the default: the frame's own
 size); --band-rows N renders through the library's band path, N >= 1 rows at a
 time (the image is the same, pixel for pixel).
-asm and disasm convert between the two forms. demo animates 3D bars over a map with
+asm and disasm convert between the two forms. import writes a text list that
+shows a Wavefront OBJ or STL model (ASCII or binary) whole. demo animates 3D bars over a map with
 labels through the simulated display (double-buffered), writes DIR/frame-NN.png
 (default: demo/, 8 frames) and prints the segments regenerated, trapezoids per frame
 and frames/s.
@@ -147,6 +149,27 @@ options:
                        keeps its mode, anything else is refused
   --help, -h           this help";
 
+const HELP_IMPORT: &str = "\
+usage: scanvert import MODEL --out LIST.dl [--size WxH] [--color #rrggbb]
+
+Reads a Wavefront OBJ model (polygons of any size, v/vt/vn and negative indices;
+materials ignored) or an STL model (ASCII or binary; by the extension .obj or .stl,
+else by its contents) and writes a display list in text form that shows the whole
+model: the frame, a perspective and a view fitted to its bounding box, a light, the
+colour, then a `v` line a vertex and an `f` line a face. STL's repeated corners are
+welded into shared vertices (equal coordinates), so a model as OBJ and as STL gives
+the same picture. Faces counter-clockwise seen from outside show their outside. The
+model is centred on the origin and scaled to a half-diagonal of 10 units. A malformed
+model, or one with no face, is an error (exit 1) and no list is written.
+
+options:
+  --out, -o LIST.dl    the text list to write (required), not MODEL itself; an
+                       existing regular file is replaced and keeps its mode,
+                       anything else is refused
+  --size WxH           the frame, each side 16 to 2047 (default: 320x240)
+  --color #rrggbb      the model's colour (default: #c0c0c0)
+  --help, -h           this help";
+
 const HELP_CHECKSUM: &str = "\
 usage: scanvert checksum SCENE...
 
@@ -191,6 +214,7 @@ fn command_help(command: &str) -> Option<&'static str> {
         "render" => HELP_RENDER,
         "asm" => HELP_ASM,
         "disasm" => HELP_DISASM,
+        "import" => HELP_IMPORT,
         "checksum" => HELP_CHECKSUM,
         "demo" => HELP_DEMO,
         _ => return None,
@@ -220,7 +244,7 @@ fn usage_of(command: Option<&str>) -> &'static str {
     }
 }
 
-const USAGE_COMMANDS: &str = "usage: scanvert render|asm|disasm|checksum|demo|help ... (`scanvert help` shows each command's usage)";
+const USAGE_COMMANDS: &str = "usage: scanvert render|asm|disasm|import|checksum|demo|help ... (`scanvert help` shows each command's usage)";
 
 /// The options each command takes, besides `--help`: exactly those its
 /// usage lists (`-o` is `--out`).
@@ -236,6 +260,7 @@ fn options_of(command: &str) -> &'static [&'static str] {
             "--fifo",
         ],
         "asm" | "disasm" => &["--out"],
+        "import" => &["--out", "--size", "--color"],
         "demo" => &[
             "--out",
             "--frames",
@@ -247,6 +272,20 @@ fn options_of(command: &str) -> &'static [&'static str] {
         ],
         _ => &[],
     }
+}
+
+/// `#rrggbb`.
+fn parse_color(v: &str) -> Option<scanvert::pixelcolor::Rgb888> {
+    let hex = v.strip_prefix('#')?;
+    if hex.len() != 6 || !hex.bytes().all(|c| c.is_ascii_hexdigit()) {
+        return None;
+    }
+    let n = u32::from_str_radix(hex, 16).ok()?;
+    Some(scanvert::pixelcolor::Rgb888::new(
+        (n >> 16) as u8,
+        (n >> 8) as u8,
+        n as u8,
+    ))
 }
 
 /// The largest binary input, in bytes: 16 MiB. A scene is far smaller
@@ -497,6 +536,7 @@ struct Args {
     resolve: Option<Resolve>,
     race: Option<crate::timing::Clock>,
     fifo: Option<u16>,
+    color: Option<scanvert::pixelcolor::Rgb888>,
     /// The options given, by their long names, in order.
     given: Vec<&'static str>,
 }
@@ -515,11 +555,12 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         resolve: None,
         race: None,
         fifo: None,
+        color: None,
         given: Vec::new(),
     };
     // Every option of some command: which a command takes is checked
     // once the command is known (`options_of`).
-    const OPTIONS: [&str; 11] = [
+    const OPTIONS: [&str; 12] = [
         "--out",
         "--frames",
         "--size",
@@ -531,6 +572,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         "--fifo",
         "--help",
         "--band-rows",
+        "--color",
     ];
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -563,6 +605,12 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
                 })?);
             }
             "--no-speed" => a.no_speed = true,
+            "--color" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                a.color = Some(
+                    parse_color(v).ok_or_else(|| usage("--color needs #rrggbb (e.g. #c0c0c0)"))?,
+                );
+            }
             "--timing" => {
                 let v = it.next().ok_or_else(|| usage("--timing needs a mode"))?;
                 a.timing = Some(v.clone());
@@ -850,6 +898,30 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
                 Some(out) => write_output(out, txt.as_bytes()).map(|()| String::new()),
                 None => Ok(txt),
             }
+        }
+        "import" => {
+            let path = one_input(&a, "import")?;
+            let out = a
+                .out
+                .clone()
+                .ok_or_else(|| usage("import: --out LIST.dl is required"))?;
+            not_the_input("import", &path, &out)?;
+            let size = a.size.unwrap_or(crate::demo::Size {
+                width: 320,
+                height: 240,
+            });
+            let bytes = std::fs::read(&path).map_err(|e| crate::error::input(&path, e))?;
+            let format = crate::import::format_of(&path.to_string_lossy(), &bytes);
+            let model =
+                crate::import::read(format, &bytes).map_err(|e| crate::error::input(&path, e))?;
+            let color = a
+                .color
+                .unwrap_or(scanvert::pixelcolor::Rgb888::new(0xc0, 0xc0, 0xc0));
+            let text = crate::import::list(&model, size.width, size.height, color);
+            // What is written must assemble: checked before writing.
+            text::assemble(&text).map_err(|e| crate::error::input(&path, e))?;
+            write_output(&out, text.as_bytes())?;
+            Ok(String::new())
         }
         "checksum" => {
             if a.positional.is_empty() {

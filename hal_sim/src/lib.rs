@@ -55,6 +55,7 @@ pub mod demo;
 pub mod dual_port;
 pub mod error;
 pub mod image;
+pub mod import;
 pub mod memory;
 mod output;
 pub mod race;

@@ -3,8 +3,9 @@
 //! ([`scanvert::controller::needs`]), and a program's scene's, by running
 //! it ([`SceneHeap::fit`]).
 
-use scanvert::controller::{edges_3d, needs, Controller, Needs, RenderError};
+use scanvert::controller::{edges_3d, needs_with, Controller, Needs, RenderError};
 use scanvert::display_list::DisplayList;
+use scanvert::geometry::ViewPoint;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
@@ -30,6 +31,7 @@ pub struct ListMemory {
     table_index: Vec<u32>,
     table_edges: Vec<Edge>,
     table_lines: Vec<Option<Line>>,
+    vertices: Vec<ViewPoint>,
 }
 
 impl ListMemory {
@@ -40,7 +42,8 @@ impl ListMemory {
         list: &DisplayList<'_>,
     ) -> Result<ListMemory, RenderError<core::convert::Infallible>> {
         let slots = edges_3d(list);
-        let need = needs(list, &mut vec![EdgeSlot::EMPTY; slots])?;
+        let mut vertices = vec![ViewPoint::EMPTY; list.summary().vertices];
+        let need = needs_with(list, &mut vec![EdgeSlot::EMPTY; slots], &mut vertices)?;
         Ok(ListMemory {
             need,
             edges: vec![Edge::EMPTY; need.edges],
@@ -59,6 +62,7 @@ impl ListMemory {
             table_index: Vec::new(),
             table_edges: Vec::new(),
             table_lines: Vec::new(),
+            vertices,
         })
     }
 
@@ -82,8 +86,8 @@ impl ListMemory {
     /// [`for_bands`](Self::for_bands)).
     pub fn band_parts(&mut self) -> (Controller<'_>, TableMemory<'_>) {
         let any = self.need.any();
-        let (edges, three, table) = self.parts();
-        let c = Controller::new(Rasterizer::new(edges));
+        let (edges, three, table, vertices) = self.parts();
+        let c = Controller::new(Rasterizer::new(edges)).with_vertices(vertices);
         (if any { c.with_3d(three) } else { c }, table)
     }
 
@@ -101,8 +105,8 @@ impl ListMemory {
     /// has one.
     pub fn controller(&mut self) -> Controller<'_> {
         let any = self.need.any();
-        let (edges, three, _) = self.parts();
-        let c = Controller::new(Rasterizer::new(edges));
+        let (edges, three, _, vertices) = self.parts();
+        let c = Controller::new(Rasterizer::new(edges)).with_vertices(vertices);
         if any {
             c.with_3d(three)
         } else {
@@ -110,9 +114,16 @@ impl ListMemory {
         }
     }
 
-    /// The rasteriser's edges, the 3D layer's memory and the edge
-    /// table's.
-    fn parts(&mut self) -> (&mut [Edge], SceneMemory<'_>, TableMemory<'_>) {
+    /// The rasteriser's edges, the 3D layer's memory, the edge table's
+    /// and the mesh vertex table.
+    fn parts(
+        &mut self,
+    ) -> (
+        &mut [Edge],
+        SceneMemory<'_>,
+        TableMemory<'_>,
+        &mut [ViewPoint],
+    ) {
         let three = self.three.memory();
         let table = TableMemory {
             polygons: &mut self.table_polygons,
@@ -120,7 +131,7 @@ impl ListMemory {
             edges: &mut self.table_edges,
             lines: &mut self.table_lines,
         };
-        (&mut self.edges, three, table)
+        (&mut self.edges, three, table, &mut self.vertices)
     }
 }
 

@@ -30,7 +30,9 @@ fn the_program_help_lists_every_command() {
     let text = help(&["--help"]);
     assert_eq!(help(&["-h"]), text);
     assert_eq!(help(&["help"]), text);
-    for command in ["render", "asm", "disasm", "checksum", "demo", "help"] {
+    for command in [
+        "render", "asm", "disasm", "import", "checksum", "demo", "help",
+    ] {
         assert!(text.contains(&format!("scanvert {command}")), "{command}");
     }
     for word in [
@@ -46,7 +48,7 @@ fn the_program_help_lists_every_command() {
 
 #[test]
 fn every_command_explains_its_options() {
-    let commands: [(&str, &[&str]); 5] = [
+    let commands: [(&str, &[&str]); 6] = [
         (
             "render",
             &[
@@ -65,6 +67,7 @@ fn every_command_explains_its_options() {
         ),
         ("asm", &["--out", "--help"]),
         ("disasm", &["--out", "standard output", "--help"]),
+        ("import", &["--out", "--size", "--color", "--help"]),
         ("checksum", &["checksum NAME", "--help"]),
         ("demo", &["--out", "--frames", "--no-speed", "--help"]),
     ];
@@ -160,7 +163,7 @@ fn a_usage_error_prints_one_line_then_the_usage_of_its_command() {
     for args in [&[][..], &["bogus"], &["--bogus"]] {
         let (_, rest) = usage_error(args);
         assert_eq!(rest.lines().count(), 1, "{args:?}: {rest}");
-        assert!(rest.starts_with("usage: scanvert render|asm|disasm|checksum|demo|help"));
+        assert!(rest.starts_with("usage: scanvert render|asm|disasm|import|checksum|demo|help"));
     }
     let (_, rest) = usage_error(&["help", "bogus"]);
     assert_eq!(rest, "usage: scanvert help [COMMAND]\n");

@@ -94,6 +94,32 @@ fn command3d() -> impl Strategy<Value = String> {
     ]
 }
 
+/// A segment with a mesh: `v`s, then `f`s of 1-based and negative
+/// indices into them.
+fn mesh() -> impl Strategy<Value = String> {
+    (
+        0u32..65536,
+        prop::collection::vec(prop::collection::vec(world(), 3), 1..7),
+        prop::collection::vec(prop::collection::vec(any::<(bool, u8)>(), 1..6), 0..5),
+    )
+        .prop_map(|(id, vs, fs)| {
+            let n = vs.len() as i64;
+            let mut s = format!("segment {id}");
+            for v in &vs {
+                s += &format!("\nv {}", v.join(" "));
+            }
+            for f in fs {
+                s += "\nf";
+                for (neg, k) in f {
+                    let k = k as i64 % n;
+                    let i = if neg { -(k + 1) } else { k + 1 };
+                    s += &format!(" {i}");
+                }
+            }
+            s
+        })
+}
+
 fn command() -> impl Strategy<Value = String> {
     prop_oneof![
         colour().prop_map(|c| format!("clear {c}")),
@@ -117,6 +143,7 @@ fn command() -> impl Strategy<Value = String> {
         Just(String::new()),
         command3d(),
         command3d(),
+        mesh(),
     ]
 }
 

@@ -80,7 +80,7 @@
 use crate::color::ListColor;
 use crate::display_list::{Command, DisplayList, Summary};
 use crate::geometry::project::WINDOW_MAX;
-use crate::geometry::{Outcome, Pipeline};
+use crate::geometry::{Outcome, Pipeline, ViewPoint};
 use crate::port::SpanTarget;
 use crate::raster::clip::ClipRect;
 use crate::raster::draw::Draw;
@@ -88,6 +88,7 @@ use crate::raster::line;
 use crate::raster::scan::{FillError, Rasterizer};
 use crate::scene::label::{self, LabelError};
 use crate::scene::list::{execute, Out};
+use crate::scene::VertexTable;
 use crate::scene::{
     list_pipeline, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
 };
@@ -243,6 +244,8 @@ pub enum Resource {
     Labels,
     /// Bytes of label text.
     LabelText,
+    /// Slots of the mesh vertex table ([`Controller::with_vertices`]).
+    Vertices,
 }
 
 impl fmt::Display for Resource {
@@ -259,6 +262,7 @@ impl fmt::Display for Resource {
             Resource::ClippedVertices => "vertices of a face after clipping",
             Resource::Labels => "labels",
             Resource::LabelText => "bytes of label text",
+            Resource::Vertices => "mesh vertex slots",
         })
     }
 }
@@ -285,6 +289,7 @@ fn error_at(offset: usize, error: SceneError) -> RenderError<core::convert::Infa
         SceneError::Labels(LabelError::Labels { capacity }) => (Resource::Labels, capacity),
         SceneError::Labels(LabelError::Text { capacity }) => (Resource::LabelText, capacity),
         SceneError::Vertices { .. } => (Resource::ClippedVertices, LIST_VERTICES),
+        SceneError::VertexTable { capacity } => (Resource::Vertices, capacity),
         _ => return RenderError::Scene { offset, error },
     };
     RenderError::Capacity3d {
@@ -318,6 +323,8 @@ pub struct RenderStats {
     pub clipped_away: u32,
     /// Trapezoids the 3D layer was cut into.
     pub trapezoids: u32,
+    /// Mesh vertices (`v`s) transformed, each once.
+    pub vertices: u32,
     /// Labels drawn (at least partly on the frame).
     pub labels: u32,
     /// What the visible-surface stage did.
@@ -360,6 +367,9 @@ pub struct Needs {
     pub labels: usize,
     /// Bytes of label text.
     pub text: usize,
+    /// Slots of the mesh vertex table: the most `v`s of one segment
+    /// ([`Controller::with_vertices`]).
+    pub vertices: usize,
 }
 
 impl Needs {
@@ -376,6 +386,7 @@ fn edge_bound(cmd: &Command<'_>) -> usize {
     match cmd {
         Command::Poly3(v) => v.len(),
         Command::Face(p) => (p.len() + 6).clamp(4, LIST_VERTICES),
+        Command::MeshFace(p) => (p.len() + 6).clamp(4, LIST_VERTICES),
         _ => 0,
     }
 }
@@ -490,6 +501,18 @@ pub fn needs(
     list: &DisplayList<'_>,
     scratch: &mut [EdgeSlot],
 ) -> Result<Needs, RenderError<core::convert::Infallible>> {
+    needs_with(list, scratch, &mut [])
+}
+
+/// [`needs`] of a list with meshes: their `v`s are kept in `vertices`
+/// while counting (at least [`Summary::vertices`] slots, else
+/// [`RenderError::Capacity3d`] with [`Resource::Vertices`] at the `v`
+/// that goes beyond).
+pub fn needs_with(
+    list: &DisplayList<'_>,
+    scratch: &mut [EdgeSlot],
+    vertices: &mut [ViewPoint],
+) -> Result<Needs, RenderError<core::convert::Infallible>> {
     let mut need = Needs::default();
     let mut first = None;
     let mut widest = (0, 0);
@@ -523,16 +546,19 @@ pub fn needs(
     need.rows = h as usize;
     need.runs = w as usize;
     let (mut pipe, window) = layer_pipeline(list, first)?;
+    need.vertices = list.summary().vertices;
     let mut st = ListState::new(w, h);
     let mut count = Count {
         edges: scratch,
         need,
     };
+    let mut table = VertexTable::new(vertices);
     for (offset, cmd) in list.commands() {
         if let (Some(e), true) = (window, is_scene_command(&cmd)) {
             return Err(error_at(offset, e));
         }
-        execute(&mut pipe, &mut count, &mut st, cmd).map_err(|e| error_at(offset, e))?;
+        execute(&mut pipe, &mut count, &mut st, &mut table, cmd)
+            .map_err(|e| error_at(offset, e))?;
     }
     let mut need = count.need;
     need.active = need.trapezoids;
@@ -582,6 +608,7 @@ pub struct Controller<'e> {
     raster: Rasterizer<'e>,
     three: Option<SceneMemory<'e>>,
     resolve: Resolve,
+    vertices: &'e mut [ViewPoint],
 }
 
 impl<'e> Controller<'e> {
@@ -591,7 +618,18 @@ impl<'e> Controller<'e> {
             raster,
             three: None,
             resolve: Resolve::default(),
+            vertices: &mut [],
         }
+    }
+
+    /// The same controller, keeping the `v`s of a list's meshes in
+    /// `slots`: as many as the most `v`s of one segment
+    /// ([`Needs::vertices`]); one more is [`RenderError::Capacity3d`] with
+    /// [`Resource::Vertices`] at that `v`. Without it, a list has no room
+    /// for a `v`.
+    pub fn with_vertices(mut self, slots: &'e mut [ViewPoint]) -> Self {
+        self.vertices = slots;
+        self
     }
 
     /// The same controller, rendering `poly3`, the 3D scene and its
@@ -650,8 +688,13 @@ impl<'e> Controller<'e> {
                             },
                         });
                     };
-                    if let Command::Face(p) = &cmd {
-                        if p.len() > LIST_VERTICES - 6 {
+                    let n = match &cmd {
+                        Command::Face(p) => Some(p.len()),
+                        Command::MeshFace(p) => Some(p.len()),
+                        _ => None,
+                    };
+                    if let Some(n) = n {
+                        if n > LIST_VERTICES - 6 {
                             return Err(RenderError::Capacity3d {
                                 offset,
                                 resource: Resource::FaceVertices,
@@ -685,7 +728,8 @@ impl<'e> Controller<'e> {
         let Some(t) = &self.three else {
             return false;
         };
-        let (slots, face) = (t.store.edges.len(), summary.face as usize);
+        let face = summary.face.max(summary.mesh_face) as usize;
+        let slots = t.store.edges.len();
         summary.poly3 as usize <= slots
             && face <= LIST_VERTICES - 6
             && (face == 0 || (face + 6).clamp(4, LIST_VERTICES) <= slots)
@@ -734,6 +778,7 @@ impl<'e> Controller<'e> {
             raster,
             three,
             resolve,
+            vertices,
         } = self;
         // The 3D layer is built first: running out of memory, or a scene
         // command that fails, is found before anything is drawn.
@@ -747,9 +792,15 @@ impl<'e> Controller<'e> {
         let layer = match (three.as_mut(), first) {
             (Some(mem), Some(first)) => {
                 hook.stage(Stage::Start);
-                let scene =
-                    build_layer(&mut built, mem.reborrow(), list, (w, h), first, &mut stats)
-                        .map_err(widen)?;
+                let scene = build_layer(
+                    &mut built,
+                    (mem.reborrow(), vertices),
+                    list,
+                    (w, h),
+                    first,
+                    &mut stats,
+                )
+                .map_err(widen)?;
                 hook.stage(Stage::Cut);
                 scene.check().map_err(|e| widen(visible_error(first, e)))?;
                 hook.stage(Stage::Checked);
@@ -920,7 +971,7 @@ where
 #[inline(never)]
 fn build_layer<'s, 't>(
     slot: &'s mut Option<ListScene<'t>>,
-    mem: SceneMemory<'t>,
+    (mem, vertices): (SceneMemory<'t>, &mut [ViewPoint]),
     list: &DisplayList<'_>,
     (w, h): (u16, u16),
     first: usize,
@@ -934,11 +985,16 @@ fn build_layer<'s, 't>(
         slot.insert(Scene::with_frame(mem, pipeline, w, h).map_err(|e| error_at(first, e))?);
     let mut st = ListState::new(list.width(), list.height());
     let mut b = scene.open(0).map_err(|e| error_at(first, e))?;
+    let mut table = VertexTable::new(vertices);
     for (offset, cmd) in list.commands() {
         if let (Some(e), true) = (window, is_scene_command(&cmd)) {
             return Err(error_at(offset, e));
         }
-        match b.command(cmd, &mut st).map_err(|e| error_at(offset, e))? {
+        match b
+            .command_in(cmd, &mut st, &mut table)
+            .map_err(|e| error_at(offset, e))?
+        {
+            Executed::Vertex => stats.vertices += 1,
             Executed::Poly3 { drawn: true } => stats.poly3 += 1,
             Executed::Poly3 { drawn: false } | Executed::Face(Outcome::Culled) => stats.culled += 1,
             Executed::Face(Outcome::Emitted) => stats.faces += 1,

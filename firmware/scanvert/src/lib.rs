@@ -67,7 +67,8 @@ pub use crate::display_list::{Command, DisplayList, WriteError, Writer};
 
 // The retained 3D scene and the memory it is given.
 pub use crate::geometry::{
-    Angle, Light, Orthographic, Perspective, Pipeline, Point3, Projection, View, Viewport, Q16,
+    Angle, Light, Orthographic, Perspective, Pipeline, Point3, Projection, View, ViewPoint,
+    Viewport, Q16,
 };
 pub use crate::scene::{Builder, Label, Procedure, Scene, SceneError, SceneMemory};
 pub use crate::visible::{

@@ -64,6 +64,9 @@ enum Cmd {
     Scale(Point3),
     Face(Vec<Point3>),
     Label(Point3, String),
+    MeshVertex(Point3),
+    /// The indices as written, then 0-based once [`walk`] resolved them.
+    MeshFace(Vec<i64>),
 }
 
 impl Cmd {
@@ -89,6 +92,8 @@ impl Cmd {
             Cmd::Scale(_) => Opcode::Scale,
             Cmd::Face(_) => Opcode::Face,
             Cmd::Label(..) => Opcode::Label,
+            Cmd::MeshVertex(_) => Opcode::MeshVertex,
+            Cmd::MeshFace(_) => Opcode::MeshFace,
         }
     }
 
@@ -99,6 +104,7 @@ impl Cmd {
             Cmd::Poly(v) => v.len(),
             Cmd::Poly3(v) => v.len(),
             Cmd::Face(v) => v.len(),
+            Cmd::MeshFace(v) => v.len(),
             Cmd::Label(_, t) => t.len(),
             _ => 0,
         };
@@ -126,6 +132,9 @@ impl Cmd {
             Cmd::Scale(p) => w.scale(*p),
             Cmd::Face(v) => w.face(v.iter().copied()),
             Cmd::Label(at, text) => w.label(*at, text),
+            Cmd::MeshVertex(p) => w.mesh_vertex(*p),
+            // Resolved by `walk`: 0 ≤ i < 65536.
+            Cmd::MeshFace(v) => w.mesh_face(v.iter().map(|&i| i as u16)),
         }
     }
 }
@@ -194,6 +203,8 @@ fn walk(
     // `version N`: the header's version, at least (see the docs).
     let mut version: Option<(u16, usize)> = None;
     let mut last_line = 1;
+    // `v`s in the current segment's table.
+    let mut table = 0usize;
     for (k, line) in raw.split(|&b| b == b'\n').enumerate() {
         let number = k + 1;
         last_line = number;
@@ -226,7 +237,16 @@ fn walk(
             (_, None) if is_command(name) => {
                 return Err(err(TextErrorKind::FrameFirst(name.to_string())))
             }
-            _ => each(number, parse_command(name, operands, line).map_err(err)?)?,
+            _ => {
+                let mut cmd = parse_command(name, operands, line).map_err(err)?;
+                match &mut cmd {
+                    Cmd::Segment(_) => table = 0,
+                    Cmd::MeshVertex(_) => table += 1,
+                    Cmd::MeshFace(indices) => resolve(indices, table).map_err(err)?,
+                    _ => {}
+                }
+                each(number, cmd)?
+            }
         }
     }
     let Some(frame) = frame else {
@@ -237,6 +257,29 @@ fn walk(
         });
     };
     Ok(Head { frame, version })
+}
+
+/// An `f`'s indices as written (1-based, or negative from the last) to
+/// 0-based ones into a table of `table` vertices.
+fn resolve(indices: &mut [i64], table: usize) -> Result<(), TextErrorKind> {
+    let n = table as i64;
+    for i in indices.iter_mut() {
+        let at = match *i {
+            k if k > 0 && k <= n => k - 1,
+            k if k < 0 && -k <= n => n + k,
+            index => {
+                return Err(TextErrorKind::Index {
+                    index,
+                    vertices: table,
+                })
+            }
+        };
+        if at > u16::MAX as i64 {
+            return Err(TextErrorKind::IndexLimit(at as usize + 1));
+        }
+        *i = at;
+    }
+    Ok(())
 }
 
 /// A command the parser checked but the writer refused: cannot happen (the
@@ -551,6 +594,19 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                 .map(point)
                 .collect::<Result<Vec<_>, _>>()?;
             Ok(Cmd::Face(points))
+        }
+        "v" => {
+            operand_count("v", "3 (X Y Z)", operands, operands.len() == 3)?;
+            Ok(Cmd::MeshVertex(point(operands)?))
+        }
+        "f" => {
+            operand_count("f", "≥ 1 (I J K …)", operands, !operands.is_empty())?;
+            vertex_limit(operands.len())?;
+            let indices = operands
+                .iter()
+                .map(|w| int(w, -(u32::MAX as i64), u32::MAX as i64, "an index"))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(Cmd::MeshFace(indices))
         }
         "label" => {
             operand_count("label", "X Y Z and a text", operands, operands.len() >= 4)?;

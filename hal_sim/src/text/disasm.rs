@@ -235,6 +235,14 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
             Command::Label { at, text } => {
                 write!(s, " {} {}", point(at), label_text_form(text))
             }
+            Command::MeshVertex(p) => write!(s, " {}", point(p)),
+            // 1-based, as the text form counts.
+            Command::MeshFace(ix) => {
+                for i in ix.iter() {
+                    let _ = write!(s, " {}", i as u32 + 1);
+                }
+                Ok(())
+            }
             // A command added to the library after this disassembler: a
             // line that names it and that the assembler refuses, rather
             // than a silent gap.

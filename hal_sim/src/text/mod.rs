@@ -96,6 +96,18 @@ pub enum TextErrorKind {
     LookAt,
     /// A rotation axis other than `x`, `y` or `z`.
     Axis(String),
+    /// An `f` index that names no vertex of the segment's table: 0, past
+    /// its end, or before its start.
+    Index {
+        /// The index as written.
+        index: i64,
+        /// Vertices in the table at the `f` (since the start or the last
+        /// `segment`).
+        vertices: usize,
+    },
+    /// An `f` index past the binary form's reach: the 65,536th `v` of a
+    /// segment or later.
+    IndexLimit(usize),
 }
 
 /// A fault in the text form, with its 1-based line.
@@ -137,6 +149,18 @@ impl fmt::Display for TextErrorKind {
                 scanvert::display_list::MAX_LABEL_LEN
             ),
             TextErrorKind::LookAt => f.write_str("`lookat`: the eye is on the target"),
+            TextErrorKind::Index { index, vertices: 0 } => write!(
+                f,
+                "`f`: index {index} names no vertex: the segment has no `v` before this line"
+            ),
+            TextErrorKind::Index { index, vertices } => write!(
+                f,
+                "`f`: index {index} names no vertex of the segment's table, which holds {vertices} (indices 1 … {vertices}, or −1 … −{vertices} from the last)"
+            ),
+            TextErrorKind::IndexLimit(i) => write!(
+                f,
+                "`f`: vertex {i} of a segment is past the binary form's 65,536 a segment"
+            ),
             TextErrorKind::Axis(a) => {
                 write!(f, "`{}` is not an axis (x, y or z)", escape_for_terminal(a))
             }

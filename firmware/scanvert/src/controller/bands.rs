@@ -236,7 +236,12 @@ impl<'e> Controller<'e> {
     ) -> Result<(), PrepareError> {
         self.check(list).map_err(PrepareError::Render)?;
         let (w, h) = (list.width(), list.height());
-        let Controller { three, resolve, .. } = self;
+        let Controller {
+            three,
+            resolve,
+            vertices,
+            ..
+        } = self;
         // The 3D layer as `render` builds and checks it, through the same
         // interpreter.
         let first = match three {
@@ -246,7 +251,7 @@ impl<'e> Controller<'e> {
         if let (Some(mem), Some(first)) = (three.as_mut(), first) {
             layer_into(
                 (&mut out.layer, &mut out.sweep),
-                mem.reborrow(),
+                (mem.reborrow(), vertices),
                 list,
                 first,
                 *resolve,
@@ -304,7 +309,10 @@ impl<'e> Controller<'e> {
 /// `slot`, with its sweep at row 0.
 fn layer_into<'t>(
     (slot, at): (&mut Option<ListScene<'t>>, &mut Option<(Sweep, usize)>),
-    mem: crate::scene::SceneMemory<'t>,
+    mem: (
+        crate::scene::SceneMemory<'t>,
+        &mut [crate::geometry::ViewPoint],
+    ),
     list: &DisplayList<'_>,
     first: usize,
     resolve: crate::visible::Resolve,

@@ -26,6 +26,8 @@
 //! | [`rotate`] | `rotate` | 4 | |
 //! | [`face`] | `face` | 3 | `n × 12` (`n` ≥ 1) |
 //! | [`label`] | `label` | 14 | `len` text bytes (`len` at [`label::TEXT_LEN`]) |
+//! | [`point`] | `v` | 13 | |
+//! | [`mesh_face`] | `f` | 3 | `n × 2` (`n` ≥ 1): `u16` 0-based indices into the segment's table |
 //!
 //! The tests at the end check that the table and the field modules agree.
 
@@ -148,6 +150,21 @@ pub mod face {
     pub const LEAST: u16 = 1;
 }
 
+/// `f`: a count, then packed `u16` indices, 0-based, into the vertex
+/// table of the segment (every index below the `v`s of the segment so
+/// far, checked by the reader).
+pub mod mesh_face {
+    use super::Field;
+    /// `u16` index count.
+    pub const COUNT: Field = 1..3;
+    /// The first index.
+    pub const INDICES: usize = 3;
+    /// Bytes per index.
+    pub const STRIDE: usize = 2;
+    /// Fewest indices (one is a point, two a line).
+    pub const LEAST: u16 = 1;
+}
+
 /// A packed world point, `i32` Q16.16 each (inside `view`, `light`,
 /// `translate`, `scale`, `face` and `label`).
 pub mod point3 {
@@ -236,7 +253,7 @@ pub mod bare {
     pub const LEN: usize = 1;
 }
 
-/// `translate` and `scale`: one packed point.
+/// `translate`, `scale` and `v`: one packed point.
 pub mod point {
     use super::Field;
     /// The offset or the factors.
@@ -344,9 +361,10 @@ impl Opcode {
             Opcode::Light => Layout::fixed(light::LEN),
             Opcode::Thickness => Layout::fixed(thickness::LEN),
             Opcode::Push | Opcode::Pop => Layout::fixed(bare::LEN),
-            Opcode::Translate | Opcode::Scale => Layout::fixed(point::LEN),
+            Opcode::Translate | Opcode::Scale | Opcode::MeshVertex => Layout::fixed(point::LEN),
             Opcode::Rotate => Layout::fixed(rotate::LEN),
             Opcode::Face => Layout::packed(face::STRIDE, face::LEAST),
+            Opcode::MeshFace => Layout::packed(mesh_face::STRIDE, mesh_face::LEAST),
             Opcode::Label => Layout {
                 fixed: label::TEXT,
                 tail: Tail::Text {
@@ -362,7 +380,7 @@ mod tests {
     use super::*;
 
     /// Every opcode, in code order.
-    const ALL: [Opcode; 19] = [
+    const ALL: [Opcode; 21] = [
         Opcode::Clear,
         Opcode::Clip,
         Opcode::Color,
@@ -382,6 +400,8 @@ mod tests {
         Opcode::Scale,
         Opcode::Face,
         Opcode::Label,
+        Opcode::MeshVertex,
+        Opcode::MeshFace,
     ];
 
     #[test]
@@ -440,10 +460,15 @@ mod tests {
         assert_eq!(face::STRIDE, point3::LEN);
         assert_eq!(poly::Y.end, poly::STRIDE);
         assert_eq!(poly3::Z.end, poly3::STRIDE);
-        for c in [poly::COUNT, poly3::COUNT, face::COUNT] {
+        for c in [poly::COUNT, poly3::COUNT, face::COUNT, mesh_face::COUNT] {
             assert_eq!(c, Layout::COUNT);
         }
-        for v in [poly::VERTICES, poly3::VERTICES, face::VERTICES] {
+        for v in [
+            poly::VERTICES,
+            poly3::VERTICES,
+            face::VERTICES,
+            mesh_face::INDICES,
+        ] {
             assert_eq!(v, Layout::COUNT.end);
         }
     }
@@ -467,5 +492,7 @@ mod tests {
         assert_eq!(size(Opcode::Rotate, 0), 4);
         assert_eq!(size(Opcode::Face, 2), 3 + 12 * 2);
         assert_eq!(size(Opcode::Label, 7), 14 + 7);
+        assert_eq!(size(Opcode::MeshVertex, 0), 13);
+        assert_eq!(size(Opcode::MeshFace, 3), 3 + 2 * 3);
     }
 }

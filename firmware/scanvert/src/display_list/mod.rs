@@ -134,6 +134,10 @@ pub enum Opcode {
     Face = 0x30,
     /// A text label at a 3D point.
     Label = 0x31,
+    /// A vertex of the segment's mesh table (`v`).
+    MeshVertex = 0x32,
+    /// A face through vertices of the segment's mesh table (`f`).
+    MeshFace = 0x33,
 }
 
 impl Opcode {
@@ -159,6 +163,8 @@ impl Opcode {
             0x2a => Opcode::Scale,
             0x30 => Opcode::Face,
             0x31 => Opcode::Label,
+            0x32 => Opcode::MeshVertex,
+            0x33 => Opcode::MeshFace,
             _ => return None,
         })
     }
@@ -211,6 +217,8 @@ impl Opcode {
             Opcode::Scale => "scale",
             Opcode::Face => "face",
             Opcode::Label => "label",
+            Opcode::MeshVertex => "v",
+            Opcode::MeshFace => "f",
         }
     }
 
@@ -258,6 +266,14 @@ pub enum ErrorKind {
     /// 100 %, a negative thickness, an empty label or one with a byte that
     /// is not printable ASCII.
     BadOperand(Opcode),
+    /// An `f` index that names no vertex of its segment's table: the
+    /// table then held `vertices` (the error's offset is the index's).
+    BadIndex {
+        /// The 0-based index.
+        index: u16,
+        /// Vertices in the segment's table at the `f`.
+        vertices: usize,
+    },
 }
 
 /// A fault in a display list, with the byte offset where it was found.
@@ -297,6 +313,11 @@ impl fmt::Display for ErrorKind {
                 )
             }
             ErrorKind::BadOperand(op) => write!(f, "operand out of range in {op:?}"),
+            ErrorKind::BadIndex { index, vertices } => write!(
+                f,
+                "f names vertex {} of a table of {vertices} (since the segment's start)",
+                index as usize + 1
+            ),
         }
     }
 }

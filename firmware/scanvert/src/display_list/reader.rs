@@ -51,6 +51,12 @@ pub struct Summary {
     pub poly3: u16,
     /// Most vertices of one `face` (0 without one).
     pub face: u16,
+    /// Most indices of one `f` (0 without one).
+    pub mesh_face: u16,
+    /// Most `v`s in one segment (the table's size, counted from the start
+    /// of the list and from each `segment`): the slots of the vertex
+    /// table a render needs.
+    pub vertices: usize,
 }
 
 impl Summary {
@@ -79,6 +85,7 @@ impl Summary {
                 match op {
                     Opcode::Poly3 => &mut self.poly3,
                     Opcode::Face => &mut self.face,
+                    Opcode::MeshFace => &mut self.mesh_face,
                     _ => return,
                 }
             }
@@ -141,7 +148,7 @@ struct Rule {
 /// from [`Opcode::from_byte`], [`Opcode::version`] and [`Opcode::layout`],
 /// so that checking a command looks its rule up once rather than matching
 /// its opcode for each of them.
-static RULES: ([u8; 256], [Rule; 20]) = {
+static RULES: ([u8; 256], [Rule; 22]) = {
     let none = Rule {
         op: None,
         version: 0,
@@ -151,7 +158,7 @@ static RULES: ([u8; 256], [Rule; 20]) = {
         },
         operands: false,
     };
-    let (mut index, mut rules) = ([0u8; 256], [none; 20]);
+    let (mut index, mut rules) = ([0u8; 256], [none; 22]);
     let (mut byte, mut n) = (0, 1);
     while byte < 256 {
         if let Some(op) = Opcode::from_byte(byte as u8) {
@@ -227,10 +234,26 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
 fn walk(body: &[u8], version: u16) -> Result<Summary, Error> {
     let mut at = 0;
     let mut summary = Summary::default();
+    // `v`s in the current segment's table.
+    let mut table = 0usize;
     while at < body.len() {
         match command_len(body, at, version) {
             Ok((op, len)) => {
                 summary.add(op, HEADER_LEN + at, &body[at..]);
+                match op {
+                    Opcode::Segment => table = 0,
+                    Opcode::MeshVertex => {
+                        table += 1;
+                        summary.vertices = summary.vertices.max(table);
+                    }
+                    Opcode::MeshFace => {
+                        check_indices(&body[at..at + len], table).map_err(|(i, kind)| Error {
+                            offset: HEADER_LEN + at + i,
+                            kind,
+                        })?
+                    }
+                    _ => {}
+                }
                 at += len;
             }
             Err(kind) => {
@@ -242,6 +265,23 @@ fn walk(body: &[u8], version: u16) -> Result<Summary, Error> {
         }
     }
     Ok(summary)
+}
+
+/// Checks the indices of an `f` (its whole bytes) against a table of
+/// `table` vertices: the first bad one's offset in the command and error.
+fn check_indices(f: &[u8], table: usize) -> Result<(), (usize, ErrorKind)> {
+    use layout::mesh_face::{INDICES, STRIDE};
+    for (k, b) in f[INDICES..].chunks_exact(STRIDE).enumerate() {
+        let index = u16::from_le_bytes([b[0], b[1]]);
+        if index as usize >= table {
+            let kind = ErrorKind::BadIndex {
+                index,
+                vertices: table,
+            };
+            return Err((INDICES + k * STRIDE, kind));
+        }
+    }
+    Ok(())
 }
 
 impl<'a> DisplayList<'a> {
@@ -412,6 +452,14 @@ pub enum Command<'a> {
     /// line, three or more a face, front where its vertices run
     /// counter-clockwise.
     Face(Points<'a>),
+    /// `v`: a vertex appended to the segment's vertex table, transformed
+    /// by the transform current here.
+    MeshVertex(Point3),
+    /// `f`: a polygon (a point, a line) in the current colour through
+    /// vertices of the segment's table, by 0-based index (each below the
+    /// `v`s of the segment before it, checked), with the rules of
+    /// [`Command::Face`].
+    MeshFace(Packed<'a, u16>),
     /// A text label, its first character's lower-left corner at a 3D point.
     Label {
         /// The anchor, model coordinates.
@@ -444,6 +492,8 @@ impl Command<'_> {
             Command::Scale(_) => Opcode::Scale,
             Command::Face(_) => Opcode::Face,
             Command::Label { .. } => Opcode::Label,
+            Command::MeshVertex(_) => Opcode::MeshVertex,
+            Command::MeshFace(_) => Opcode::MeshFace,
         }
     }
 
@@ -637,6 +687,14 @@ fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
             use layout::point::{LEN, P};
             (Command::Scale(point_at(fixed::<LEN>(rest)?, P)), LEN)
         }
+        Opcode::MeshVertex => {
+            use layout::point::{LEN, P};
+            (Command::MeshVertex(point_at(fixed::<LEN>(rest)?, P)), LEN)
+        }
+        Opcode::MeshFace => {
+            let (p, len) = packed(rest, op)?;
+            (Command::MeshFace(p), len)
+        }
         Opcode::Rotate => {
             use layout::rotate::{ANGLE, AXIS, LEN};
             let b = fixed::<LEN>(rest)?;
@@ -697,6 +755,13 @@ impl FromBytes for Point3 {
     const SIZE: usize = layout::face::STRIDE;
     fn from_bytes(c: &[u8]) -> Self {
         point_at(c, 0..layout::point3::LEN)
+    }
+}
+
+impl FromBytes for u16 {
+    const SIZE: usize = layout::mesh_face::STRIDE;
+    fn from_bytes(c: &[u8]) -> Self {
+        u16_at(c, 0..2)
     }
 }
 

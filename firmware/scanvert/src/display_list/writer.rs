@@ -327,6 +327,29 @@ impl<'b> Writer<'b> {
         self.check_count(start, Opcode::Face, n)
     }
 
+    /// `v`: a vertex appended to the segment's mesh table.
+    pub fn mesh_vertex(&mut self, p: Point3) -> Result<(), WriteError> {
+        self.command(Opcode::MeshVertex, point(p))
+    }
+
+    /// `f`: a face through 1..=65535 vertices of the segment's mesh table,
+    /// by 0-based index (1: a point, 2: a line). The indices are not
+    /// checked here: [`DisplayList::new_checked`](super::DisplayList::new_checked)
+    /// refuses one that names no `v` of its segment before the `f`.
+    pub fn mesh_face<I>(&mut self, indices: I) -> Result<(), WriteError>
+    where
+        I: IntoIterator<Item = u16>,
+        I::IntoIter: ExactSizeIterator,
+    {
+        let it = indices.into_iter();
+        let (n, start) = (it.len(), self.len);
+        self.poly_head(Opcode::MeshFace, n)?;
+        for i in it.take(n) {
+            self.put(&i.to_le_bytes())?;
+        }
+        self.check_count(start, Opcode::MeshFace, n)
+    }
+
     /// `label`: `text` (1..=255 bytes of printable ASCII) at a 3D point.
     pub fn label(&mut self, at: Point3, text: &str) -> Result<(), WriteError> {
         let t = text.as_bytes();

@@ -182,6 +182,25 @@ pub enum Outcome {
     Empty,
 }
 
+/// A point in view space, as the transform stage of a [`Pipeline`] put
+/// it ([`Pipeline::view_point`]), or the mark of one that left the range
+/// of view space (a polygon through it is [`PipelineError::Range`]).
+/// Meshes keep their transformed vertices in slices of these.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct ViewPoint(Option<[i32; 3]>);
+
+impl ViewPoint {
+    /// A slot not yet filled (out of range).
+    pub const EMPTY: ViewPoint = ViewPoint(None);
+
+    /// The coordinates in view space (Q16.16 raw), `None` when the point
+    /// left its range.
+    pub fn raw(&self) -> Option<[i32; 3]> {
+        self.0
+    }
+}
+
 /// Counters of the polygons through a [`Pipeline`], for statistics.
 ///
 /// Every polygon with at least one vertex counts in `faces_in` and in
@@ -367,6 +386,31 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         I: ExactSizeIterator<Item = Point3>,
         S: PolygonSink,
     {
+        let m = *self.stack.current();
+        self.polygon_view(points.map(move |p| m.apply(p).ok()), color, sink)
+    }
+
+    /// Where `p` lies in view space under the current transform, as the
+    /// first stage of [`polygon`](Self::polygon) puts it: a mesh's vertex,
+    /// transformed once and used by every face through it.
+    pub fn view_point(&self, p: Point3) -> ViewPoint {
+        ViewPoint(self.stack.current().apply(p).ok())
+    }
+
+    /// [`polygon`](Self::polygon) of points already in view space (from
+    /// [`view_point`](Self::view_point)): the stages after the transform,
+    /// the same code. A point that left view space's range is
+    /// [`PipelineError::Range`], as it is for `polygon`.
+    pub fn polygon_view<I, S>(
+        &mut self,
+        points: I,
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>>
+    where
+        I: ExactSizeIterator<Item = Option<[i32; 3]>>,
+        S: PolygonSink,
+    {
         if points.len() == 0 {
             return Ok(Outcome::Empty);
         }
@@ -384,7 +428,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         r
     }
 
-    fn run<I: ExactSizeIterator<Item = Point3>, S: PolygonSink>(
+    fn run<I: ExactSizeIterator<Item = Option<[i32; 3]>>, S: PolygonSink>(
         &self,
         points: I,
         color: Rgb888,
@@ -395,12 +439,11 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             return Err(full());
         }
         let mut work = Work::<N>::new();
-        let m = self.stack.current();
         // The depth range is gathered on the way, for the near clip.
         let mut depth = (i32::MAX, i32::MIN);
         let two_sided = points.len() < 3;
-        for p in points {
-            let v = m.apply(p).map_err(|_| PipelineError::Range)?;
+        for v in points {
+            let v = v.ok_or(PipelineError::Range)?;
             depth = (depth.0.min(v[2]), depth.1.max(v[2]));
             work.current_mut()
                 .push(v.map(i64::from))

@@ -23,7 +23,7 @@ use crate::raster::clip::ClipRect;
 use crate::visible::store::front_facing;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-use super::{label, SceneError};
+use super::{label, SceneError, VertexTable};
 
 /// What a list carries besides the geometry stage: the current colour,
 /// the clip registers, and the list's frame (clip windows are cut to it).
@@ -73,6 +73,8 @@ pub enum Executed {
     },
     /// A `face` (a point or a line too): what became of it.
     Face(Outcome),
+    /// A `v`: a vertex transformed into the table.
+    Vertex,
     /// A `label`: placed, or not (behind the eye, or too far off).
     Label {
         /// `false`: not placed.
@@ -157,6 +159,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
     out: &mut O,
     st: &mut ListState,
+    table: &mut VertexTable<'_>,
     cmd: Command<'_>,
 ) -> Result<Executed, SceneError> {
     let (w, h) = (st.width, st.height);
@@ -168,7 +171,20 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
             let drawn = out.poly3(&v, st.color, &st.clip)?;
             return Ok(Executed::Poly3 { drawn });
         }
-        Command::Segment(_) => pipe.reset_stack(),
+        Command::Segment(_) => {
+            pipe.reset_stack();
+            table.clear();
+        }
+        Command::MeshVertex(p) => {
+            table.push(pipe.view_point(p))?;
+            return Ok(Executed::Vertex);
+        }
+        Command::MeshFace(indices) => {
+            let indices = indices.iter().map(usize::from);
+            return Ok(Executed::Face(mesh_face(
+                pipe, out, table, indices, st.color, st.clip,
+            )?));
+        }
         Command::Perspective { fov, near, far } => {
             pipe.set_projection(Perspective::from_fov(fov, w, near, far)?);
             out.changed();
@@ -233,11 +249,34 @@ pub(crate) fn face<const DEPTH: usize, const N: usize, O: Out>(
 ) -> Result<Outcome, SceneError> {
     let mut sink = Faces { out, clip };
     pipe.polygon_from(points, color, &mut sink)
-        .map_err(|e| match e {
-            PipelineError::Range => SceneError::Range,
-            PipelineError::Capacity { capacity } => SceneError::Vertices { capacity },
-            PipelineError::Sink(e) => e,
-        })
+        .map_err(pipeline_error)
+}
+
+/// A face through vertices of `table` into `out`: the stages of
+/// [`face`] after the transform, from the view-space points the `v`s
+/// stored. Out of line for the reason `face` is.
+#[inline(never)]
+pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
+    pipe: &mut Pipeline<DEPTH, N>,
+    out: &mut O,
+    table: &VertexTable<'_>,
+    indices: impl ExactSizeIterator<Item = usize> + Clone,
+    color: Rgb888,
+    clip: ClipRect,
+) -> Result<Outcome, SceneError> {
+    table.check(indices.clone())?;
+    let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
+    let mut sink = Faces { out, clip };
+    pipe.polygon_view(points, color, &mut sink)
+        .map_err(pipeline_error)
+}
+
+fn pipeline_error(e: PipelineError<SceneError>) -> SceneError {
+    match e {
+        PipelineError::Range => SceneError::Range,
+        PipelineError::Capacity { capacity } => SceneError::Vertices { capacity },
+        PipelineError::Sink(e) => e,
+    }
 }
 
 /// A label at the model point `at` into `out`: `Ok(false)` when the point

@@ -101,12 +101,14 @@
 pub mod bands;
 pub mod label;
 pub mod list;
+pub mod mesh;
 pub mod storage;
 
 pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 pub use list::{list_pipeline, Executed, ListState};
+pub use mesh::VertexTable;
 pub use storage::{Capacities, SceneStorage};
 
 use crate::color::ListColor;
@@ -114,7 +116,7 @@ use crate::display_list::{Axis, Command};
 use crate::fixed::{Coord, Vertex3};
 use crate::geometry::{
     Angle, Light, Outcome, Pipeline, PipelineError, Point3, Projection, ProjectionError,
-    TransformError, TransformStack, View, Q16,
+    TransformError, TransformStack, View, ViewPoint, Q16,
 };
 use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
@@ -205,6 +207,20 @@ impl<F: FnMut(Stage)> Hook for F {
     }
 }
 
+/// What [`Builder::mesh`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "defmt", derive(defmt::Format))]
+pub struct MeshStats {
+    /// Vertices transformed (each once).
+    pub vertices: u32,
+    /// Faces cut into the segment (points and lines too).
+    pub faces: u32,
+    /// Faces culled (back-facing or edge-on).
+    pub culled: u32,
+    /// Faces wholly outside the depth range or the window.
+    pub clipped_away: u32,
+}
+
 /// Why a segment could not be built, or a scene made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
@@ -228,6 +244,18 @@ pub enum SceneError {
     Projection(ProjectionError),
     /// A light's direction is zero, or a view's eye is its target.
     Light,
+    /// A `v` beyond the vertex table's slots.
+    VertexTable {
+        /// Slots of the table.
+        capacity: usize,
+    },
+    /// An `f` index that names no vertex of the segment's table.
+    Index {
+        /// The 0-based index.
+        index: usize,
+        /// Vertices in the table.
+        vertices: usize,
+    },
 }
 
 impl fmt::Display for SceneError {
@@ -242,6 +270,12 @@ impl fmt::Display for SceneError {
             }
             SceneError::Projection(e) => write!(f, "{e}"),
             SceneError::Light => write!(f, "{}", crate::geometry::light::ZeroDirection),
+            SceneError::VertexTable { capacity } => {
+                write!(f, "the vertex table of {capacity} slots is full")
+            }
+            SceneError::Index { index, vertices } => {
+                write!(f, "f names vertex {} of a table of {vertices}", index + 1)
+            }
         }
     }
 }
@@ -795,6 +829,41 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         list::face(pipeline, &mut out, points.iter().copied(), color, clip)
     }
 
+    /// A mesh in model coordinates: each of `vertices` transformed once
+    /// into `slots` (at least `vertices.len()` of them, else
+    /// [`SceneError::VertexTable`]), then one face for each `sides`
+    /// consecutive 0-based `indices` (1: points, 2: lines, 3: triangles…;
+    /// a last, shorter group is a face too), each drawing exactly what
+    /// [`face`](Self::face) draws through the same points. An index
+    /// past `vertices` is [`SceneError::Index`], with nothing of that face
+    /// drawn (the faces before it are).
+    pub fn mesh(
+        &mut self,
+        vertices: &[Point3],
+        indices: &[u16],
+        sides: usize,
+        color: Rgb888,
+        slots: &mut [ViewPoint],
+    ) -> Result<MeshStats, SceneError> {
+        let clip = self.scene.clip;
+        let (pipeline, mut out) = self.split();
+        let mut table = VertexTable::new(slots);
+        let mut stats = MeshStats::default();
+        for &p in vertices {
+            table.push(pipeline.view_point(p))?;
+            stats.vertices += 1;
+        }
+        for face in indices.chunks(sides.max(1)) {
+            let ix = face.iter().map(|&i| usize::from(i));
+            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip)? {
+                Outcome::Emitted => stats.faces += 1,
+                Outcome::Culled => stats.culled += 1,
+                _ => stats.clipped_away += 1,
+            }
+        }
+        Ok(stats)
+    }
+
     /// A label whose first character's lower-left corner is at the model
     /// point `at` (see [`label`]). `Ok(false)` when the point
     /// lies before the near plane or too far off the window to show.
@@ -815,8 +884,19 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         cmd: Command<'_>,
         state: &mut ListState,
     ) -> Result<Executed, SceneError> {
+        self.command_in(cmd, state, &mut VertexTable::none())
+    }
+
+    /// [`command`](Self::command) with a mesh vertex table: a `v` goes
+    /// into `table`, an `f` draws through it, a `segment` empties it.
+    pub fn command_in(
+        &mut self,
+        cmd: Command<'_>,
+        state: &mut ListState,
+        table: &mut VertexTable<'_>,
+    ) -> Result<Executed, SceneError> {
         let (pipeline, mut out) = self.split();
-        list::execute(pipeline, &mut out, state, cmd)
+        list::execute(pipeline, &mut out, state, table, cmd)
     }
 
     /// The pipeline, and the segment as the interpreter's output.
