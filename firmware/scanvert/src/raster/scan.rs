@@ -289,7 +289,7 @@ impl Walk {
             for e in &edges[..active] {
                 stop = stop.min(e.end());
             }
-            let live = &mut edges[..active];
+            let (live, waiting) = edges.split_at_mut(active);
             match (paint.as_mut(), live) {
                 (Some((target, color)), [a, b]) if a.is_vertical() && b.is_vertical() => {
                     // Two vertical edges (a rectangle's sides): one span,
@@ -323,7 +323,35 @@ impl Walk {
                         }
                         y += 1;
                         if y >= stop {
-                            break;
+                            // Where one edge ends and the next waiting edge
+                            // begins on this row, alone (a convex
+                            // polygon's chains, at every vertex but the
+                            // last): the pair stays in locals, as the
+                            // retire and join below would leave it.
+                            let joins = waiting.get(next - active).filter(|e| e.top() == y);
+                            let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
+                            match joins {
+                                Some(e) if alone && y < y1 => {
+                                    if ea.end() == y && eb.end() > y {
+                                        ea = *e;
+                                        eb.step();
+                                    } else if eb.end() == y && ea.end() > y {
+                                        eb = *e;
+                                        ea.step();
+                                    } else {
+                                        break;
+                                    }
+                                    next += 1;
+                                    stop = waiting
+                                        .get(next - active)
+                                        .map_or(i32::MAX, |e| e.top())
+                                        .min(y1)
+                                        .min(ea.end())
+                                        .min(eb.end());
+                                    continue;
+                                }
+                                _ => break,
+                            }
                         }
                         ea.step();
                         eb.step();
