@@ -327,11 +327,14 @@ impl Walk {
                             // begins on this row, alone (a convex
                             // polygon's chains, at every vertex but the
                             // last): the pair stays in locals, as the
-                            // retire and join below would leave it.
+                            // retire and join below would leave it. Not in
+                            // a band walk, whose polygons cross few
+                            // vertices a band and whose code, inlined into
+                            // the table, grew slower with it.
                             let joins = waiting.get(next - active).filter(|e| e.top() == y);
                             let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
                             match joins {
-                                Some(e) if alone && y < y1 => {
+                                Some(e) if !BAND && alone && y < y1 => {
                                     if ea.end() == y && eb.end() > y {
                                         ea = *e;
                                         eb.step();
