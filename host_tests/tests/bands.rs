@@ -602,6 +602,26 @@ fn list_text() -> impl Strategy<Value = String> {
         }
         s
     });
+    // Convex polygons (vertices on an ellipse at increasing angles), so
+    // that one edge ends where the next begins, in bands or across them.
+    let convex = (
+        coord(48),
+        coord(32),
+        1i32..40 * 16,
+        1i32..30 * 16,
+        prop::collection::vec(0u32..3600, 3..9),
+    )
+        .prop_map(|(cx, cy, rx, ry, mut angles)| {
+            angles.sort_unstable();
+            let mut s = String::from("poly");
+            for a in angles {
+                let t = a as f64 * std::f64::consts::PI / 1800.0;
+                let x = (16.0 * cx + rx as f64 * t.cos()).round() / 16.0;
+                let y = (16.0 * cy + ry as f64 * t.sin()).round() / 16.0;
+                s += &format!(" {x} {y}");
+            }
+            s
+        });
     let far = |side: i32| (-200 * 16..(side + 200) * 16).prop_map(|u| u as f64 / 16.0);
     let line = prop_oneof![
         3 => (coord(48), coord(32), coord(48), coord(32)),
@@ -615,6 +635,7 @@ fn list_text() -> impl Strategy<Value = String> {
             .prop_map(|(a, b, c, d)| format!("clip {a} {b} {c} {d}")),
         3 => (0u32..0xffffff).prop_map(|c| format!("color #{c:06x}")),
         8 => poly,
+        6 => convex,
         6 => line,
     ];
     (1u16..=48, 1u16..=32, prop::collection::vec(cmd, 0..24)).prop_map(|(w, h, cmds)| {

@@ -60,6 +60,20 @@ impl ClipRect {
         ClipRect { x0, y0, x1, y1 }
     }
 
+    /// The window cut to a `width × height` target (a target smaller
+    /// than the frame the window was made for): within it, with the same
+    /// guarantees.
+    pub const fn within(self, width: u16, height: u16) -> Self {
+        let x1 = if self.x1 < width { self.x1 } else { width };
+        let y1 = if self.y1 < height { self.y1 } else { height };
+        ClipRect {
+            x0: if self.x0 < x1 { self.x0 } else { x1 },
+            y0: if self.y0 < y1 { self.y0 } else { y1 },
+            x1,
+            y1,
+        }
+    }
+
     /// First column.
     pub const fn x0(&self) -> u16 {
         self.x0
@@ -131,5 +145,20 @@ mod tests {
             ClipRect::from_window(extreme, 4096, 4096),
             ClipRect::full(4096, 4096)
         );
+    }
+
+    #[test]
+    fn within_cuts_to_a_smaller_target() {
+        let c = ClipRect::full(100, 50).within(30, 60);
+        assert_eq!((c.x0(), c.y0(), c.x1(), c.y1()), (0, 0, 30, 50));
+        let w = ClipWindow {
+            x0: 40,
+            y0: 10,
+            x1: 90,
+            y1: 20,
+        };
+        assert!(ClipRect::from_window(w, 100, 50).within(30, 60).is_empty());
+        let c = ClipRect::from_window(w, 100, 50).within(60, 15);
+        assert_eq!((c.x0(), c.y0(), c.x1(), c.y1()), (40, 10, 60, 15));
     }
 }

@@ -117,6 +117,10 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     {
         let mut counts = Counts::default();
         target.begin_polygon();
+        // The clip cut to the target once, so that every span it passes is
+        // inside the target and is written without the target's own checks.
+        let (w, h) = target.size();
+        let clip = &clip.within(w, h);
         if clip.is_empty() {
             return Ok(counts);
         }
@@ -285,7 +289,7 @@ impl Walk {
             for e in &edges[..active] {
                 stop = stop.min(e.end());
             }
-            let live = &mut edges[..active];
+            let (live, waiting) = edges.split_at_mut(active);
             match (paint.as_mut(), live) {
                 (Some((target, color)), [a, b]) if a.is_vertical() && b.is_vertical() => {
                     // Two vertical edges (a rectangle's sides): one span,
@@ -300,6 +304,9 @@ impl Walk {
                     // Two edges (every convex polygon, most rows of any
                     // other): stepped in locals, one span a row, no sort.
                     let (mut ea, mut eb) = (*a, *b);
+                    // Counted in locals and added once a run: the run's
+                    // rows and pixels fit in `u32` (a side is at most 4096).
+                    let (mut spans, mut pixels) = (0u32, 0u32);
                     loop {
                         ea.load_pixel();
                         eb.load_pixel();
@@ -308,14 +315,52 @@ impl Walk {
                         } else {
                             (eb.pixel(), ea.pixel())
                         };
-                        emit_span(y, l, r, cx, *color, &mut **target, counts)?;
+                        let (x0, x1) = (l.max(cx.0), r.min(cx.1));
+                        if x0 < x1 {
+                            write_span::<BAND, T>(y, x0, x1, *color, &mut **target)?;
+                            spans += 1;
+                            pixels += (x1 - x0) as u32;
+                        }
                         y += 1;
                         if y >= stop {
-                            break;
+                            // Where one edge ends and the next waiting edge
+                            // begins on this row, alone (a convex
+                            // polygon's chains, at every vertex but the
+                            // last): the pair stays in locals, as the
+                            // retire and join below would leave it. Not in
+                            // a band walk, whose polygons cross few
+                            // vertices a band and whose code, inlined into
+                            // the table, grew slower with it.
+                            let joins = waiting.get(next - active).filter(|e| e.top() == y);
+                            let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
+                            match joins {
+                                Some(e) if !BAND && alone && y < y1 => {
+                                    if ea.end() == y && eb.end() > y {
+                                        ea = *e;
+                                        eb.step();
+                                    } else if eb.end() == y && ea.end() > y {
+                                        eb = *e;
+                                        ea.step();
+                                    } else {
+                                        break;
+                                    }
+                                    next += 1;
+                                    stop = waiting
+                                        .get(next - active)
+                                        .map_or(i32::MAX, |e| e.top())
+                                        .min(y1)
+                                        .min(ea.end())
+                                        .min(eb.end());
+                                    continue;
+                                }
+                                _ => break,
+                            }
                         }
                         ea.step();
                         eb.step();
                     }
+                    counts.spans = counts.spans.saturating_add(spans);
+                    counts.pixels = counts.pixels.saturating_add(pixels);
                     if BAND && y >= y1 && ea.end() > y && eb.end() > y {
                         // The band's end, not an edge's: on to the next
                         // band's first row.
@@ -334,7 +379,7 @@ impl Walk {
                     }
                     insertion_sort(live);
                     for pair in live.chunks_exact(2) {
-                        emit_span(
+                        emit_span::<BAND, T>(
                             y,
                             pair[0].pixel(),
                             pair[1].pixel(),
@@ -388,7 +433,7 @@ impl Walk {
 /// counts it: the rasteriser's and the band path's
 /// ([`table`](super::table)) one way to hand a span to the port.
 #[inline(always)]
-pub(super) fn emit_span<T: SpanTarget + ?Sized>(
+pub(super) fn emit_span<const BAND: bool, T: SpanTarget + ?Sized>(
     y: i32,
     l: i32,
     r: i32,
@@ -399,16 +444,35 @@ pub(super) fn emit_span<T: SpanTarget + ?Sized>(
 ) -> Result<(), T::Error> {
     let (x0, x1) = (l.max(cx.0), r.min(cx.1));
     if x0 < x1 {
-        // In 0..=4096 by the clip guarantee.
-        let span = Span {
-            y: y as u16,
-            x0: x0 as u16,
-            x1: x1 as u16,
-        };
-        target.fill_span(span, color)?;
+        write_span::<BAND, T>(y, x0, x1, color, target)?;
         counts.span((x1 - x0) as u32);
     }
     Ok(())
+}
+
+/// Writes the span `x0..x1` (`x0 < x1`, inside the clip) of row `y`
+/// (inside the clip rows). Outside a band walk the rasteriser has cut the
+/// clip to the target, so the span is inside it and skips the target's
+/// checks; a band walk's columns are the band's, checked by the target.
+#[inline(always)]
+fn write_span<const BAND: bool, T: SpanTarget + ?Sized>(
+    y: i32,
+    x0: i32,
+    x1: i32,
+    color: T::Color,
+    target: &mut T,
+) -> Result<(), T::Error> {
+    // In 0..=4096 by the clip guarantee.
+    let span = Span {
+        y: y as u16,
+        x0: x0 as u16,
+        x1: x1 as u16,
+    };
+    if BAND {
+        target.fill_span(span, color)
+    } else {
+        target.fill_span_inside(span, color)
+    }
 }
 
 /// Writes the span `l..r`, cut to the clip columns `cx`, on every row of
@@ -634,6 +698,56 @@ mod tests {
                     assert_eq!(got, covers(poly, i, j), "case {case} pixel ({i}, {j})");
                 }
             }
+        }
+    }
+
+    /// A clip window made for a larger frame than the target: spans are
+    /// cut to the target once a polygon, and every pixel of the target is
+    /// the rule's (none written past it).
+    #[test]
+    fn a_target_smaller_than_the_clip_gets_the_rule_inside_it() {
+        let mut px = [BinaryColor::Off; W as usize * H as usize];
+        let mut slots = [Edge::EMPTY; 8];
+        let big = ClipRect::full(W + 20, H + 13);
+        let polys: [&[Vertex]; 3] = [
+            // Reaches past the right and bottom sides, slanted.
+            &[
+                Vertex::from_bits(100, 40),
+                Vertex::from_bits(W as i16 * 16 + 200, 90),
+                Vertex::from_bits(500, H as i16 * 16 + 150),
+            ],
+            // A rectangle past both sides (the two-vertical-edge path).
+            &[
+                Vertex::from_bits(40, 40),
+                Vertex::from_bits(W as i16 * 16 + 100, 40),
+                Vertex::from_bits(W as i16 * 16 + 100, H as i16 * 16 + 100),
+                Vertex::from_bits(40, H as i16 * 16 + 100),
+            ],
+            // Concave, four edges on some rows.
+            &[
+                Vertex::from_bits(0, 0),
+                Vertex::from_bits(W as i16 * 16 + 300, 60),
+                Vertex::from_bits(200, 300),
+                Vertex::from_bits(W as i16 * 16 + 300, H as i16 * 16 + 250),
+                Vertex::from_bits(20, H as i16 * 16 + 200),
+            ],
+        ];
+        for poly in polys {
+            px.fill(BinaryColor::Off);
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let counts = Rasterizer::new(&mut slots)
+                .fill(poly.iter().copied(), &big, BinaryColor::On, &mut fb)
+                .unwrap();
+            let mut covered = 0;
+            for j in 0..H as i32 {
+                for i in 0..W as i32 {
+                    let want = covers(poly, i, j);
+                    let got = fb.pixel(i as u16, j as u16) == Some(BinaryColor::On);
+                    assert_eq!(got, want, "{poly:?} pixel ({i}, {j})");
+                    covered += want as u32;
+                }
+            }
+            assert_eq!(counts.pixels, covered);
         }
     }
 
