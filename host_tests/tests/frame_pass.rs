@@ -165,12 +165,11 @@ fn drawables_that_move_send_only_their_rows_and_the_panel_stays_whole() {
     let mut band = vec![Rgb565::BLACK; 8 * w];
     let mut bits = [0u32; DirtyRows::words(96)];
     let bg = Rgb565::new(1, 2, 3);
+    let mut pass = FramePass::new(size, bg);
     {
         let layers: &mut [&mut dyn Layer<Rgb565>] =
             &mut [&mut l1, &mut l2, &mut l3, &mut box_layer];
-        FramePass::new(size, bg)
-            .draw(layers, 8, &mut band, &mut panel)
-            .unwrap();
+        pass.draw(layers, 8, &mut band, &mut panel).unwrap();
     }
     for step in 1..12 {
         let (t, n, c) = hud(step);
@@ -189,7 +188,7 @@ fn drawables_that_move_send_only_their_rows_and_the_panel_stays_whole() {
         panel.rows = 0;
         let layers: &mut [&mut dyn Layer<Rgb565>] =
             &mut [&mut l1, &mut l2, &mut l3, &mut box_layer];
-        let sent = FramePass::new(size, bg)
+        let sent = pass
             .draw_marked(layers, &mut dirty, 8, &mut band, &mut panel)
             .unwrap();
         assert_eq!(sent, panel.rows);
@@ -260,14 +259,19 @@ proptest! {
                 prop_assert!(dirty.is_marked(y as u16), "row {} changed, not marked", y);
             }
         }
-        // The panel shows `before`; the marked rows of `after` are sent.
-        let mut panel = Panel { width: 40, pixels: before, rows: 0 };
+        // The pass sends `before` whole, then the marked rows of `after`.
+        let mut panel = Panel { width: 40, pixels: vec![Rgb565::RED; 40 * 30], rows: 0 };
+        let mut band = vec![Rgb565::BLACK; rows as usize * 40];
+        let mut pass = FramePass::new((40, 30), Rgb565::BLACK);
+        let mut mem = ListMemory::for_bands(&la).expect("sized");
+        let (mut c, t) = mem.band_parts();
+        let mut layer = c.bands(&la, t).expect("prepared");
+        pass.draw(&mut [&mut layer], rows, &mut band, &mut panel).unwrap();
+        prop_assert!(panel.pixels == before);
         let mut mem = ListMemory::for_bands(&lb).expect("sized");
         let (mut c, t) = mem.band_parts();
         let mut layer = c.bands(&lb, t).expect("prepared");
-        let mut band = vec![Rgb565::BLACK; rows as usize * 40];
-        FramePass::new((40, 30), Rgb565::BLACK)
-            .draw_marked(&mut [&mut layer], &mut dirty, rows, &mut band, &mut panel)
+        pass.draw_marked(&mut [&mut layer], &mut dirty, rows, &mut band, &mut panel)
             .unwrap();
         prop_assert!(panel.pixels == after);
     }
@@ -332,6 +336,7 @@ fn a_drawable_anchored_at_a_3d_point_follows_it() {
         rows: 0,
     };
     let mut band = vec![Rgb565::BLACK; 8 * w as usize];
+    let mut pass = FramePass::new((w, h), Rgb565::BLACK);
     for (eye_x, eye_z) in [(0, 10), (3, 8), (-2, 12), (0, -5)] {
         pipe.set_view(
             &View::look_at(
@@ -356,9 +361,95 @@ fn a_drawable_anchored_at_a_3d_point_follows_it() {
         }
         dirty.clear();
         let layers: &mut [&mut dyn Layer<Rgb565>] = &mut [&mut layer];
-        FramePass::new((w, h), Rgb565::BLACK)
-            .draw_marked(layers, &mut dirty, 8, &mut band, &mut panel)
+        pass.draw_marked(layers, &mut dirty, 8, &mut band, &mut panel)
             .unwrap();
         assert!(panel.pixels == want, "eye at ({eye_x}, {eye_z})");
     }
+}
+
+/// A panel that refuses to be sent anything while `fail` is set.
+struct Flaky {
+    panel: Panel,
+    fail: bool,
+}
+
+impl BandTarget for Flaky {
+    type Color = Rgb565;
+    type Error = ();
+    fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), ()> {
+        if self.fail {
+            return Err(());
+        }
+        self.panel.ship(y, rows, px).map_err(|_| ())
+    }
+}
+
+type Dot = embedded_graphics::primitives::Styled<Circle, PrimitiveStyle<Rgb565>>;
+
+/// One frame of `layer` through `pass`, its marks only; checks that the
+/// panel then shows the whole frame, and returns the rows sent.
+fn marked_frame(
+    pass: &mut FramePass<Rgb565>,
+    layer: &mut DrawableLayer<Dot>,
+    dirty: &mut DirtyRows<'_>,
+    flaky: &mut Flaky,
+) -> Result<u32, ()> {
+    let (w, h) = pass.size();
+    let mut band = vec![Rgb565::BLACK; 8 * w as usize];
+    dirty.clear();
+    flaky.panel.rows = 0;
+    let sent = pass
+        .draw_marked(&mut [&mut *layer], dirty, 8, &mut band, flaky)
+        .map_err(|_| ())?;
+    let mut want = vec![pass.background(); w as usize * h as usize];
+    let mut fb = FrameBuffer::new(&mut want, w, h).unwrap();
+    layer.get().draw(&mut fb).unwrap();
+    assert!(flaky.panel.pixels == want, "the panel is the whole frame");
+    assert_eq!(sent, flaky.panel.rows);
+    Ok(sent)
+}
+
+/// The background is a change like any other: the pass marks every row
+/// on its first frame, after its background changes and after a frame
+/// that failed to reach the panel; otherwise only the layers' marks.
+#[test]
+fn the_pass_marks_the_background_its_first_frame_and_a_failed_one() {
+    let (w, h) = (48u16, 40u16);
+    let dot =
+        |x| Circle::new(Point::new(x, 12), 7).into_styled(PrimitiveStyle::with_fill(Rgb565::RED));
+    let mut layer = DrawableLayer::new(dot(4));
+    let mut flaky = Flaky {
+        panel: Panel {
+            width: w as usize,
+            pixels: vec![Rgb565::GREEN; w as usize * h as usize],
+            rows: 0,
+        },
+        fail: false,
+    };
+    let mut bits = [0u32; DirtyRows::words(40)];
+    let mut dirty = DirtyRows::new(&mut bits, h).unwrap();
+    let mut pass = FramePass::new((w, h), Rgb565::BLACK);
+    let mut frame =
+        |pass: &mut FramePass<Rgb565>, layer: &mut DrawableLayer<Dot>, flaky: &mut Flaky| {
+            marked_frame(pass, layer, &mut dirty, flaky)
+        };
+    // The first frame: the panel's pixels are unknown.
+    assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(40));
+    // Nothing changed: nothing is sent.
+    assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(0));
+    // The dot moves: the rows it was and is on only.
+    layer.set(dot(20));
+    assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(7));
+    // The same background set again is no change.
+    pass.set_background(Rgb565::BLACK);
+    assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(0));
+    // A new background: every row.
+    pass.set_background(Rgb565::BLUE);
+    assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(40));
+    // A frame that fails, then one that is sent: every row again.
+    layer.set(dot(30));
+    flaky.fail = true;
+    assert!(frame(&mut pass, &mut layer, &mut flaky).is_err());
+    flaky.fail = false;
+    assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(40));
 }

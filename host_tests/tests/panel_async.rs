@@ -290,28 +290,18 @@ fn changed_rows_only() {
     );
     let mut bar_layer = DrawableLayer::new(bar());
     let mut dot_layer = DrawableLayer::new(dot(10));
+    let mut pass = FramePass::new((W, H), Rgb565::BLACK);
     {
         let layers: &mut [&mut dyn Layer<Rgb565>] = &mut [&mut bar_layer, &mut dot_layer];
-        block_on(FramePass::new((W, H), Rgb565::BLACK).draw_async(
-            layers,
-            ROWS,
-            (&mut a, &mut b),
-            &mut panel,
-        ))
-        .expect("first frame");
+        block_on(pass.draw_async(layers, ROWS, (&mut a, &mut b), &mut panel)).expect("first frame");
     }
     dot_layer.set(dot(50));
     let mut bits = [0u32; DirtyRows::words(H)];
     let mut dirty = DirtyRows::new(&mut bits, H).unwrap();
     let layers: &mut [&mut dyn Layer<Rgb565>] = &mut [&mut bar_layer, &mut dot_layer];
-    let sent = block_on(FramePass::new((W, H), Rgb565::BLACK).draw_marked_async(
-        layers,
-        &mut dirty,
-        ROWS,
-        (&mut a, &mut b),
-        &mut panel,
-    ))
-    .expect("second frame");
+    let sent =
+        block_on(pass.draw_marked_async(layers, &mut dirty, ROWS, (&mut a, &mut b), &mut panel))
+            .expect("second frame");
     // The dot's 17 rows, before and after: rows 20..37.
     assert_eq!(sent, 17);
     let mut mem = vec![Rgb565::GREEN; W as usize * H as usize];

@@ -175,7 +175,7 @@ fn run(
     );
     let mut layers: [&mut dyn Layer<Rgb565>; 2] = [&mut a, &mut b];
     let mut band = vec![Rgb565::BLACK; usize::from(rows) * usize::from(W)];
-    let pass = FramePass::new((W, H), Rgb565::BLUE);
+    let mut pass = FramePass::new((W, H), Rgb565::BLUE);
     match marked {
         None => {
             pass.draw(&mut layers, rows, &mut band, &mut panel).unwrap();

@@ -123,6 +123,7 @@ fn draw_frame(
     list: &DisplayList<'_>,
     scene: &mut Scene<'_, 4, 16>,
     (clock, dot): (&mut Clock, &mut Dot),
+    pass: &mut FramePass<Rgb565>,
     dirty: &mut DirtyRows<'_>,
     band: &mut [Rgb565],
     panel: &mut Panel,
@@ -145,7 +146,7 @@ fn draw_frame(
     // The 3D layer over it: faces and the HUD label, no background.
     let mut view = scene.bands(Resolve::default(), Rgb565::BLACK, DEFAULT_FONT)?;
     let layers: &mut [&mut dyn Layer<Rgb565>] = &mut [&mut ui, &mut view, clock, dot];
-    Ok(FramePass::new((W, H), Rgb565::BLACK).draw_marked(layers, dirty, ROWS, band, panel)?)
+    Ok(pass.draw_marked(layers, dirty, ROWS, band, panel)?)
 }
 
 /// The same frame rendered whole, layer by layer, into a frame buffer.
@@ -192,7 +193,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rows: 0,
     };
     let (mut last, mut ratios) = (Vec::new(), Vec::new());
-    dirty.mark_all(); // the panel starts unknown
+    // Kept from frame to frame: on the first, every row is sent.
+    let mut pass = FramePass::new((W, H), Rgb565::BLACK);
     for frame in 0..FRAMES {
         // The application's changes: the cube turns, the clock and the dot.
         scene.invalidate(0)?;
@@ -205,6 +207,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             &list,
             &mut scene,
             (&mut clock_layer, &mut dot_layer),
+            &mut pass,
             &mut dirty,
             &mut band,
             &mut panel,

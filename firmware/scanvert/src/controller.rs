@@ -393,6 +393,7 @@ fn edge_bound(cmd: &Command<'_>) -> usize {
 
 /// Edge slots the 3D layer of `list` needs: what [`needs`] wants as
 /// scratch, and the store of the [`SceneMemory`] as edge slots.
+#[doc(hidden)]
 pub fn edges_3d(list: &DisplayList<'_>) -> usize {
     list.commands()
         .map(|(_, c)| edge_bound(&c))

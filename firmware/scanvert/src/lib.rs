@@ -25,7 +25,11 @@
 //! holds those of the 2D path with the traits and colours they need, so
 //! that one `use scanvert::prelude::*;` draws a polygon. The modules keep
 //! everything else: the parts of each stage, their counters and their
-//! less common errors.
+//! less common errors. What only the stages themselves use (the binary
+//! layout table, the sweep's run writer, the store's writers, edge
+//! stepping, the transform stack) is `#[doc(hidden)]`: reachable for the
+//! simulator and the tests, but not part of the API, and it may change in
+//! any release.
 //!
 //! # Features
 //!

@@ -142,9 +142,8 @@ fn main() -> ! {
     let mut panel = Panel::new(spi, dc, bytes);
     let mut core = ui::Ui::new(mem).unwrap();
     loop {
-        // A frame that fails to reach the panel is sent again whole.
-        if core.step(&mut panel).is_err() {
-            core.mark_all();
-        }
+        // A frame that fails to reach the panel is followed by a whole
+        // one: the frame pass marks every row after a failed frame.
+        let _ = core.step(&mut panel);
     }
 }

@@ -210,6 +210,7 @@ pub struct Ui<'m> {
     scene: Scene<'m, 4, 16>,
     clock: Clock,
     dot: Dot,
+    pass: FramePass<Rgb565>,
     dirty: DirtyRows<'m>,
     scratch: &'m mut [u64],
     band: &'m mut [Rgb565],
@@ -219,8 +220,8 @@ pub struct Ui<'m> {
 }
 
 impl<'m> Ui<'m> {
-    /// The first frame's content, in `mem`. Every row is marked, since
-    /// what the panel shows is not known.
+    /// The first frame's content, in `mem`. The first step sends every
+    /// row, since what the panel shows is not known.
     pub fn new(mem: &'m mut Memory) -> Result<Self, Error<Infallible>> {
         let list = ui_list(&mut mem.list).ok_or(Error::Setup)?;
         let (near, far) = (Q16::from_int(1), Q16::from_int(100));
@@ -235,13 +236,13 @@ impl<'m> Ui<'m> {
         let mut scene = Scene::new(mem.storage.as_memory(), pipeline)?;
         let eye = View::look_at(Point3::from_int(4, 3, 7), Point3::from_int(0, 0, 0));
         scene.set_view(&eye.map_err(SceneError::from)?)?;
-        let mut dirty = DirtyRows::new(&mut mem.dirty, H).ok_or(Error::Setup)?;
-        dirty.mark_all();
+        let dirty = DirtyRows::new(&mut mem.dirty, H).ok_or(Error::Setup)?;
         Ok(Ui {
             list,
             scene,
             clock: DrawableLayer::new(clock(0)),
             dot: DrawableLayer::new(dot(0)),
+            pass: FramePass::new((W, H), Rgb565::BLACK),
             dirty,
             scratch: &mut mem.scratch,
             band: &mut mem.band,
@@ -256,12 +257,6 @@ impl<'m> Ui<'m> {
         })
     }
 
-    /// Marks every row, so that the next step sends the whole frame (after
-    /// a failed step, whose rows the panel may not have).
-    pub fn mark_all(&mut self) {
-        self.dirty.mark_all();
-    }
-
     /// The 3D scene, as last stepped (for tests that render it whole).
     #[allow(dead_code)]
     pub fn scene(&mut self) -> &mut Scene<'m, 4, 16> {
@@ -269,7 +264,8 @@ impl<'m> Ui<'m> {
     }
 
     /// Changes the content to the next frame and sends the rows that
-    /// changed to `panel`; returns the rows sent.
+    /// changed to `panel`; returns the rows sent. After a step that fails,
+    /// the next one sends every row: the panel may not have the last.
     pub fn step<P>(&mut self, panel: &mut P) -> Result<u32, Error<P::Error>>
     where
         P: BandTarget<Color = Rgb565> + ?Sized,
@@ -297,13 +293,9 @@ impl<'m> Ui<'m> {
             .bands(Resolve::default(), Rgb565::BLACK, DEFAULT_FONT)?;
         let layers: &mut [&mut dyn Layer<Rgb565>] =
             &mut [&mut ui, &mut view, &mut self.clock, &mut self.dot];
-        let sent = FramePass::new((W, H), Rgb565::BLACK).draw_marked(
-            layers,
-            &mut self.dirty,
-            ROWS,
-            self.band,
-            panel,
-        )?;
+        let sent = self
+            .pass
+            .draw_marked(layers, &mut self.dirty, ROWS, self.band, panel)?;
         self.dirty.clear();
         self.frame += 1;
         Ok(sent)

@@ -35,7 +35,9 @@
 //! [`DirtyRows`] marks the rows to draw again. A [`DrawableLayer`] layer marks
 //! the rows of what changed in it (what was there and what is there now,
 //! by bounding box); [`Scene::update_marking`](crate::scene::Scene::update_marking)
-//! marks the rows whose content a scene update changed.
+//! marks the rows whose content a scene update changed; the pass marks
+//! every row on its first frame and when its background changes
+//! ([`FramePass::set_background`]).
 //! [`FramePass::draw_marked`] asks every layer for its marks, then draws
 //! and ships only the marked rows. A panel that keeps its pixels then
 //! shows the whole frame.
@@ -74,17 +76,21 @@
 //! let mut marker = DrawableLayer::new(dot(10));
 //! let mut band = [Rgb565::BLACK; 8 * 64];
 //! let mut panel = Panel(0);
-//! // The first frame: every row.
-//! FramePass::new((64, 64), Rgb565::BLACK)
-//!     .draw(&mut [&mut clock, &mut marker], 8, &mut band, &mut panel)?;
+//! // The pass is kept from frame to frame. The first frame: every row.
+//! let mut pass = FramePass::new((64, 64), Rgb565::BLACK);
+//! pass.draw(&mut [&mut clock, &mut marker], 8, &mut band, &mut panel)?;
 //! assert_eq!(panel.0, 64);
 //! // The dot moves: only the rows it was and is on are drawn and sent.
 //! marker.set(dot(30));
 //! let mut bits = [0u32; DirtyRows::words(64)];
 //! let mut dirty = DirtyRows::new(&mut bits, 64).unwrap();
-//! let sent = FramePass::new((64, 64), Rgb565::BLACK)
-//!     .draw_marked(&mut [&mut clock, &mut marker], &mut dirty, 8, &mut band, &mut panel)?;
+//! let sent = pass.draw_marked(&mut [&mut clock, &mut marker], &mut dirty, 8, &mut band, &mut panel)?;
 //! assert_eq!(sent, 9);
+//! // A new background may show on any row: all of them are sent.
+//! pass.set_background(Rgb565::BLUE);
+//! dirty.clear();
+//! let sent = pass.draw_marked(&mut [&mut clock, &mut marker], &mut dirty, 8, &mut band, &mut panel)?;
+//! assert_eq!(sent, 64);
 //! # Ok::<(), scanvert::frame::FrameError<core::convert::Infallible>>(())
 //! ```
 
@@ -182,6 +188,9 @@ impl<C: PixelColor, L: Layer<C> + ?Sized> Layer<C> for &mut L {
 pub struct FramePass<C> {
     size: (u16, u16),
     background: C,
+    /// The background of the last frame shipped whole or by its marks;
+    /// `None` before the first, when the panel's pixels are unknown.
+    shown: Option<C>,
     next: u16,
     counts: Counts,
 }
@@ -193,8 +202,36 @@ impl<C: PixelColor> FramePass<C> {
         FramePass {
             size,
             background,
+            shown: None,
             next: 0,
             counts: Counts::default(),
+        }
+    }
+
+    /// The frame's background.
+    pub fn background(&self) -> C {
+        self.background
+    }
+
+    /// Changes the background. The next
+    /// [`draw_marked`](Self::draw_marked) then draws every row, since the
+    /// background may show anywhere.
+    pub fn set_background(&mut self, background: C) {
+        self.background = background;
+    }
+
+    /// Starts a frame: from the top row, with no spans counted.
+    fn restart(&mut self) {
+        self.next = 0;
+        self.counts = Counts::default();
+    }
+
+    /// Marks every row in `dirty` when the panel may not show this pass's
+    /// background: before the pass's first frame, or after
+    /// [`set_background`](Self::set_background) changed it.
+    fn mark_background(&self, dirty: &mut DirtyRows<'_>) {
+        if self.shown != Some(self.background) {
+            dirty.mark_all();
         }
     }
 
@@ -220,7 +257,8 @@ impl<C: PixelColor> FramePass<C> {
     /// refused.
     ///
     /// This is the pass one band at a time: with two buffers, one band
-    /// is drawn while the other is on its way.
+    /// is drawn while the other is on its way. A band at row 0 starts a
+    /// new frame.
     pub fn draw_band(
         &mut self,
         layers: &mut [&mut dyn Layer<C>],
@@ -228,6 +266,9 @@ impl<C: PixelColor> FramePass<C> {
         rows: u16,
         pixels: &mut [C],
     ) -> Result<u16, FrameError<Infallible>> {
+        if y == 0 {
+            self.restart();
+        }
         self.band_of(layers, y, rows, pixels)
     }
 
@@ -255,7 +296,7 @@ impl<C: PixelColor> FramePass<C> {
     /// band handed to `target` before the next is drawn. The layers'
     /// changes are forgotten: every row is drawn.
     pub fn draw<P>(
-        self,
+        &mut self,
         layers: &mut [&mut dyn Layer<C>],
         rows: u16,
         band: &mut [C],
@@ -266,8 +307,9 @@ impl<C: PixelColor> FramePass<C> {
     {
         let h = self.size.1;
         layers.take_changes(None);
-        self.draw_runs(layers, core::iter::once((0, h)), rows, band, target)
-            .map(|(counts, _)| counts)
+        let done = self.draw_runs(layers, core::iter::once((0, h)), rows, band, target);
+        self.shown = done.is_ok().then_some(self.background);
+        done.map(|(counts, _)| counts)
     }
 
     /// Draws only the rows that changed: every layer marks its changes in
@@ -276,8 +318,13 @@ impl<C: PixelColor> FramePass<C> {
     /// or by hand), then the marked rows are drawn in bands of at most
     /// `rows` rows and shipped, the rows between stepped over. Returns
     /// the rows shipped; `dirty` is left as it was marked.
+    ///
+    /// Keep the pass from frame to frame: it remembers the background it
+    /// last shipped, and marks every row on its first frame and after
+    /// the background changes. A pass made anew each frame draws every
+    /// row each time.
     pub fn draw_marked<P>(
-        self,
+        &mut self,
         layers: &mut [&mut dyn Layer<C>],
         dirty: &mut DirtyRows<'_>,
         rows: u16,
@@ -288,8 +335,10 @@ impl<C: PixelColor> FramePass<C> {
         P: BandTarget<Color = C> + ?Sized,
     {
         layers.take_changes(Some(dirty));
-        self.draw_runs(layers, dirty.runs(), rows, band, target)
-            .map(|(_, shipped)| shipped)
+        self.mark_background(dirty);
+        let done = self.draw_runs(layers, dirty.runs(), rows, band, target);
+        self.shown = done.is_ok().then_some(self.background);
+        done.map(|(_, shipped)| shipped)
     }
 
     /// [`draw`](Self::draw) with shipping that overlaps drawing: bands go
@@ -297,7 +346,7 @@ impl<C: PixelColor> FramePass<C> {
     /// `rows × width` pixels), and each band is drawn while the one
     /// before it is on its way to `target`.
     pub async fn draw_async<P>(
-        self,
+        &mut self,
         layers: &mut [&mut dyn Layer<C>],
         rows: u16,
         buffers: (&mut [C], &mut [C]),
@@ -308,16 +357,19 @@ impl<C: PixelColor> FramePass<C> {
     {
         let h = self.size.1;
         layers.take_changes(None);
-        self.ship_runs_async(layers, core::iter::once((0, h)), rows, buffers, target)
-            .await
-            .map(|(counts, _)| counts)
+        let done = self
+            .ship_runs_async(layers, core::iter::once((0, h)), rows, buffers, target)
+            .await;
+        self.shown = done.is_ok().then_some(self.background);
+        done.map(|(counts, _)| counts)
     }
 
     /// [`draw_marked`](Self::draw_marked) with shipping that overlaps
     /// drawing, through two buffers as [`draw_async`](Self::draw_async).
-    /// Returns the rows shipped.
+    /// Returns the rows shipped. Like `draw_marked`, it marks every row on
+    /// the pass's first frame and after the background changes.
     pub async fn draw_marked_async<P>(
-        self,
+        &mut self,
         layers: &mut [&mut dyn Layer<C>],
         dirty: &mut DirtyRows<'_>,
         rows: u16,
@@ -328,9 +380,12 @@ impl<C: PixelColor> FramePass<C> {
         P: AsyncBandTarget<Color = C> + ?Sized,
     {
         layers.take_changes(Some(dirty));
-        self.ship_runs_async(layers, dirty.runs(), rows, buffers, target)
-            .await
-            .map(|(_, shipped)| shipped)
+        self.mark_background(dirty);
+        let done = self
+            .ship_runs_async(layers, dirty.runs(), rows, buffers, target)
+            .await;
+        self.shown = done.is_ok().then_some(self.background);
+        done.map(|(_, shipped)| shipped)
     }
 
     /// Draws the runs of rows `runs` into the two buffers in turn; each
@@ -338,7 +393,7 @@ impl<C: PixelColor> FramePass<C> {
     /// once), the next band drawn, then the transfer awaited. A band that
     /// fails to draw is reported once the transfer before it is done.
     async fn ship_runs_async<L, P, R>(
-        mut self,
+        &mut self,
         layers: &mut L,
         runs: R,
         rows: u16,
@@ -350,6 +405,7 @@ impl<C: PixelColor> FramePass<C> {
         P: AsyncBandTarget<Color = C> + ?Sized,
         R: IntoIterator<Item = (u16, u16)>,
     {
+        self.restart();
         check_buffer(rows, self.size, a.len())?;
         check_buffer(rows, self.size, b.len())?;
         let w = self.size.0 as usize;
@@ -394,7 +450,7 @@ impl<C: PixelColor> FramePass<C> {
     /// Draws and ships the runs of rows `runs` (top to bottom), in bands
     /// of at most `rows` rows; returns the counts and the rows shipped.
     pub(crate) fn draw_runs<L, P, R>(
-        mut self,
+        &mut self,
         layers: &mut L,
         runs: R,
         rows: u16,
@@ -406,6 +462,7 @@ impl<C: PixelColor> FramePass<C> {
         P: BandTarget<Color = C> + ?Sized,
         R: IntoIterator<Item = (u16, u16)>,
     {
+        self.restart();
         check_buffer(rows, self.size, band.len())?;
         let w = self.size.0 as usize;
         let mut shipped = 0u32;

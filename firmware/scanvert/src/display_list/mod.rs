@@ -64,6 +64,7 @@
 //! [`Writer`] emits the same format into a caller-owned buffer.
 
 mod draws;
+#[doc(hidden)]
 pub mod layout;
 mod reader;
 mod writer;

@@ -724,6 +724,7 @@ fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
 /// An item of a packed list in a command (a vertex of `poly`, `poly3`
 /// or `face`), read from [`SIZE`](Self::SIZE) little-endian bytes; the
 /// size is the command's stride in [`layout`].
+#[doc(hidden)]
 pub trait FromBytes: Sized {
     /// Bytes per item.
     const SIZE: usize;

@@ -111,7 +111,9 @@ pub use light::{Light, ZeroDirection};
 pub use project::{
     Anchor, Orthographic, Perspective, Projection, ProjectionError, Viewport, Z_FAR, Z_NEAR,
 };
-pub use transform::{Matrix, Point3, TransformError, TransformStack, View, Q16};
+#[doc(hidden)]
+pub use transform::{Matrix, TransformStack};
+pub use transform::{Point3, TransformError, View, Q16};
 pub use trig::Angle;
 
 use crate::fixed::{Coord, Vertex3};
@@ -269,11 +271,13 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     }
 
     /// The transform stack.
+    #[doc(hidden)]
     pub fn stack(&self) -> &TransformStack<DEPTH> {
         &self.stack
     }
 
     /// The transform stack, to push, pop, translate, rotate and scale.
+    #[doc(hidden)]
     pub fn stack_mut(&mut self) -> &mut TransformStack<DEPTH> {
         &mut self.stack
     }
@@ -292,6 +296,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     /// Empties the transform stack and loads the camera's matrix (of the
     /// last [`Pipeline::set_view`], the identity before any): where the
     /// modelling transforms of a segment start.
+    #[doc(hidden)]
     pub fn reset_stack(&mut self) {
         self.stack = TransformStack::new();
         self.stack.load(self.view);

@@ -197,6 +197,7 @@ impl core::error::Error for TransformError {}
 /// translations are any `i32`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[doc(hidden)]
 pub struct Matrix {
     rows: [[i32; 4]; 3],
 }
@@ -408,6 +409,7 @@ impl View {
 /// `pop` with nothing saved fails with [`TransformError::StackUnderflow`].
 /// Each level costs 48 bytes.
 #[derive(Clone, Debug)]
+#[doc(hidden)]
 pub struct TransformStack<const DEPTH: usize> {
     current: Matrix,
     saved: heapless::Vec<Matrix, DEPTH>,

@@ -52,6 +52,7 @@ use embedded_graphics_core::primitives::Rectangle;
 /// `rows` high. Pixels past `rows × width` are not sent; `rows == 0` (or
 /// an empty slice) sends nothing. Pixels outside the target are discarded
 /// by the target, as every `DrawTarget` must.
+#[doc(hidden)]
 pub fn fill_band<D: DrawTarget>(
     target: &mut D,
     y: u16,

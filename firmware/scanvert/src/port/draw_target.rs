@@ -156,6 +156,7 @@ impl<D: DrawTarget + ?Sized> SpanTarget for DrawTargetPort<'_, D> {
 /// saturation (at most 65,535 runs of 65,535 pixels fit exactly), and the
 /// iterator is cloned once for that sum. Pixels outside the target are
 /// discarded by it.
+#[doc(hidden)]
 pub fn fill_run_row<D, I>(target: &mut D, y: u16, x0: u16, runs: I) -> Result<(), D::Error>
 where
     D: DrawTarget + ?Sized,

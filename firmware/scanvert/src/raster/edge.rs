@@ -110,6 +110,7 @@ impl Edge {
     /// `None` when it crosses no row centre there (horizontal edges, edges
     /// between two row centres, edges outside the rows).
     #[inline(always)]
+    #[doc(hidden)]
     pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
         let (mut p, mut q) = (a, b);
         if p.y.units() > q.y.units() {
@@ -156,6 +157,7 @@ impl Edge {
 
     /// Computes [`Edge::pixel`] for the current row.
     #[inline(always)]
+    #[doc(hidden)]
     pub fn load_pixel(&mut self) {
         self.px = ceil_px(self.x);
     }
@@ -163,12 +165,14 @@ impl Edge {
     /// The first pixel whose centre is at or right of the crossing on the
     /// current row, as of the last [`Edge::load_pixel`].
     #[inline(always)]
+    #[doc(hidden)]
     pub fn pixel(&self) -> i32 {
         self.px
     }
 
     /// The crossing on the current row: `⌈x − ½⌉` in units of 1/16 px.
     #[inline(always)]
+    #[doc(hidden)]
     pub fn units(&self) -> i32 {
         self.x
     }
@@ -176,12 +180,14 @@ impl Edge {
     /// Whole units the crossing moves down a row: each [`Edge::step`]
     /// moves it by this or one more.
     #[inline(always)]
+    #[doc(hidden)]
     pub fn step_units(&self) -> i32 {
         self.step
     }
 
     /// Moves to the next row.
     #[inline(always)]
+    #[doc(hidden)]
     pub fn step(&mut self) {
         self.x += self.step;
         self.err -= self.rem;
@@ -195,6 +201,7 @@ impl Edge {
     /// the same state after, for loops over many edges whose carries
     /// follow no pattern a branch predictor could learn.
     #[inline(always)]
+    #[doc(hidden)]
     pub fn step_masked(&mut self) {
         // −dy < err − rem < dy: no overflow; `m` is −1 on a carry, else 0.
         self.err -= self.rem;
@@ -210,6 +217,7 @@ impl Edge {
     /// inside the edge (`n` below its height); beyond them the position
     /// wraps as the steps would.
     #[inline]
+    #[doc(hidden)]
     pub fn advance(&mut self, n: u32) {
         // n < 2³² and 0 ≤ err, rem < dy < 2³¹: |drop| < 2⁶³, and
         // carries·dy ≤ drop + dy. On a frame of ordinary size it fits in
@@ -234,11 +242,13 @@ impl Edge {
     }
 
     /// First row sampled.
+    #[doc(hidden)]
     pub fn top(&self) -> i32 {
         self.top
     }
 
     /// One past the last row sampled.
+    #[doc(hidden)]
     pub fn end(&self) -> i32 {
         self.end
     }

@@ -224,6 +224,7 @@ impl core::error::Error for TableError {}
 /// The polygons and lines of a display list after its last `clear`, set
 /// up once, drawn band by band. See the [module](self) docs.
 #[derive(Debug)]
+#[doc(hidden)]
 pub struct EdgeTable<'a> {
     polygons: &'a mut [TablePolygon],
     /// `index[..count.div_ceil(32)]`: the live set, bit `k % 32` of word

@@ -140,6 +140,7 @@ impl fmt::Display for LabelError {
 impl core::error::Error for LabelError {}
 
 /// Checks a label's text: 1..=[`MAX_TEXT`] bytes of printable ASCII.
+#[doc(hidden)]
 pub fn check_text(text: &str) -> Result<(), LabelError> {
     let b = text.as_bytes();
     if b.is_empty() || b.len() > MAX_TEXT || !b.iter().all(|c| (0x20..=0x7e).contains(c)) {
@@ -150,6 +151,7 @@ pub fn check_text(text: &str) -> Result<(), LabelError> {
 
 /// The anchor of a projected point in whole pixels: its 1/16-pixel
 /// position rounded to the nearest pixel corner, halves up.
+#[doc(hidden)]
 pub fn to_pixels(a: Anchor) -> (i32, i32) {
     // i64: the anchor is saturated to i32, and + 8 must not wrap.
     let px = |u: i32| ((u as i64 + 8) >> 4) as i32;
@@ -171,6 +173,7 @@ pub struct LabelStore<'a> {
 impl<'a> LabelStore<'a> {
     /// An empty store of `slots.len()` labels holding at most
     /// `text.len()` bytes of text in all.
+    #[doc(hidden)]
     pub fn new(slots: &'a mut [Label], text: &'a mut [u8]) -> Self {
         LabelStore {
             slots,
@@ -216,6 +219,7 @@ impl<'a> LabelStore<'a> {
     /// Places a label of segment `segment` with its anchor at `(x, y)`
     /// whole pixels. An anchor outside ±[`ANCHOR_LIMIT`] is accepted and
     /// dropped (it can never show); `Ok(false)` says so.
+    #[doc(hidden)]
     pub fn add(
         &mut self,
         segment: u16,
@@ -279,6 +283,7 @@ impl<'a> LabelStore<'a> {
 
     /// Removes the labels of segment `segment`, closing the gaps; the
     /// others keep their order. Returns how many were removed.
+    #[doc(hidden)]
     pub fn clear_segment(&mut self, segment: u16) -> usize {
         let (mut keep, mut text_at) = (0, 0);
         for i in 0..self.len {
@@ -302,6 +307,7 @@ impl<'a> LabelStore<'a> {
     }
 
     /// Removes every label.
+    #[doc(hidden)]
     pub fn clear(&mut self) {
         self.len = 0;
         self.text_len = 0;
@@ -309,6 +315,7 @@ impl<'a> LabelStore<'a> {
 
     /// Draws every label into `target` with `font`, clipped to the
     /// target's frame, and returns the spans written.
+    #[doc(hidden)]
     pub fn draw<T>(&self, font: &MonoFont<'_>, target: &mut T) -> Result<LabelCounts, T::Error>
     where
         T: SpanTarget + ?Sized,
@@ -400,6 +407,7 @@ impl LabelStore<'_> {
     /// off the frame count as `off_frame`; those on it that miss the rows
     /// are not counted.
     #[inline]
+    #[doc(hidden)]
     pub fn draw_rows<T>(
         &self,
         font: &MonoFont<'_>,

@@ -16,6 +16,7 @@ use super::SceneError;
 /// At most `slots.len()` vertices between two [`clear`](Self::clear)s;
 /// one more is [`SceneError::VertexTable`].
 #[derive(Debug)]
+#[doc(hidden)]
 pub struct VertexTable<'v> {
     slots: &'v mut [ViewPoint],
     len: usize,

@@ -100,6 +100,7 @@
 
 pub mod bands;
 pub mod label;
+#[doc(hidden)]
 pub mod list;
 pub mod mesh;
 pub mod storage;
@@ -107,7 +108,9 @@ pub mod storage;
 pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
+#[doc(hidden)]
 pub use list::{list_pipeline, Executed, ListState};
+#[doc(hidden)]
 pub use mesh::VertexTable;
 pub use storage::{Capacities, SceneStorage};
 
@@ -176,6 +179,7 @@ impl SceneMemory<'_> {
 /// A boundary between the stages of a render, reported to a [`Hook`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[doc(hidden)]
 pub enum Stage {
     /// The 3D layer's build begins (the controller, after its checks).
     Start,
@@ -195,6 +199,7 @@ pub enum Stage {
 
 /// Called at each [`Stage`] boundary of a render, to time the stages. Any
 /// `FnMut(Stage)` is one; a closure that does nothing costs nothing.
+#[doc(hidden)]
 pub trait Hook {
     /// `stage` has just been reached.
     fn stage(&mut self, stage: Stage);
@@ -694,6 +699,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// [`draw`](Self::draw), telling `hook` when the visible surfaces are
     /// drawn ([`Stage::Resolved`]) and when the labels are
     /// ([`Stage::Labelled`]).
+    #[doc(hidden)]
     pub fn draw_with<T, H>(
         &mut self,
         resolve: Resolve,
@@ -787,6 +793,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     }
 
     /// The modelling transform stack (the camera's matrix at the bottom).
+    #[doc(hidden)]
     pub fn stack_mut(&mut self) -> &mut TransformStack<DEPTH> {
         self.scene.pipeline.stack_mut()
     }
@@ -889,6 +896,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
 
     /// [`command`](Self::command) with a mesh vertex table: a `v` goes
     /// into `table`, an `f` draws through it, a `segment` empties it.
+    #[doc(hidden)]
     pub fn command_in(
         &mut self,
         cmd: Command<'_>,

@@ -13,7 +13,11 @@ pub mod store;
 pub mod sweep;
 pub mod trapezoid;
 
-pub use rle::{Run, RunWriter, RunsFull};
+#[doc(hidden)]
+pub use rle::RunWriter;
+pub use rle::{Run, RunsFull};
 pub use store::{Face, Segment, StoreError, StoreMemory, TrapezoidStore};
-pub use sweep::{draw, Active, Resolve, Sweep, VisibleError, VisibleStats, Workspace};
+#[doc(hidden)]
+pub use sweep::{draw, Sweep};
+pub use sweep::{Active, Resolve, VisibleError, VisibleStats, Workspace};
 pub use trapezoid::{EdgeSlot, Trapezoid};

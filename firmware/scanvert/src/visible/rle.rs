@@ -109,6 +109,7 @@ impl core::error::Error for RunsFull {}
 /// Writes one row of runs into a caller-owned buffer, merging a run into
 /// the one before when the ink is the same.
 #[derive(Debug)]
+#[doc(hidden)]
 pub struct RunWriter<'r> {
     runs: &'r mut [Run],
     n: usize,
@@ -175,6 +176,7 @@ impl<'r> RunWriter<'r> {
 /// `ink(face)` gives each face's colour, and the background is filled with
 /// `background` or skipped when it is `None`. Pixels beyond the target's
 /// width or height are discarded.
+#[doc(hidden)]
 pub fn decode_row<T, F>(
     target: &mut T,
     y: u16,

@@ -103,12 +103,14 @@ impl Face {
     };
 
     /// The exact plane.
+    #[doc(hidden)]
     pub fn plane(&self) -> &Plane {
         &self.plane
     }
 
     /// The plane's fixed-point depth, [`Plane::depth`]: that of every
     /// trapezoid of the face.
+    #[doc(hidden)]
     pub fn depth(&self) -> Depth {
         self.depth
     }
@@ -126,6 +128,7 @@ impl Face {
     }
 
     /// The tie key: lower is in front at equal depth.
+    #[doc(hidden)]
     pub fn key(&self) -> u32 {
         self.key
     }
@@ -358,6 +361,7 @@ impl<'a> TrapezoidStore<'a> {
     /// An empty store for a `width × height` frame (each side at most
     /// 4096). Fails when the index has fewer rows than the frame. Of a pool
     /// longer than [`MAX_POOL`], the first [`MAX_POOL`] slots are used.
+    #[doc(hidden)]
     pub fn new(mem: StoreMemory<'a>, width: u16, height: u16) -> Result<Self, StoreError> {
         let height = height.min(4096);
         let capacity = mem.rows.len();
@@ -451,16 +455,19 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     /// Face `f`.
+    #[doc(hidden)]
     pub fn face(&self, f: u16) -> Option<&Face> {
         self.faces.get(f as usize)
     }
 
     /// Trapezoid slot `t`.
+    #[doc(hidden)]
     pub fn trapezoid(&self, t: u16) -> Option<&Trapezoid> {
         self.traps.get(t as usize)
     }
 
     /// The scan-line index: the trapezoids whose top row is `y`.
+    #[doc(hidden)]
     pub fn starting_at(&self, y: u16) -> impl Iterator<Item = (u16, &Trapezoid)> + '_ {
         let head = self.rows.get(y as usize).copied().unwrap_or(NONE);
         Chain {
@@ -471,6 +478,7 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     /// The trapezoids of segment `s`, newest first.
+    #[doc(hidden)]
     pub fn segment_trapezoids(&self, s: usize) -> impl Iterator<Item = (u16, &Trapezoid)> + '_ {
         let head = self.segments.get(s).map_or(NONE, |s| s.traps);
         Chain {
@@ -488,6 +496,7 @@ impl<'a> TrapezoidStore<'a> {
 
     /// Empties segment `s`: its trapezoids and faces go back to the pools.
     /// No other segment is touched.
+    #[doc(hidden)]
     pub fn clear_segment(&mut self, s: usize) -> Result<(), StoreError> {
         let seg = segment_at(self.segments, s)?;
         let mut t = seg.traps;
@@ -534,6 +543,7 @@ impl<'a> TrapezoidStore<'a> {
     /// Marks segment `s` as needing to be built again (`true`) or as built
     /// (`false`). The store itself only keeps the mark: it is for the
     /// [`Scene`](crate::scene::Scene) that owns the store.
+    #[doc(hidden)]
     pub fn set_stale(&mut self, s: usize, stale: bool) -> Result<(), StoreError> {
         let seg = segment_at(self.segments, s)?;
         seg.stale = stale;
@@ -541,6 +551,7 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     /// Empties every segment.
+    #[doc(hidden)]
     pub fn clear(&mut self) {
         for s in 0..self.segments.len() {
             let _ = self.clear_segment(s);
@@ -554,6 +565,7 @@ impl<'a> TrapezoidStore<'a> {
     /// or one outside the clip.
     ///
     /// On an error the segment is emptied (see the [module](self) docs).
+    #[doc(hidden)]
     pub fn add_polygon<I>(
         &mut self,
         s: usize,
@@ -572,6 +584,7 @@ impl<'a> TrapezoidStore<'a> {
     /// face's plane is moved [`LINE_BIAS`] units of depth toward the eye
     /// (see *Points and lines* in the [module](self) docs), so that it
     /// shows on the faces it lies on.
+    #[doc(hidden)]
     pub fn add_point_or_line<I>(
         &mut self,
         s: usize,
@@ -836,6 +849,7 @@ impl Adding<'_> {
 /// polygons delivered `two_sided`) as
 /// [`add_point_or_line`](TrapezoidStore::add_point_or_line) adds them.
 #[derive(Debug)]
+#[doc(hidden)]
 pub struct SegmentSink<'s, 'a> {
     store: &'s mut TrapezoidStore<'a>,
     segment: usize,
@@ -844,6 +858,7 @@ pub struct SegmentSink<'s, 'a> {
 
 impl<'s, 'a> SegmentSink<'s, 'a> {
     /// A sink filling segment `segment` of `store`, writing only `clip`.
+    #[doc(hidden)]
     pub fn new(store: &'s mut TrapezoidStore<'a>, segment: usize, clip: ClipRect) -> Self {
         SegmentSink {
             store,
@@ -918,6 +933,7 @@ impl<'t, F: Fn(&Trapezoid) -> u16> Iterator for Chain<'t, F> {
 /// 65535: the sum fits in `i64`. Not generic over the vertices: a
 /// generic instance is inlined into `add_poly3`, which costs the
 /// Cortex-M4's cut about 340 instructions a `poly3`.
+#[doc(hidden)]
 pub fn front_facing(v: &Vertices3<'_>) -> bool {
     let mut it = v.iter();
     let Some(first) = it.next() else {

@@ -705,6 +705,7 @@ fn resolve_many_from<O: RowOut>(
 /// after them. Out of records, it goes on as a sweep with crossing
 /// points from the row where they ran out (see the `paint` module).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[doc(hidden)]
 pub struct Sweep {
     /// The next row.
     y: u16,
@@ -2313,6 +2314,7 @@ static NO_COVER: Covered = Covered::EMPTY;
 /// Resolves `store` and writes it into `target`: each face in its colour,
 /// the background filled with `background` or left as it is (`None`), so
 /// that the 3D layer can lie over 2D content.
+#[doc(hidden)]
 pub fn draw<T>(
     store: &TrapezoidStore<'_>,
     workspace: &mut Workspace<'_>,

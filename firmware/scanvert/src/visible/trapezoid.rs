@@ -192,6 +192,7 @@ pub const MAX_VERTICES: usize = u16::MAX as usize;
 /// The plane of a polygon in screen space, exactly: `a·x + b·y + c·z = d`
 /// with `x, y, z` in units of 1/16, `c > 0`. See the [module](self) docs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[doc(hidden)]
 pub struct Plane {
     a: i64,
     b: i64,
@@ -805,6 +806,7 @@ fn knuth_64_32(u: u64, v: u32) -> u32 {
 /// `(i, j)`. See the [module](self) docs for the error bound.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
+#[doc(hidden)]
 pub struct Depth {
     /// `Z̃` at pixel `(0, 0)` (of the plane, wherever the polygon is;
     /// wrapped).
@@ -880,6 +882,7 @@ pub(crate) fn rgb_bits(c: Rgb888) -> u32 {
 /// ends (Q12.4, upper end first) and the trapezoid's rows `top..end`, a
 /// run of rows the edge crosses, inside the clip (so within `0..=4096`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[doc(hidden)]
 pub struct Side {
     ends: Ends,
     top: u16,
@@ -903,6 +906,7 @@ impl Side {
     }
 }
 
+#[doc(hidden)]
 impl Trapezoid {
     /// An unused slot.
     pub const EMPTY: Trapezoid = Trapezoid {
@@ -1122,6 +1126,7 @@ pub struct EdgeSlot {
     open: Option<Open>,
 }
 
+#[doc(hidden)]
 impl EdgeSlot {
     /// An unused slot.
     pub const EMPTY: EdgeSlot = EdgeSlot {
@@ -1142,6 +1147,7 @@ impl EdgeSlot {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 #[non_exhaustive]
+#[doc(hidden)]
 pub enum LoadError {
     /// More edges cross the clip rows than there are [`EdgeSlot`]s.
     Edges {
@@ -1170,6 +1176,7 @@ impl core::error::Error for LoadError {}
 
 /// A polygon loaded into edge slots, ready to be cut into trapezoids.
 #[derive(Debug)]
+#[doc(hidden)]
 pub struct Polygon<'s> {
     slots: &'s mut [EdgeSlot],
     edges: usize,
