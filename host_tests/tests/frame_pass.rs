@@ -453,3 +453,80 @@ fn the_pass_marks_the_background_its_first_frame_and_a_failed_one() {
     flaky.fail = false;
     assert_eq!(frame(&mut pass, &mut layer, &mut flaky), Ok(40));
 }
+
+/// A face that grows marks only the rows it grows into: a row's hash is
+/// of what it shows there (its span, plane in lowest terms, colour), not
+/// of how it was cut into trapezoids.
+#[test]
+fn a_growing_face_marks_only_the_rows_it_grows_into() {
+    use scanvert::geometry::{Angle, Perspective, Pipeline, Point3, View, Viewport, Q16};
+    use scanvert::pixelcolor::Rgb888;
+    use scanvert::scene::{Builder, Procedure, Scene, SceneStorage, DEFAULT_FONT};
+    const W: u16 = 64;
+    const H: u16 = 48;
+    let mut storage = Box::new(SceneStorage::<
+        64,
+        16,
+        2,
+        { H as usize },
+        16,
+        16,
+        { W as usize },
+        2,
+        16,
+    >::new());
+    let q = Q16::from_int;
+    let persp = Perspective::from_fov(Angle::from_degrees(60), W, q(1), q(100)).unwrap();
+    let pipe = Pipeline::<4, 16>::new(persp, Viewport::centred(W, H).unwrap());
+    let mut scene = Scene::new(storage.as_memory(), pipe).unwrap();
+    let eye = View::look_at(Point3::from_int(0, 0, 10), Point3::from_int(0, 0, 0)).unwrap();
+    scene.set_view(&eye).unwrap();
+    let mut bits = [0u32; DirtyRows::words(H)];
+    let mut dirty = DirtyRows::new(&mut bits, H).unwrap();
+    let mut scratch = vec![0u64; 2 * H as usize];
+    let mut rows_of = |scene: &mut Scene<'_, 4, 16>, bottom: i16| {
+        // A square facing the eye, its bottom edge at `bottom`: a
+        // rectangle on the screen.
+        let mut face = |b: &mut Builder<'_, '_, 4, 16>| {
+            let sq = [(-3, bottom), (3, bottom), (3, 3), (-3, 3)]
+                .map(|(x, y)| Point3::from_int(x, y, 0));
+            b.face(&sq, Rgb888::RED).map(|_| ())
+        };
+        scene.invalidate(0).unwrap();
+        dirty.clear();
+        let procs: &mut [&mut dyn Procedure<4, 16>] = &mut [&mut face];
+        scene
+            .update_marking(procs, DEFAULT_FONT, &mut dirty, &mut scratch)
+            .unwrap();
+        let mut px = vec![Rgb565::BLACK; W as usize * H as usize];
+        let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+        scene
+            .draw(
+                Default::default(),
+                Some(Rgb565::BLACK),
+                DEFAULT_FONT,
+                &mut fb,
+            )
+            .unwrap();
+        (dirty.runs().collect::<Vec<_>>(), px)
+    };
+    let (_, before) = rows_of(&mut scene, -1);
+    let (marked, after) = rows_of(&mut scene, -3);
+    let changed: Vec<u16> = (0..H)
+        .filter(|&y| {
+            let r = y as usize * W as usize..(y as usize + 1) * W as usize;
+            before[r.clone()] != after[r]
+        })
+        .collect();
+    assert!(!changed.is_empty());
+    let (lo, hi) = (changed[0], changed[changed.len() - 1] + 1);
+    assert_eq!(changed.len(), (hi - lo) as usize, "the rows grown into");
+    assert_eq!(
+        marked,
+        vec![(lo, hi)],
+        "marked: the rows that changed, no more"
+    );
+    // The same face again: nothing is marked.
+    let (marked, _) = rows_of(&mut scene, -3);
+    assert!(marked.is_empty());
+}
