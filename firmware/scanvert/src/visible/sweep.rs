@@ -432,6 +432,18 @@ impl<E: fmt::Debug> fmt::Display for VisibleError<E> {
 
 impl<E: fmt::Debug> core::error::Error for VisibleError<E> {}
 
+impl VisibleError<core::convert::Infallible> {
+    /// The same error where another sink's errors are expected (this one
+    /// has none).
+    fn widen<E>(self) -> VisibleError<E> {
+        match self {
+            VisibleError::Active { capacity } => VisibleError::Active { capacity },
+            VisibleError::Runs { capacity } => VisibleError::Runs { capacity },
+            VisibleError::Sink(e) => match e {},
+        }
+    }
+}
+
 impl<E> From<RunsFull> for VisibleError<E> {
     fn from(e: RunsFull) -> Self {
         VisibleError::Runs {
@@ -707,8 +719,8 @@ pub struct Sweep {
     /// past which it looks for a chain.
     many: (usize, usize),
     stats: VisibleStats,
-    /// With [`Resolve::Paint`], the frame painted so far (`None` in the
-    /// other modes).
+    /// With [`Resolve::Paint`], the frame painted so far (`None` once it
+    /// has fallen back to the sweep, or in the other modes).
     painter: Option<paint::Painter>,
 }
 
@@ -744,6 +756,29 @@ impl Sweep {
         self.painter.map_or(self.y, |p| p.y)
     }
 
+    /// Goes on from row `y` as a sweep with crossing points: a painter
+    /// out of conflict records or of parts. The active list is rebuilt
+    /// for row `y` at once ([`jump`] from the top); rows before `y` stay
+    /// as painted, and row `y`'s pixels that painting wrote are all
+    /// covered by trapezoids, so the sweep writes them again.
+    fn fall_back(
+        &mut self,
+        active: &mut [Active],
+        store: &TrapezoidStore<'_>,
+        y: u16,
+    ) -> Result<(), VisibleError<core::convert::Infallible>> {
+        let (stats, many) = (self.stats, self.many);
+        *self = Sweep::start(active, Resolve::Crossing);
+        (self.stats, self.many) = (stats, many);
+        let act = &mut active[..self.cap];
+        if y > 0 {
+            let (k, nf) = jump(act, store, (0, self.nf), (0, y))
+                .ok_or(VisibleError::Active { capacity: self.cap })?;
+            (self.y, self.k, self.nf) = (y, k, nf);
+        }
+        Ok(())
+    }
+
     /// What the rows resolved so far did.
     pub fn stats(&self) -> VisibleStats {
         self.stats
@@ -771,8 +806,9 @@ impl Sweep {
     {
         self.check(workspace)?;
         let mut out = ToTarget::new(target, background);
+        let mut rows = rows;
         if let Some(mut p) = self.painter {
-            workspace.check_runs(store)?;
+            let end = p.y.saturating_add(rows).min(store.height());
             let painted = p.rows(
                 workspace.active,
                 workspace.runs,
@@ -782,8 +818,13 @@ impl Sweep {
                 &mut self.stats,
             );
             self.painter = Some(p);
-            painted?;
-            return Ok(out.counts);
+            let Some(y) = painted? else {
+                return Ok(out.counts);
+            };
+            // The rest of the rows by the sweep.
+            self.fall_back(workspace.active, store, y)
+                .map_err(|e| e.widen())?;
+            rows = end - y;
         }
         let out = self.rows(workspace.active, store, rows, out)?;
         Ok(out.counts)
@@ -807,9 +848,18 @@ impl Sweep {
     ) -> Result<(), VisibleError<core::convert::Infallible>> {
         self.check(workspace)?;
         if let Some(mut p) = self.painter {
-            let jumped = p.skip(workspace.active, store, rows, &mut self.stats);
+            let jumped = p.skip(
+                workspace.active,
+                workspace.runs,
+                store,
+                rows,
+                &mut self.stats,
+            );
             self.painter = Some(p);
-            return jumped;
+            if let Some(y) = jumped? {
+                self.fall_back(workspace.active, store, y)?;
+            }
+            return Ok(());
         }
         let act = &mut workspace.active[..self.cap];
         let end = self.y.saturating_add(rows).min(store.height());
