@@ -103,10 +103,7 @@ impl Kind {
 impl Mesh {
     /// The vertices as `f32`, as a model file holds them.
     pub fn vertices_f32(&self) -> Vec<[f32; 3]> {
-        self.vertices
-            .iter()
-            .map(|v| v.map(|c| c as f32))
-            .collect()
+        self.vertices.iter().map(|v| v.map(|c| c as f32)).collect()
     }
 
     /// The triangles as faces of any size.
@@ -305,7 +302,8 @@ pub fn terrain(n: u32) -> Mesh {
         for j in 0..=n {
             let (x, z) = (coord(i), coord(j));
             let rough = (hash(i, j) >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-            let y = 0.2 * (2.7 * x).sin() * (1.9 * z).cos() + 0.1 * (4.3 * (x + z)).sin()
+            let y = 0.2 * (2.7 * x).sin() * (1.9 * z).cos()
+                + 0.1 * (4.3 * (x + z)).sin()
                 + 0.05 * rough;
             m.vertices.push([x, y, z]);
         }
@@ -313,10 +311,8 @@ pub fn terrain(n: u32) -> Mesh {
     let at = |i: u32, j: u32| i * (n + 1) + j;
     for i in 0..n {
         for j in 0..n {
-            m.triangles
-                .push([at(i, j), at(i, j + 1), at(i + 1, j + 1)]);
-            m.triangles
-                .push([at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
+            m.triangles.push([at(i, j), at(i, j + 1), at(i + 1, j + 1)]);
+            m.triangles.push([at(i, j), at(i + 1, j + 1), at(i + 1, j)]);
         }
     }
     // The border's directed edges: those of the top whose reverse is not
@@ -426,11 +422,7 @@ pub fn faces_form(list: &str) -> String {
                 out.push_str("face");
                 for w in words {
                     let i: i64 = w.parse().expect("an index");
-                    let k = if i < 0 {
-                        table.len() as i64 + i
-                    } else {
-                        i - 1
-                    };
+                    let k = if i < 0 { table.len() as i64 + i } else { i - 1 };
                     out.push(' ');
                     out.push_str(table[k as usize]);
                 }
@@ -476,13 +468,23 @@ mod tests {
                 .iter()
                 .map(|&p| k.make(p).triangles.len())
                 .collect();
-            assert!(sizes[0] <= 250 && *sizes.last().unwrap() >= 18_000, "{k:?} {sizes:?}");
+            assert!(
+                sizes[0] <= 250 && *sizes.last().unwrap() >= 18_000,
+                "{k:?} {sizes:?}"
+            );
         }
     }
 
     #[test]
     fn the_closed_meshes_are_closed_and_wound_outward() {
-        for m in [icosphere(0), icosphere(3), torus(9, 5), torus(40, 14), terrain(1), terrain(7)] {
+        for m in [
+            icosphere(0),
+            icosphere(3),
+            torus(9, 5),
+            torus(40, 14),
+            terrain(1),
+            terrain(7),
+        ] {
             assert!(m.is_closed());
             assert!(m.volume6() > 0.0);
         }
