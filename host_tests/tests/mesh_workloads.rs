@@ -207,3 +207,23 @@ fn small_meshes_through_builder_mesh_are_the_exact_reference() {
         }
     }
 }
+
+/// `models/teapot.obj`, the model the README and the `model_panel`
+/// example show: `testkit::meshes::teapot(4)` as OBJ. Written by
+/// `UPDATE_MODELS=1 cargo test -p host-tests --test mesh_workloads`; this
+/// test fails when it is stale.
+#[test]
+fn the_example_model_is_current() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../models/teapot.obj");
+    let want = testkit::meshes::teapot(4)
+        .obj("the Utah teapot (Newell's patches, 4 x 4 a patch), from testkit::meshes::teapot(4)");
+    if std::env::var_os("UPDATE_MODELS").is_some() {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, &want).unwrap();
+    }
+    let got = std::fs::read_to_string(&path).unwrap_or_default();
+    assert!(
+        got == want,
+        "models/teapot.obj is stale (UPDATE_MODELS=1 cargo test -p host-tests --test mesh_workloads)"
+    );
+}
