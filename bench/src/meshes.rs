@@ -281,7 +281,7 @@ impl ZBuffer {
         for &(at, n, ink) in &d.faces {
             let f = &d.vertices[at as usize..(at + n) as usize];
             let (lo, hi) = f.iter().fold((i32::MAX, i32::MIN), |(lo, hi), v| {
-                let y = v.y.units() as i32;
+                let y = v.y.units();
                 (lo.min(y), hi.max(y))
             });
             if hi < top || lo > bottom {
@@ -562,12 +562,15 @@ pub fn section(rows: &[MeshRow], machine: &str) -> String {
 /// Timed runs of each contender.
 pub const ROUNDS: usize = 5;
 
+/// A line of the plot: its name, its colour and its value of a row.
+type Series = (&'static str, &'static str, fn(&MeshRow) -> f64);
+
 /// The plot: ms a frame against triangles, both on log scales, a line
 /// for scanvert whole frame, scanvert in bands and each z-buffer, one
 /// panel a generator; a small SVG of polylines.
 pub fn svg(rows: &[MeshRow]) -> String {
     let (pw, ph, pad) = (300.0, 220.0, 46.0);
-    let series: [(&str, &str, fn(&MeshRow) -> f64); 4] = [
+    let series: [Series; 4] = [
         ("scanvert", "#1f77b4", |r| r.crossing),
         ("scanvert, bands", "#2ca02c", |r| r.bands),
         ("z-buffer, full", "#d62728", |r| r.z_full),

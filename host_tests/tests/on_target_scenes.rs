@@ -343,6 +343,8 @@ fn mesh_module(lists: &[(String, Vec<u8>)]) -> String {
     let mut s = format!(
         "/// The mesh lists at 240 × 240 and the memory of rendering them in\n\
          /// bands of [`BAND_ROWS`](meshes::BAND_ROWS) rows, each pool the most any of them needs.\n\
+         /// (Not rendered with the `discard` feature.)\n\
+         #[allow(dead_code)]\n\
          pub mod meshes {{\n    \
          use crate::Scene;\n\n    \
          /// Rows of a band.\n    pub const BAND_ROWS: usize = {MESH_BAND_ROWS};\n    \

@@ -207,6 +207,8 @@ pub mod budget_poly3 {
 
 /// The mesh lists at 240 × 240 and the memory of rendering them in
 /// bands of [`BAND_ROWS`](meshes::BAND_ROWS) rows, each pool the most any of them needs.
+/// (Not rendered with the `discard` feature.)
+#[allow(dead_code)]
 pub mod meshes {
     use crate::Scene;
 
