@@ -87,17 +87,6 @@ impl Kind {
             Kind::Teapot => teapot(p),
         }
     }
-
-    /// The mesh of the sweep nearest `triangles` in size.
-    pub fn near(self, triangles: usize) -> Mesh {
-        let p = self
-            .sweep()
-            .iter()
-            .min_by_key(|&&p| self.make(p).triangles.len().abs_diff(triangles))
-            .copied()
-            .unwrap_or(1);
-        self.make(p)
-    }
 }
 
 impl Mesh {
