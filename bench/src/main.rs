@@ -25,6 +25,7 @@ mod bands;
 mod contenders;
 mod dual_port;
 mod heap;
+mod meshes;
 mod numbers;
 mod plot;
 mod race;
@@ -233,6 +234,10 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
                             rewrites their section of the page and their plots
   --only bands              bands against the full frame (W3, the 3D scenes, the
                             demo, two threads); rewrites its section of the page
+  --only meshes             the mesh sweep (testkit::meshes, 100 to 20,000
+                            triangles, 240 x 240): scanvert's resolves, its bands
+                            and stages, and two i32 z-buffers; rewrites its section
+                            of docs/performance.md and docs/mesh-sweep.svg
   --only worst              the worst cases (staggered faces, 1,000 to 38,835);
                             rewrites its section of the page and its plot
   --only model              the write port's cycle model on the image's 2D lists
@@ -286,6 +291,9 @@ fn main() -> std::io::Result<()> {
     }
     if only.as_deref() == Some("worst") {
         return only_worst();
+    }
+    if only.as_deref() == Some("meshes") {
+        return only_meshes();
     }
     if only.as_deref() == Some("race") {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
@@ -547,6 +555,29 @@ fn only_worst() -> std::io::Result<()> {
     std::fs::write(&md_path, md)?;
     write_png(&docs.join("worst-case.png"), plot::render_worst(&rows))?;
     eprintln!("rewrote the worst-case curve of docs/performance.md and docs/worst-case.png");
+    Ok(())
+}
+
+/// `--only meshes`: the mesh sweep timed; its section of
+/// `docs/performance.md` and `docs/mesh-sweep.svg` rewritten.
+fn only_meshes() -> std::io::Result<()> {
+    let machine = format!("load average {} before the run", load_average());
+    let rows = meshes::measure(Duration::from_millis(100), meshes::ROUNDS);
+    let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
+    let md_path = docs.join("performance.md");
+    let old = std::fs::read_to_string(&md_path).unwrap_or_default();
+    let section = meshes::section(&rows, &machine);
+    print!("{section}");
+    let md = report::splice(
+        &old,
+        meshes::BEGIN,
+        meshes::END,
+        &section,
+        "## Painting far to near (`Resolve::Paint`)",
+    );
+    std::fs::write(&md_path, md)?;
+    std::fs::write(docs.join("mesh-sweep.svg"), meshes::svg(&rows))?;
+    eprintln!("rewrote the mesh sweep of docs/performance.md and docs/mesh-sweep.svg");
     Ok(())
 }
 

@@ -161,7 +161,7 @@ else
 fi
 
 echo "== checksums: target against host" >&2
-(cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/*.scvl) \
+(cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/*.scvl firmware/image/scenes/meshes/*.scvl) \
   | sort >"$out/host.sums"
 for name in arm arm-halfword $( [ "$have_rv" = yes ] && echo riscv ); do
   # A list rendered again another way (`NAME-paint`) is checked against
@@ -266,6 +266,24 @@ left as it is.
 |---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
 EOF
   stages_table "$out/arm.log"
+  cat <<EOF
+
+#### Meshes, 240 × 240, in 16-row bands
+
+The mesh lists (\`scenes/meshes/\`, from \`testkit::meshes\`, written as
+\`scanvert import\` writes a model: \`v\`/\`f\` lines, a fitted view and a
+light) rendered with \`Controller::render_bands\` and no frame buffer,
+each band shipped into the frame's checksum (the host's). *Triangles*:
+the list's \`f\`s; *drawn*: those that reached the 3D layer.
+*Instructions* with \`Resolve::Crossing\` (the band checksum included),
+*painted* with \`Resolve::Paint\`. Their statics (\`src/meshes.rs\`,
+\`MESH_*\`): $(thousands "$(symbols "$out/arm.elf" 'MESH_')") B, of which the band buffer
+$(thousands "$(field "$out/arm.log" meshes band)") B and the vertex table $(thousands "$(field "$out/arm.log" meshes vertices)") B.
+
+| mesh | frame | band rows | triangles | vertices | drawn | trapezoids | most on a row | instructions | painted | frames/s at 168 MHz (est.) | RV32IMC instructions |
+|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
+EOF
+  mesh_table "$out/arm.log" "$out/riscv.log"
   cat <<'EOF'
 
 #### Two pixels to a word
@@ -469,9 +487,10 @@ size_row() { # LABEL ELF
 }
 
 # "frame NAME WxH commands=.. polygons=.. clears=.. spans=.. pixels=.. ticks=.. instructions=.."
-# as "NAME W H polygons clears spans pixels instructions".
+# as "NAME W H polygons clears spans pixels instructions"; the mesh
+# frames (`frame mesh-…`, in bands) are mesh_frames'.
 frames() {
-  awk '$1 == "frame" {
+  awk '$1 == "frame" && $2 !~ /^mesh-/ {
     split($3, wh, "x")
     for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
     print $2, wh[1], wh[2], f["polygons"] + f["poly3"], f["clears"], f["spans"], f["pixels"], f["instructions"]
@@ -480,6 +499,29 @@ frames() {
 
 # Instructions of NAME in LOG.
 instructions_of() { frames "$2" | awk -v n="$1" '$1 == n { print $8 }'; }
+
+# "frame mesh-NAME WxH rows=.. vertices=.. faces=.. drawn=.. culled=.. trapezoids=.. max_active=.. ticks=.. instructions=.."
+# as "NAME WxH rows vertices faces drawn trapezoids max_active instructions".
+mesh_frames() {
+  awk '$1 == "frame" && $2 ~ /^mesh-/ {
+    for (i = 4; i <= NF; i++) { split($i, kv, "="); f[kv[1]] = kv[2] }
+    print $2, $3, f["rows"], f["vertices"], f["faces"], f["drawn"], f["trapezoids"], f["max_active"], f["instructions"]
+  }' "$1"
+}
+
+# Instructions of mesh frame NAME in LOG ("n/a" if the log has none).
+mesh_instructions() { # NAME LOG
+  local v=""
+  [ -f "$2" ] && v=$(mesh_frames "$2" | awk -v n="$1" '$1 == n { print $9 }')
+  if [ -n "$v" ]; then thousands "$v"; else echo n/a; fi
+}
+
+mesh_table() { # ARM-LOG RV-LOG
+  mesh_frames "$1" | while read -r name frame rows vertices faces drawn traps active instr; do
+    case "$name" in *-paint) continue ;; esac
+    echo "| ${name#mesh-} | ${frame/x/×} | $rows | $(thousands "$faces") | $(thousands "$vertices") | $(thousands "$drawn") | $(thousands "$traps") | $active | **$(thousands "$instr")** | $(mesh_instructions "$name-paint" "$1") | $(fmt "$(awk -v i="$instr" 'BEGIN { print 168e6 / i }')" 1) | $(mesh_instructions "$name" "$2") |"
+  done
+}
 
 fmt() { # NUMBER DECIMALS
   thousands "$(awk -v v="$1" -v d="$2" 'BEGIN { printf("%." d "f", v) }')"
@@ -639,6 +681,9 @@ figures() {
     printf 'budget-%s-total\t%s B\n' "$name" "$(thousands $((ram + stack)))"
   done
   read -r polys instr < <(frames "$out/arm.log" | awk '$1 == "w1" { print $4, $8 }')
+  mesh_frames "$out/arm.log" | while read -r name _ _ _ _ _ _ _ instr; do
+    printf '%s-instructions\t%s\n' "$name" "$(thousands "$instr")"
+  done
   printf 'w1-polygons-per-second\t%s\n' "$(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print 168e6 * p / i }')" 0)"
   pico_figures
 }

@@ -32,6 +32,14 @@
 //! into `firmware/image/scenes/budget/`; each list's checksum is also
 //! checked against the `Scene`'s own picture of that frame, so the lists
 //! are the demo. `budget_poly3` is the two 170-face lists above.
+//!
+//! The mesh lists (`firmware/image/scenes/meshes/`, the module `meshes` of
+//! `scenes.rs`) are meshes of `testkit::meshes` at 240 × 240, written as
+//! `scanvert import` writes a model (`v`/`f` lines, a fitted view, a
+//! light): an icosphere of 1,280 triangles, a torus of 720 and the Utah
+//! teapot of 992. The image renders them in 16-row bands, in statics
+//! sized for them as the `budget` ones are (and a vertex table of the most
+//! `v`s of any).
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use host_tests::harness3d::vertex3;
@@ -44,6 +52,7 @@ use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::memory::ListMemory;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+use testkit::meshes;
 use testkit::poly3_scenes as scenes3d;
 use testkit::reference3d::Poly3;
 use testkit::workloads::{self, Kind, Workload};
@@ -282,6 +291,88 @@ fn budget_module(set: &BudgetSet) -> String {
     s
 }
 
+/// Rows of a band of the mesh frames.
+const MESH_BAND_ROWS: usize = 16;
+
+/// The mesh lists the image renders in bands, by name, 240 × 240.
+fn mesh_lists() -> Vec<(String, Vec<u8>)> {
+    [
+        ("icosphere", meshes::icosphere(3)),
+        ("torus", meshes::torus(24, 15)),
+        ("teapot", meshes::teapot(4)),
+    ]
+    .into_iter()
+    .map(|(name, m)| {
+        let model = scanvert_sim::import::Model {
+            vertices: m.vertices_f32(),
+            faces: m.faces(),
+        };
+        let text = scanvert_sim::import::list(&model, 240, 240, Rgb888::new(0xd0, 0xa0, 0x70));
+        let bytes = scanvert_sim::text::assemble_bytes(text.as_bytes())
+            .expect("the mesh list assembles")
+            .bytes;
+        (format!("mesh-{name}"), bytes)
+    })
+    .collect()
+}
+
+/// The module `meshes` of `scenes.rs`: the mesh lists and the memory of
+/// rendering them in bands, each pool the most any of them needs.
+fn mesh_module(lists: &[(String, Vec<u8>)]) -> String {
+    let mut m = Memory3d::default();
+    let (mut slots, mut edges, mut width, mut vertices) = (0, 0, 0, 0);
+    let mut rows = String::new();
+    for (name, bytes) in lists {
+        let list = DisplayList::new_checked(bytes).expect("valid list");
+        let (sum, need, stats) = host_render(bytes);
+        m.trapezoids = m.trapezoids.max(need.trapezoids);
+        m.faces = m.faces.max(need.faces);
+        m.active = m.active.max(stats.visible.max_active as usize);
+        m.rows = m.rows.max(need.rows);
+        m.runs = m.runs.max(need.runs);
+        slots = slots.max(need.edge_slots);
+        edges = edges.max(need.edges);
+        vertices = vertices.max(need.vertices);
+        width = width.max(list.width() as usize);
+        writeln!(
+            rows,
+            "        Scene {{\n            name: \"{name}\",\n            list: include_bytes!(\"../scenes/meshes/{name}.scvl\"),\n            checksum: 0x{sum:08x},\n        }},",
+        )
+        .unwrap();
+    }
+    let mut s = format!(
+        "/// The mesh lists at 240 × 240 and the memory of rendering them in\n\
+         /// bands of [`BAND_ROWS`](meshes::BAND_ROWS) rows, each pool the most any of them needs.\n\
+         /// (Not rendered with the `discard` feature.)\n\
+         #[allow(dead_code)]\n\
+         pub mod meshes {{\n    \
+         use crate::Scene;\n\n    \
+         /// Rows of a band.\n    pub const BAND_ROWS: usize = {MESH_BAND_ROWS};\n    \
+         /// Pixels of the band buffer: [`BAND_ROWS`] rows of the widest list.\n    pub const BAND_PIXELS: usize = {band};\n    \
+         /// The rasteriser's edge storage.\n    pub const RASTER_EDGES: usize = {edges};\n    \
+         /// Mesh vertex slots: the most `v`s of a list.\n    pub const VERTEX_SLOTS: usize = {vertices};\n    \
+         /// Trapezoid slots.\n    pub const TRAPEZOID_SLOTS: usize = {tr};\n    \
+         /// Face slots.\n    pub const FACE_SLOTS: usize = {fa};\n    \
+         /// Rows of the scan-line index.\n    pub const INDEX_ROWS: usize = {ro};\n    \
+         /// Edge slots of the store.\n    pub const EDGE_SLOTS: usize = {sl};\n    \
+         /// Active-list entries: the most trapezoids on one row.\n    pub const ACTIVE_SLOTS: usize = {ac};\n    \
+         /// Runs of one row.\n    pub const RUN_SLOTS: usize = {ru};\n\n    \
+         /// The lists, in the order the image renders them.\n    pub const SCENES: &[Scene] = &[\n",
+        band = MESH_BAND_ROWS * width,
+        edges = edges.max(3),
+        vertices = vertices.max(1),
+        tr = m.trapezoids.max(1),
+        fa = m.faces.max(1),
+        ro = m.rows.max(1),
+        sl = slots.max(1),
+        ac = m.active.max(1),
+        ru = m.runs.max(1),
+    );
+    s += &rows;
+    s += "    ];\n}\n";
+    s
+}
+
 /// The checksum of `bytes` rendered on the host, into a fresh (black)
 /// dual-port RAM, with memory sized by `needs` (as `scanvert checksum`
 /// does); what the list needs, and the render's statistics.
@@ -359,6 +450,8 @@ fn table(lists: &[(String, Vec<u8>)]) -> String {
         s += "\n";
         s += &budget_module(&set);
     }
+    s += "\n";
+    s += &mesh_module(&mesh_lists());
     s
 }
 
@@ -375,6 +468,9 @@ fn embedded_scenes_and_checksums_are_current() {
         for (_, path, bytes) in set.lists {
             files.push((dir.join(path), bytes));
         }
+    }
+    for (name, bytes) in mesh_lists() {
+        files.push((dir.join(format!("meshes/{name}.scvl")), bytes));
     }
     files.push((
         root().join("firmware/image/src/scenes.rs"),

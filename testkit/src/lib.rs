@@ -8,6 +8,8 @@
 //!   pixel rule, and the nearest plane at each pixel centre by exact
 //!   barycentric depth, ties to the earlier polygon.
 //! * [`line_reference`]: the exact line rule, pixel by pixel in `i128`.
+//! * [`meshes`]: triangle meshes from about 100 to 20,000 triangles (an
+//!   icosphere, a torus, a terrain, the Utah teapot).
 //! * [`workloads`]: the 2D workloads W1–W5.
 //! * [`scenes3d`]: the 3D scenes at several sizes, in a layered and a
 //!   tilted version, seen from a few views (the benchmark's).
@@ -24,6 +26,7 @@
 #![deny(missing_docs)]
 
 pub mod line_reference;
+pub mod meshes;
 pub mod poly3_scenes;
 pub mod reference;
 pub mod reference3d;

@@ -130,3 +130,19 @@ pub fn budget_memory() -> Option<crate::budget::Memory> {
         band: cortex_m::singleton!(BUDGET_BAND: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
     })
 }
+
+/// The mesh frames' memory (`src/meshes.rs`), in `.bss`, handed out once;
+/// each part a static of its own, so that no more than one is made on the
+/// stack at a time.
+#[cfg(not(feature = "discard"))]
+pub fn mesh_memory() -> Option<crate::meshes::Memory> {
+    use crate::meshes::{set, Storage, EMPTY};
+    use scanvert::geometry::ViewPoint;
+    use scanvert::raster::edge::Edge;
+    Some(crate::meshes::Memory {
+        storage: cortex_m::singleton!(MESH_SCENE: Storage = EMPTY)?,
+        vertices: cortex_m::singleton!(MESH_VERTICES: [ViewPoint; set::VERTEX_SLOTS] = [ViewPoint::EMPTY; set::VERTEX_SLOTS])?,
+        edges: cortex_m::singleton!(MESH_EDGES: [Edge; set::RASTER_EDGES] = [Edge::EMPTY; set::RASTER_EDGES])?,
+        band: cortex_m::singleton!(MESH_BAND: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+    })
+}

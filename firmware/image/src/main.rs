@@ -29,6 +29,10 @@
 //! `budget` (and `budget-poly3`) renders instead only the lists of a RAM
 //! budget, band by band with no frame buffer, in statics sized exactly
 //! for them (`src/budget.rs`).
+//!
+//! After the lists of [`scenes::SCENES`], the mesh lists of
+//! `scenes::meshes` are rendered in 16-row bands with no frame buffer
+//! (`src/meshes.rs`; not with `discard`).
 #![no_std]
 #![no_main]
 #![deny(missing_docs)]
@@ -69,6 +73,8 @@ mod platform;
 mod bands;
 mod budget;
 mod log;
+#[cfg(not(feature = "discard"))]
+mod meshes;
 #[cfg(feature = "pico")]
 mod pico;
 #[cfg(feature = "rows")]
@@ -450,6 +456,11 @@ pub fn run() -> bool {
                 ok = false;
             }
         }
+    }
+    // The mesh lists, band by band with no frame buffer.
+    #[cfg(not(feature = "discard"))]
+    {
+        ok &= meshes::run(&counter, &mut matched, &mut frames);
     }
     // The same lists again, band by band, checked against the same sums.
     #[cfg(feature = "bands")]

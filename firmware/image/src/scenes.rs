@@ -204,3 +204,51 @@ pub mod budget_poly3 {
         },
     ];
 }
+
+/// The mesh lists at 240 × 240 and the memory of rendering them in
+/// bands of [`BAND_ROWS`](meshes::BAND_ROWS) rows, each pool the most any of them needs.
+/// (Not rendered with the `discard` feature.)
+#[allow(dead_code)]
+pub mod meshes {
+    use crate::Scene;
+
+    /// Rows of a band.
+    pub const BAND_ROWS: usize = 16;
+    /// Pixels of the band buffer: [`BAND_ROWS`] rows of the widest list.
+    pub const BAND_PIXELS: usize = 3840;
+    /// The rasteriser's edge storage.
+    pub const RASTER_EDGES: usize = 3;
+    /// Mesh vertex slots: the most `v`s of a list.
+    pub const VERTEX_SLOTS: usize = 642;
+    /// Trapezoid slots.
+    pub const TRAPEZOID_SLOTS: usize = 945;
+    /// Face slots.
+    pub const FACE_SLOTS: usize = 502;
+    /// Rows of the scan-line index.
+    pub const INDEX_ROWS: usize = 240;
+    /// Edge slots of the store.
+    pub const EDGE_SLOTS: usize = 9;
+    /// Active-list entries: the most trapezoids on one row.
+    pub const ACTIVE_SLOTS: usize = 63;
+    /// Runs of one row.
+    pub const RUN_SLOTS: usize = 240;
+
+    /// The lists, in the order the image renders them.
+    pub const SCENES: &[Scene] = &[
+        Scene {
+            name: "mesh-icosphere",
+            list: include_bytes!("../scenes/meshes/mesh-icosphere.scvl"),
+            checksum: 0xdc45bd7c,
+        },
+        Scene {
+            name: "mesh-torus",
+            list: include_bytes!("../scenes/meshes/mesh-torus.scvl"),
+            checksum: 0xd75fa693,
+        },
+        Scene {
+            name: "mesh-teapot",
+            list: include_bytes!("../scenes/meshes/mesh-teapot.scvl"),
+            checksum: 0x03db11dd,
+        },
+    ];
+}

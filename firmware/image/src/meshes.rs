@@ -1,0 +1,223 @@
+//! The mesh lists (`scenes.rs`, module `meshes`): meshes of 720 to 1,280
+//! triangles at 240 × 240 as `scanvert import` writes them (`v`/`f`
+//! lines), each rendered band by band (`Controller::render_bands`, bands
+//! of [`BAND_ROWS`](set::BAND_ROWS) rows) with no frame buffer, in
+//! statics sized for them (the store, the workspace, the vertex table and
+//! one band buffer). Each band is shipped into a running checksum, which
+//! must equal the host's checksum of the whole frame.
+//!
+//! Each list is rendered with the default resolve (`Resolve::Crossing`)
+//! under its name, and painted far to near (`Resolve::Paint`) under its
+//! name with `-paint`. Printed for each: a line
+//! `frame mesh-NAME 240x240 rows=16 vertices=… faces=… drawn=… culled=…
+//! trapezoids=… max_active=… ticks=… instructions=…` (`faces` the list's
+//! `f`s, `drawn` those that reached the 3D layer; the instructions those
+//! of the render, checksum included), and its `checksum` line.
+
+use crate::{platform, Pixel, Scene};
+use core::convert::Infallible;
+use scanvert::controller::{Controller, RenderStats};
+use scanvert::display_list::DisplayList;
+use scanvert::geometry::ViewPoint;
+use scanvert::port::band::BandTarget;
+use scanvert::port::checksum::Checksum;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use scanvert::raster::table::TableMemory;
+use scanvert::scene::SceneStorage;
+use scanvert::visible::Resolve;
+
+#[cfg(not(feature = "defmt"))]
+use semihosting::println;
+
+/// The lists and their capacities.
+pub use crate::scenes::meshes as set;
+
+/// The 3D layer's memory, each pool as large as the lists need.
+pub type Storage = SceneStorage<
+    { set::TRAPEZOID_SLOTS },
+    { set::FACE_SLOTS },
+    1,
+    { set::INDEX_ROWS },
+    { set::EDGE_SLOTS },
+    { set::ACTIVE_SLOTS },
+    { set::RUN_SLOTS },
+    0,
+    0,
+>;
+
+/// Every slot of the storage unused.
+pub const EMPTY: Storage = Storage::new();
+
+/// The memory the mesh frames render with, in `.bss`.
+pub struct Memory {
+    /// The store and the workspace.
+    pub storage: &'static mut Storage,
+    /// The mesh vertex table.
+    pub vertices: &'static mut [ViewPoint; set::VERTEX_SLOTS],
+    /// The rasteriser's edge storage.
+    pub edges: &'static mut [Edge; set::RASTER_EDGES],
+    /// The band buffer.
+    pub band: &'static mut [Pixel; set::BAND_PIXELS],
+}
+
+/// Ships bands into a running checksum, checking that they come in
+/// order, each right after the last.
+struct Sum {
+    sum: Checksum,
+    next: u16,
+    in_order: bool,
+}
+
+impl BandTarget for Sum {
+    type Color = Pixel;
+    type Error = Infallible;
+    fn ship(&mut self, y: u16, rows: u16, px: &[Pixel]) -> Result<(), Infallible> {
+        self.in_order &= y == self.next;
+        self.next = y.saturating_add(rows);
+        self.sum.write_pixels(px);
+        Ok(())
+    }
+}
+
+/// Renders every mesh list in bands, in both resolves, and compares each
+/// frame's checksum with the host's. Adds to `matched` and `frames`;
+/// `false` on a mismatch or a failure.
+pub fn run(counter: &platform::Counter, matched: &mut usize, frames: &mut usize) -> bool {
+    let Some(mut m) = platform::mesh_memory() else {
+        crate::log::fault("the mesh memory is taken");
+        return false;
+    };
+    report_parts();
+    let mut ok = true;
+    for scene in set::SCENES {
+        for (resolve, suffix) in [(Resolve::Crossing, ""), (Resolve::Paint, "-paint")] {
+            *frames += 1;
+            if frame(scene, resolve, suffix, &mut m, counter) {
+                *matched += 1;
+            } else {
+                ok = false;
+            }
+        }
+    }
+    ok
+}
+
+/// One list in bands; `true` when its checksum is the host's.
+fn frame(
+    scene: &Scene,
+    resolve: Resolve,
+    suffix: &str,
+    m: &mut Memory,
+    counter: &platform::Counter,
+) -> bool {
+    let list = match DisplayList::new_checked(scene.list) {
+        Ok(list) => list,
+        Err(e) => {
+            crate::log::bad_list(scene.name, e);
+            return false;
+        }
+    };
+    let mut sum = Sum {
+        sum: Checksum::default(),
+        next: 0,
+        in_order: true,
+    };
+    let t0 = counter.ticks();
+    let rendered = render(&list, resolve, m, &mut sum);
+    let ticks = counter.ticks() - t0;
+    let got = sum.sum.value();
+    let whole = sum.in_order && sum.next >= list.height();
+    let matched = rendered.is_some() && whole && got == scene.checksum;
+    if let Some(s) = rendered {
+        report(scene.name, suffix, &list, &s, ticks);
+    }
+    print_checksum(scene.name, suffix, got);
+    if !matched {
+        crate::log::mismatch(scene.name, scene.checksum);
+    }
+    matched
+}
+
+/// The render in bands; its statistics, or `None` (reported) if it
+/// failed.
+#[inline(never)]
+fn render(
+    list: &DisplayList<'_>,
+    resolve: Resolve,
+    m: &mut Memory,
+    sum: &mut Sum,
+) -> Option<RenderStats> {
+    // A mesh list has no 2D command: the edge table is empty.
+    let table = TableMemory {
+        polygons: &mut [],
+        index: &mut [],
+        edges: &mut [],
+        lines: &mut [],
+    };
+    let mut c = Controller::new(Rasterizer::new(&mut m.edges[..]))
+        .with_3d(m.storage.as_memory())
+        .with_vertices(&mut m.vertices[..])
+        .with_resolve(resolve);
+    match c.render_bands(list, table, set::BAND_ROWS as u16, &mut m.band[..], sum) {
+        Ok(stats) => Some(stats),
+        Err(e) => {
+            #[cfg(not(feature = "defmt"))]
+            println!("meshes: the render failed: {}", e);
+            #[cfg(feature = "defmt")]
+            {
+                let _ = e;
+                defmt::error!("meshes: the render failed");
+            }
+            None
+        }
+    }
+}
+
+/// The bytes of the mesh frames' statics.
+fn report_parts() {
+    use core::mem::size_of;
+    let storage = size_of::<Storage>();
+    let vertices = set::VERTEX_SLOTS * size_of::<ViewPoint>();
+    let edges = set::RASTER_EDGES * size_of::<Edge>();
+    let band = set::BAND_PIXELS * size_of::<Pixel>();
+    let total = storage + vertices + edges + band;
+    #[cfg(not(feature = "defmt"))]
+    println!(
+        "meshes memory={total} storage={storage} vertices={vertices} vertex_slots={} edges={edges} band={band} band_rows={}",
+        set::VERTEX_SLOTS,
+        set::BAND_ROWS
+    );
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "meshes memory={=usize} storage={=usize} vertices={=usize} edges={=usize} band={=usize}",
+        total,
+        storage,
+        vertices,
+        edges,
+        band
+    );
+}
+
+fn report(name: &str, suffix: &str, list: &DisplayList<'_>, s: &RenderStats, ticks: u64) {
+    let instructions = ticks * platform::INSTRUCTIONS_PER_TICK;
+    let faces = s.faces + s.culled + s.clipped_away;
+    let (w, h) = (list.width(), list.height());
+    #[cfg(not(feature = "defmt"))]
+    println!(
+        "frame {name}{suffix} {w}x{h} rows={} vertices={} faces={faces} drawn={} culled={} trapezoids={} max_active={} ticks={ticks} instructions={instructions}",
+        set::BAND_ROWS, s.vertices, s.faces, s.culled, s.trapezoids, s.visible.max_active
+    );
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "frame {=str}{=str} {=u16}x{=u16} rows={=usize} vertices={=u32} faces={=u32} drawn={=u32} culled={=u32} trapezoids={=u32} ticks={=u64} instructions={=u64}",
+        name, suffix, w, h, set::BAND_ROWS, s.vertices, faces, s.faces, s.culled, s.trapezoids, ticks, instructions
+    );
+}
+
+fn print_checksum(name: &str, suffix: &str, sum: u32) {
+    #[cfg(not(feature = "defmt"))]
+    println!("checksum {name}{suffix} {sum:08x}");
+    #[cfg(feature = "defmt")]
+    defmt::info!("checksum {=str}{=str} {=u32:08x}", name, suffix, sum);
+}
