@@ -58,6 +58,11 @@ pub trait Stepper: Copy {
     fn is_vertical(&self) -> bool {
         false
     }
+    /// `true` when the stepper's pixels are the pixel rule's on every
+    /// edge, as [`Edge`]'s are: the scan converter then fills an
+    /// axis-aligned rectangle straight from its corners, with no edge set
+    /// up. `false` (the default) sends every polygon through the steppers.
+    const EXACT: bool = false;
     /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
     /// copy field by field: a copy of a whole record between two slots
     /// of one slice can become a call to `memmove`.
@@ -245,6 +250,7 @@ impl Edge {
 }
 
 impl Stepper for Edge {
+    const EXACT: bool = true;
     #[inline]
     fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
         Edge::new(a, b, rows)

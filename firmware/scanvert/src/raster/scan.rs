@@ -151,6 +151,54 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         Ok(counts)
     }
 
+    /// [`fill`](Self::fill) for a polygon of `len` vertices that is an
+    /// axis-aligned rectangle (sides alternately horizontal and vertical),
+    /// from its corners, with no edge set up: the same pixels, counts and
+    /// calls of the target. `None`, with nothing done, for any other
+    /// polygon, and with an inexact stepper or fewer than 2 edge slots
+    /// (where `fill` could differ); the caller then calls `fill`. Not
+    /// inlined: a call a 4-vertex polygon keeps the caller's loop as it
+    /// is for the others.
+    #[inline(never)]
+    pub(crate) fn fill_rectangle<I, T>(
+        &mut self,
+        vertices: I,
+        len: usize,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Option<Result<Counts, FillError<T::Error>>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        if !S::EXACT || len != 4 || self.edges.len() < 2 {
+            return None;
+        }
+        let mut corners = [Vertex::default(); 4];
+        let mut it = vertices.into_iter();
+        for c in corners.iter_mut() {
+            *c = it.next()?;
+        }
+        let r = rectangle(&corners)?;
+        let mut counts = Counts::default();
+        target.begin_polygon();
+        let (w, h) = target.size();
+        let clip = clip.within(w, h);
+        if clip.is_empty() {
+            return Some(Ok(counts));
+        }
+        let top = ceil_px(r.1 - HALF).max(clip.y0() as i32);
+        let stop = ceil_px(r.3 - HALF).min(clip.y1() as i32);
+        let (l, right) = (ceil_px(r.0 - HALF), ceil_px(r.2 - HALF));
+        let cx = (clip.x0() as i32, clip.x1() as i32);
+        Some(
+            emit_rows(top, stop, l, right, cx, color, target, &mut counts)
+                .map(|()| counts)
+                .map_err(FillError::Target),
+        )
+    }
+
     /// Sets up the edges that cross a row centre inside `clip`; returns
     /// their number, or `None` when they do not fit. Returns 0 when the
     /// polygon's box misses the window's columns.
@@ -162,6 +210,21 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     ) -> Option<usize> {
         build_edges(self.edges, vertices, clip)
     }
+}
+
+/// The corners `(x_min, y_min, x_max, y_max)`, in units, of the
+/// polygon `v` when it is an axis-aligned rectangle (its sides alternate
+/// horizontal and vertical, in either order), else `None`.
+#[inline(always)]
+fn rectangle(v: &[Vertex; 4]) -> Option<(i32, i32, i32, i32)> {
+    let [a, b, c, d] = *v;
+    let sides = (a.y == b.y && b.x == c.x && c.y == d.y && d.x == a.x)
+        || (a.x == b.x && b.y == c.y && c.x == d.x && d.y == a.y);
+    sides.then(|| {
+        let (x0, x1) = (a.x.units(), c.x.units());
+        let (y0, y1) = (a.y.units(), c.y.units());
+        (x0.min(x1), y0.min(y1), x0.max(x1), y0.max(y1))
+    })
 }
 
 /// Sets up the edges of the polygon through `vertices` that cross a row
