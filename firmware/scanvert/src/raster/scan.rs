@@ -369,7 +369,9 @@ impl Walk {
                     let (mut ea, mut eb) = (*a, *b);
                     // Counted in locals and added once a run: the run's
                     // rows and pixels fit in `u32` (a side is at most 4096).
-                    let (mut spans, mut pixels) = (0u32, 0u32);
+                    // Its spans are its rows but the empty ones, counted
+                    // where they are (rarely).
+                    let (first, mut empty, mut pixels) = (y, 0u32, 0u32);
                     loop {
                         ea.load_pixel();
                         eb.load_pixel();
@@ -381,8 +383,9 @@ impl Walk {
                         let (x0, x1) = (l.max(cx.0), r.min(cx.1));
                         if x0 < x1 {
                             write_span::<BAND, T>(y, x0, x1, *color, &mut **target)?;
-                            spans += 1;
                             pixels += (x1 - x0) as u32;
+                        } else {
+                            empty += 1;
                         }
                         y += 1;
                         if y >= stop {
@@ -422,6 +425,7 @@ impl Walk {
                         ea.step();
                         eb.step();
                     }
+                    let spans = (y - first) as u32 - empty;
                     counts.spans = counts.spans.saturating_add(spans);
                     counts.pixels = counts.pixels.saturating_add(pixels);
                     if BAND && y >= y1 && ea.end() > y && eb.end() > y {
