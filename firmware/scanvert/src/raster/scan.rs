@@ -373,57 +373,58 @@ impl Walk {
                     // where they are (rarely).
                     let (first, mut empty, mut pixels) = (y, 0u32, 0u32);
                     loop {
-                        ea.load_pixel();
-                        eb.load_pixel();
-                        let (l, r) = if ea.pixel() <= eb.pixel() {
-                            (ea.pixel(), eb.pixel())
-                        } else {
-                            (eb.pixel(), ea.pixel())
+                        // Rows y..stop, without the clip where both edges
+                        // stay inside its columns over them.
+                        let rows = stop - y;
+                        let inside = |e: &S| {
+                            e.columns(rows)
+                                .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
                         };
-                        let (x0, x1) = (l.max(cx.0), r.min(cx.1));
-                        if x0 < x1 {
-                            write_span::<BAND, T>(y, x0, x1, *color, &mut **target)?;
-                            pixels += (x1 - x0) as u32;
+                        let (e, c) = ((&mut ea, &mut eb), (&mut empty, &mut pixels));
+                        if !BAND && inside(e.0) && inside(e.1) {
+                            two_edge_rows::<BAND, false, _, T>(
+                                e,
+                                (y, stop),
+                                cx,
+                                *color,
+                                target,
+                                c,
+                            )?;
                         } else {
-                            empty += 1;
+                            two_edge_rows::<BAND, true, _, T>(e, (y, stop), cx, *color, target, c)?;
                         }
-                        y += 1;
-                        if y >= stop {
-                            // Where one edge ends and the next waiting edge
-                            // begins on this row, alone (a convex
-                            // polygon's chains, at every vertex but the
-                            // last): the pair stays in locals, as the
-                            // retire and join below would leave it. Not in
-                            // a band walk, whose polygons cross few
-                            // vertices a band and whose code, inlined into
-                            // the table, grew slower with it.
-                            let joins = waiting.get(next - active).filter(|e| e.top() == y);
-                            let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
-                            match joins {
-                                Some(e) if !BAND && alone && y < y1 => {
-                                    if ea.end() == y && eb.end() > y {
-                                        ea = *e;
-                                        eb.step();
-                                    } else if eb.end() == y && ea.end() > y {
-                                        eb = *e;
-                                        ea.step();
-                                    } else {
-                                        break;
-                                    }
-                                    next += 1;
-                                    stop = waiting
-                                        .get(next - active)
-                                        .map_or(i32::MAX, |e| e.top())
-                                        .min(y1)
-                                        .min(ea.end())
-                                        .min(eb.end());
-                                    continue;
+                        y = stop;
+                        // Where one edge ends and the next waiting edge
+                        // begins on this row, alone (a convex polygon's
+                        // chains, at every vertex but the last): the pair
+                        // stays in locals, as the retire and join below
+                        // would leave it. Not in a band walk, whose
+                        // polygons cross few vertices a band and whose
+                        // code, inlined into the table, grew slower with
+                        // it.
+                        let joins = waiting.get(next - active).filter(|e| e.top() == y);
+                        let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
+                        match joins {
+                            Some(e) if !BAND && alone && y < y1 => {
+                                if ea.end() == y && eb.end() > y {
+                                    ea = *e;
+                                    eb.step();
+                                } else if eb.end() == y && ea.end() > y {
+                                    eb = *e;
+                                    ea.step();
+                                } else {
+                                    break;
                                 }
-                                _ => break,
+                                next += 1;
+                                stop = waiting
+                                    .get(next - active)
+                                    .map_or(i32::MAX, |e| e.top())
+                                    .min(y1)
+                                    .min(ea.end())
+                                    .min(eb.end());
                             }
+                            _ => break,
                         }
-                        ea.step();
-                        eb.step();
                     }
                     let spans = (y - first) as u32 - empty;
                     counts.spans = counts.spans.saturating_add(spans);
@@ -493,6 +494,48 @@ impl Walk {
         }
         (self.active, self.next, self.y) = (active, next, y);
         Ok(())
+    }
+}
+
+/// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
+/// at row `y`, both live to `stop`), cut to the clip columns `cx` when
+/// `CLIP` (else they are inside them), counting the empty rows and the
+/// pixels into `counts`; leaves both edges at row `stop − 1`.
+#[inline(always)]
+fn two_edge_rows<const BAND: bool, const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
+    e: (&mut S, &mut S),
+    rows: (i32, i32),
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: (&mut u32, &mut u32),
+) -> Result<(), T::Error> {
+    let ((ea, eb), (mut y, stop)) = (e, rows);
+    loop {
+        ea.load_pixel();
+        eb.load_pixel();
+        let (l, r) = if ea.pixel() <= eb.pixel() {
+            (ea.pixel(), eb.pixel())
+        } else {
+            (eb.pixel(), ea.pixel())
+        };
+        let (x0, x1) = if CLIP {
+            (l.max(cx.0), r.min(cx.1))
+        } else {
+            (l, r)
+        };
+        if x0 < x1 {
+            write_span::<BAND, T>(y, x0, x1, color, target)?;
+            *counts.1 += (x1 - x0) as u32;
+        } else {
+            *counts.0 += 1;
+        }
+        y += 1;
+        if y >= stop {
+            return Ok(());
+        }
+        ea.step();
+        eb.step();
     }
 }
 
