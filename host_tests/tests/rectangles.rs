@@ -7,13 +7,16 @@
 //! clip registers.
 
 use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, RgbColor};
-use host_tests::harness::{assert_same, build_list, render_poly, Draw};
+use host_tests::harness::{
+    assert_same, build_list, render_counting, render_poly, vertex, CountingTarget, Draw,
+};
 use proptest::prelude::*;
-use scanvert::controller::Controller;
+use scanvert::controller::{Controller, RenderError};
 use scanvert::display_list::DisplayList;
 use scanvert::port::{FrameBuffer, PackedFrameBuffer};
+use scanvert::raster::clip::{ClipRect, ClipWindow};
 use scanvert::raster::edge::Edge;
-use scanvert::raster::scan::Rasterizer;
+use scanvert::raster::scan::{FillError, Rasterizer};
 use scanvert_sim::dual_port::DualPortRam;
 use testkit::reference::{rasterize, Coverage, Window};
 
@@ -243,5 +246,84 @@ fn hard_cases() {
             w,
             4,
         );
+    }
+}
+
+/// A quad through the controller, which fills an axis-aligned rectangle
+/// from its corners, and straight through `Rasterizer::fill`, which sets
+/// up every polygon's edges: the same spans in the same order and the
+/// same counts, with many edge slots and with only as many as the quad's
+/// vertices (the controller's own limit).
+fn same_as_the_edges(poly: &[(i32, i32)], window: Window, w: u16, h: u16, slots: usize) {
+    let what = (poly, window, w, h, slots);
+    let draw = Draw {
+        clip: Some(window),
+        poly: poly.to_vec(),
+    };
+    let (listed, stats) = render_counting(&[draw], w, h, slots);
+
+    let mut edges = vec![Edge::EMPTY; slots];
+    let mut direct = CountingTarget::new(w, h);
+    let clip = ClipRect::from_window(
+        ClipWindow {
+            x0: window.x0,
+            y0: window.y0,
+            x1: window.x1,
+            y1: window.y1,
+        },
+        w,
+        h,
+    );
+    let counts = Rasterizer::new(&mut edges).fill(
+        poly.iter().map(|&p| vertex(p)),
+        &clip,
+        BinaryColor::On,
+        &mut direct,
+    );
+    match (stats, counts) {
+        (Ok(stats), Ok(counts)) => {
+            assert_eq!(listed.spans, direct.spans, "spans of {what:?}");
+            assert_eq!(stats.spans, counts.spans, "span count of {what:?}");
+            assert_eq!(stats.pixels, counts.pixels as u64, "pixels of {what:?}");
+        }
+        (Err(RenderError::Capacity { capacity, .. }), Err(FillError::Capacity { capacity: c })) => {
+            assert_eq!(capacity, c, "{what:?}");
+            assert!(listed.spans.is_empty() && direct.spans.is_empty());
+        }
+        (a, b) => panic!("{what:?}: controller {a:?}, fill {b:?}"),
+    }
+}
+
+/// Quads of every kind: rectangles (either winding, any first corner,
+/// zero width or height included), rectangles with one corner moved by a
+/// unit (not axis-aligned), vertical-sided trapezoids, and random
+/// convex, concave, self-intersecting and degenerate quads.
+fn quad(w: u16, h: u16) -> impl Strategy<Value = Poly> {
+    let nudged =
+        (rectangle(w, h), 0..4usize, -1..=1i32, -1..=1i32).prop_map(|(mut p, k, dx, dy)| {
+            p[k].0 += dx;
+            p[k].1 += dy;
+            p
+        });
+    let flat = (near(w), near(h), near(w))
+        .prop_map(|(x0, y, x1)| vec![(x0, y), (x1, y), (x1, y), (x0, y)]);
+    prop_oneof![
+        rectangle(w, h),
+        nudged,
+        flat,
+        vertical_sided(w, h),
+        prop::collection::vec((near(w), near(h)), 4),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1500))]
+
+    #[test]
+    fn quads_fill_as_their_edges_do(
+        (poly, window, w, h, slots) in (prop::sample::select(vec![(32u16, 24u16), (33, 20), (1, 9)]))
+            .prop_flat_map(|(w, h)| (quad(w, h), window(w, h), Just(w), Just(h), prop_oneof![Just(64usize), Just(4)]))
+    ) {
+        same_as_the_edges(&poly, window, w, h, slots);
     }
 }

@@ -835,17 +835,22 @@ impl<'e> Controller<'e> {
                     color,
                 } => {
                     let color = convert(color);
-                    let counts =
-                        raster
-                            .fill(vertices, &clip, color, target)
-                            .map_err(|e| match e {
-                                FillError::Target(error) => RenderError::Target { offset, error },
-                                FillError::Capacity { capacity } => RenderError::Capacity {
-                                    offset,
-                                    vertices: vertices.len(),
-                                    capacity,
-                                },
-                            })?;
+                    // An axis-aligned rectangle without edges, else the scan
+                    // converter.
+                    let rectangle = match vertices.len() {
+                        4 => raster.fill_rectangle(vertices, 4, &clip, color, target),
+                        _ => None,
+                    };
+                    let counts = rectangle
+                        .unwrap_or_else(|| raster.fill(vertices, &clip, color, target))
+                        .map_err(|e| match e {
+                            FillError::Target(error) => RenderError::Target { offset, error },
+                            FillError::Capacity { capacity } => RenderError::Capacity {
+                                offset,
+                                vertices: vertices.len(),
+                                capacity,
+                            },
+                        })?;
                     stats.polygons += 1;
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;

@@ -58,6 +58,20 @@ pub trait Stepper: Copy {
     fn is_vertical(&self) -> bool {
         false
     }
+    /// Bounds `(lo, hi)` on the pixels [`pixel`](Stepper::pixel) gives
+    /// on the `rows` rows from the current one (`rows ≥ 1`), or `None`
+    /// (the default) when the stepper does not tell: the scan converter
+    /// skips the clip on a run of rows whose crossings all lie inside it.
+    #[inline(always)]
+    fn columns(&self, rows: i32) -> Option<(i32, i32)> {
+        let _ = rows;
+        None
+    }
+    /// `true` when the stepper's pixels are the pixel rule's on every
+    /// edge, as [`Edge`]'s are: the scan converter then fills an
+    /// axis-aligned rectangle straight from its corners, with no edge set
+    /// up. `false` (the default) sends every polygon through the steppers.
+    const EXACT: bool = false;
     /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
     /// copy field by field: a copy of a whole record between two slots
     /// of one slice can become a call to `memmove`.
@@ -255,6 +269,7 @@ impl Edge {
 }
 
 impl Stepper for Edge {
+    const EXACT: bool = true;
     #[inline]
     fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
         Edge::new(a, b, rows)
@@ -278,6 +293,17 @@ impl Stepper for Edge {
     #[inline(always)]
     fn step(&mut self) {
         Edge::step(self)
+    }
+    #[inline(always)]
+    fn columns(&self, rows: i32) -> Option<(i32, i32)> {
+        // k rows down, x moves by k·step plus 0..=k carries: over the
+        // rows it stays between x, x + (rows − 1)·step and x + (rows −
+        // 1)·(step + 1) (saturated, still bounds), and ⌈·/16⌉ keeps the
+        // order.
+        let k = rows - 1;
+        let a = self.x.saturating_add(k.saturating_mul(self.step));
+        let b = a.saturating_add(k);
+        Some((ceil_px(a.min(self.x)), ceil_px(b.max(self.x))))
     }
     #[inline(always)]
     fn is_vertical(&self) -> bool {
@@ -411,6 +437,62 @@ mod tests {
         }
         jumped.advance(n);
         assert_eq!(jumped, stepped);
+    }
+
+    /// [`Stepper::columns`] from every row of an edge, over every count
+    /// of rows to its end: each pixel on those rows lies within.
+    fn check_columns(a: Vertex, b: Vertex) {
+        let Some(mut e) = Edge::new(a, b, (i32::MIN, i32::MAX)) else {
+            return;
+        };
+        let mut px = [0i32; 64];
+        let h = ((e.end() - e.top()) as usize).min(px.len());
+        let mut at = e;
+        for p in px.iter_mut().take(h) {
+            at.load_pixel();
+            *p = at.pixel();
+            at.step();
+        }
+        for start in 0..h {
+            for rows in 1..=h - start {
+                let (lo, hi) = Stepper::columns(&e, rows as i32).unwrap();
+                for &p in &px[start..start + rows] {
+                    assert!(lo <= p && p <= hi, "{a:?} {b:?} row {start} rows {rows}");
+                }
+            }
+            e.step();
+        }
+    }
+
+    #[test]
+    fn columns_bound_the_pixels() {
+        let mut rnd = xorshift(0x2468_ace1u32);
+        for _ in 0..2000 {
+            let a = Vertex::from_bits(rnd(3000) as i16, rnd(600) as i16);
+            let b = Vertex::from_bits(rnd(3000) as i16, rnd(600) as i16);
+            check_columns(a, b);
+        }
+        // Steep, flat and the range's corners (saturated bounds).
+        let m = [
+            i16::MIN,
+            i16::MIN + 1,
+            -1,
+            0,
+            1,
+            17,
+            500,
+            i16::MAX - 1,
+            i16::MAX,
+        ];
+        for &ax in &m {
+            for &ay in &m {
+                for &bx in &m {
+                    for &by in &m {
+                        check_columns(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -151,6 +151,54 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         Ok(counts)
     }
 
+    /// [`fill`](Self::fill) for a polygon of `len` vertices that is an
+    /// axis-aligned rectangle (sides alternately horizontal and vertical),
+    /// from its corners, with no edge set up: the same pixels, counts and
+    /// calls of the target. `None`, with nothing done, for any other
+    /// polygon, and with an inexact stepper or fewer than 2 edge slots
+    /// (where `fill` could differ); the caller then calls `fill`. Not
+    /// inlined: a call a 4-vertex polygon keeps the caller's loop as it
+    /// is for the others.
+    #[inline(never)]
+    pub(crate) fn fill_rectangle<I, T>(
+        &mut self,
+        vertices: I,
+        len: usize,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Option<Result<Counts, FillError<T::Error>>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        if !S::EXACT || len != 4 || self.edges.len() < 2 {
+            return None;
+        }
+        let mut corners = [Vertex::default(); 4];
+        let mut it = vertices.into_iter();
+        for c in corners.iter_mut() {
+            *c = it.next()?;
+        }
+        let r = rectangle(&corners)?;
+        let mut counts = Counts::default();
+        target.begin_polygon();
+        let (w, h) = target.size();
+        let clip = clip.within(w, h);
+        if clip.is_empty() {
+            return Some(Ok(counts));
+        }
+        let top = ceil_px(r.1 - HALF).max(clip.y0() as i32);
+        let stop = ceil_px(r.3 - HALF).min(clip.y1() as i32);
+        let (l, right) = (ceil_px(r.0 - HALF), ceil_px(r.2 - HALF));
+        let cx = (clip.x0() as i32, clip.x1() as i32);
+        Some(
+            emit_rows(top, stop, l, right, cx, color, target, &mut counts)
+                .map(|()| counts)
+                .map_err(FillError::Target),
+        )
+    }
+
     /// Sets up the edges that cross a row centre inside `clip`; returns
     /// their number, or `None` when they do not fit. Returns 0 when the
     /// polygon's box misses the window's columns.
@@ -162,6 +210,21 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     ) -> Option<usize> {
         build_edges(self.edges, vertices, clip)
     }
+}
+
+/// The corners `(x_min, y_min, x_max, y_max)`, in units, of the
+/// polygon `v` when it is an axis-aligned rectangle (its sides alternate
+/// horizontal and vertical, in either order), else `None`.
+#[inline(always)]
+fn rectangle(v: &[Vertex; 4]) -> Option<(i32, i32, i32, i32)> {
+    let [a, b, c, d] = *v;
+    let sides = (a.y == b.y && b.x == c.x && c.y == d.y && d.x == a.x)
+        || (a.x == b.x && b.y == c.y && c.x == d.x && d.y == a.y);
+    sides.then(|| {
+        let (x0, x1) = (a.x.units(), c.x.units());
+        let (y0, y1) = (a.y.units(), c.y.units());
+        (x0.min(x1), y0.min(y1), x0.max(x1), y0.max(y1))
+    })
 }
 
 /// Sets up the edges of the polygon through `vertices` that cross a row
@@ -306,59 +369,64 @@ impl Walk {
                     let (mut ea, mut eb) = (*a, *b);
                     // Counted in locals and added once a run: the run's
                     // rows and pixels fit in `u32` (a side is at most 4096).
-                    let (mut spans, mut pixels) = (0u32, 0u32);
+                    // Its spans are its rows but the empty ones, counted
+                    // where they are (rarely).
+                    let (first, mut empty, mut pixels) = (y, 0u32, 0u32);
                     loop {
-                        ea.load_pixel();
-                        eb.load_pixel();
-                        let (l, r) = if ea.pixel() <= eb.pixel() {
-                            (ea.pixel(), eb.pixel())
-                        } else {
-                            (eb.pixel(), ea.pixel())
+                        // Rows y..stop, without the clip where both edges
+                        // stay inside its columns over them.
+                        let rows = stop - y;
+                        let inside = |e: &S| {
+                            e.columns(rows)
+                                .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
                         };
-                        let (x0, x1) = (l.max(cx.0), r.min(cx.1));
-                        if x0 < x1 {
-                            write_span::<BAND, T>(y, x0, x1, *color, &mut **target)?;
-                            spans += 1;
-                            pixels += (x1 - x0) as u32;
+                        let (e, c) = ((&mut ea, &mut eb), (&mut empty, &mut pixels));
+                        if !BAND && inside(e.0) && inside(e.1) {
+                            two_edge_rows::<BAND, false, _, T>(
+                                e,
+                                (y, stop),
+                                cx,
+                                *color,
+                                target,
+                                c,
+                            )?;
+                        } else {
+                            two_edge_rows::<BAND, true, _, T>(e, (y, stop), cx, *color, target, c)?;
                         }
-                        y += 1;
-                        if y >= stop {
-                            // Where one edge ends and the next waiting edge
-                            // begins on this row, alone (a convex
-                            // polygon's chains, at every vertex but the
-                            // last): the pair stays in locals, as the
-                            // retire and join below would leave it. Not in
-                            // a band walk, whose polygons cross few
-                            // vertices a band and whose code, inlined into
-                            // the table, grew slower with it.
-                            let joins = waiting.get(next - active).filter(|e| e.top() == y);
-                            let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
-                            match joins {
-                                Some(e) if !BAND && alone && y < y1 => {
-                                    if ea.end() == y && eb.end() > y {
-                                        ea = *e;
-                                        eb.step();
-                                    } else if eb.end() == y && ea.end() > y {
-                                        eb = *e;
-                                        ea.step();
-                                    } else {
-                                        break;
-                                    }
-                                    next += 1;
-                                    stop = waiting
-                                        .get(next - active)
-                                        .map_or(i32::MAX, |e| e.top())
-                                        .min(y1)
-                                        .min(ea.end())
-                                        .min(eb.end());
-                                    continue;
+                        y = stop;
+                        // Where one edge ends and the next waiting edge
+                        // begins on this row, alone (a convex polygon's
+                        // chains, at every vertex but the last): the pair
+                        // stays in locals, as the retire and join below
+                        // would leave it. Not in a band walk, whose
+                        // polygons cross few vertices a band and whose
+                        // code, inlined into the table, grew slower with
+                        // it.
+                        let joins = waiting.get(next - active).filter(|e| e.top() == y);
+                        let alone = waiting.get(next - active + 1).is_none_or(|e| e.top() > y);
+                        match joins {
+                            Some(e) if !BAND && alone && y < y1 => {
+                                if ea.end() == y && eb.end() > y {
+                                    ea = *e;
+                                    eb.step();
+                                } else if eb.end() == y && ea.end() > y {
+                                    eb = *e;
+                                    ea.step();
+                                } else {
+                                    break;
                                 }
-                                _ => break,
+                                next += 1;
+                                stop = waiting
+                                    .get(next - active)
+                                    .map_or(i32::MAX, |e| e.top())
+                                    .min(y1)
+                                    .min(ea.end())
+                                    .min(eb.end());
                             }
+                            _ => break,
                         }
-                        ea.step();
-                        eb.step();
                     }
+                    let spans = (y - first) as u32 - empty;
                     counts.spans = counts.spans.saturating_add(spans);
                     counts.pixels = counts.pixels.saturating_add(pixels);
                     if BAND && y >= y1 && ea.end() > y && eb.end() > y {
@@ -426,6 +494,48 @@ impl Walk {
         }
         (self.active, self.next, self.y) = (active, next, y);
         Ok(())
+    }
+}
+
+/// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
+/// at row `y`, both live to `stop`), cut to the clip columns `cx` when
+/// `CLIP` (else they are inside them), counting the empty rows and the
+/// pixels into `counts`; leaves both edges at row `stop − 1`.
+#[inline(always)]
+fn two_edge_rows<const BAND: bool, const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
+    e: (&mut S, &mut S),
+    rows: (i32, i32),
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: (&mut u32, &mut u32),
+) -> Result<(), T::Error> {
+    let ((ea, eb), (mut y, stop)) = (e, rows);
+    loop {
+        ea.load_pixel();
+        eb.load_pixel();
+        let (l, r) = if ea.pixel() <= eb.pixel() {
+            (ea.pixel(), eb.pixel())
+        } else {
+            (eb.pixel(), ea.pixel())
+        };
+        let (x0, x1) = if CLIP {
+            (l.max(cx.0), r.min(cx.1))
+        } else {
+            (l, r)
+        };
+        if x0 < x1 {
+            write_span::<BAND, T>(y, x0, x1, color, target)?;
+            *counts.1 += (x1 - x0) as u32;
+        } else {
+            *counts.0 += 1;
+        }
+        y += 1;
+        if y >= stop {
+            return Ok(());
+        }
+        ea.step();
+        eb.step();
     }
 }
 
