@@ -63,6 +63,7 @@ pub trait Stepper: Copy {
     /// (the default) when the stepper does not tell: the scan converter
     /// skips the clip on a run of rows whose crossings all lie inside it.
     #[inline(always)]
+    #[doc(hidden)]
     fn columns(&self, rows: i32) -> Option<(i32, i32)> {
         let _ = rows;
         None
@@ -71,6 +72,7 @@ pub trait Stepper: Copy {
     /// edge, as [`Edge`]'s are: the scan converter then fills an
     /// axis-aligned rectangle straight from its corners, with no edge set
     /// up. `false` (the default) sends every polygon through the steppers.
+    #[doc(hidden)]
     const EXACT: bool = false;
     /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
     /// copy field by field: a copy of a whole record between two slots
