@@ -58,6 +58,9 @@ fn measured() -> (HashMap<String, u64>, HashMap<(String, u16), u64>) {
             ["row", name, y, n] => {
                 rows.insert((name.to_string(), y.parse().expect("y")), count(n));
             }
+            // The token encoder's counts and the empty list's, for the
+            // log; not part of the fit.
+            ["tokens", _, _, _] | ["empty", _, _, _] => {}
             _ => panic!("unexpected line {line:?}"),
         }
     }
@@ -85,7 +88,7 @@ fn samples() -> (
     (p, r)
 }
 
-fn row_features(w: &RowWork) -> [f64; 8] {
+fn row_features(w: &RowWork) -> [f64; 10] {
     [
         1.0,
         w.width.into(),
@@ -95,6 +98,8 @@ fn row_features(w: &RowWork) -> [f64; 8] {
         w.entered.into(),
         w.resolved.into(),
         w.live.into(),
+        w.words.into(),
+        w.moved.into(),
     ]
 }
 
@@ -165,6 +170,8 @@ pub fn fitted() -> CostModel {
         resolved: c[6],
         label: 0,
         live: c[7],
+        word: c[8],
+        moved: c[9],
         frame: p[0],
         command: p[1],
         trapezoid: p[2],
@@ -230,9 +237,9 @@ fn percentile(v: &[u64], p: usize) -> u64 {
     s[(s.len() * p).div_ceil(100).clamp(1, s.len()) - 1]
 }
 
-fn mhz(c: Option<scanvert_sim::timing::Clock>) -> String {
-    c.map_or("> 4,294".into(), |c| {
-        format!("{:.0}", f64::from(c.hz()) / 1e6)
+fn mhz(c: Option<scanvert_sim::race::CpuClock>) -> String {
+    c.map_or("> 100,000".into(), |c| {
+        format!("{:.0}", c.hz() as f64 / 1e6)
     })
 }
 
@@ -242,8 +249,9 @@ type Costs = (String, u64, Vec<u64>, Option<Vec<u64>>);
 
 /// The racing table: each scene's lowest clocks, misses and worst rows.
 fn race_table() -> String {
+    use scanvert_sim::race::CpuClock;
     use scanvert_sim::race::{demo_costs, lowest_clock, schedule};
-    use scanvert_sim::timing::{Clock, VideoTiming};
+    use scanvert_sim::timing::VideoTiming;
     let (_, measured_rows) = measured();
     let m4 = CostModel::M4;
     // (name, prepare, rows, measured rows on the M4 if any)
@@ -306,7 +314,7 @@ fn race_table() -> String {
     let mut s = String::new();
     s.push_str("| scene | lowest MHz, reference, K = 2 / 4 / 16 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 | misses at 168 MHz, reference, K = 2 / 4 / 16 | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |\n");
     s.push_str("|---|---|---|---|---|---|---|\n");
-    let cpu = Clock::from_mhz(168).expect("168 MHz");
+    let cpu = CpuClock::from_mhz(168).expect("168 MHz");
     for (name, prep, rows, m4rows) in &scenes {
         let mut cells = Vec::new();
         for (_, t) in &timings {
@@ -367,8 +375,8 @@ pub fn section() -> String {
 pub fn write_section(page: &Path) -> std::io::Result<()> {
     let f = fitted();
     eprintln!(
-        "fit: row {}, width {}, span {}, pixel {}, run {}, entered {}, resolved {}, live {}; frame {}, command {}, trapezoid {} ({})",
-        f.row, f.width, f.span, f.pixel, f.run, f.entered, f.resolved, f.live, f.frame, f.command, f.trapezoid,
+        "fit: row {}, width {}, span {}, pixel {}, run {}, entered {}, resolved {}, live {}, word {}, moved {}; frame {}, command {}, trapezoid {} ({})",
+        f.row, f.width, f.span, f.pixel, f.run, f.entered, f.resolved, f.live, f.word, f.moved, f.frame, f.command, f.trapezoid,
         if f == CostModel::M4 { "CostModel::M4" } else { "differs from CostModel::M4" }
     );
     let old = std::fs::read_to_string(page).unwrap_or_default();
@@ -394,8 +402,10 @@ mod tests {
         let (mean, worst) = errors(&CostModel::M4, &rows);
         // The figures published in CostModel::M4's docs and
         // docs/performance.md.
-        assert!(mean <= 0.034, "mean relative error {mean}");
-        assert!(worst <= 0.32, "worst relative error {worst}");
+        assert!(
+            mean <= 0.074 && worst <= 0.314,
+            "mean relative error {mean}, worst {worst}"
+        );
     }
 
     #[test]

@@ -41,10 +41,11 @@
 //! # Capacity
 //!
 //! The caller lends the runs (`[ColorRun<C>]`, any length). A row of width
-//! `w` never holds more than `w` runs once a span is in, and an insertion
-//! needs at most two runs more than the row ends up with, so a capacity of
-//! `w + 2` is never exceeded. A smaller one is enough for most rows (a
-//! clear row is one run); a span that does not fit leaves the row
+//! `w` never holds more than `w` runs, before or after an insertion (the
+//! runs an insertion puts in are worked out before the row is changed),
+//! so a capacity of `w` is never exceeded. A smaller one is enough for
+//! most rows (a clear row is one run; [`RowRuns::peak`] says what a row
+//! took); a span that does not fit leaves the row
 //! [`overflowed`](RowRuns::overflowed) (the span is dropped, later ones
 //! still inserted), and the compose calls report it as
 //! [`RowsError::Full`] with the row, never a panic.
@@ -83,7 +84,7 @@ pub enum RowsError<R> {
     /// it.
     Render(R),
     /// The runs lent for row `y` are too few for what is drawn on it; a
-    /// row of width `w` needs at most `w + 2`.
+    /// row of width `w` needs at most `w`.
     Full {
         /// The row.
         y: u16,
@@ -124,6 +125,8 @@ pub struct RowRuns<'r, C> {
     height: u16,
     y: u16,
     overflowed: bool,
+    peak: usize,
+    moved: u32,
 }
 
 impl<'r, C: PixelColor> RowRuns<'r, C> {
@@ -137,6 +140,8 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
             height: 0,
             y: 0,
             overflowed: false,
+            peak: 0,
+            moved: 0,
         }
     }
 
@@ -149,11 +154,14 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
         self.y = y;
         self.overflowed = false;
         self.len = 0;
+        self.peak = 0;
+        self.moved = 0;
         if width > 0 {
             match self.runs.first_mut() {
                 Some(r) => {
                     *r = ColorRun::new(0, background);
                     self.len = 1;
+                    self.peak = 1;
                 }
                 None => self.overflowed = true,
             }
@@ -179,6 +187,20 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
     /// is not the frame's.
     pub fn overflowed(&self) -> bool {
         self.overflowed
+    }
+
+    /// The most runs the row held at once since it was started (counting
+    /// a span that did not fit as if it had): the capacity that composes
+    /// it.
+    pub fn peak(&self) -> usize {
+        self.peak
+    }
+
+    /// Runs moved to make room or close gaps since the row was started
+    /// (an insertion moves the runs to its right): the part of a row's
+    /// cost that grows with its runs.
+    pub fn moved(&self) -> u32 {
+        self.moved
     }
 
     /// The row's runs, left to right (see the [module](self) docs).
@@ -248,6 +270,8 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
             m += 1;
         }
         let total = len - (k - s) + m;
+        self.peak = self.peak.max(total);
+        self.moved = self.moved.saturating_add((len - k) as u32);
         if total > self.runs.len() {
             self.overflowed = true;
             return;
@@ -402,7 +426,8 @@ mod tests {
             let start: Vec<Gray8> = (0..5).map(|i| g((base / 3u32.pow(i) % 3) as u8)).collect();
             for &(a, b) in &spans {
                 for c in 0..3u8 {
-                    let mut buf = [ColorRun::new(0, g(0)); 7];
+                    // A capacity of the width is enough.
+                    let mut buf = [ColorRun::new(0, g(0)); 5];
                     let mut row = RowRuns::new(&mut buf);
                     row.start(0, (w, 1), start[0]);
                     let mut px = start.clone();
@@ -422,6 +447,7 @@ mod tests {
                     px[usize::from(a)..usize::from(b)].fill(g(c));
                     check(&row, &px);
                     assert!(!row.overflowed());
+                    assert!(row.peak() <= 5);
                 }
             }
         }
