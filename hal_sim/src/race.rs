@@ -242,36 +242,39 @@ impl CostModel {
     /// Fitted by least squares to the instructions the Cortex-M4 image
     /// (`firmware/image`, feature `rows`, under QEMU with
     /// `-icount shift=0`) counted for each row of the eight lists it
-    /// embeds (1,992 rows: `firmware/image/rows-m4.txt`) drawn in 1-row
-    /// bands and encoded into runs, and for preparing each list. The fit
-    /// is `cargo run --release -p scanvert-bench -- --only race`, and the
+    /// embeds (1,992 rows: `firmware/image/rows-m4.txt`), each composed
+    /// as colour runs with no pixel buffer (`ListBands::draw_runs`), and
+    /// for preparing each list. The fit is
+    /// `cargo run --release -p scanvert-bench -- --only race`, and the
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 3.3 % on
-    /// average and 31.6 % at worst (the 3D lists' rows: 7.9 % and 7.0 % on
-    /// average; the 2D lists' 0.1 % to 3.1 %; the worst are W3's first and
-    /// last rows, with 2 to 7 polygons live, which also pay a pass over the
-    /// band table's live bits for its 10,000 polygons, a cost the model has
-    /// no term for). Preparing a list is fitted to the eight lists' counts,
-    /// within 17 %. Labels are in none of the
-    /// measured lists, so `label` is 0 and a label costs its spans and
-    /// pixels. One instruction is taken as one CPU cycle.
+    /// Against the 1,992 measured rows the model's error is 6.9 % on
+    /// average and 37.9 % at worst (the 2D lists' rows: 1.5 % to 10.2 %
+    /// on average, the 3D lists' 12.0 % and 10.0 %; the worst are rows of
+    /// a few hundred instructions, where the counter's step of 40 is a
+    /// large part). A row's cost hardly grows with its width (a quarter
+    /// of an instruction a pixel); the edge table's live set costs 20
+    /// instructions a word of 32 polygons on every row (W3's 313 words),
+    /// and a run moved by an insertion 6. Preparing a list is fitted to
+    /// the eight lists' counts. Labels are in none of the measured lists,
+    /// so `label` is 0 and a label costs its spans and pixels. One
+    /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 811,
+        row: 870,
         width: 4,
-        span: 4350,
+        span: 2860,
         pixel: -3,
-        run: 468,
-        entered: 8113,
-        resolved: 3207,
+        run: 540,
+        entered: 8238,
+        resolved: 3284,
         label: 0,
-        live: 3187,
-        word: 326,
-        moved: 194,
-        frame: 117067,
-        command: 10713,
-        trapezoid: 757,
+        live: 3490,
+        word: 322,
+        moved: 99,
+        frame: 116562,
+        command: 10716,
+        trapezoid: 756,
     };
 
     /// Instructions of a row of `work`, at least 1.
@@ -1347,11 +1350,12 @@ pub(crate) fn demo(
 }
 
 /// The instructions, from `model`, of preparing and of each row of every
-/// frame of the demo's first `frames` steps (`scanvert demo`).
+/// frame of the demo's first `frames` steps (`scanvert demo`), with the
+/// most runs a row of the frame needed.
 pub fn demo_costs(
     frames: usize,
     model: &CostModel,
-) -> Result<Vec<(u64, Vec<u64>)>, crate::error::CliError> {
+) -> Result<Vec<(u64, Vec<u64>, usize)>, crate::error::CliError> {
     use crate::demo::{HEIGHT, WIDTH};
     use scanvert::scene::DEFAULT_FONT;
     use scanvert::visible::sweep::Resolve;
@@ -1370,7 +1374,7 @@ pub fn demo_costs(
                     1,
                     model,
                 );
-                costs.push((r.prepare, r.rows));
+                costs.push((r.prepare, r.rows, r.most_runs));
             }
         },
     )?;

@@ -468,6 +468,7 @@ pub fn run() -> bool {
                 ok &= rows::measure(scene, &mut edges, mem, &mut table, &counter);
             }
             ok &= rows::measure_empty(&mut edges, mem, &mut table, &counter);
+            rows::measure_inserts(&counter);
         }
     }
     log::summary(matched, frames, ok);

@@ -149,6 +149,41 @@ fn rows(
     true
 }
 
+/// Spans inserted into a row of runs alone: 256 rows of 320 pixels, each
+/// with `spans` spans of pseudo-random place, length and colour (of four)
+/// inserted in turn, counted together; printed as `insert SPANS
+/// rows=256 instructions=N`.
+pub fn measure_inserts(counter: &platform::Counter) {
+    use scanvert::port::{Span, SpanTarget};
+    for spans in [1u32, 4, 16, 64] {
+        let mut runs = [ColorRun::new(0, crate::BLACK); 320];
+        let mut seed = 0x1234_5678u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            seed >> 8
+        };
+        let t0 = counter.ticks();
+        for _ in 0..256 {
+            let mut row = RowRuns::new(&mut runs);
+            row.start(0, (320, 1), crate::BLACK);
+            for _ in 0..spans {
+                let x0 = (next() % 320) as u16;
+                let len = (next() % 40) as u16 + 1;
+                let color = crate::Pixel::new((next() % 4) as u8, 0, 0);
+                let span = Span {
+                    y: 0,
+                    x0,
+                    x1: (x0 + len).min(320),
+                };
+                let Ok(()) = core::hint::black_box(&mut row).fill_span(span, color);
+            }
+            core::hint::black_box(row.as_slice());
+        }
+        let n = (counter.ticks() - t0) * platform::INSTRUCTIONS_PER_TICK;
+        report_empty("insert", spans as u16, 256, n);
+    }
+}
+
 /// The row's runs as `pico_scanvideo` tokens; the words written.
 #[inline(never)]
 fn tokens(row: &RowRuns<'_, crate::Pixel>, words: &mut [u32]) -> Option<usize> {

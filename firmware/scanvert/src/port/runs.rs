@@ -248,8 +248,14 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
         let runs = &mut self.runs[..len];
         // The run holding x0 (the first starts at 0 ≤ x0).
         let i = runs.partition_point(|r| r.x <= x0).saturating_sub(1);
-        // The first run after the one holding x1 (or len).
-        let k = i + runs[i..].partition_point(|r| r.x <= x1);
+        // The first run after the one holding x1 (or len): a walk over
+        // the runs the span covers, each of which it removes (a run is
+        // put in once and removed once, so the walk is paid for by the
+        // insertions).
+        let mut k = i + 1;
+        while k < len && runs[k].x <= x1 {
+            k += 1;
+        }
         // The run holding pixel x1, whose colour goes on after the span.
         let after = runs[k - 1];
         // Runs i.. are replaced from s on: run i stays when it starts
@@ -279,9 +285,36 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
         // Run k (when there is one) differs from what now precedes it:
         // from `after`'s colour, which it followed, and when no run was
         // put at x1, that colour is the span's.
-        self.runs.copy_within(k..len, s + m);
-        self.runs[s..s + m].copy_from_slice(&new[..m]);
+        // The runs right of the span move only when the count changes; a
+        // move of a few runs is a loop (a call to `memmove` costs more
+        // than it moves).
+        if s + m != k {
+            move_runs(self.runs, k..len, s + m);
+        }
+        for (slot, run) in self.runs[s..s + m].iter_mut().zip(new) {
+            *slot = run;
+        }
         self.len = total;
+    }
+}
+
+/// Moves `runs[from]` to start at `to` (`to + from.len()` within
+/// `runs`), as `copy_within` does: element by element for a few, one
+/// `memmove` for more.
+#[inline(always)]
+fn move_runs<T: Copy>(runs: &mut [T], from: core::ops::Range<usize>, to: usize) {
+    const FEW: usize = 8;
+    let n = from.end - from.start;
+    if n > FEW {
+        runs.copy_within(from, to);
+    } else if to < from.start {
+        for i in 0..n {
+            runs[to + i] = runs[from.start + i];
+        }
+    } else {
+        for i in (0..n).rev() {
+            runs[to + i] = runs[from.start + i];
+        }
     }
 }
 
