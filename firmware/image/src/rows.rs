@@ -110,7 +110,10 @@ fn rows(
         return false;
     };
     if each {
-        report_prepare(name, (counter.ticks() - t0) * platform::INSTRUCTIONS_PER_TICK);
+        report_prepare(
+            name,
+            (counter.ticks() - t0) * platform::INSTRUCTIONS_PER_TICK,
+        );
     }
     let h = bands.size().1;
     let mut runs = [ColorRun::new(0, crate::BLACK); ROW_RUNS];
