@@ -847,7 +847,7 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
             if let Some(cpu) = a.race {
                 if a.band_rows.is_some() || a.stats || a.resolve.is_some() {
                     return Err(usage(
-                        "render: --race draws 1-row bands and prints its misses; --band-rows, --resolve and --stats do not go with it",
+                        "render: --race composes one row at a time and prints its misses; --band-rows, --resolve and --stats do not go with it",
                     ));
                 }
                 let format = a.ring.unwrap_or_default();

@@ -323,3 +323,45 @@ proptest! {
         text_list_rows_match(&text, &text);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// Any words decode to pixels or a typed error, never a panic.
+    #[test]
+    fn any_words_decode_or_are_refused(
+        words in prop::collection::vec(
+            prop_oneof![
+                any::<u32>(),
+                (0u32..16, 0u32..16).prop_map(|(a, b)| a | b << 16),
+            ],
+            0..12,
+        ),
+        len in 0usize..40,
+    ) {
+        let mut px = vec![0u16; len];
+        if let Ok(n) = scanvideo::decode(&words, &Opcodes::DEFAULT, &mut px) {
+            prop_assert!(n <= len);
+        }
+    }
+
+    /// Any runs encode to tokens that decode to their pixels, the black
+    /// pixel after them when the last is not black.
+    #[test]
+    fn any_runs_come_back_through_tokens(
+        runs in prop::collection::vec((1u16..6, prop_oneof![Just(0u16), 1u16..4]), 0..20),
+    ) {
+        let pixels: usize = runs.iter().map(|r| usize::from(r.0)).sum();
+        let mut words = vec![0u32; (3 * runs.len() + pixels + 4).div_ceil(2)];
+        let n = scanvideo::encode(runs.iter().copied(), &Opcodes::DEFAULT, &mut words).expect("fits");
+        let mut px = vec![0xffffu16; pixels + 1];
+        let got = scanvideo::decode(&words[..n], &Opcodes::DEFAULT, &mut px).expect("decodes");
+        let want: Vec<u16> = runs
+            .iter()
+            .flat_map(|&(l, c)| std::iter::repeat_n(c, usize::from(l)))
+            .collect();
+        let black = usize::from(want.last().is_some_and(|&c| c != 0));
+        prop_assert_eq!(got, want.len() + black);
+        prop_assert_eq!(&px[..want.len()], &want[..]);
+    }
+}
