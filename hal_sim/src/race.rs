@@ -428,13 +428,51 @@ pub fn schedule(
     missed
 }
 
+/// [`schedule`] with `cores` producers (at least 1) taking the rows in
+/// turn: core `c` draws rows `c`, `c + cores`, … in order, each core at
+/// `cpu`, one instruction a cycle. The first core prepares the frame and
+/// the others wait for it; a row still starts only once line `y − K` has
+/// been scanned (its slot is free), and a core never skips a row. With
+/// one core this is [`schedule`].
+pub fn schedule_cores(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    cpu: CpuClock,
+    k: u16,
+    cores: usize,
+) -> Vec<bool> {
+    let c = Clocks::new(timing, cpu, k);
+    let mut finish = vec![c.cost(prepare); cores.max(1)];
+    let mut missed = Vec::with_capacity(rows.len());
+    for (y, &cost) in rows.iter().enumerate() {
+        let core = &mut finish[y % cores.max(1)];
+        let y = y as u32;
+        *core = (*core).max(c.free(y)) + c.cost(cost);
+        missed.push(*core > c.line_start(y));
+    }
+    missed
+}
+
 /// The lowest CPU clock, in whole kilohertz, at which no row misses its
 /// deadline, or `None` when even [`CpuClock::MAX_MHZ`] misses (a frame
 /// whose preparation or rows take longer than the beam gives them).
 pub fn lowest_clock(prepare: u64, rows: &[u64], timing: &VideoTiming, k: u16) -> Option<CpuClock> {
+    lowest_clock_cores(prepare, rows, timing, k, 1)
+}
+
+/// [`lowest_clock`] with `cores` producers taking the rows in turn
+/// ([`schedule_cores`]).
+pub fn lowest_clock_cores(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    k: u16,
+    cores: usize,
+) -> Option<CpuClock> {
     let ok = |khz: u64| {
         CpuClock::from_hz(khz * 1000)
-            .is_some_and(|c| !schedule(prepare, rows, timing, c, k).contains(&true))
+            .is_some_and(|c| !schedule_cores(prepare, rows, timing, c, k, cores).contains(&true))
     };
     let (mut lo, mut hi) = (0u64, CpuClock::MAX_MHZ * 1000);
     if !ok(hi) {
@@ -1056,6 +1094,25 @@ mod tests {
         // After the clear: rows 2 and 3 (centres 2.5, 3.5 in [2.5, 4.5))
         // and rows 0 (centre 0.5 in [-3, 1.5)); the first poly is cleared.
         assert_eq!(live_polygons(&list), [1, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0]);
+    }
+
+    proptest! {
+        #[test]
+        fn one_core_is_the_schedule_and_two_are_never_later(
+            costs in proptest::collection::vec(1u64..80, 1..12),
+            prepare in 0u64..200,
+            k in 1u16..5,
+            mhz in 1u64..4,
+        ) {
+            let t = timing(5, costs.len() as u16);
+            let cpu = CpuClock::from_mhz(mhz).unwrap();
+            let one = schedule(prepare, &costs, &t, cpu, k);
+            prop_assert_eq!(&schedule_cores(prepare, &costs, &t, cpu, k, 1), &one);
+            let two = schedule_cores(prepare, &costs, &t, cpu, k, 2);
+            for (a, b) in one.iter().zip(&two) {
+                prop_assert!(!b || *a, "a row missed with two cores and not with one");
+            }
+        }
     }
 
     #[test]
