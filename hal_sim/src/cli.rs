@@ -2,12 +2,12 @@
 //!
 //! ```text
 //! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
-//!                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K]]
+//!                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K] [--ring runs|scanvideo]]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
 //! scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
-//!               [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
+//!               [--race MHZ [--fifo K] [--ring runs|scanvideo] [--timing auto|reference|vga|256]]
 //! scanvert help [COMMAND]        # or: scanvert COMMAND --help
 //! ```
 //!
@@ -42,13 +42,13 @@ use std::path::{Path, PathBuf};
 const USAGE: &str = "\
 usage:
   scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
-                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K]]
+                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K] [--ring runs|scanvideo]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert import MODEL --out LIST.dl [--size WxH] [--color #rrggbb]
   scanvert checksum SCENE...
   scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
-                [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
+                [--race MHZ [--fifo K] [--ring runs|scanvideo] [--timing auto|reference|vga|256]]
   scanvert help [COMMAND]
 
 SCENE is a display list in text form (at most 80 MiB) or binary form (at most
@@ -68,7 +68,7 @@ Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 const HELP_RENDER: &str = "\
 usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
                       [--band-rows N] [--resolve crossing|bisect|paint]
-                      [--race MHZ [--fifo K]]
+                      [--race MHZ [--fifo K] [--ring runs|scanvideo]]
 
 Renders SCENE, a display list in text or binary form, through the simulated display
 hardware: the graphic controller draws the frame into the frame-buffer RAM, and the
@@ -112,15 +112,21 @@ options:
                        (culled, clipped away), labels, trapezoids and runs
   --race MHZ           race the beam with no frame RAM: the refresh controller reads
                        each line from a ring of run-length rows that the graphic
-                       controller, its CPU at MHZ megahertz (e.g. 168 or 12.5), draws
-                       one row at a time just before the beam needs it; each row's
-                       time comes from a cost model of its work fitted to the
-                       instructions counted on a Cortex-M4. A line whose row is not
-                       ready when the beam reaches it is a deadline miss, shown pure
-                       red (#ff0000). Prints `deadline misses: M of N lines` and
-                       exits 0 whether or not lines were missed
+                       controller, its CPU at MHZ megahertz (0.000001 to 100000, e.g.
+                       168 or 12.5), composes one row at a time as colour runs just
+                       before the beam needs it; each row's time comes from a cost
+                       model of its work fitted to the instructions counted on a
+                       Cortex-M4. A line whose row is not ready when the beam reaches
+                       it is a deadline miss, shown pure red (#ff0000). Prints
+                       `deadline misses: M of N lines`, then the ring's memory
+                       (`ring: K rows of at most R runs (4 bytes a run): B bytes`),
+                       and exits 0 whether or not lines were missed
   --fifo K             with --race: the ring's rows, 1 to 65535 (default: 2); the
                        graphic controller runs at most K rows ahead of the beam
+  --ring FORMAT        with --race: the format of the ring's rows, which the refresh
+                       controller decodes: runs (the default: colour runs, 4 bytes
+                       each) or scanvideo (the Raspberry Pi Pico's pico_scanvideo
+                       composable scan-line tokens, in 32-bit words)
   --help, -h           this help";
 
 const HELP_ASM: &str = "\
@@ -182,7 +188,7 @@ options:
 
 const HELP_DEMO: &str = "\
 usage: scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
-                    [--race MHZ [--fifo K] [--timing auto|reference|vga|256]]
+                    [--race MHZ [--fifo K] [--ring runs|scanvideo] [--timing auto|reference|vga|256]]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
 512x256 (or --size) through the simulated display (double-buffered): first the threshold that
@@ -201,8 +207,11 @@ options:
   --race MHZ           show every frame by racing the beam with no frame RAM, as
                        `scanvert render --race` does (`scanvert help render`), in the
                        mode of --timing (default: auto); prints a line
-                       `frame NN: deadline misses: M of N lines` a frame instead
+                       `frame NN: deadline misses: M of N lines` a frame instead,
+                       then the ring's memory for the largest frame
   --fifo K             with --race: the ring's rows (default: 2)
+  --ring FORMAT        with --race: the ring's rows as runs (default) or scanvideo
+                       tokens, as for `scanvert render`
   --timing MODE        with --race: the video timing of the simulated monitor, as
                        for `scanvert render` (default: auto, a mode whose visible
                        area is the 512x256 frame)
@@ -258,6 +267,7 @@ fn options_of(command: &str) -> &'static [&'static str] {
             "--resolve",
             "--race",
             "--fifo",
+            "--ring",
         ],
         "asm" | "disasm" => &["--out"],
         "import" => &["--out", "--size", "--color"],
@@ -268,6 +278,7 @@ fn options_of(command: &str) -> &'static [&'static str] {
             "--no-speed",
             "--race",
             "--fifo",
+            "--ring",
             "--timing",
         ],
         _ => &[],
@@ -534,8 +545,9 @@ struct Args {
     help: bool,
     band_rows: Option<u16>,
     resolve: Option<Resolve>,
-    race: Option<crate::timing::Clock>,
+    race: Option<crate::race::CpuClock>,
     fifo: Option<u16>,
+    ring: Option<crate::race::RowFormat>,
     color: Option<scanvert::pixelcolor::Rgb888>,
     /// The options given, by their long names, in order.
     given: Vec<&'static str>,
@@ -555,12 +567,13 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         resolve: None,
         race: None,
         fifo: None,
+        ring: None,
         color: None,
         given: Vec::new(),
     };
     // Every option of some command: which a command takes is checked
     // once the command is known (`options_of`).
-    const OPTIONS: [&str; 12] = [
+    const OPTIONS: [&str; 13] = [
         "--out",
         "--frames",
         "--size",
@@ -570,6 +583,7 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
         "--resolve",
         "--race",
         "--fifo",
+        "--ring",
         "--help",
         "--band-rows",
         "--color",
@@ -633,15 +647,24 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
             }
             "--race" => {
                 let v = it.next().map(String::as_str).unwrap_or_default();
-                a.race = Some(crate::race::parse_mhz(v).ok_or_else(|| {
-                    usage("--race needs the CPU clock in MHz, a number above 0 (e.g. 168 or 12.5)")
-                })?);
+                a.race = Some(
+                    crate::race::parse_mhz(v)
+                        .ok_or_else(|| usage(crate::race::mhz_range_message("--race")))?,
+                );
             }
             "--fifo" => {
                 let v = it.next().map(String::as_str).unwrap_or_default();
                 let k = v.parse::<u16>().ok().filter(|&k| k >= 1);
                 a.fifo =
                     Some(k.ok_or_else(|| usage("--fifo needs a count of rows from 1 to 65535"))?);
+            }
+            "--ring" => {
+                let v = it.next().map(String::as_str).unwrap_or_default();
+                a.ring = Some(match v {
+                    "runs" => crate::race::RowFormat::Runs,
+                    "scanvideo" => crate::race::RowFormat::Scanvideo,
+                    _ => return Err(usage("--ring needs a format: runs or scanvideo")),
+                });
             }
             "--help" | "-h" => a.help = true,
             "--band-rows" => {
@@ -818,13 +841,17 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
             if a.fifo.is_some() && a.race.is_none() {
                 return Err(usage("render: --fifo goes with --race"));
             }
+            if a.ring.is_some() && a.race.is_none() {
+                return Err(usage("render: --ring goes with --race"));
+            }
             if let Some(cpu) = a.race {
                 if a.band_rows.is_some() || a.stats || a.resolve.is_some() {
                     return Err(usage(
-                        "render: --race draws 1-row bands and prints its misses; --band-rows, --resolve and --stats do not go with it",
+                        "render: --race composes one row at a time and prints its misses; --band-rows, --resolve and --stats do not go with it",
                     ));
                 }
-                return crate::race::render(&scene, &timing, cpu, a.fifo, &out, warn);
+                let format = a.ring.unwrap_or_default();
+                return crate::race::render(&scene, &timing, cpu, a.fifo, format, &out, warn);
             }
             let resolve = a.resolve.unwrap_or_default();
             let mut r = match a.band_rows {
@@ -952,6 +979,9 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
             if a.fifo.is_some() && a.race.is_none() {
                 return Err(usage("demo: --fifo goes with --race"));
             }
+            if a.ring.is_some() && a.race.is_none() {
+                return Err(usage("demo: --ring goes with --race"));
+            }
             if a.race.is_some() && a.size.is_some() {
                 return Err(usage("demo: --size does not go with --race"));
             }
@@ -961,7 +991,8 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
             if let Some(cpu) = a.race {
                 let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);
                 let timing = timing_for(a.timing.as_deref().unwrap_or("auto"), w, h)?;
-                return crate::race::demo(&dir, a.frames.unwrap_or(8), &timing, cpu, a.fifo);
+                let (frames, format) = (a.frames.unwrap_or(8), a.ring.unwrap_or_default());
+                return crate::race::demo(&dir, frames, &timing, cpu, a.fifo, format);
             }
             let size = a.size.unwrap_or(crate::demo::DEFAULT_SIZE);
             crate::demo::run_at(size, &dir, a.frames.unwrap_or(8), !a.no_speed)

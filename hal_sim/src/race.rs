@@ -1,32 +1,36 @@
 //! Racing the beam: the display device with no frame RAM.
 //!
 //! The refresh controller reads each scan line from a small ring of `K`
-//! run-length rows and expands the runs to pixels as the beam scans them.
-//! A producer (the graphic controller, drawing the frame one row at a time
-//! through the library's band path and encoding each row by colour) fills
-//! the ring just in time. Each row costs the producer some instructions,
-//! from a [`CostModel`] of the row's work, and so some time at the
-//! producer's CPU clock. A row that is not in the ring when the beam
-//! reaches its line is a **deadline miss**: every pixel of that line is
-//! pure red ([`MISS`], `#ff0000` in the image).
+//! rows and expands them to pixels as the beam scans them. A producer
+//! (the graphic controller, composing the frame one row at a time as
+//! colour runs through the library's racing path,
+//! [`ListBands::draw_runs`](scanvert::controller::ListBands::draw_runs):
+//! no pixel buffer, the background one run, every span inserted over it)
+//! fills the ring just in time. Each row costs the producer some
+//! instructions, from a [`CostModel`] of the row's work, and so some time
+//! at the producer's CPU clock. A row that is not in the ring when the
+//! beam reaches its line is a **deadline miss**: every pixel of that line
+//! is pure red ([`MISS`], `#ff0000` in the image).
 //!
-//! # The row format: colour runs
+//! # The row formats
 //!
-//! A row in the ring is a list of [`Run`]s, each `len` pixels of one
-//! RGB565 `color`, left to right; the lengths add up to the frame's width.
-//! The visible-surface stage has runs of its own
-//! ([`scanvert::visible::rle::Run`]): `x0..x1` of one *trapezoid*, whose
-//! colour is looked up by index and which covers only the 3D layer's
-//! part of the row. The ring cannot carry those: a row is the 2D
-//! polygons (painter's order), the 3D layer and the labels on top, each
-//! writing colours into the same pixels, so only the finished row says
-//! which colour each pixel has. Runs of colour are what the beam needs
-//! (a colour and a count, decoded with one comparison a pixel), they are
-//! the same for every source of pixels, and they are short where the
-//! picture is flat (a clear row is one run). A row has at most `width`
-//! runs; the ring of `K` rows needs at most `K × width` runs (4 bytes a
-//! run: a 16-bit length and an RGB565 colour) against `width × height`
-//! pixels of a frame buffer.
+//! A row in the ring is in one of two formats ([`RowFormat`]), and the
+//! refresh controller decodes either:
+//! - **colour runs** ([`RowFormat::Runs`]): the library's row
+//!   ([`scanvert::port::runs`]), a list of runs of one RGB565 colour each,
+//!   left to right, covering the frame's width, no two neighbours of one
+//!   colour; here each as a [`Run`], a 16-bit length and the colour, 4
+//!   bytes. A clear row is one run; a row has at most `width` runs.
+//! - **`pico_scanvideo` tokens** ([`RowFormat::Scanvideo`]): the same row
+//!   encoded by [`scanvert::port::scanvideo::encode`] for the Pico's
+//!   composable scan-line program (colour runs, raw runs, a black pixel
+//!   at the end, an end-of-line token that makes the stream whole 32-bit
+//!   words), decoded by [`scanvert::port::scanvideo::decode`].
+//!
+//! The 3D layer's own runs ([`scanvert::visible::rle::Run`], `x0..x1`
+//! of one trapezoid) cover only its part of the row; they are inserted
+//! into the row's colour runs as they are, over the 2D spans below them
+//! and under the labels.
 //!
 //! # Time
 //!
@@ -57,11 +61,67 @@
 //! the frame shows: the smaller of the frame's and the timing's heights.
 
 use crate::refresh::{Frame, PixelSource, RefreshController};
-use crate::timing::{Clock, VideoTiming};
+use crate::timing::VideoTiming;
 use embedded_graphics_core::pixelcolor::Rgb565;
 use scanvert::controller::{ListBands, RenderStats};
 use scanvert::display_list::{Command, DisplayList};
+use scanvert::port::runs::{ColorRun, RowRuns};
+use scanvert::port::scanvideo::{self, Opcodes};
 use scanvert::scene::{Frame as SceneFrame, SceneBands};
+use std::num::NonZeroU64;
+
+/// The producer's CPU clock, 1 Hz to [`CpuClock::MAX_MHZ`] MHz.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct CpuClock(NonZeroU64);
+
+impl CpuClock {
+    /// The fastest clock taken: 100 GHz.
+    pub const MAX_MHZ: u64 = 100_000;
+
+    /// `hz` hertz, or `None` outside 1 Hz to 100 GHz.
+    pub const fn from_hz(hz: u64) -> Option<CpuClock> {
+        if hz > Self::MAX_MHZ * 1_000_000 {
+            return None;
+        }
+        match NonZeroU64::new(hz) {
+            Some(hz) => Some(CpuClock(hz)),
+            None => None,
+        }
+    }
+
+    /// `mhz` megahertz, or `None` outside 1 to 100,000 MHz.
+    pub const fn from_mhz(mhz: u64) -> Option<CpuClock> {
+        match mhz.checked_mul(1_000_000) {
+            Some(hz) => CpuClock::from_hz(hz),
+            None => None,
+        }
+    }
+
+    /// The clock in hertz.
+    pub const fn hz(self) -> u64 {
+        self.0.get()
+    }
+}
+
+impl std::fmt::Display for CpuClock {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let hz = self.hz();
+        match hz % 1_000_000 {
+            0 => write!(f, "{} MHz", hz / 1_000_000),
+            r => write!(f, "{}.{:06} MHz", hz / 1_000_000, r),
+        }
+    }
+}
+
+/// How a row sits in the ring (see the [module](self) docs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RowFormat {
+    /// Colour runs, 4 bytes each.
+    #[default]
+    Runs,
+    /// `pico_scanvideo` composable scan-line tokens, in 32-bit words.
+    Scanvideo,
+}
 
 /// The colour of a missed line: pure red (`#ff0000` in the image).
 pub const MISS: Rgb565 = Rgb565::new(31, 0, 0);
@@ -79,9 +139,11 @@ pub struct Run {
     pub color: Rgb565,
 }
 
-/// Encodes `row` as colour runs into `out` (cleared first): each run as
-/// long as the pixels of one colour next to each other, so no two runs
-/// next to each other have the same colour. Returns the runs.
+/// Encodes `row` of pixels as colour runs into `out` (cleared first):
+/// each run as long as the pixels of one colour next to each other, so no
+/// two runs next to each other have the same colour. Returns the runs.
+/// For pictures drawn into pixels ([`FrameRows`]); the racing path
+/// composes its rows as runs and never has the pixels.
 pub fn encode_row(row: &[Rgb565], out: &mut Vec<Run>) -> usize {
     out.clear();
     for &p in row {
@@ -97,8 +159,8 @@ pub fn encode_row(row: &[Rgb565], out: &mut Vec<Run>) -> usize {
 /// prices.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RowWork {
-    /// Pixels of the row (the band's background fill and the encoding
-    /// scan each touch every one).
+    /// Pixels of the row (composed as runs, it touches none of them: the
+    /// fitted model gives this no weight).
     pub width: u32,
     /// Spans written into the row (2D polygons, the 3D layer, labels).
     pub spans: u32,
@@ -113,10 +175,19 @@ pub struct RowWork {
     pub resolved: u32,
     /// Labels drawn on this row.
     pub labels: u32,
+    /// Runs the row needed at once while it was composed (its share of
+    /// the ring's memory; not priced).
+    pub peak: u32,
     /// 2D polygons and lines of the edge table live on this row: those
     /// whose vertical extent reaches the row's centre (see
     /// [`live_polygons`]).
     pub live: u32,
+    /// Words of the edge table's live set scanned for the row: one per 32
+    /// of the table's polygons and lines, whether live or not.
+    pub words: u32,
+    /// Runs moved by the row's insertions
+    /// ([`RowRuns::moved`](scanvert::port::runs::RowRuns::moved)).
+    pub moved: u32,
 }
 
 /// The work of preparing a frame before its first row.
@@ -155,6 +226,10 @@ pub struct CostModel {
     pub label: i64,
     /// A 2D polygon live on the row.
     pub live: i64,
+    /// A word of the edge table's live set scanned.
+    pub word: i64,
+    /// A run moved by an insertion.
+    pub moved: i64,
     /// Preparing a frame, whatever it holds.
     pub frame: i64,
     /// A command, when preparing.
@@ -167,34 +242,39 @@ impl CostModel {
     /// Fitted by least squares to the instructions the Cortex-M4 image
     /// (`firmware/image`, feature `rows`, under QEMU with
     /// `-icount shift=0`) counted for each row of the eight lists it
-    /// embeds (1,992 rows: `firmware/image/rows-m4.txt`) drawn in 1-row
-    /// bands and encoded into runs, and for preparing each list. The fit
-    /// is `cargo run --release -p scanvert-bench -- --only race`, and the
+    /// embeds (1,992 rows: `firmware/image/rows-m4.txt`), each composed
+    /// as colour runs with no pixel buffer (`ListBands::draw_runs`), and
+    /// for preparing each list. The fit is
+    /// `cargo run --release -p scanvert-bench -- --only race`, and the
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 3.3 % on
-    /// average and 31.6 % at worst (the 3D lists' rows: 7.9 % and 7.0 % on
-    /// average; the 2D lists' 0.1 % to 3.1 %; the worst are W3's first and
-    /// last rows, with 2 to 7 polygons live, which also pay a pass over the
-    /// band table's live bits for its 10,000 polygons, a cost the model has
-    /// no term for). Preparing a list is fitted to the eight lists' counts,
-    /// within 17 %. Labels are in none of the
-    /// measured lists, so `label` is 0 and a label costs its spans and
-    /// pixels. One instruction is taken as one CPU cycle.
+    /// Against the 1,992 measured rows the model's error is 6.9 % on
+    /// average and 37.9 % at worst (the 2D lists' rows: 1.5 % to 10.2 %
+    /// on average, the 3D lists' 12.0 % and 10.0 %; the worst are rows of
+    /// a few hundred instructions, where the counter's step of 40 is a
+    /// large part). A row's cost hardly grows with its width (a quarter
+    /// of an instruction a pixel); the edge table's live set costs 20
+    /// instructions a word of 32 polygons on every row (W3's 313 words),
+    /// and a run moved by an insertion 6. Preparing a list is fitted to
+    /// the eight lists' counts. Labels are in none of the measured lists,
+    /// so `label` is 0 and a label costs its spans and pixels. One
+    /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: -10529,
-        width: 287,
-        span: -1896,
-        pixel: 30,
-        run: 461,
-        entered: 10266,
-        resolved: 5327,
+        row: 870,
+        width: 4,
+        span: 2860,
+        pixel: -3,
+        run: 540,
+        entered: 8238,
+        resolved: 3284,
         label: 0,
-        live: 6227,
-        frame: 113807,
-        command: 10331,
-        trapezoid: 4673,
+        live: 3490,
+        word: 322,
+        moved: 99,
+        frame: 116562,
+        command: 10716,
+        trapezoid: 756,
     };
 
     /// Instructions of a row of `work`, at least 1.
@@ -207,7 +287,9 @@ impl CostModel {
             + self.entered * i64::from(w.entered)
             + self.resolved * i64::from(w.resolved)
             + self.label * i64::from(w.labels)
-            + self.live * i64::from(w.live);
+            + self.live * i64::from(w.live)
+            + self.word * i64::from(w.words)
+            + self.moved * i64::from(w.moved);
         (sixteenths.max(16) as u64).div_ceil(16)
     }
 
@@ -293,7 +375,7 @@ struct Clocks {
 }
 
 impl Clocks {
-    fn new(timing: &VideoTiming, cpu: Clock, k: u16) -> Self {
+    fn new(timing: &VideoTiming, cpu: CpuClock, k: u16) -> Self {
         let v = timing.vertical();
         let line = u128::from(timing.clocks_per_line());
         Clocks {
@@ -328,7 +410,13 @@ impl Clocks {
 /// Which of `rows.len()` rows miss their deadline, from the instructions
 /// of preparing the frame and of each row (see the [module](self) docs):
 /// `true` for a missed row.
-pub fn schedule(prepare: u64, rows: &[u64], timing: &VideoTiming, cpu: Clock, k: u16) -> Vec<bool> {
+pub fn schedule(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    cpu: CpuClock,
+    k: u16,
+) -> Vec<bool> {
     let c = Clocks::new(timing, cpu, k);
     let mut finish = c.cost(prepare);
     let mut missed = Vec::with_capacity(rows.len());
@@ -340,15 +428,53 @@ pub fn schedule(prepare: u64, rows: &[u64], timing: &VideoTiming, cpu: Clock, k:
     missed
 }
 
+/// [`schedule`] with `cores` producers (at least 1) taking the rows in
+/// turn: core `c` draws rows `c`, `c + cores`, … in order, each core at
+/// `cpu`, one instruction a cycle. The first core prepares the frame and
+/// the others wait for it; a row still starts only once line `y − K` has
+/// been scanned (its slot is free), and a core never skips a row. With
+/// one core this is [`schedule`].
+pub fn schedule_cores(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    cpu: CpuClock,
+    k: u16,
+    cores: usize,
+) -> Vec<bool> {
+    let c = Clocks::new(timing, cpu, k);
+    let mut finish = vec![c.cost(prepare); cores.max(1)];
+    let mut missed = Vec::with_capacity(rows.len());
+    for (y, &cost) in rows.iter().enumerate() {
+        let core = &mut finish[y % cores.max(1)];
+        let y = y as u32;
+        *core = (*core).max(c.free(y)) + c.cost(cost);
+        missed.push(*core > c.line_start(y));
+    }
+    missed
+}
+
 /// The lowest CPU clock, in whole kilohertz, at which no row misses its
-/// deadline, or `None` when even 4,294 MHz misses (a frame whose
-/// preparation or rows take longer than the beam gives them).
-pub fn lowest_clock(prepare: u64, rows: &[u64], timing: &VideoTiming, k: u16) -> Option<Clock> {
-    let ok = |khz: u32| {
-        Clock::from_hz(khz * 1000)
-            .is_some_and(|c| !schedule(prepare, rows, timing, c, k).contains(&true))
+/// deadline, or `None` when even [`CpuClock::MAX_MHZ`] misses (a frame
+/// whose preparation or rows take longer than the beam gives them).
+pub fn lowest_clock(prepare: u64, rows: &[u64], timing: &VideoTiming, k: u16) -> Option<CpuClock> {
+    lowest_clock_cores(prepare, rows, timing, k, 1)
+}
+
+/// [`lowest_clock`] with `cores` producers taking the rows in turn
+/// ([`schedule_cores`]).
+pub fn lowest_clock_cores(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    k: u16,
+    cores: usize,
+) -> Option<CpuClock> {
+    let ok = |khz: u64| {
+        CpuClock::from_hz(khz * 1000)
+            .is_some_and(|c| !schedule_cores(prepare, rows, timing, c, k, cores).contains(&true))
     };
-    let (mut lo, mut hi) = (0u32, u32::MAX / 1000);
+    let (mut lo, mut hi) = (0u64, CpuClock::MAX_MHZ * 1000);
     if !ok(hi) {
         return None;
     }
@@ -361,7 +487,7 @@ pub fn lowest_clock(prepare: u64, rows: &[u64], timing: &VideoTiming, k: u16) ->
             lo = mid;
         }
     }
-    Clock::from_hz(hi * 1000)
+    CpuClock::from_hz(hi * 1000)
 }
 
 /// One frame shown by racing the beam.
@@ -375,9 +501,29 @@ pub struct RaceFrame {
     pub rows: Vec<u64>,
     /// Which lines missed their deadline, one a line shown.
     pub missed: Vec<bool>,
+    /// The ring's rows.
+    pub k: u16,
+    /// The format of the ring's rows.
+    pub format: RowFormat,
+    /// The most runs a row needed while it was composed.
+    pub most_runs: usize,
+    /// The most 32-bit words of `pico_scanvideo` tokens a row took (0 for
+    /// rows kept as runs).
+    pub most_words: usize,
 }
 
 impl RaceFrame {
+    /// Bytes of the ring: `K` slots, each as large as the largest row of
+    /// the frame in the ring's format (4 bytes a run, or a word of
+    /// tokens).
+    pub fn ring_bytes(&self) -> usize {
+        let per_row = match self.format {
+            RowFormat::Runs => self.most_runs,
+            RowFormat::Scanvideo => self.most_words,
+        };
+        usize::from(self.k) * per_row * 4
+    }
+
     /// Lines that missed their deadline.
     pub fn misses(&self) -> usize {
         self.missed.iter().filter(|&&m| m).count()
@@ -394,7 +540,14 @@ impl RaceFrame {
 struct InProgress {
     y: u16,
     finish: u128,
-    runs: Vec<Run>,
+    row: Slot,
+}
+
+/// A row in the ring, in its format.
+#[derive(Debug)]
+enum Slot {
+    Runs(Vec<Run>),
+    Tokens(Vec<u32>),
 }
 
 /// The ring of `K` rows and its producer, as the refresh controller's
@@ -407,9 +560,13 @@ struct Ring<'m, P> {
     /// Rows the frame shows.
     lines: u16,
     /// Rows waiting for the beam, oldest first, at most K.
-    slots: std::collections::VecDeque<(u16, Vec<Run>)>,
+    slots: std::collections::VecDeque<(u16, Slot)>,
     /// Emptied run buffers, reused.
     spare: Vec<Vec<Run>>,
+    /// The rows' format in the ring.
+    format: RowFormat,
+    /// The most runs and words of tokens a row took.
+    most: (usize, usize),
     next: u16,
     finished: u128,
     drawing: Option<InProgress>,
@@ -436,9 +593,9 @@ impl<P: Producer> Ring<'_, P> {
                     // Its slot is free: the row K rows up was scanned
                     // before this one started.
                     debug_assert!(self.slots.len() < self.clocks.k as usize);
-                    self.slots.push_back((d.y, d.runs));
-                } else {
-                    self.spare.push(d.runs);
+                    self.slots.push_back((d.y, d.row));
+                } else if let Slot::Runs(runs) = d.row {
+                    self.spare.push(runs);
                 }
             }
             if self.next >= self.lines {
@@ -453,10 +610,20 @@ impl<P: Producer> Ring<'_, P> {
             let work = self.producer.row(y, &mut runs);
             let cost = self.model.row(&work);
             self.costs.push(cost);
+            self.most.0 = self.most.0.max(work.peak as usize).max(runs.len());
+            let row = match self.format {
+                RowFormat::Runs => Slot::Runs(runs),
+                RowFormat::Scanvideo => {
+                    let words = tokens(&runs);
+                    self.most.1 = self.most.1.max(words.len());
+                    self.spare.push(runs);
+                    Slot::Tokens(words)
+                }
+            };
             self.drawing = Some(InProgress {
                 y,
                 finish: start + self.clocks.cost(cost),
-                runs,
+                row,
             });
             self.next += 1;
         }
@@ -475,14 +642,24 @@ impl<P: Producer> Ring<'_, P> {
         }
         self.advance(self.clocks.line_start(u32::from(y)));
         while self.slots.front().is_some_and(|(r, _)| *r < y) {
-            if let Some((_, runs)) = self.slots.pop_front() {
+            if let Some((_, Slot::Runs(runs))) = self.slots.pop_front() {
                 self.spare.push(runs);
             }
         }
         match self.slots.front() {
             Some((r, _)) if *r == y => {
-                if let Some((_, runs)) = self.slots.pop_front() {
-                    self.line = runs;
+                match self.slots.pop_front() {
+                    Some((_, Slot::Runs(runs))) => self.line = runs,
+                    Some((_, Slot::Tokens(words))) => {
+                        let mut line = self.spare.pop().unwrap_or_default();
+                        if decode_tokens(&words, self.producer.size().0, &mut line) {
+                            self.line = line;
+                        } else {
+                            // Never, for the encoder's own tokens.
+                            self.red = true;
+                        }
+                    }
+                    None => {}
                 }
                 self.missed.push(false);
             }
@@ -530,9 +707,22 @@ impl<P: Producer> PixelSource for Ring<'_, P> {
 pub fn race<P: Producer>(
     producer: P,
     timing: &VideoTiming,
-    cpu: Clock,
+    cpu: CpuClock,
     k: u16,
     model: &CostModel,
+) -> RaceFrame {
+    race_in(producer, timing, cpu, k, model, RowFormat::Runs)
+}
+
+/// [`race`] with the ring's rows in `format`: the refresh controller
+/// decodes each row from it as the beam reaches its line.
+pub fn race_in<P: Producer>(
+    producer: P,
+    timing: &VideoTiming,
+    cpu: CpuClock,
+    k: u16,
+    model: &CostModel,
+    format: RowFormat,
 ) -> RaceFrame {
     let clocks = Clocks::new(timing, cpu, k);
     let prepare = model.prepare(&producer.prepare());
@@ -544,6 +734,8 @@ pub fn race<P: Producer>(
         lines,
         slots: Default::default(),
         spare: Vec::new(),
+        format,
+        most: (0, 0),
         next: 0,
         finished: clocks.cost(prepare),
         drawing: None,
@@ -566,14 +758,51 @@ pub fn race<P: Producer>(
         prepare,
         rows: ring.costs,
         missed: ring.missed,
+        k: clocks.k as u16,
+        format,
+        most_runs: ring.most.0,
+        most_words: ring.most.1,
+    }
+}
+
+/// A row of runs as `pico_scanvideo` tokens ([`Opcodes::DEFAULT`],
+/// RGB565 colours), in words sized for it.
+pub fn tokens(runs: &[Run]) -> Vec<u32> {
+    let pixels: usize = runs.iter().map(|r| usize::from(r.len)).sum();
+    let mut words = vec![0u32; (3 * runs.len() + pixels + 4).div_ceil(2)];
+    let it = runs.iter().map(|r| (r.len, scanvideo::rgb565(r.color)));
+    match scanvideo::encode(it, &Opcodes::DEFAULT, &mut words) {
+        Ok(n) => words.truncate(n),
+        // The words are sized for any row; the runs are never empty.
+        Err(_) => words.clear(),
+    }
+    words
+}
+
+/// Decodes a line of `pico_scanvideo` tokens into the runs of its first
+/// `width` pixels (the black pixel after them is the blanking's); `false`
+/// when the tokens are not a line.
+pub fn decode_tokens(words: &[u32], width: u16, line: &mut Vec<Run>) -> bool {
+    let mut px = vec![0u16; usize::from(width) + 1];
+    match scanvideo::decode(words, &Opcodes::DEFAULT, &mut px) {
+        Ok(n) => {
+            let row: Vec<Rgb565> = px[..n.min(usize::from(width))]
+                .iter()
+                .map(|&v| Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(v)))
+                .collect();
+            encode_row(&row, line);
+            true
+        }
+        Err(_) => false,
     }
 }
 
 /// A clock given in megahertz on the command line: digits with an
-/// optional fraction of at most six digits (`168`, `12.5`), above 0 and at
-/// most 4,294.967295 MHz. `None` for anything else (a sign, an exponent,
-/// 0, an empty string).
-pub fn parse_mhz(s: &str) -> Option<Clock> {
+/// optional fraction of at most six digits (`168`, `12.5`), from
+/// 0.000001 (1 Hz) to [`CpuClock::MAX_MHZ`] (100 GHz). `None` for
+/// anything else (a sign, an exponent, 0, an empty string, a clock out
+/// of range).
+pub fn parse_mhz(s: &str) -> Option<CpuClock> {
     let (int, frac) = s.split_once('.').unwrap_or((s, ""));
     let digits = |t: &str| t.bytes().all(|b| b.is_ascii_digit());
     if int.is_empty() || !digits(int) || !digits(frac) || frac.len() > 6 {
@@ -585,7 +814,15 @@ pub fn parse_mhz(s: &str) -> Option<Clock> {
     let int: u64 = int.parse().ok()?;
     let frac_hz: u64 = format!("{frac:0<6}").parse().ok()?;
     let hz = int.checked_mul(1_000_000)?.checked_add(frac_hz)?;
-    Clock::from_hz(u32::try_from(hz).ok()?)
+    CpuClock::from_hz(hz)
+}
+
+/// What the program says of a clock [`parse_mhz`] refuses: the range.
+pub fn mhz_range_message(option: &str) -> String {
+    format!(
+        "{option} needs the CPU clock in MHz: a number from 0.000001 to {} (1 Hz to 100 GHz), such as 168 or 12.5",
+        CpuClock::MAX_MHZ
+    )
 }
 
 /// The line the program prints after a race: `deadline misses: M of N
@@ -594,14 +831,36 @@ pub fn misses_line(misses: usize, lines: usize) -> String {
     format!("deadline misses: {misses} of {lines} lines\n")
 }
 
+/// The line the program prints after the misses: the ring's memory,
+/// `ring: K rows of at most R runs (4 bytes a run): B bytes` (or of
+/// words of `pico_scanvideo` tokens).
+pub fn ring_line(r: &RaceFrame) -> String {
+    let rows = if r.k == 1 { "row" } else { "rows" };
+    match r.format {
+        RowFormat::Runs => format!(
+            "ring: {} {rows} of at most {} runs (4 bytes a run): {} bytes\n",
+            r.k,
+            r.most_runs,
+            r.ring_bytes()
+        ),
+        RowFormat::Scanvideo => format!(
+            "ring: {} {rows} of at most {} words of pico_scanvideo tokens: {} bytes\n",
+            r.k,
+            r.most_words,
+            r.ring_bytes()
+        ),
+    }
+}
+
 /// `scanvert render SCENE --out IMAGE --race MHZ [--fifo K]`: shows the
 /// scene by racing the beam of `timing` and writes what the monitor
 /// showed; returns the line of misses.
 pub(crate) fn render(
     scene: &crate::cli::Scene,
     timing: &VideoTiming,
-    cpu: Clock,
+    cpu: CpuClock,
     fifo: Option<u16>,
+    format: RowFormat,
     out: &std::path::Path,
     warn: &mut dyn FnMut(&str),
 ) -> Result<String, crate::error::CliError> {
@@ -623,22 +882,23 @@ pub(crate) fn render(
         .bands(&list, table)
         .map_err(|e| crate::cli::prepare_error(scene, e))?;
     let rows = ListRows::new(bands, &list);
-    let shown = race(
+    let shown = race_in(
         rows,
         timing,
         cpu,
         fifo.unwrap_or(DEFAULT_FIFO),
         &CostModel::M4,
+        format,
     );
     let png = crate::image::encode_png(&shown.frame).map_err(|e| crate::error::io(out, e))?;
     crate::output::write_output(out, &png)?;
-    Ok(misses_line(shown.misses(), shown.lines()))
+    Ok(misses_line(shown.misses(), shown.lines()) + &ring_line(&shown))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::timing::AxisTiming;
+    use crate::timing::{AxisTiming, Clock};
     use proptest::prelude::*;
 
     fn timing(w: u16, h: u16) -> VideoTiming {
@@ -692,6 +952,8 @@ mod tests {
         resolved: 0,
         label: 0,
         live: 0,
+        word: 0,
+        moved: 0,
         frame: 0,
         command: 16,
         trapezoid: 0,
@@ -715,10 +977,12 @@ mod tests {
 
     #[test]
     fn parse_mhz_takes_decimals_and_refuses_the_rest() {
-        assert_eq!(parse_mhz("168").map(Clock::hz), Some(168_000_000));
-        assert_eq!(parse_mhz("12.5").map(Clock::hz), Some(12_500_000));
-        assert_eq!(parse_mhz("0.000001").map(Clock::hz), Some(1));
-        assert_eq!(parse_mhz("4294.967295").map(Clock::hz), Some(u32::MAX));
+        assert_eq!(parse_mhz("168").map(CpuClock::hz), Some(168_000_000));
+        assert_eq!(parse_mhz("12.5").map(CpuClock::hz), Some(12_500_000));
+        assert_eq!(parse_mhz("0.000001").map(CpuClock::hz), Some(1));
+        assert_eq!(parse_mhz("4294.967296").map(CpuClock::hz), Some(1 << 32));
+        assert_eq!(parse_mhz("10000").map(CpuClock::hz), Some(10_000_000_000));
+        assert_eq!(parse_mhz("100000").map(CpuClock::hz), Some(100_000_000_000));
         for bad in [
             "",
             "0",
@@ -729,7 +993,8 @@ mod tests {
             "abc",
             "1.",
             ".5",
-            "4294.967296",
+            "100000.000001",
+            "184467440737095.51616",
             "1.0000001",
             " 5",
         ] {
@@ -746,14 +1011,26 @@ mod tests {
             prepare: 0,
         };
         // A line is 8 + 3 + 2 + 3 = 16 pixel clocks of 1 µs.
-        let fast = race(p(vec![5; 6]), &t, Clock::from_mhz(1000).unwrap(), 2, &SPANS);
+        let fast = race(
+            p(vec![5; 6]),
+            &t,
+            CpuClock::from_mhz(1000).unwrap(),
+            2,
+            &SPANS,
+        );
         assert_eq!(fast.misses(), 0);
         for y in 0..6u16 {
             let row = fast.frame.row(y).unwrap();
             assert!(row.iter().all(|&c| c == Rgb565::new(y as u8, 63, 1)));
         }
         // 100 instructions a row at 1 MHz: 100 µs a row against 16 µs a line.
-        let slow = race(p(vec![100; 6]), &t, Clock::from_mhz(1).unwrap(), 2, &SPANS);
+        let slow = race(
+            p(vec![100; 6]),
+            &t,
+            CpuClock::from_mhz(1).unwrap(),
+            2,
+            &SPANS,
+        );
         assert!(slow.misses() > 0);
         for y in 0..6u16 {
             let red = slow.frame.row(y).unwrap().iter().all(|&c| c == MISS);
@@ -775,14 +1052,14 @@ mod tests {
             prepare: 60,
         };
         // Prepared at 60 µs, row 0 at 61 µs against line 0 at 64 µs.
-        let r = race(c, &t, Clock::from_mhz(1).unwrap(), 1, &SPANS);
+        let r = race(c, &t, CpuClock::from_mhz(1).unwrap(), 1, &SPANS);
         assert_eq!(r.misses(), 0);
         let c = Costed {
             w: 8,
             costs,
             prepare: 64,
         };
-        let r = race(c, &t, Clock::from_mhz(1).unwrap(), 1, &SPANS);
+        let r = race(c, &t, CpuClock::from_mhz(1).unwrap(), 1, &SPANS);
         assert_eq!(r.missed, [true, false, false, false, false, false]);
     }
 
@@ -795,7 +1072,7 @@ mod tests {
             mhz in 1u32..4,
         ) {
             let t = timing(5, costs.len() as u16);
-            let cpu = Clock::from_mhz(mhz).unwrap();
+            let cpu = CpuClock::from_mhz(u64::from(mhz)).unwrap();
             let r = race(Costed { w: 5, costs: costs.clone(), prepare }, &t, cpu, k, &SPANS);
             let rows: Vec<u64> = costs.iter().map(|&c| u64::from(c.max(1))).collect();
             prop_assert_eq!(&r.rows, &rows);
@@ -819,13 +1096,32 @@ mod tests {
         assert_eq!(live_polygons(&list), [1, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0]);
     }
 
+    proptest! {
+        #[test]
+        fn one_core_is_the_schedule_and_two_are_never_later(
+            costs in proptest::collection::vec(1u64..80, 1..12),
+            prepare in 0u64..200,
+            k in 1u16..5,
+            mhz in 1u64..4,
+        ) {
+            let t = timing(5, costs.len() as u16);
+            let cpu = CpuClock::from_mhz(mhz).unwrap();
+            let one = schedule(prepare, &costs, &t, cpu, k);
+            prop_assert_eq!(&schedule_cores(prepare, &costs, &t, cpu, k, 1), &one);
+            let two = schedule_cores(prepare, &costs, &t, cpu, k, 2);
+            for (a, b) in one.iter().zip(&two) {
+                prop_assert!(!b || *a, "a row missed with two cores and not with one");
+            }
+        }
+    }
+
     #[test]
     fn lowest_clock_is_the_edge_of_no_misses() {
         let t = VideoTiming::REFERENCE_640X480;
         let rows = vec![5376u64; 480];
         let c = lowest_clock(0, &rows, &t, 2).unwrap();
         assert!(!schedule(0, &rows, &t, c, 2).contains(&true));
-        let below = Clock::from_hz(c.hz() - 1000).unwrap();
+        let below = CpuClock::from_hz(c.hz() - 1000).unwrap();
         assert!(schedule(0, &rows, &t, below, 2).contains(&true));
         // 5,376 instructions in a 32 µs line: 168 MHz, a little less for
         // the rows banked in the retrace (K = 2 of 480 rows).
@@ -833,16 +1129,18 @@ mod tests {
     }
 }
 
-/// The producer of a display list's rows: the library's band path with
-/// 1-row bands ([`ListBands`]), each row encoded into colour runs. Its
-/// work per row is what the band path counted for the row (spans, pixels,
-/// labels, the 3D layer's trapezoids entered and spans resolved) and the
-/// runs of the encoding.
+/// The producer of a display list's rows: the library's racing path
+/// ([`ListBands::draw_runs`]), each row composed as colour runs with no
+/// pixel buffer. Its work per row is what the path counted for the row
+/// (spans, pixels, labels, the 3D layer's trapezoids entered and spans
+/// resolved, runs moved by insertions), the row's runs, and the edge
+/// table's polygons live on it and words of its live set scanned.
 #[derive(Debug)]
 pub struct ListRows<'t> {
     bands: ListBands<'t>,
     live: Vec<u32>,
-    row: Vec<Rgb565>,
+    words: u32,
+    row: Vec<ColorRun<Rgb565>>,
     last: RenderStats,
     prepare: PrepareWork,
 }
@@ -853,9 +1151,11 @@ impl<'t> ListRows<'t> {
     /// none drawn yet.
     pub fn new(bands: ListBands<'t>, list: &DisplayList<'_>) -> Self {
         let s = bands.stats();
+        let entries = list.table_needs();
         ListRows {
             live: live_polygons(list),
-            row: vec![Rgb565::new(0, 0, 0); usize::from(bands.size().0)],
+            words: entries.polygons.div_ceil(32) as u32,
+            row: vec![ColorRun::new(0, Rgb565::new(0, 0, 0)); usize::from(bands.size().0)],
             last: s,
             prepare: PrepareWork {
                 commands: s.commands,
@@ -865,6 +1165,16 @@ impl<'t> ListRows<'t> {
             bands,
         }
     }
+}
+
+/// The runs of a composed row as the ring's runs (lengths).
+fn ring_runs(row: &RowRuns<'_, Rgb565>, out: &mut Vec<Run>) -> usize {
+    out.clear();
+    out.extend(row.runs().map(|(x0, x1, color)| Run {
+        len: x1 - x0,
+        color,
+    }));
+    out.len()
 }
 
 /// The work of a row from the band path's counters before and after it,
@@ -882,7 +1192,7 @@ fn row_work(before: &RenderStats, after: &RenderStats, width: u16, runs: usize) 
         entered: after.visible.trapezoids - before.visible.trapezoids,
         resolved: resolved(after) - resolved(before),
         labels: after.labels - before.labels,
-        live: 0,
+        ..RowWork::default()
     }
 }
 
@@ -937,14 +1247,18 @@ impl Producer for ListRows<'_> {
         self.prepare
     }
     fn row(&mut self, y: u16, runs: &mut Vec<Run>) -> RowWork {
-        // Rows come in order and inside the frame, and the buffer is a
-        // row wide: the band path refuses none of them.
-        let drawn = self.bands.draw(y, 1, &mut self.row);
+        // Rows come in order and inside the frame, and the runs are as
+        // many as the row's pixels: the path refuses none of them.
+        let mut row = RowRuns::new(&mut self.row);
+        let drawn = self.bands.draw_runs(y, &mut row);
         debug_assert!(drawn.is_ok());
-        let n = encode_row(&self.row, runs);
+        let n = ring_runs(&row, runs);
         let now = self.bands.stats();
         let mut work = row_work(&self.last, &now, self.bands.size().0, n);
         work.live = self.live.get(usize::from(y)).copied().unwrap_or(0);
+        work.words = self.words;
+        work.moved = row.moved();
+        work.peak = row.peak() as u32;
         self.last = now;
         work
     }
@@ -963,8 +1277,8 @@ pub fn list_work(list: &DisplayList<'_>) -> Option<(PrepareWork, Vec<RowWork>)> 
 }
 
 /// The producer of a 3D scene's rows: the scene's band pass
-/// ([`Scene::bands`](scanvert::scene::Scene::bands)) with 1-row bands,
-/// each row encoded into colour runs. The scene's polygons are already
+/// ([`Scene::bands`](scanvert::scene::Scene::bands)), each row composed
+/// as colour runs ([`SceneBands::draw_runs`]). The scene's polygons are already
 /// cut into trapezoids (by `Scene::update`, before the pass, which is not
 /// counted), so preparing the pass is priced as the frame term of the
 /// model alone.
@@ -972,7 +1286,7 @@ pub fn list_work(list: &DisplayList<'_>) -> Option<(PrepareWork, Vec<RowWork>)> 
 pub struct SceneRows<'s, 'a, 'w> {
     bands: SceneBands<'s, 'a, 'w, Rgb565>,
     size: (u16, u16),
-    row: Vec<Rgb565>,
+    row: Vec<ColorRun<Rgb565>>,
     last: SceneFrame,
 }
 
@@ -984,7 +1298,7 @@ impl<'s, 'a, 'w> SceneRows<'s, 'a, 'w> {
             last: bands.frame(),
             bands,
             size,
-            row: vec![Rgb565::new(0, 0, 0); usize::from(size.0)],
+            row: vec![ColorRun::new(0, Rgb565::new(0, 0, 0)); usize::from(size.0)],
         }
     }
 }
@@ -997,9 +1311,11 @@ impl Producer for SceneRows<'_, '_, '_> {
         PrepareWork::default()
     }
     fn row(&mut self, y: u16, runs: &mut Vec<Run>) -> RowWork {
-        let drawn = self.bands.draw(y, 1, &mut self.row);
+        let mut row = RowRuns::new(&mut self.row);
+        let drawn = self.bands.draw_runs(y, &mut row);
         debug_assert!(drawn.is_ok());
-        let n = encode_row(&self.row, runs);
+        let n = ring_runs(&row, runs);
+        let (moved, peak) = (row.moved(), row.peak() as u32);
         let (a, b) = (self.last, self.bands.frame());
         self.last = b;
         let resolved = |f: &SceneFrame| {
@@ -1016,7 +1332,9 @@ impl Producer for SceneRows<'_, '_, '_> {
             entered: b.visible.trapezoids - a.visible.trapezoids,
             resolved: resolved(&b) - resolved(&a),
             labels: b.labels.drawn - a.labels.drawn,
-            live: 0,
+            moved,
+            peak,
+            ..RowWork::default()
         }
     }
 }
@@ -1028,8 +1346,9 @@ pub(crate) fn demo(
     dir: &std::path::Path,
     frames: usize,
     timing: &VideoTiming,
-    cpu: Clock,
+    cpu: CpuClock,
     fifo: Option<u16>,
+    format: RowFormat,
 ) -> Result<String, crate::error::CliError> {
     use crate::demo::{HEIGHT, WIDTH};
     use scanvert::scene::DEFAULT_FONT;
@@ -1037,6 +1356,8 @@ pub(crate) fn demo(
     std::fs::create_dir_all(dir).map_err(|e| crate::error::io(dir, e))?;
     let mut report = String::new();
     let mut failure = None;
+    // The ring sized for every frame.
+    let mut ring: Option<RaceFrame> = None;
     let mut i = 0;
     crate::demo::drive(
         frames,
@@ -1046,12 +1367,13 @@ pub(crate) fn demo(
                 return;
             }
             let shown = match scene.bands(Resolve::default(), background, DEFAULT_FONT) {
-                Ok(bands) => race(
+                Ok(bands) => race_in(
                     SceneRows::new(bands, (WIDTH, HEIGHT)),
                     timing,
                     cpu,
                     fifo.unwrap_or(DEFAULT_FIFO),
                     &CostModel::M4,
+                    format,
                 ),
                 Err(e) => {
                     failure = Some(crate::error::input(std::path::Path::new("demo"), e));
@@ -1066,12 +1388,18 @@ pub(crate) fn demo(
                 Ok(()) => {
                     report += &format!("frame {i:02}: ");
                     report += &misses_line(shown.misses(), shown.lines());
+                    let most = ring.get_or_insert_with(|| shown.clone());
+                    most.most_runs = most.most_runs.max(shown.most_runs);
+                    most.most_words = most.most_words.max(shown.most_words);
                 }
                 Err(e) => failure = Some(e),
             }
             i += 1;
         },
     )?;
+    if let Some(r) = &ring {
+        report += &ring_line(r);
+    }
     match failure {
         Some(e) => Err(e),
         None => Ok(report),
@@ -1079,16 +1407,17 @@ pub(crate) fn demo(
 }
 
 /// The instructions, from `model`, of preparing and of each row of every
-/// frame of the demo's first `frames` steps (`scanvert demo`).
+/// frame of the demo's first `frames` steps (`scanvert demo`), with the
+/// most runs a row of the frame needed.
 pub fn demo_costs(
     frames: usize,
     model: &CostModel,
-) -> Result<Vec<(u64, Vec<u64>)>, crate::error::CliError> {
+) -> Result<Vec<(u64, Vec<u64>, usize)>, crate::error::CliError> {
     use crate::demo::{HEIGHT, WIDTH};
     use scanvert::scene::DEFAULT_FONT;
     use scanvert::visible::sweep::Resolve;
     let timing = VideoTiming::for_frame(WIDTH, HEIGHT);
-    let cpu = Clock::from_mhz(1000).expect("1 GHz");
+    let cpu = CpuClock::from_mhz(1000).expect("1 GHz");
     let mut costs = Vec::new();
     crate::demo::drive(
         frames,
@@ -1102,7 +1431,7 @@ pub fn demo_costs(
                     1,
                     model,
                 );
-                costs.push((r.prepare, r.rows));
+                costs.push((r.prepare, r.rows, r.most_runs));
             }
         },
     )?;

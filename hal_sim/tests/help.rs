@@ -222,7 +222,7 @@ fn every_usage_lists_every_option_its_command_takes() {
         .and_then(|s| s.split("```").next())
         .expect("the README's command-line block");
     let all = help(&["help"]);
-    let values: [(&str, &[&str]); 10] = [
+    let values: [(&str, &[&str]); 11] = [
         ("--out", &["x.out"]),
         ("--timing", &["auto"]),
         ("--stats", &[]),
@@ -230,6 +230,7 @@ fn every_usage_lists_every_option_its_command_takes() {
         ("--resolve", &["paint"]),
         ("--race", &["168"]),
         ("--fifo", &["2"]),
+        ("--ring", &["runs"]),
         ("--frames", &["1"]),
         ("--size", &["32x32"]),
         ("--no-speed", &[]),

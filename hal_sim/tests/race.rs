@@ -1,8 +1,11 @@
-//! `scanvert render --race MHZ [--fifo K]`: racing the beam with no frame
-//! RAM. At a very high clock no line is missed and the image is the plain
-//! render's; at a very low clock lines are missed, every pixel of a missed
-//! line is pure red, and the printed count is the red lines; bad options
-//! are usage errors (exit 2) that write no image.
+//! `scanvert render --race MHZ [--fifo K] [--ring runs|scanvideo]`:
+//! racing the beam with no frame RAM. At a very high clock (up to
+//! 100 GHz) no line is missed and the image is the plain render's, with
+//! the ring's rows as colour runs or as `pico_scanvideo` tokens; at a very
+//! low clock lines are missed, every pixel of a missed line is pure red,
+//! and the printed count is the red lines; the ring's memory is printed
+//! after the misses; bad options are usage errors (exit 2) that write no
+//! image, and a clock out of range is told the range.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -63,15 +66,30 @@ fn render(src: &Path, name: &str, extra: &[&str]) -> (String, Vec<u8>) {
     (String::from_utf8_lossy(&o.stdout).into_owned(), px)
 }
 
-/// `(M, N)` of the one line `deadline misses: M of N lines`.
+/// `(M, N)` of the line `deadline misses: M of N lines`, which the line
+/// of the ring's memory follows.
 fn misses(out: &str) -> (usize, usize) {
-    assert_eq!(out.lines().count(), 1, "{out}");
-    let rest = out
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 2, "{out}");
+    ring_bytes(lines[1]);
+    let rest = lines[0]
         .strip_prefix("deadline misses: ")
-        .and_then(|r| r.strip_suffix(" lines\n"))
+        .and_then(|r| r.strip_suffix(" lines"))
         .unwrap_or_else(|| panic!("{out:?}"));
     let (m, n) = rest.split_once(" of ").expect("M of N");
     (m.parse().expect("M"), n.parse().expect("N"))
+}
+
+/// The bytes of a line `ring: K rows of at most R runs (4 bytes a run):
+/// B bytes` (or of words of tokens), checked to be `K × R × 4`.
+fn ring_bytes(line: &str) -> usize {
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(words[0], "ring:", "{line}");
+    let k: usize = words[1].parse().expect("K");
+    let r: usize = words[6].parse().expect("R");
+    let b: usize = words[words.len() - 2].parse().expect("B");
+    assert_eq!(b, k * r * 4, "{line}");
+    b
 }
 
 /// Rows of `px` (`w` pixels of 3 bytes) that are pure red throughout.
@@ -90,14 +108,16 @@ fn a_fast_cpu_misses_nothing_and_shows_the_plain_render() {
         (Some("1"), "fast-k1"),
         (Some("16"), "fast-k16"),
     ] {
-        let mut extra = vec!["--race", "4000"];
-        extra.extend(k.iter().flat_map(|k| ["--fifo", *k]));
-        let (out, px) = render(&src, name, &extra);
-        assert_eq!(misses(&out), (0, 64));
-        assert!(
-            px == plain,
-            "{name}: the image differs from the plain render"
-        );
+        for (mhz, ring) in [("4000", "runs"), ("10000", "scanvideo"), ("100000", "runs")] {
+            let mut extra = vec!["--race", mhz, "--ring", ring];
+            extra.extend(k.iter().flat_map(|k| ["--fifo", *k]));
+            let (out, px) = render(&src, name, &extra);
+            assert_eq!(misses(&out), (0, 64));
+            assert!(
+                px == plain,
+                "{name} at {mhz} MHz, {ring}: the image differs from the plain render"
+            );
+        }
     }
 }
 
@@ -115,7 +135,8 @@ fn a_slow_cpu_misses_lines_shown_red_and_counted() {
     for mhz in ["100", "200", "300", "400", "500", "600", "700", "800"] {
         for k in ["1", "2", "4"] {
             let name = format!("slow-{mhz}-{k}");
-            let (out, px) = render(&src, &name, &["--race", mhz, "--fifo", k]);
+            let ring = if k == "2" { "scanvideo" } else { "runs" };
+            let (out, px) = render(&src, &name, &["--race", mhz, "--fifo", k, "--ring", ring]);
             let (m, n) = misses(&out);
             assert_eq!(n, 64);
             assert_eq!(red_rows(&px, 96), m, "{name}");
@@ -147,6 +168,11 @@ fn bad_race_options_are_usage_errors_and_write_no_image() {
         &["--fifo", "2"],
         &["--race", "168", "--band-rows", "4"],
         &["--race", "168", "--stats"],
+        &["--race", "100000.000001"],
+        &["--race", "1000000"],
+        &["--race", "168", "--ring", "pixels"],
+        &["--race", "168", "--ring"],
+        &["--ring", "runs"],
     ] {
         let _ = std::fs::remove_file(&png);
         let mut args = vec!["render", s(&src), "--out", s(&png)];
@@ -155,12 +181,20 @@ fn bad_race_options_are_usage_errors_and_write_no_image() {
         assert_eq!(o.status.code(), Some(2), "{extra:?}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(
-            err.contains("--race") || err.contains("--fifo"),
+            err.contains("--race") || err.contains("--fifo") || err.contains("--ring"),
             "{extra:?}: {err}"
         );
         assert!(!png.exists(), "{extra:?} wrote an image");
         assert!(o.stdout.is_empty(), "{extra:?}");
     }
+    // A clock out of range is told the range.
+    let mut args = vec!["render", s(&src), "--out", s(&png)];
+    args.extend_from_slice(&["--race", "200000"]);
+    let err = String::from_utf8_lossy(&scanvert(&args).stderr).into_owned();
+    assert!(
+        err.contains("from 0.000001 to 100000") && err.contains("100 GHz"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -170,10 +204,12 @@ fn the_demo_races_every_frame() {
     let o = scanvert(&["demo", "--race", "4000", "--frames", "2", "--out", s(&out)]);
     assert_eq!(o.status.code(), Some(0));
     let text = String::from_utf8_lossy(&o.stdout);
+    let (frames, ring) = text.rsplit_once("ring: ").expect("the ring's line");
     assert_eq!(
-        text,
+        frames,
         "frame 00: deadline misses: 0 of 256 lines\nframe 01: deadline misses: 0 of 256 lines\n"
     );
+    assert!(ring_bytes(&format!("ring: {ring}")) > 0);
     // Each frame is the demo's step drawn from scratch into a frame buffer.
     for (i, step) in scanvert_sim::demo::steps(2).into_iter().enumerate() {
         let want = scanvert_sim::demo::reference_frame(step).expect("reference");
@@ -195,10 +231,8 @@ fn the_demo_races_every_frame() {
         s(&out),
     ]);
     assert_eq!(o.status.code(), Some(0));
-    assert_eq!(
-        String::from_utf8_lossy(&o.stdout),
-        "frame 00: deadline misses: 256 of 256 lines\n"
-    );
+    assert!(String::from_utf8_lossy(&o.stdout)
+        .starts_with("frame 00: deadline misses: 256 of 256 lines\nring: "));
     let png = std::fs::read(out.join("frame-00.png")).expect("frame");
     let (w, _, px) = scanvert_sim::image::decode_png(&png).expect("decode");
     assert_eq!(red_rows(&px, w as usize), 256);

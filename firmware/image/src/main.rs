@@ -23,8 +23,8 @@
 //! everything but the pixel writes; `halfword` renders into
 //! `FrameBuffer<Rgb565>`, one half-word store a pixel, instead of the
 //! default `PackedFrameBuffer` (two pixels to a word, written a word at a
-//! time), to compare the two; `rows` (with `bands`) draws every list again
-//! in 1-row bands and prints each row's instructions (`src/rows.rs`), the
+//! time), to compare the two; `rows` (with `bands`) composes every list again
+//! one row at a time as colour runs and prints each row's instructions (`src/rows.rs`), the
 //! measurements of the simulator's cost model of racing the beam;
 //! `budget` (and `budget-poly3`) renders instead only the lists of a RAM
 //! budget, band by band with no frame buffer, in statics sized exactly
@@ -474,8 +474,12 @@ pub fn run() -> bool {
         }
         // Each list again, one row at a time, each row counted.
         #[cfg(feature = "rows")]
-        for scene in scenes::SCENES {
-            ok &= rows::measure(scene, &mut edges, mem, &mut table, &counter);
+        {
+            for scene in scenes::SCENES {
+                ok &= rows::measure(scene, &mut edges, mem, &mut table, &counter);
+            }
+            ok &= rows::measure_empty(&mut edges, mem, &mut table, &counter);
+            rows::measure_inserts(&counter);
         }
     }
     log::summary(matched, frames, ok);

@@ -1,22 +1,31 @@
-//! Instructions per row of the band path with 1-row bands, for the
-//! simulator's cost model of racing the beam (`hal_sim/src/race.rs`).
+//! Instructions per row of the racing path, for the simulator's cost
+//! model of racing the beam (`hal_sim/src/race.rs`).
 //!
 //! Every embedded list is prepared once (`Controller::bands`, counted on
-//! a line `prepare NAME instructions=N`) and then drawn one row at a time
-//! (`ListBands::draw(y, 1, …)`), each row counted on its own and printed
-//! as `row NAME Y instructions=N`. The counter is SysTick, one tick per
-//! 40 instructions under `-icount shift=0`, so each count is a multiple of
-//! 40, within 40 of the row's instructions. The counted span is what the
-//! producer of the simulator's ring does for a row: the draw call, then
-//! the row encoded into colour runs (`encode`); nothing is shipped. With the feature `rows` (which implies
-//! `bands`): `cargo run --release --features rows`; the counts are kept in
+//! a line `prepare NAME instructions=N`) and then composed one row at a
+//! time as colour runs (`ListBands::draw_runs`, into a run list of the
+//! frame's width, no pixel buffer), each row counted on its own
+//! and printed as `row NAME Y instructions=N`: what the producer of the
+//! simulator's ring does for a row. Then, for the row-format encoder,
+//! each row's runs are encoded as `pico_scanvideo` tokens
+//! (`port::scanvideo::encode`), counted on its own as
+//! `tokens NAME Y instructions=N`. Last, an empty 512 × 256 list, its 256
+//! rows counted together, on a line `empty 512 rows=256
+//! instructions=N` (the mean of an empty row to within 40 / 256).
+//!
+//! The counter is SysTick, one tick per 40 instructions under
+//! `-icount shift=0`, so each count is a multiple of 40, within 40 of the
+//! row's instructions. With the feature `rows` (which implies `bands`):
+//! `cargo run --release --features rows`; the counts are kept in
 //! `rows-m4.txt`, to which `cargo run --release -p scanvert-bench --
 //! --only race` fits the cost model.
 
 use crate::bands::{Table, TABLE_EDGES, TABLE_LINES, TABLE_POLYGONS};
 use crate::{platform, Memory3d, Scene};
 use scanvert::controller::Controller;
-use scanvert::display_list::{Command, DisplayList};
+use scanvert::display_list::{Command, DisplayList, Writer};
+use scanvert::port::runs::{ColorRun, RowRuns};
+use scanvert::port::scanvideo::{self, Opcodes};
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
 use scanvert::raster::table::TableMemory;
@@ -25,8 +34,15 @@ use scanvert::visible::Resolve;
 #[cfg(not(feature = "defmt"))]
 use semihosting::println;
 
-/// Prepares `scene` once and draws it row by row, printing each row's
-/// instructions. `false` if a row could not be drawn.
+/// Runs a row holds at most: one a pixel of the widest frame.
+const ROW_RUNS: usize = 512;
+
+/// Words of tokens a row takes at most: three tokens a run and one a
+/// pixel of the short runs, the black pixel and the end.
+const ROW_WORDS: usize = (3 * ROW_RUNS + 512 + 4).div_ceil(2);
+
+/// Prepares `scene` once and composes it row by row, printing each row's
+/// instructions. `false` if a row could not be composed.
 pub fn measure(
     scene: &Scene,
     edges: &mut [Edge],
@@ -37,6 +53,36 @@ pub fn measure(
     let Ok(list) = DisplayList::new_checked(scene.list) else {
         return false;
     };
+    rows(scene.name, &list, edges, mem, table, counter, true)
+}
+
+/// An empty 512 × 256 list, composed row by row, its rows counted
+/// together.
+pub fn measure_empty(
+    edges: &mut [Edge],
+    mem: &mut Memory3d,
+    table: &mut Table,
+    counter: &platform::Counter,
+) -> bool {
+    let mut buf = [0u8; 64];
+    let Ok(writer) = Writer::new(&mut buf, 512, 256) else {
+        return false;
+    };
+    let Ok(list) = DisplayList::new_checked(writer.finish()) else {
+        return false;
+    };
+    rows("empty", &list, edges, mem, table, counter, false)
+}
+
+fn rows(
+    name: &str,
+    list: &DisplayList<'_>,
+    edges: &mut [Edge],
+    mem: &mut Memory3d,
+    table: &mut Table,
+    counter: &platform::Counter,
+    each: bool,
+) -> bool {
     let need = list.table_needs();
     if need.polygons > TABLE_POLYGONS || need.edges > TABLE_EDGES || need.lines > TABLE_LINES {
         return true;
@@ -47,7 +93,7 @@ pub fn measure(
         index,
         edges: table_edges,
         lines,
-        band,
+        ..
     } = table;
     let t = TableMemory {
         polygons: &mut polygons[..],
@@ -60,49 +106,94 @@ pub fn measure(
         c = c.with_3d(mem.as_memory()).with_resolve(Resolve::Crossing);
     }
     let t0 = counter.ticks();
-    let Ok(mut bands) = c.bands(&list, t) else {
+    let Ok(mut bands) = c.bands(list, t) else {
         return false;
     };
-    report_prepare(
-        scene.name,
-        (counter.ticks() - t0) * platform::INSTRUCTIONS_PER_TICK,
-    );
-    let (w, h) = bands.size();
-    let mut runs = [(0u16, crate::BLACK); ROW_RUNS];
+    if each {
+        report_prepare(
+            name,
+            (counter.ticks() - t0) * platform::INSTRUCTIONS_PER_TICK,
+        );
+    }
+    let h = bands.size().1;
+    let mut runs = [ColorRun::new(0, crate::BLACK); ROW_RUNS];
+    let mut row = RowRuns::new(&mut runs);
+    let mut words = [0u32; ROW_WORDS];
+    let all = counter.ticks();
     for y in 0..h {
         let t0 = counter.ticks();
-        let drawn = bands.draw(y, 1, &mut band[..]);
-        let n = encode(&band[..usize::from(w)], &mut runs);
-        core::hint::black_box((&runs, n));
+        let drawn = bands.draw_runs(y, &mut row);
+        core::hint::black_box(row.as_slice());
         let ticks = counter.ticks() - t0;
         if drawn.is_err() {
             return false;
         }
-        report_row(scene.name, y, ticks * platform::INSTRUCTIONS_PER_TICK);
+        if !each {
+            continue;
+        }
+        report_row("row", name, y, ticks * platform::INSTRUCTIONS_PER_TICK);
+        let t0 = counter.ticks();
+        let encoded = tokens(&row, &mut words);
+        core::hint::black_box(&words);
+        let ticks = counter.ticks() - t0;
+        if encoded.is_none() {
+            return false;
+        }
+        report_row("tokens", name, y, ticks * platform::INSTRUCTIONS_PER_TICK);
+    }
+    if !each {
+        report_empty(
+            name,
+            bands.size().0,
+            h,
+            (counter.ticks() - all) * platform::INSTRUCTIONS_PER_TICK,
+        );
     }
     true
 }
 
-/// Runs a row holds at most: one a pixel of the widest frame.
-const ROW_RUNS: usize = 512;
-
-/// Encodes `row` as runs of (length, colour) into `runs`, as the
-/// simulator's producer does; returns the runs written.
-#[inline(never)]
-fn encode(row: &[crate::Pixel], runs: &mut [(u16, crate::Pixel); ROW_RUNS]) -> usize {
-    let mut n = 0;
-    for &p in row {
-        match runs[..n].last_mut() {
-            Some((len, c)) if *c == p => *len += 1,
-            _ => {
-                if let Some(r) = runs.get_mut(n) {
-                    *r = (1, p);
-                    n += 1;
-                }
+/// Spans inserted into a row of runs alone: 256 rows of 320 pixels, each
+/// with `spans` spans of pseudo-random place, length and colour (of four)
+/// inserted in turn, counted together; printed as `insert SPANS
+/// rows=256 instructions=N`.
+pub fn measure_inserts(counter: &platform::Counter) {
+    use scanvert::port::{Span, SpanTarget};
+    for spans in [1u32, 4, 16, 64] {
+        let mut runs = [ColorRun::new(0, crate::BLACK); 320];
+        let mut seed = 0x1234_5678u32;
+        let mut next = move || {
+            seed = seed.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+            seed >> 8
+        };
+        let t0 = counter.ticks();
+        for _ in 0..256 {
+            let mut row = RowRuns::new(&mut runs);
+            row.start(0, (320, 1), crate::BLACK);
+            for _ in 0..spans {
+                let x0 = (next() % 320) as u16;
+                let len = (next() % 40) as u16 + 1;
+                let color = crate::Pixel::new((next() % 4) as u8, 0, 0);
+                let span = Span {
+                    y: 0,
+                    x0,
+                    x1: (x0 + len).min(320),
+                };
+                let Ok(()) = core::hint::black_box(&mut row).fill_span(span, color);
             }
+            core::hint::black_box(row.as_slice());
         }
+        let n = (counter.ticks() - t0) * platform::INSTRUCTIONS_PER_TICK;
+        report_empty("insert", spans as u16, 256, n);
     }
-    n
+}
+
+/// The row's runs as `pico_scanvideo` tokens; the words written.
+#[inline(never)]
+fn tokens(row: &RowRuns<'_, crate::Pixel>, words: &mut [u32]) -> Option<usize> {
+    let runs = row
+        .runs()
+        .map(|(x0, x1, c)| (x1 - x0, scanvideo::rgb565(c)));
+    scanvideo::encode(runs, &Opcodes::DEFAULT, words).ok()
 }
 
 fn report_prepare(name: &str, instructions: u64) {
@@ -112,14 +203,28 @@ fn report_prepare(name: &str, instructions: u64) {
     defmt::info!("prepare {=str} instructions={=u64}", name, instructions);
 }
 
-fn report_row(name: &str, y: u16, instructions: u64) {
+fn report_row(what: &str, name: &str, y: u16, instructions: u64) {
     #[cfg(not(feature = "defmt"))]
-    println!("row {name} {y} instructions={instructions}");
+    println!("{what} {name} {y} instructions={instructions}");
     #[cfg(feature = "defmt")]
     defmt::info!(
-        "row {=str} {=u16} instructions={=u64}",
+        "{=str} {=str} {=u16} instructions={=u64}",
+        what,
         name,
         y,
+        instructions
+    );
+}
+
+fn report_empty(name: &str, width: u16, rows: u16, instructions: u64) {
+    #[cfg(not(feature = "defmt"))]
+    println!("{name} {width} rows={rows} instructions={instructions}");
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "{=str} {=u16} rows={=u16} instructions={=u64}",
+        name,
+        width,
+        rows,
         instructions
     );
 }

@@ -18,8 +18,9 @@ use super::frame::{FramePass, Layer};
 use super::{build_layer, Controller, ListScene, RenderError, RenderStats};
 use crate::color::ListColor;
 use crate::display_list::DisplayList;
-use crate::port::band::{check_band, check_buffer, fill_background};
+use crate::port::band::{check_band, check_buffer};
 use crate::port::band::{Band, BandTarget, BandsError};
+use crate::port::runs::{RowRuns, Rows, RowsError};
 use crate::port::Counts;
 use crate::raster::table::{EdgeTable, TableError, TableMemory};
 use crate::scene::label;
@@ -140,6 +141,35 @@ impl ListBands<'_> {
         Ok(band.rows())
     }
 
+    /// Composes row `y` as colour runs into `row` (see
+    /// [`port::runs`](crate::port::runs)), through the same stages and in
+    /// the same order as [`draw`](Self::draw) draws a band of that row:
+    /// the background one run, then every span inserted over it. Rows
+    /// between the last one drawn and `y` are skipped. The row decodes to
+    /// the pixels `draw` writes for it. Returns what was drawn.
+    pub fn draw_runs<C>(
+        &mut self,
+        y: u16,
+        row: &mut RowRuns<'_, C>,
+    ) -> Result<Counts, RowsError<PrepareError>>
+    where
+        C: ListColor,
+    {
+        check_band(y, 1, self.next, self.size.1)?;
+        let black = C::from_rgb888(Rgb888::BLACK);
+        row.start(y, self.size, black);
+        let counts = self
+            .draw_band(row, Some(black))
+            .map_err(|e| RowsError::Render(self.layer_error(e)))?;
+        if row.overflowed() {
+            return Err(RowsError::Full {
+                y,
+                capacity: row.capacity(),
+            });
+        }
+        Ok(counts)
+    }
+
     /// A visible-surface error of the 3D layer, as the full frame reports
     /// it.
     fn layer_error(&self, e: VisibleError<Infallible>) -> PrepareError {
@@ -147,14 +177,15 @@ impl ListBands<'_> {
         PrepareError::Render(super::visible_error(first, e))
     }
 
-    /// Draws the band's rows over what is in it (see [`Layer::draw`]).
-    fn draw_band<C: ListColor>(
+    /// Draws the band's rows (pixels or runs) over what is in it (see
+    /// [`Layer::draw`]).
+    fn draw_band<C: ListColor, B: Rows<Color = C>>(
         &mut self,
-        band: &mut Band<'_, C>,
+        band: &mut B,
         background: Option<C>,
     ) -> Result<Counts, VisibleError<Infallible>> {
         let (w, h) = self.size;
-        let y = band.y();
+        let y = band.first();
         if y > self.next {
             self.table.skip(y as i32);
             if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
@@ -177,15 +208,15 @@ impl ListBands<'_> {
                 .as_ref()
                 .is_some_and(|scene| (scene.store().width(), scene.store().height()) == (w, h));
         if !layer_fills {
-            fill_background(band, background);
+            band.background(background);
         }
         let mut counts = ok(self.table.draw(band.end() as i32, band));
         if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
             let (store, labels, ws) = scene.band_parts();
             let under = if layer_fills { background } else { None };
-            counts += sweep.draw(store, ws, band.rows(), band, under)?;
+            counts += sweep.draw(store, ws, band.count(), band, under)?;
             self.stats.visible = sweep.stats();
-            let rows = (band.y() as i32, band.end() as i32);
+            let rows = (band.first() as i32, band.end() as i32);
             let c = ok(labels.draw_rows(label::DEFAULT_FONT, rows, band));
             counts += c.written;
             self.stats.labels += c.drawn;

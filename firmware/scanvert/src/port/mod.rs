@@ -14,6 +14,8 @@ pub mod draw_target;
 pub mod framebuffer;
 pub mod packed;
 pub mod panel;
+pub mod runs;
+pub mod scanvideo;
 
 pub use checksum::Checksum;
 pub use framebuffer::FrameBuffer;

@@ -21,6 +21,7 @@ use crate::color::ListColor;
 pub use crate::port::band::DirtyRows;
 use crate::port::band::Mix;
 use crate::port::band::{check_band, Band, BandsError};
+use crate::port::runs::{RowRuns, Rows, RowsError};
 use crate::port::Counts;
 use crate::visible::store::TrapezoidStore;
 use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
@@ -78,22 +79,48 @@ impl<C: ListColor> SceneBands<'_, '_, '_, C> {
         Ok(band.rows())
     }
 
-    /// Draws the band's rows over what is in it: the lowest layer with
-    /// `background` (see
-    /// [`Layer::draw`](crate::controller::frame::Layer::draw)).
-    pub(crate) fn draw_band(
+    /// Composes row `y` as colour runs into `row` (see
+    /// [`port::runs`](crate::port::runs)), through the same stages as
+    /// [`draw`](Self::draw) draws a band of that row: the sweep's runs
+    /// (the background between faces among them), then the labels'
+    /// glyph rows. Rows between the last one drawn and `y` are skipped.
+    /// The row decodes to the pixels `draw` writes for it. Returns what
+    /// was drawn.
+    pub fn draw_runs(
         &mut self,
-        band: &mut Band<'_, C>,
+        y: u16,
+        row: &mut RowRuns<'_, C>,
+    ) -> Result<Counts, RowsError<VisibleError<Infallible>>> {
+        let size = (self.store.width(), self.store.height());
+        check_band(y, 1, self.next, size.1)?;
+        row.start(y, size, self.background);
+        let background = Some(self.background);
+        let counts = self.draw_band(row, background).map_err(RowsError::Render)?;
+        if row.overflowed() {
+            return Err(RowsError::Full {
+                y,
+                capacity: row.capacity(),
+            });
+        }
+        Ok(counts)
+    }
+
+    /// Draws the band's rows (pixels or runs) over what is in it: the
+    /// lowest layer with `background` (see
+    /// [`Layer::draw`](crate::controller::frame::Layer::draw)).
+    pub(crate) fn draw_band<B: Rows<Color = C>>(
+        &mut self,
+        band: &mut B,
         background: Option<C>,
     ) -> Result<Counts, VisibleError<Infallible>> {
-        let (store, y) = (self.store, band.y());
+        let (store, y) = (self.store, band.first());
         if y > self.next {
             self.sweep.skip(store, self.workspace, y - self.next)?;
         }
         let d = self
             .sweep
-            .draw(store, self.workspace, band.rows(), band, background)?;
-        let rows = (band.y() as i32, band.end() as i32);
+            .draw(store, self.workspace, band.count(), band, background)?;
+        let rows = (band.first() as i32, band.end() as i32);
         let l = match self.labels.draw_rows(self.font, rows, band) {
             Ok(l) => l,
             Err(e) => match e {},
