@@ -830,21 +830,21 @@ impl<'e> Controller<'e> {
                 }
                 Draw::Poly {
                     vertices,
+                    rule,
                     clip,
                     color,
                 } => {
                     let color = convert(color);
-                    let counts =
-                        raster
-                            .fill(vertices, &clip, color, target)
-                            .map_err(|e| match e {
-                                FillError::Target(error) => RenderError::Target { offset, error },
-                                FillError::Capacity { capacity } => RenderError::Capacity {
-                                    offset,
-                                    vertices: vertices.len(),
-                                    capacity,
-                                },
-                            })?;
+                    let counts = raster
+                        .fill_with(rule, vertices, &clip, color, target)
+                        .map_err(|e| match e {
+                            FillError::Target(error) => RenderError::Target { offset, error },
+                            FillError::Capacity { capacity } => RenderError::Capacity {
+                                offset,
+                                vertices: vertices.len(),
+                                capacity,
+                            },
+                        })?;
                     stats.polygons += 1;
                     stats.spans += counts.spans;
                     stats.pixels += counts.pixels as u64;

@@ -57,12 +57,14 @@ pub struct Dda<const F: u32> {
     end: i32,
     /// Pixel of the crossing on the current row.
     px: i32,
+    /// +1 running down the rows, −1 running up.
+    wind: i32,
 }
 
-/// The DDA at 1/128 px: `x` with 7 fraction bits. 20 bytes a slot.
+/// The DDA at 1/128 px: `x` with 7 fraction bits. 24 bytes a slot.
 pub type Dda7 = Dda<7>;
 
-/// The DDA in 16.16 fixed point. 20 bytes a slot.
+/// The DDA in 16.16 fixed point. 24 bytes a slot.
 pub type Dda16 = Dda<16>;
 
 impl<const F: u32> Dda<F> {
@@ -73,6 +75,7 @@ impl<const F: u32> Dda<F> {
         top: 0,
         end: 0,
         px: 0,
+        wind: 1,
     };
 
     /// Checked at compile time for each `F` used.
@@ -85,8 +88,10 @@ impl<const F: u32> Dda<F> {
         #[allow(clippy::let_unit_value)]
         let () = Self::F_IN_RANGE;
         let (mut p, mut q) = (a, b);
+        let mut wind = 1;
         if p.y.units() > q.y.units() {
             core::mem::swap(&mut p, &mut q);
+            wind = -1;
         }
         let (x0, y0, x1, y1) = (p.x.units(), p.y.units(), q.x.units(), q.y.units());
         let top = ceil_px(y0 - HALF).max(rows.0);
@@ -109,6 +114,7 @@ impl<const F: u32> Dda<F> {
             top,
             end,
             px: 0,
+            wind,
         })
     }
 }
@@ -138,6 +144,10 @@ impl<const F: u32> Stepper for Dda<F> {
     #[inline(always)]
     fn step(&mut self) {
         self.x += self.slope;
+    }
+    #[inline(always)]
+    fn winding(&self) -> i32 {
+        self.wind
     }
 }
 

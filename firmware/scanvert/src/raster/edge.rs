@@ -58,6 +58,10 @@ pub trait Stepper: Copy {
     fn is_vertical(&self) -> bool {
         false
     }
+    /// The edge's direction: +1 when it runs down the rows (its second
+    /// vertex below its first), −1 when it runs up. The non-zero rule
+    /// ([`FillRule::NonZero`](crate::raster::FillRule)) sums these.
+    fn winding(&self) -> i32;
     /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
     /// copy field by field: a copy of a whole record between two slots
     /// of one slice can become a call to `memmove`.
@@ -91,6 +95,8 @@ pub struct Edge {
     /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
     /// [`Edge::load_pixel`].
     pub(super) px: i32,
+    /// +1 running down the rows, −1 running up ([`Stepper::winding`]).
+    wind: i32,
 }
 
 impl Edge {
@@ -104,6 +110,7 @@ impl Edge {
         top: 0,
         end: 0,
         px: 0,
+        wind: 1,
     };
 
     /// The edge from `a` to `b` restricted to rows `rows.0..rows.1`, or
@@ -112,8 +119,10 @@ impl Edge {
     #[inline(always)]
     pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
         let (mut p, mut q) = (a, b);
+        let mut wind = 1;
         if p.y.units() > q.y.units() {
             core::mem::swap(&mut p, &mut q);
+            wind = -1;
         }
         let (x0, y0, x1, y1) = (p.x.units(), p.y.units(), q.x.units(), q.y.units());
         // Rows whose centre j·16 + 8 lies in [y0, y1).
@@ -151,6 +160,7 @@ impl Edge {
             top,
             end,
             px: 0,
+            wind,
         })
     }
 
@@ -270,6 +280,10 @@ impl Stepper for Edge {
         Edge::step(self)
     }
     #[inline(always)]
+    fn winding(&self) -> i32 {
+        self.wind
+    }
+    #[inline(always)]
     fn is_vertical(&self) -> bool {
         // x += 0 and err −= 0 every row.
         self.step == 0 && self.rem == 0
@@ -286,9 +300,11 @@ impl Stepper for Edge {
             top,
             end,
             px,
+            wind,
         } = *other;
         (self.x, self.err, self.step, self.rem) = (x, err, step, rem);
         (self.dy, self.top, self.end, self.px) = (dy, top, end, px);
+        self.wind = wind;
     }
 }
 

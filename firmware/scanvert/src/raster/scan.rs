@@ -1,5 +1,6 @@
-//! Scan conversion of one polygon: the active-edge list, the even-odd
-//! pairing of crossings, and the clip registers applied to every span.
+//! Scan conversion of one polygon: the active-edge list, the pairing of
+//! crossings (even-odd here, non-zero in [`winding`](super::winding)), and
+//! the clip registers applied to every span.
 //!
 //! The edges of a polygon are set up once ([`Edge::new`], clipped to the
 //! window's rows) and sorted by first row. Row by row, edges whose first
@@ -25,6 +26,7 @@ use crate::fixed::{ceil_px, Vertex, HALF};
 use crate::port::{Counts, Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::{Edge, Stepper};
+use crate::raster::winding::{emit_nonzero, FillRule};
 use core::fmt;
 
 /// Why a polygon could not be drawn.
@@ -104,8 +106,44 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// even-odd rule, writing only pixels inside `clip`. The target is told
     /// of the polygon first ([`SpanTarget::begin_polygon`]), whether or not
     /// any of it is drawn.
+    #[inline]
     pub fn fill<I, T>(
         &mut self,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<Counts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        self.fill_with(FillRule::EvenOdd, vertices, clip, color, target)
+    }
+
+    /// [`fill`](Self::fill) by the fill rule `rule`: even-odd, or non-zero
+    /// winding (see [`FillRule`]).
+    ///
+    /// ```
+    /// use scanvert::prelude::*;
+    /// use scanvert::raster::FillRule;
+    /// use scanvert::pixelcolor::BinaryColor;
+    /// // A five-pointed star in one stroke: its middle winds twice.
+    /// let star = [(16, 2), (24, 28), (3, 12), (29, 12), (8, 28)]
+    ///     .map(|(x, y)| Vertex::new(Coord::from_int(x), Coord::from_int(y)));
+    /// let mut px = [BinaryColor::Off; 32 * 32];
+    /// let mut fb = FrameBuffer::new(&mut px, 32, 32).unwrap();
+    /// let mut slots = [Edge::EMPTY; 5];
+    /// let clip = ClipRect::full(32, 32);
+    /// let mut raster = Rasterizer::new(&mut slots);
+    /// raster.fill_with(FillRule::EvenOdd, star, &clip, BinaryColor::On, &mut fb).unwrap();
+    /// assert_eq!(fb.pixel(16, 16), Some(BinaryColor::Off));
+    /// raster.fill_with(FillRule::NonZero, star, &clip, BinaryColor::On, &mut fb).unwrap();
+    /// assert_eq!(fb.pixel(16, 16), Some(BinaryColor::On));
+    /// ```
+    pub fn fill_with<I, T>(
+        &mut self,
+        rule: FillRule,
         vertices: I,
         clip: &ClipRect,
         color: T::Color,
@@ -140,13 +178,13 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
         let mut walk = Walk::start(edges);
-        walk.run::<false, _, _>(
-            edges,
-            i32::MAX,
-            (cx0, cx1),
-            Some((target, color)),
-            &mut counts,
-        )
+        let paint = Some((target, color));
+        match rule {
+            FillRule::EvenOdd => {
+                walk.run::<false, false, _, _>(edges, i32::MAX, (cx0, cx1), paint, &mut counts)
+            }
+            FillRule::NonZero => walk_nonzero(&mut walk, edges, (cx0, cx1), paint, &mut counts),
+        }
         .map_err(FillError::Target)?;
         Ok(counts)
     }
@@ -162,6 +200,20 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     ) -> Option<usize> {
         build_edges(self.edges, vertices, clip)
     }
+}
+
+/// A whole polygon's [`Walk::run`] by the non-zero rule, out of line: the
+/// even-odd walk, inlined into its callers, is compiled as it would be
+/// without it.
+#[inline(never)]
+fn walk_nonzero<S: Stepper, T: SpanTarget + ?Sized>(
+    walk: &mut Walk,
+    edges: &mut [S],
+    cx: (i32, i32),
+    paint: Option<(&mut T, T::Color)>,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    walk.run::<false, true, _, _>(edges, i32::MAX, cx, paint, counts)
 }
 
 /// Sets up the edges of the polygon through `vertices` that cross a row
@@ -251,9 +303,12 @@ impl Walk {
     /// band ends (the band path's table): two edges that both go on past
     /// `y1` are stepped to it and the walk left at once, without the
     /// general retire loop (fewer branches a predictor misses, at every
-    /// band a polygon crosses).
+    /// band a polygon crosses). `NONZERO` pairs the crossings of rows
+    /// crossed four or more times by the non-zero rule
+    /// ([`winding`](super::winding)); a row crossed twice is one span by
+    /// either rule.
     #[inline(always)]
-    pub(super) fn run<const BAND: bool, S: Stepper, T: SpanTarget + ?Sized>(
+    pub(super) fn run<const BAND: bool, const NONZERO: bool, S: Stepper, T: SpanTarget + ?Sized>(
         &mut self,
         edges: &mut [S],
         y1: i32,
@@ -378,16 +433,20 @@ impl Walk {
                         e.load_pixel();
                     }
                     insertion_sort(live);
-                    for pair in live.chunks_exact(2) {
-                        emit_span::<BAND, T>(
-                            y,
-                            pair[0].pixel(),
-                            pair[1].pixel(),
-                            cx,
-                            *color,
-                            &mut **target,
-                            counts,
-                        )?;
+                    if NONZERO {
+                        emit_nonzero::<BAND, S, T>(y, live, cx, *color, &mut **target, counts)?;
+                    } else {
+                        for pair in live.chunks_exact(2) {
+                            emit_span::<BAND, T>(
+                                y,
+                                pair[0].pixel(),
+                                pair[1].pixel(),
+                                cx,
+                                *color,
+                                &mut **target,
+                                counts,
+                            )?;
+                        }
                     }
                     y += 1;
                     if y >= stop {
