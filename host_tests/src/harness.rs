@@ -262,4 +262,7 @@ impl Stepper for CountingEdge {
         STEPS.with(|c| c.set(c.get() + 1));
         self.0.step()
     }
+    fn winding(&self) -> i32 {
+        self.0.winding()
+    }
 }

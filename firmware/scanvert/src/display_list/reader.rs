@@ -78,7 +78,7 @@ impl Summary {
                 self.draws_2d = true;
                 &mut self.poly
             }
-            Opcode::Color | Opcode::Clip => return,
+            Opcode::Color | Opcode::Clip | Opcode::Fill => return,
             // The rest is the 3D layer's.
             _ => {
                 debug_assert!(op.is_3d());
