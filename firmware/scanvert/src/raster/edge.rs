@@ -88,15 +88,16 @@ pub struct Edge {
     rem: i32,
     /// Height in units, `> 0`.
     dy: i32,
-    /// First row sampled (inside the clip rows).
-    pub(super) top: i32,
+    /// First row sampled (inside the clip rows), times two, plus one for
+    /// an edge running up the rows ([`Stepper::winding`]): the direction
+    /// rides in a bit of a field read once a run, so that the slot stays
+    /// 32 bytes.
+    top_up: i32,
     /// One past the last row sampled.
     pub(super) end: i32,
     /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
     /// [`Edge::load_pixel`].
     pub(super) px: i32,
-    /// +1 running down the rows, −1 running up ([`Stepper::winding`]).
-    wind: i32,
 }
 
 impl Edge {
@@ -107,10 +108,9 @@ impl Edge {
         step: 0,
         rem: 0,
         dy: 1,
-        top: 0,
+        top_up: 0,
         end: 0,
         px: 0,
-        wind: 1,
     };
 
     /// The edge from `a` to `b` restricted to rows `rows.0..rows.1`, or
@@ -119,10 +119,9 @@ impl Edge {
     #[inline(always)]
     pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
         let (mut p, mut q) = (a, b);
-        let mut wind = 1;
-        if p.y.units() > q.y.units() {
+        let up = p.y.units() > q.y.units();
+        if up {
             core::mem::swap(&mut p, &mut q);
-            wind = -1;
         }
         let (x0, y0, x1, y1) = (p.x.units(), p.y.units(), q.x.units(), q.y.units());
         // Rows whose centre j·16 + 8 lies in [y0, y1).
@@ -157,10 +156,10 @@ impl Edge {
             step,
             rem,
             dy,
-            top,
+            // Rows are far inside ±2³⁰.
+            top_up: top << 1 | up as i32,
             end,
             px: 0,
-            wind,
         })
     }
 
@@ -245,7 +244,7 @@ impl Edge {
 
     /// First row sampled.
     pub fn top(&self) -> i32 {
-        self.top
+        self.top_up >> 1
     }
 
     /// One past the last row sampled.
@@ -261,7 +260,7 @@ impl Stepper for Edge {
     }
     #[inline(always)]
     fn top(&self) -> i32 {
-        self.top
+        Edge::top(self)
     }
     #[inline(always)]
     fn end(&self) -> i32 {
@@ -281,7 +280,7 @@ impl Stepper for Edge {
     }
     #[inline(always)]
     fn winding(&self) -> i32 {
-        self.wind
+        1 - 2 * (self.top_up & 1)
     }
     #[inline(always)]
     fn is_vertical(&self) -> bool {
@@ -297,14 +296,12 @@ impl Stepper for Edge {
             step,
             rem,
             dy,
-            top,
+            top_up,
             end,
             px,
-            wind,
         } = *other;
         (self.x, self.err, self.step, self.rem) = (x, err, step, rem);
-        (self.dy, self.top, self.end, self.px) = (dy, top, end, px);
-        self.wind = wind;
+        (self.dy, self.top_up, self.end, self.px) = (dy, top_up, end, px);
     }
 }
 
