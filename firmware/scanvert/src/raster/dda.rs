@@ -51,12 +51,14 @@ pub struct Dda<const F: u32> {
     x: i32,
     /// `dx/dy` per row, in units of `2^-F` px, rounded to nearest.
     slope: i32,
-    /// First row sampled, times two, plus one for an edge running up the
-    /// rows ([`Stepper::winding`]).
-    top_up: i32,
+    /// First row sampled.
+    top: i32,
     /// One past the last row sampled.
     end: i32,
-    /// Pixel of the crossing on the current row.
+    /// Pixel of the crossing on the current row; in a walk by the non-zero
+    /// rule, times two plus the edge's direction
+    /// ([`Stepper::load_wound`]), and the direction alone from
+    /// [`Stepper::new_wound`] until the first load.
     px: i32,
 }
 
@@ -71,7 +73,7 @@ impl<const F: u32> Dda<F> {
     pub const EMPTY: Self = Dda {
         x: 0,
         slope: 0,
-        top_up: 0,
+        top: 0,
         end: 0,
         px: 0,
     };
@@ -86,8 +88,7 @@ impl<const F: u32> Dda<F> {
         #[allow(clippy::let_unit_value)]
         let () = Self::F_IN_RANGE;
         let (mut p, mut q) = (a, b);
-        let up = p.y.units() > q.y.units();
-        if up {
+        if p.y.units() > q.y.units() {
             core::mem::swap(&mut p, &mut q);
         }
         let (x0, y0, x1, y1) = (p.x.units(), p.y.units(), q.x.units(), q.y.units());
@@ -108,8 +109,7 @@ impl<const F: u32> Dda<F> {
         Some(Dda {
             x: x as i32,
             slope: i32::try_from(slope).unwrap_or(0),
-            // Rows are far inside ±2³⁰.
-            top_up: top << 1 | up as i32,
+            top,
             end,
             px: 0,
         })
@@ -123,7 +123,7 @@ impl<const F: u32> Stepper for Dda<F> {
     }
     #[inline(always)]
     fn top(&self) -> i32 {
-        self.top_up >> 1
+        self.top
     }
     #[inline(always)]
     fn end(&self) -> i32 {
@@ -142,9 +142,15 @@ impl<const F: u32> Stepper for Dda<F> {
     fn step(&mut self) {
         self.x += self.slope;
     }
+    #[inline]
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
+        let mut e = Dda::new(a, b, rows)?;
+        e.px = (a.y.units() > b.y.units()) as i32;
+        Some(e)
+    }
     #[inline(always)]
-    fn winding(&self) -> i32 {
-        1 - 2 * (self.top_up & 1)
+    fn load_wound(&mut self) {
+        self.px = ((self.x + ((1 << (F - 1)) - 1)) >> F) << 1 | (self.px & 1);
     }
 }
 

@@ -58,10 +58,19 @@ pub trait Stepper: Copy {
     fn is_vertical(&self) -> bool {
         false
     }
-    /// The edge's direction: +1 when it runs down the rows (its second
-    /// vertex below its first), −1 when it runs up. The non-zero rule
-    /// ([`FillRule::NonZero`](crate::raster::FillRule)) sums these.
-    fn winding(&self) -> i32;
+    /// [`new`](Stepper::new) for a walk by the non-zero rule
+    /// ([`FillRule::NonZero`](crate::raster::FillRule)): the stepper keeps
+    /// the edge's direction, `u`, 1 for an edge running up the rows (`b`
+    /// above `a`), 0 for one running down, for
+    /// [`load_wound`](Stepper::load_wound).
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self>;
+    /// Computes the pixel for the current row, as
+    /// [`load_pixel`](Stepper::load_pixel) does, with the direction of a
+    /// stepper made by [`new_wound`](Stepper::new_wound) beside it:
+    /// [`pixel`](Stepper::pixel) is then `2·c + u`, `c` the pixel. A walk
+    /// by the non-zero rule loads its edges only so, and never by
+    /// `load_pixel`, which drops the direction.
+    fn load_wound(&mut self);
     /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
     /// copy field by field: a copy of a whole record between two slots
     /// of one slice can become a call to `memmove`.
@@ -88,15 +97,16 @@ pub struct Edge {
     rem: i32,
     /// Height in units, `> 0`.
     dy: i32,
-    /// First row sampled (inside the clip rows), times two, plus one for
-    /// an edge running up the rows ([`Stepper::winding`]): the direction
-    /// rides in a bit of a field read once a run, so that the slot stays
-    /// 32 bytes.
-    top_up: i32,
+    /// First row sampled (inside the clip rows).
+    pub(super) top: i32,
     /// One past the last row sampled.
     pub(super) end: i32,
     /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
-    /// [`Edge::load_pixel`].
+    /// [`Edge::load_pixel`]. Or, in a walk by the non-zero rule, that
+    /// pixel times two plus the edge's direction ([`Stepper::load_wound`]),
+    /// and from [`Stepper::new_wound`] until the first load the direction
+    /// alone: the slot stays 32 bytes, and the even-odd walk reads and
+    /// writes nothing more.
     pub(super) px: i32,
 }
 
@@ -108,7 +118,7 @@ impl Edge {
         step: 0,
         rem: 0,
         dy: 1,
-        top_up: 0,
+        top: 0,
         end: 0,
         px: 0,
     };
@@ -119,8 +129,7 @@ impl Edge {
     #[inline(always)]
     pub fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Edge> {
         let (mut p, mut q) = (a, b);
-        let up = p.y.units() > q.y.units();
-        if up {
+        if p.y.units() > q.y.units() {
             core::mem::swap(&mut p, &mut q);
         }
         let (x0, y0, x1, y1) = (p.x.units(), p.y.units(), q.x.units(), q.y.units());
@@ -156,8 +165,7 @@ impl Edge {
             step,
             rem,
             dy,
-            // Rows are far inside ±2³⁰.
-            top_up: top << 1 | up as i32,
+            top,
             end,
             px: 0,
         })
@@ -244,7 +252,7 @@ impl Edge {
 
     /// First row sampled.
     pub fn top(&self) -> i32 {
-        self.top_up >> 1
+        self.top
     }
 
     /// One past the last row sampled.
@@ -260,7 +268,7 @@ impl Stepper for Edge {
     }
     #[inline(always)]
     fn top(&self) -> i32 {
-        Edge::top(self)
+        self.top
     }
     #[inline(always)]
     fn end(&self) -> i32 {
@@ -278,9 +286,15 @@ impl Stepper for Edge {
     fn step(&mut self) {
         Edge::step(self)
     }
+    #[inline]
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
+        let mut e = Edge::new(a, b, rows)?;
+        e.px = (a.y.units() > b.y.units()) as i32;
+        Some(e)
+    }
     #[inline(always)]
-    fn winding(&self) -> i32 {
-        1 - 2 * (self.top_up & 1)
+    fn load_wound(&mut self) {
+        self.px = ceil_px(self.x) << 1 | (self.px & 1);
     }
     #[inline(always)]
     fn is_vertical(&self) -> bool {
@@ -296,12 +310,12 @@ impl Stepper for Edge {
             step,
             rem,
             dy,
-            top_up,
+            top,
             end,
             px,
         } = *other;
         (self.x, self.err, self.step, self.rem) = (x, err, step, rem);
-        (self.dy, self.top_up, self.end, self.px) = (dy, top_up, end, px);
+        (self.dy, self.top, self.end, self.px) = (dy, top, end, px);
     }
 }
 

@@ -106,7 +106,6 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// even-odd rule, writing only pixels inside `clip`. The target is told
     /// of the polygon first ([`SpanTarget::begin_polygon`]), whether or not
     /// any of it is drawn.
-    #[inline]
     pub fn fill<I, T>(
         &mut self,
         vertices: I,
@@ -118,7 +117,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         I: IntoIterator<Item = Vertex>,
         T: SpanTarget + ?Sized,
     {
-        self.fill_with(FillRule::EvenOdd, vertices, clip, color, target)
+        self.fill_by::<false, I, T>(vertices, clip, color, target)
     }
 
     /// [`fill`](Self::fill) by the fill rule `rule`: even-odd, or non-zero
@@ -153,6 +152,43 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         I: IntoIterator<Item = Vertex>,
         T: SpanTarget + ?Sized,
     {
+        if rule == FillRule::NonZero {
+            return self.fill_nonzero(vertices, clip, color, target);
+        }
+        self.fill(vertices, clip, color, target)
+    }
+
+    /// [`fill_by`](Self::fill_by) the non-zero rule, out of line: the
+    /// even-odd fill, inlined into its callers, is compiled as it would
+    /// be without it.
+    #[inline(never)]
+    fn fill_nonzero<I, T>(
+        &mut self,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<Counts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        self.fill_by::<true, I, T>(vertices, clip, color, target)
+    }
+
+    /// The fill, by the non-zero rule when `NONZERO`, else even-odd.
+    #[inline(always)]
+    fn fill_by<const NONZERO: bool, I, T>(
+        &mut self,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<Counts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
         let mut counts = Counts::default();
         target.begin_polygon();
         // The clip cut to the target once, so that every span it passes is
@@ -162,7 +198,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         if clip.is_empty() {
             return Ok(counts);
         }
-        let n = match self.build(vertices, clip) {
+        let n = match build_edges::<NONZERO, S>(self.edges, vertices, clip) {
             Some(n) => n,
             None => {
                 return Err(FillError::Capacity {
@@ -178,50 +214,26 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
         let mut walk = Walk::start(edges);
-        let paint = Some((target, color));
-        match rule {
-            FillRule::EvenOdd => {
-                walk.run::<false, false, _, _>(edges, i32::MAX, (cx0, cx1), paint, &mut counts)
-            }
-            FillRule::NonZero => walk_nonzero(&mut walk, edges, (cx0, cx1), paint, &mut counts),
-        }
+        walk.run::<false, NONZERO, _, _>(
+            edges,
+            i32::MAX,
+            (cx0, cx1),
+            Some((target, color)),
+            &mut counts,
+        )
         .map_err(FillError::Target)?;
         Ok(counts)
     }
-
-    /// Sets up the edges that cross a row centre inside `clip`; returns
-    /// their number, or `None` when they do not fit. Returns 0 when the
-    /// polygon's box misses the window's columns.
-    #[inline(always)]
-    fn build<I: IntoIterator<Item = Vertex>>(
-        &mut self,
-        vertices: I,
-        clip: &ClipRect,
-    ) -> Option<usize> {
-        build_edges(self.edges, vertices, clip)
-    }
-}
-
-/// A whole polygon's [`Walk::run`] by the non-zero rule, out of line: the
-/// even-odd walk, inlined into its callers, is compiled as it would be
-/// without it.
-#[inline(never)]
-fn walk_nonzero<S: Stepper, T: SpanTarget + ?Sized>(
-    walk: &mut Walk,
-    edges: &mut [S],
-    cx: (i32, i32),
-    paint: Option<(&mut T, T::Color)>,
-    counts: &mut Counts,
-) -> Result<(), T::Error> {
-    walk.run::<false, true, _, _>(edges, i32::MAX, cx, paint, counts)
 }
 
 /// Sets up the edges of the polygon through `vertices` that cross a row
 /// centre inside `clip` into `edges`; returns their number (0 when the
 /// polygon's box misses the clip columns), or `None` when they do not
 /// fit. The rasteriser and the band path's edge table
-/// ([`table`](super::table)) both set up polygons so.
-pub(super) fn build_edges<S: Stepper>(
+/// ([`table`](super::table)) both set up polygons so. `WOUND` sets them
+/// up for a walk by the non-zero rule ([`Stepper::new_wound`]).
+#[inline(always)]
+pub(super) fn build_edges<const WOUND: bool, S: Stepper>(
     edges: &mut [S],
     vertices: impl IntoIterator<Item = Vertex>,
     clip: &ClipRect,
@@ -235,7 +247,12 @@ pub(super) fn build_edges<S: Stepper>(
     let mut n = 0;
     let mut prev = first;
     let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
-        if let Some(e) = S::new(a, b, rows) {
+        let e = if WOUND {
+            S::new_wound(a, b, rows)
+        } else {
+            S::new(a, b, rows)
+        };
+        if let Some(e) = e {
             *edges.get_mut(*n)? = e;
             *n += 1;
         }
@@ -303,10 +320,10 @@ impl Walk {
     /// band ends (the band path's table): two edges that both go on past
     /// `y1` are stepped to it and the walk left at once, without the
     /// general retire loop (fewer branches a predictor misses, at every
-    /// band a polygon crosses). `NONZERO` pairs the crossings of rows
-    /// crossed four or more times by the non-zero rule
-    /// ([`winding`](super::winding)); a row crossed twice is one span by
-    /// either rule.
+    /// band a polygon crosses). `NONZERO` walks by the non-zero rule
+    /// ([`winding`](super::winding)): every row through the general loop,
+    /// its edges loaded with their direction
+    /// ([`Stepper::load_wound`]).
     #[inline(always)]
     pub(super) fn run<const BAND: bool, const NONZERO: bool, S: Stepper, T: SpanTarget + ?Sized>(
         &mut self,
@@ -346,7 +363,9 @@ impl Walk {
             }
             let (live, waiting) = edges.split_at_mut(active);
             match (paint.as_mut(), live) {
-                (Some((target, color)), [a, b]) if a.is_vertical() && b.is_vertical() => {
+                (Some((target, color)), [a, b])
+                    if !NONZERO && a.is_vertical() && b.is_vertical() =>
+                {
                     // Two vertical edges (a rectangle's sides): one span,
                     // the same on every row of the run; nothing to step.
                     a.load_pixel();
@@ -355,7 +374,7 @@ impl Walk {
                     emit_rows(y, stop, l, r, cx, *color, &mut **target, counts)?;
                     y = stop;
                 }
-                (Some((target, color)), [a, b]) => {
+                (Some((target, color)), [a, b]) if !NONZERO => {
                     // Two edges (every convex polygon, most rows of any
                     // other): stepped in locals, one span a row, no sort.
                     let (mut ea, mut eb) = (*a, *b);
@@ -430,7 +449,11 @@ impl Walk {
                 }
                 (Some((target, color)), live) => loop {
                     for e in live.iter_mut() {
-                        e.load_pixel();
+                        if NONZERO {
+                            e.load_wound();
+                        } else {
+                            e.load_pixel();
+                        }
                     }
                     insertion_sort(live);
                     if NONZERO {

@@ -312,7 +312,11 @@ impl<'a> EdgeTable<'a> {
                     color,
                 } if full.is_none() && !clip.is_empty() => {
                     let room = &mut edges[used..];
-                    let Some(n) = build_edges(room, vertices, &clip) else {
+                    let built = match rule {
+                        FillRule::EvenOdd => build_edges::<false, _>(room, vertices, &clip),
+                        FillRule::NonZero => build_nonzero(room, vertices, &clip),
+                    };
+                    let Some(n) = built else {
                         full = Some(TableError::Edges {
                             offset,
                             capacity: edges.len(),
@@ -583,6 +587,18 @@ fn run<T: SpanTarget + ?Sized>(
     p.next = walk.next as u16;
     p.y = walk.y;
     Ok(())
+}
+
+/// [`build_edges`] for a walk by the non-zero rule, out of line: the
+/// even-odd set-up, inlined into the table's build, is compiled as it
+/// would be without it.
+#[inline(never)]
+fn build_nonzero<V: IntoIterator<Item = Vertex>>(
+    edges: &mut [Edge],
+    vertices: V,
+    clip: &crate::raster::clip::ClipRect,
+) -> Option<usize> {
+    build_edges::<true, _>(edges, vertices, clip)
 }
 
 /// [`Walk::run`] by the non-zero rule, out of line: the even-odd walk,

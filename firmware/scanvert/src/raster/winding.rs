@@ -10,12 +10,13 @@
 //! Both count the same crossings (the half-open rule of
 //! [`edge`](super::edge)); only what a count means differs.
 //!
-//! Along a whole row the signed crossings of a closed polygon add up to
-//! zero, so a row crossed twice has one edge of each direction: both rules
-//! give the one span between them. The rules differ only on rows crossed
-//! four or more times, so the scan converter takes the non-zero pairing
-//! ([`emit_nonzero`]) only there: in its general loop, chosen once per
-//! polygon by a const parameter, and never in the two-edge runs.
+//! The scan converter's walk is chosen once per polygon, by a const
+//! parameter: by the non-zero rule, every row goes through its general
+//! loop, where each edge's pixel is loaded with the edge's direction
+//! beside it ([`Stepper::load_wound`]: `2·c + u`, `u` 1 for an edge
+//! running up), sorted, and paired by [`emit_nonzero`]. The direction
+//! rides in the pixel's slot, so an edge stays the size it is and the
+//! even-odd walk, its two-edge runs included, is compiled as without it.
 //!
 //! The winding sum is taken over the crossings sorted by pixel: a pixel
 //! `i` is covered when the sum over the crossings with pixel `≤ i` is not
@@ -79,10 +80,11 @@ impl FillRule {
     }
 }
 
-/// Writes the spans of row `y` by the non-zero rule: `live` holds the
-/// row's crossings, sorted by pixel (their [`Stepper::pixel`] loaded), cut
-/// to the clip columns `cx`. A span starts at a crossing that takes the
-/// winding sum from zero and ends at the one that brings it back.
+/// Writes the spans of row `y` by the non-zero rule, cut to the clip
+/// columns `cx`: `live` holds the row's crossings, loaded by
+/// [`Stepper::load_wound`] and sorted. A span starts at a crossing that
+/// takes the winding sum from zero and ends at the one that brings it
+/// back.
 #[inline(never)]
 pub(super) fn emit_nonzero<const BAND: bool, S: Stepper, T: SpanTarget + ?Sized>(
     y: i32,
@@ -96,12 +98,14 @@ pub(super) fn emit_nonzero<const BAND: bool, S: Stepper, T: SpanTarget + ?Sized>
     let mut sum = 0isize;
     let mut start = 0;
     for e in live {
+        let (px, up) = (e.pixel() >> 1, e.pixel() & 1);
         let was = sum;
-        sum += e.winding() as isize;
+        // +1 running down, −1 running up.
+        sum += 1 - 2 * up as isize;
         if was == 0 {
-            start = e.pixel();
+            start = px;
         } else if sum == 0 {
-            emit_span::<BAND, T>(y, start, e.pixel(), cx, color, target, counts)?;
+            emit_span::<BAND, T>(y, start, px, cx, color, target, counts)?;
         }
     }
     Ok(())
