@@ -298,21 +298,29 @@ fn mixed_rules_in_one_list_are_the_same_in_bands() {
 #[test]
 fn fill_sets_the_rule_of_the_polys_after_it() {
     let star = "poly 16 1  24.8125 28.125  1.75 11.375  30.25 11.375  7.1875 28.125";
-    let middle = |text: &str| {
+    // Pixels (16, 16), the middle, and (16, 5), on the top point.
+    let lit = |text: &str| {
         let scene = Scene::from_bytes(Path::new("s.dl"), text.as_bytes().to_vec()).unwrap();
         let r = render_scene(&scene).unwrap();
-        r.ram.contents()[16 * 32 + 16] != Default::default()
+        let at = |i: usize, j: usize| r.ram.contents()[j * 32 + i] != Default::default();
+        (at(16, 16), at(16, 5))
     };
     let f = |body: &str| format!("frame 32 32\ncolor #ffffff\n{body}\n");
-    assert!(!middle(&f(star)));
-    assert!(middle(&f(&format!("fill nonzero\n{star}"))));
-    assert!(middle(&f(&format!("fill nonzero\nclear #000000\n{star}"))));
-    assert!(!middle(&f(&format!("fill nonzero\nfill evenodd\n{star}"))));
-    // `fill` leaves `poly3` alone: the star as a `poly3`, front-facing,
-    // keeps the pixel rule (even-odd).
-    assert!(!middle(&f(&format!(
-        "fill nonzero\npoly3 16 1 1  7.1875 28.125 1  30.25 11.375 1  1.75 11.375 1  24.8125 28.125 1"
-    ))));
+    assert_eq!(lit(&f(star)), (false, true));
+    assert_eq!(lit(&f(&format!("fill nonzero\n{star}"))), (true, true));
+    assert_eq!(
+        lit(&f(&format!("fill nonzero\nclear #000000\n{star}"))),
+        (true, true)
+    );
+    assert_eq!(
+        lit(&f(&format!("fill nonzero\nfill evenodd\n{star}"))),
+        (false, true)
+    );
+    // `fill` leaves `poly3` alone: the star as a `poly3`, counter-clockwise
+    // as displayed, keeps the pixel rule's even-odd coverage.
+    let star3 = "poly3 16 1 1  7.1875 28.125 1  30.25 11.375 1  1.75 11.375 1  24.8125 28.125 1";
+    assert_eq!(lit(&f(star3)), (false, true));
+    assert_eq!(lit(&f(&format!("fill nonzero\n{star3}"))), (false, true));
 }
 
 #[test]

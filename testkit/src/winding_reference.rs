@@ -99,7 +99,7 @@ mod tests {
         for _ in 0..300 {
             let n = rng.range(3, 10) as usize;
             let poly: Vec<(i32, i32)> = (0..n)
-                .map(|_| (rng.range(-40, 560) as i32, rng.range(-40, 560) as i32))
+                .map(|_| (rng.range(-40, 560), rng.range(-40, 560)))
                 .collect();
             for j in -1..34 {
                 for i in -1..34 {
