@@ -129,7 +129,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// use scanvert::pixelcolor::BinaryColor;
     /// // A five-pointed star in one stroke: its middle winds twice.
     /// let star = [(16, 2), (24, 28), (3, 12), (29, 12), (8, 28)]
-    ///     .map(|(x, y)| Vertex::new(Coord::from_int(x), Coord::from_int(y)));
+    ///     .map(|(x, y)| Vertex::from_bits(16 * x, 16 * y));
     /// let mut px = [BinaryColor::Off; 32 * 32];
     /// let mut fb = FrameBuffer::new(&mut px, 32, 32).unwrap();
     /// let mut slots = [Edge::EMPTY; 5];
