@@ -262,4 +262,12 @@ impl Stepper for CountingEdge {
         STEPS.with(|c| c.set(c.get() + 1));
         self.0.step()
     }
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
+        let e = Edge::new_wound(a, b, rows)?;
+        SETUPS.with(|c| c.set(c.get() + 1));
+        Some(CountingEdge(e))
+    }
+    fn load_wound(&mut self) {
+        self.0.load_wound()
+    }
 }

@@ -212,7 +212,10 @@ fn a_3d_list_with_labels_clips_and_clears_is_the_same_in_bands() {
 #[test]
 fn the_repository_scenes_are_the_same_in_bands() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let mut files = vec![root.join("scenes/demo.dl")];
+    let mut files = vec![
+        root.join("scenes/demo.dl"),
+        root.join("scenes/fill-rules.dl"),
+    ];
     for e in std::fs::read_dir(root.join("firmware/image/scenes")).expect("scenes") {
         let p = e.expect("entry").path();
         if p.extension().is_some_and(|x| x == "scvl") {

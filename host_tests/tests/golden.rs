@@ -9,7 +9,7 @@
 //!
 //! The scenes are assembled by [`assemble`] below, a minimal reader of the
 //! text form's commands used here (`frame`, `clear`, `clip`, `color`,
-//! `poly`), which accepts only exact multiples of 1/16.
+//! `fill`, `poly`), which accepts only exact multiples of 1/16.
 
 use embedded_graphics_core::pixelcolor::Rgb888;
 use scanvert::controller::Controller;
@@ -18,6 +18,7 @@ use scanvert::fixed::Vertex;
 use scanvert::raster::clip::ClipWindow;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
+use scanvert::raster::FillRule;
 use scanvert_sim::dual_port::DualPortRam;
 use scanvert_sim::image;
 use scanvert_sim::refresh::RefreshController;
@@ -43,6 +44,17 @@ frame 32 32
 clear #000000
 color #ffffff
 poly 16 1  24.8125 28.125  1.75 11.375  30.25 11.375  7.1875 28.125
+";
+
+/// The same star drawn by each fill rule: even-odd leaves its middle
+/// empty, non-zero fills it (the middle winds twice).
+const STAR_FILL_RULES: &str = "
+frame 64 32
+clear #000000
+color #ffffff
+poly 16 1  24.8125 28.125  1.75 11.375  30.25 11.375  7.1875 28.125
+fill nonzero
+poly 48 1  56.8125 28.125  33.75 11.375  62.25 11.375  39.1875 28.125
 ";
 
 /// One large polygon drawn three times under three clip windows: inside,
@@ -158,6 +170,9 @@ fn assemble(text: &str) -> Vec<u8> {
         match words[0] {
             "clear" => out.clear(colour(words[1])).unwrap(),
             "color" => out.color(colour(words[1])).unwrap(),
+            "fill" => out
+                .fill(FillRule::from_name(words[1]).expect("a fill rule"))
+                .unwrap(),
             "clip" => {
                 let v: Vec<i16> = words[1..].iter().map(|s| s.parse().unwrap()).collect();
                 out.clip(ClipWindow {
@@ -250,6 +265,11 @@ fn overlapping_triangles_in_painters_order() {
 #[test]
 fn pentagram_is_filled_even_odd() {
     assert_golden("pentagram", PENTAGRAM);
+}
+
+#[test]
+fn a_star_by_each_fill_rule() {
+    assert_golden("star_fill_rules", STAR_FILL_RULES);
 }
 
 #[test]

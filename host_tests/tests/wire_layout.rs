@@ -41,6 +41,7 @@ fn only_the_3d_layer_is_3d() {
         Opcode::Clear,
         Opcode::Clip,
         Opcode::Color,
+        Opcode::Fill,
         Opcode::Poly,
         Opcode::Line,
     ];

@@ -18,6 +18,9 @@
 //!   target.
 //! * [`staggered`]: the sweep's worst case, staggered overlapping faces
 //!   each nearer than the last.
+//! * [`winding_reference`]: the exact winding number of a pixel centre
+//!   (signed crossings of the ray going right, decided by cross products
+//!   in `i128`), and both fill rules decided from it.
 //! * [`rng`]: the one random-number generator all of them draw from.
 //!
 //! Nothing here calls scanvert's rasteriser, stepper or visible-surface
@@ -33,4 +36,5 @@ pub mod reference3d;
 pub mod rng;
 pub mod scenes3d;
 pub mod staggered;
+pub mod winding_reference;
 pub mod workloads;

@@ -831,6 +831,7 @@ impl<'e> Controller<'e> {
                 }
                 Draw::Poly {
                     vertices,
+                    rule,
                     clip,
                     color,
                 } => {
@@ -842,7 +843,7 @@ impl<'e> Controller<'e> {
                         _ => None,
                     };
                     let counts = rectangle
-                        .unwrap_or_else(|| raster.fill(vertices, &clip, color, target))
+                        .unwrap_or_else(|| raster.fill_with(rule, vertices, &clip, color, target))
                         .map_err(|e| match e {
                             FillError::Target(error) => RenderError::Target { offset, error },
                             FillError::Capacity { capacity } => RenderError::Capacity {

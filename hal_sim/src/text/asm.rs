@@ -18,6 +18,7 @@ use scanvert::fixed::{Coord, Vertex, Vertex3};
 use scanvert::geometry::{Angle, Point3, View, Q16};
 use scanvert::pixelcolor::Rgb888;
 use scanvert::raster::clip::ClipWindow;
+use scanvert::raster::FillRule;
 
 /// A text scene assembled into the binary form.
 #[derive(Clone, Debug)]
@@ -57,6 +58,7 @@ enum Cmd {
     View(View),
     Light(Point3, u8),
     Thickness(Coord),
+    Fill(FillRule),
     Push,
     Pop,
     Translate(Point3),
@@ -85,6 +87,7 @@ impl Cmd {
             Cmd::View(_) => Opcode::View,
             Cmd::Light(..) => Opcode::Light,
             Cmd::Thickness(_) => Opcode::Thickness,
+            Cmd::Fill(_) => Opcode::Fill,
             Cmd::Push => Opcode::Push,
             Cmd::Pop => Opcode::Pop,
             Cmd::Translate(_) => Opcode::Translate,
@@ -125,6 +128,7 @@ impl Cmd {
             Cmd::View(v) => w.view(v.eye, v.yaw, v.pitch),
             Cmd::Light(toward, percent) => w.light(*toward, *percent),
             Cmd::Thickness(t) => w.thickness(*t),
+            Cmd::Fill(rule) => w.fill(*rule),
             Cmd::Push => w.push(),
             Cmd::Pop => w.pop(),
             Cmd::Translate(p) => w.translate(*p),
@@ -550,6 +554,14 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                 });
             }
             Ok(Cmd::Thickness(t))
+        }
+        "fill" => {
+            operand_count("fill", "1 (evenodd|nonzero)", operands, operands.len() == 1)?;
+            let word = String::from_utf8_lossy(operands[0]);
+            match FillRule::from_name(&word) {
+                Some(rule) => Ok(Cmd::Fill(rule)),
+                None => Err(TextErrorKind::FillRule(quoted(&word))),
+            }
         }
         "push" | "pop" => {
             let command = if name == "push" { "push" } else { "pop" };

@@ -215,6 +215,7 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
             ),
             Command::Light { toward, percent } => write!(s, " {} {percent}", point(toward)),
             Command::Thickness(t) => write!(s, " {}", format_coord(t)),
+            Command::Fill(rule) => write!(s, " {}", rule.name()),
             Command::Push | Command::Pop => Ok(()),
             Command::Translate(p) | Command::Scale(p) => write!(s, " {}", point(p)),
             Command::Rotate(axis, a) => {

@@ -96,6 +96,8 @@ pub enum TextErrorKind {
     LookAt,
     /// A rotation axis other than `x`, `y` or `z`.
     Axis(String),
+    /// A fill rule other than `evenodd` or `nonzero`.
+    FillRule(String),
     /// An `f` index that names no vertex of the segment's table: 0, past
     /// its end, or before its start.
     Index {
@@ -164,6 +166,11 @@ impl fmt::Display for TextErrorKind {
             TextErrorKind::Axis(a) => {
                 write!(f, "`{}` is not an axis (x, y or z)", escape_for_terminal(a))
             }
+            TextErrorKind::FillRule(r) => write!(
+                f,
+                "`{}` is not a fill rule (evenodd or nonzero)",
+                escape_for_terminal(r)
+            ),
             TextErrorKind::TooManyVertices(n) => write!(
                 f,
                 "polygon has {n} vertices; a display list holds at most {}",

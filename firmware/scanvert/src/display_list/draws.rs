@@ -1,8 +1,8 @@
 //! The one interpreter of a display list's 2D commands.
 //!
-//! `clear`, `clip`, `color`, `poly` and `line` are read here, and only
-//! here: [`DisplayList::draws`] follows the clip registers and the current
-//! colour and yields a [`Draw`] for each `clear`, `poly` and `line`, with
+//! `clear`, `clip`, `color`, `fill`, `poly` and `line` are read here, and
+//! only here: [`DisplayList::draws`] follows the clip registers, the current
+//! colour and the fill rule and yields a [`Draw`] for each `clear`, `poly` and `line`, with
 //! the state in force at its place. The controller's immediate render and
 //! the band edge table both draw from it; [`DisplayList::table_needs`]
 //! counts the table's memory from it. The 3D commands have their own one
@@ -14,17 +14,19 @@ use crate::port::band::{DirtyRows, Mix};
 use crate::raster::clip::ClipRect;
 use crate::raster::draw::Draw;
 use crate::raster::table::TableNeeds;
+use crate::raster::winding::FillRule;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 use super::Vertices;
 
 /// The state the 2D commands carry: the clip registers, cut to the frame,
-/// and the current colour.
+/// the current colour and the fill rule of `poly`s.
 #[derive(Clone, Copy, Debug)]
 struct State {
     clip: ClipRect,
     color: Rgb888,
+    rule: FillRule,
     frame: (u16, u16),
 }
 
@@ -33,6 +35,7 @@ impl State {
         State {
             clip: ClipRect::full(width, height),
             color: DEFAULT_COLOR,
+            rule: FillRule::EvenOdd,
             frame: (width, height),
         }
     }
@@ -52,8 +55,13 @@ impl State {
                 self.color = c;
                 return None;
             }
+            Command::Fill(rule) => {
+                self.rule = rule;
+                return None;
+            }
             Command::Poly(vertices) => Draw::Poly {
                 vertices,
+                rule: self.rule,
                 clip,
                 color,
             },
@@ -96,13 +104,14 @@ impl<'a> DisplayList<'a> {
     /// The list's 2D drawing operations in order, on a frame of
     /// `width × height` (the list's frame cut to the target's): clip
     /// windows are cut to it. They start with the clip registers on the
-    /// whole frame and the colour [`DEFAULT_COLOR`]. A list with no
+    /// whole frame, the colour [`DEFAULT_COLOR`] and the fill rule
+    /// even-odd. A list with no
     /// `clear`, `poly` or `line` ([`Summary::draws_2d`](super::Summary))
     /// yields nothing without being read.
     ///
     /// A `clear` fills the whole frame, so what is drawn before the last
-    /// one cannot show: those draws are not yielded (their `clip` and
-    /// `color` still take effect). The work of a list is then bounded by
+    /// one cannot show: those draws are not yielded (their `clip`,
+    /// `color` and `fill` still take effect). The work of a list is then bounded by
     /// one frame's clear and the commands after it, however many `clear`s
     /// it holds.
     pub fn draws(&self, frame: (u16, u16)) -> Draws<'a> {
@@ -126,7 +135,7 @@ impl<'a> DisplayList<'a> {
                 break;
             }
             match cmd {
-                Command::Clip(_) | Command::Color(_) => {
+                Command::Clip(_) | Command::Color(_) | Command::Fill(_) => {
                     state.step(cmd);
                 }
                 _ => {}
@@ -224,10 +233,11 @@ impl<'a> DisplayList<'a> {
                 }
                 Draw::Poly {
                     vertices,
+                    rule,
                     clip,
                     color,
                 } => {
-                    k.add(1);
+                    k.add(1 + rule.to_byte() as u64);
                     let (mut lo, mut hi) = (i32::MAX, i32::MIN);
                     for v in vertices {
                         k.add((v.x.to_bits() as u16 as u64) << 16 | v.y.to_bits() as u16 as u64);

@@ -28,6 +28,7 @@
 //! | [`label`] | `label` | 14 | `len` text bytes (`len` at [`label::TEXT_LEN`]) |
 //! | [`point`] | `v` | 13 | |
 //! | [`mesh_face`] | `f` | 3 | `n × 2` (`n` ≥ 1): `u16` 0-based indices into the segment's table |
+//! | [`fill`] | `fill` | 2 | |
 //!
 //! The tests at the end check that the table and the field modules agree.
 
@@ -247,6 +248,14 @@ pub mod thickness {
     pub const LEN: usize = 3;
 }
 
+/// `fill`: one byte, the fill rule (0 even-odd, 1 non-zero).
+pub mod fill {
+    /// The rule.
+    pub const RULE: usize = 1;
+    /// Size.
+    pub const LEN: usize = 2;
+}
+
 /// `push` and `pop`: the opcode alone.
 pub mod bare {
     /// Size.
@@ -360,6 +369,7 @@ impl Opcode {
             Opcode::View => Layout::fixed(view::LEN),
             Opcode::Light => Layout::fixed(light::LEN),
             Opcode::Thickness => Layout::fixed(thickness::LEN),
+            Opcode::Fill => Layout::fixed(fill::LEN),
             Opcode::Push | Opcode::Pop => Layout::fixed(bare::LEN),
             Opcode::Translate | Opcode::Scale | Opcode::MeshVertex => Layout::fixed(point::LEN),
             Opcode::Rotate => Layout::fixed(rotate::LEN),
@@ -380,7 +390,7 @@ mod tests {
     use super::*;
 
     /// Every opcode, in code order.
-    const ALL: [Opcode; 21] = [
+    const ALL: [Opcode; 22] = [
         Opcode::Clear,
         Opcode::Clip,
         Opcode::Color,
@@ -402,6 +412,7 @@ mod tests {
         Opcode::Label,
         Opcode::MeshVertex,
         Opcode::MeshFace,
+        Opcode::Fill,
     ];
 
     #[test]
@@ -494,5 +505,6 @@ mod tests {
         assert_eq!(size(Opcode::Label, 7), 14 + 7);
         assert_eq!(size(Opcode::MeshVertex, 0), 13);
         assert_eq!(size(Opcode::MeshFace, 3), 3 + 2 * 3);
+        assert_eq!(size(Opcode::Fill, 0), 2);
     }
 }

@@ -41,6 +41,13 @@
 //! | `0x2a` | `scale` | `x y z`: Q16.16 | 13 |
 //! | `0x30` | `face` | `n: u16` (≥ 1), then `n × (x, y, z)`: Q16.16 | 3 + 12n |
 //! | `0x31` | `label` | `x y z`: Q16.16, `len: u8` (≥ 1), `len` bytes of printable ASCII | 14 + len |
+//! | `0x32` | `v` | `x y z`: Q16.16 | 13 |
+//! | `0x33` | `f` | `n: u16` (≥ 1), then `n × i: u16` (0-based) | 3 + 2n |
+//! | `0x34` | `fill` | `rule: u8`: 0 even-odd, 1 non-zero ([`FillRule`](crate::raster::FillRule)) | 2 |
+//!
+//! `fill` is a 2D command (version 2): it sets the fill rule of the `poly`s
+//! after it, as `color` sets their colour, until the next `fill`; a list
+//! starts with even-odd.
 //!
 //! A version-1 list may hold only version-1 opcodes. [`Writer`] stamps the
 //! lowest version that holds what was written, so a list of only the
@@ -139,6 +146,8 @@ pub enum Opcode {
     MeshVertex = 0x32,
     /// A face through vertices of the segment's mesh table (`f`).
     MeshFace = 0x33,
+    /// The fill rule of the `poly`s that follow (version 2).
+    Fill = 0x34,
 }
 
 impl Opcode {
@@ -166,6 +175,7 @@ impl Opcode {
             0x31 => Opcode::Label,
             0x32 => Opcode::MeshVertex,
             0x33 => Opcode::MeshFace,
+            0x34 => Opcode::Fill,
             _ => return None,
         })
     }
@@ -181,13 +191,19 @@ impl Opcode {
     }
 
     /// `true` for the commands of the 3D layer: `poly3` and the 3D
-    /// scene's. The others (`clear`, `clip`, `color`, `poly`, `line`) are
-    /// the 2D commands, executed in painter's order; `clip` and `color`
-    /// also set the registers the 3D layer takes.
+    /// scene's. The others (`clear`, `clip`, `color`, `fill`, `poly`,
+    /// `line`) are the 2D commands, executed in painter's order; `clip`
+    /// and `color` also set the registers the 3D layer takes (`fill` is
+    /// the 2D `poly`s' alone).
     pub const fn is_3d(self) -> bool {
         !matches!(
             self,
-            Opcode::Clear | Opcode::Clip | Opcode::Color | Opcode::Poly | Opcode::Line
+            Opcode::Clear
+                | Opcode::Clip
+                | Opcode::Color
+                | Opcode::Fill
+                | Opcode::Poly
+                | Opcode::Line
         )
     }
 
@@ -220,6 +236,7 @@ impl Opcode {
             Opcode::Label => "label",
             Opcode::MeshVertex => "v",
             Opcode::MeshFace => "f",
+            Opcode::Fill => "fill",
         }
     }
 
@@ -264,8 +281,8 @@ pub enum ErrorKind {
     /// A polygon with fewer than 3 vertices (`face`: fewer than 1).
     TooFewVertices(u16),
     /// An operand outside its range: a rotation axis over 2, a light over
-    /// 100 %, a negative thickness, an empty label or one with a byte that
-    /// is not printable ASCII.
+    /// 100 %, a negative thickness, a fill rule other than 0 and 1, an
+    /// empty label or one with a byte that is not printable ASCII.
     BadOperand(Opcode),
     /// An `f` index that names no vertex of its segment's table: the
     /// table then held `vertices` (the error's offset is the index's).

@@ -5,6 +5,7 @@ use super::{Error, ErrorKind, Opcode, HEADER_LEN, MAGIC, VERSION, VERSION_2D};
 use crate::fixed::{Coord, Vertex, Vertex3};
 use crate::geometry::{Angle, Point3, Q16};
 use crate::raster::clip::ClipWindow;
+use crate::raster::winding::FillRule;
 use core::marker::PhantomData;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -77,7 +78,7 @@ impl Summary {
                 self.draws_2d = true;
                 &mut self.poly
             }
-            Opcode::Color | Opcode::Clip => return,
+            Opcode::Color | Opcode::Clip | Opcode::Fill => return,
             // The rest is the 3D layer's.
             _ => {
                 debug_assert!(op.is_3d());
@@ -148,7 +149,7 @@ struct Rule {
 /// from [`Opcode::from_byte`], [`Opcode::version`] and [`Opcode::layout`],
 /// so that checking a command looks its rule up once rather than matching
 /// its opcode for each of them.
-static RULES: ([u8; 256], [Rule; 22]) = {
+static RULES: ([u8; 256], [Rule; 23]) = {
     let none = Rule {
         op: None,
         version: 0,
@@ -158,7 +159,7 @@ static RULES: ([u8; 256], [Rule; 22]) = {
         },
         operands: false,
     };
-    let (mut index, mut rules) = ([0u8; 256], [none; 22]);
+    let (mut index, mut rules) = ([0u8; 256], [none; 23]);
     let (mut byte, mut n) = (0, 1);
     while byte < 256 {
         if let Some(op) = Opcode::from_byte(byte as u8) {
@@ -168,7 +169,11 @@ static RULES: ([u8; 256], [Rule; 22]) = {
                 layout: op.layout(),
                 operands: matches!(
                     op,
-                    Opcode::Rotate | Opcode::Light | Opcode::Thickness | Opcode::Label
+                    Opcode::Rotate
+                        | Opcode::Light
+                        | Opcode::Thickness
+                        | Opcode::Fill
+                        | Opcode::Label
                 ),
             };
             index[byte] = n as u8;
@@ -215,6 +220,7 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
         Opcode::Rotate => rest[layout::rotate::AXIS] > 2,
         Opcode::Light => rest[layout::light::PERCENT] > 100,
         Opcode::Thickness => i16_at(rest, layout::thickness::T) < 0,
+        Opcode::Fill => FillRule::from_byte(rest[layout::fill::RULE]).is_none(),
         Opcode::Label => {
             let text = &rest[layout.fixed..len];
             text.is_empty() || !text.iter().all(|c| (0x20..0x7f).contains(c))
@@ -438,6 +444,8 @@ pub enum Command<'a> {
     },
     /// Thickness of points and lines, in Q12.4 pixels (≥ 0).
     Thickness(Coord),
+    /// The fill rule of the 2D `poly`s that follow.
+    Fill(FillRule),
     /// Save the modelling transform.
     Push,
     /// Restore the modelling transform.
@@ -485,6 +493,7 @@ impl Command<'_> {
             Command::View { .. } => Opcode::View,
             Command::Light { .. } => Opcode::Light,
             Command::Thickness(_) => Opcode::Thickness,
+            Command::Fill(_) => Opcode::Fill,
             Command::Push => Opcode::Push,
             Command::Pop => Opcode::Pop,
             Command::Translate(_) => Opcode::Translate,
@@ -676,6 +685,11 @@ fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
             use layout::thickness::{LEN, T};
             let t = Coord::from_bits(i16_at(fixed::<LEN>(rest)?, T));
             (Command::Thickness(t), LEN)
+        }
+        Opcode::Fill => {
+            use layout::fill::{LEN, RULE};
+            let rule = FillRule::from_byte(fixed::<LEN>(rest)?[RULE])?;
+            (Command::Fill(rule), LEN)
         }
         Opcode::Push => (Command::Push, layout::bare::LEN),
         Opcode::Pop => (Command::Pop, layout::bare::LEN),

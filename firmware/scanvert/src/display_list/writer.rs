@@ -5,6 +5,7 @@ use super::{Axis, Opcode, HEADER_LEN, MAGIC, MAX_LABEL_LEN, MAX_VERTICES, VERSIO
 use crate::fixed::{Coord, Vertex, Vertex3};
 use crate::geometry::{Angle, Point3, Q16};
 use crate::raster::clip::ClipWindow;
+use crate::raster::winding::FillRule;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
@@ -280,6 +281,11 @@ impl<'b> Writer<'b> {
             return Err(WriteError::BadOperand);
         }
         self.command(Opcode::Thickness, t.to_bits().to_le_bytes())
+    }
+
+    /// `fill`: the fill rule of the `poly`s that follow.
+    pub fn fill(&mut self, rule: FillRule) -> Result<(), WriteError> {
+        self.command(Opcode::Fill, [rule.to_byte()])
     }
 
     /// `push`: save the modelling transform.

@@ -55,7 +55,10 @@ pub struct Dda<const F: u32> {
     top: i32,
     /// One past the last row sampled.
     end: i32,
-    /// Pixel of the crossing on the current row.
+    /// Pixel of the crossing on the current row; in a walk by the non-zero
+    /// rule, times two plus the edge's direction
+    /// ([`Stepper::load_wound`]), and the direction alone from
+    /// [`Stepper::new_wound`] until the first load.
     px: i32,
 }
 
@@ -138,6 +141,16 @@ impl<const F: u32> Stepper for Dda<F> {
     #[inline(always)]
     fn step(&mut self) {
         self.x += self.slope;
+    }
+    #[inline]
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
+        let mut e = Dda::new(a, b, rows)?;
+        e.px = (a.y.units() > b.y.units()) as i32;
+        Some(e)
+    }
+    #[inline(always)]
+    fn load_wound(&mut self) {
+        self.px = ((self.x + ((1 << (F - 1)) - 1)) >> F) << 1 | (self.px & 1);
     }
 }
 

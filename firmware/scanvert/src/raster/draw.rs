@@ -1,5 +1,6 @@
 //! What the 2D path draws: a `clear`, a polygon or a line, each with the
-//! colour and the clip registers in force where it stands in its list.
+//! colour and the clip registers (and a polygon with the fill rule) in
+//! force where it stands in its list.
 //!
 //! The display list's 2D commands are interpreted in one place,
 //! [`DisplayList::draws`](crate::display_list::DisplayList::draws), which
@@ -12,6 +13,7 @@
 
 use crate::fixed::Vertex;
 use crate::raster::clip::ClipRect;
+use crate::raster::winding::FillRule;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
 /// One 2D drawing operation. `V` is the polygon's vertices: any
@@ -24,10 +26,12 @@ pub enum Draw<V> {
     /// Every pixel of the frame gets this colour; the clip registers do
     /// not apply.
     Clear(Rgb888),
-    /// A polygon by the pixel rule (even-odd), cut to `clip`.
+    /// A polygon by the pixel rule of its fill rule, cut to `clip`.
     Poly {
         /// At least three vertices, in order.
         vertices: V,
+        /// The fill rule in force: even-odd or non-zero winding.
+        rule: FillRule,
         /// The clip registers, cut to the frame.
         clip: ClipRect,
         /// The current colour.

@@ -74,6 +74,21 @@ pub trait Stepper: Copy {
     /// up. `false` (the default) sends every polygon through the steppers.
     #[doc(hidden)]
     const EXACT: bool = false;
+    /// [`new`](Stepper::new) for a walk by the non-zero rule
+    /// ([`FillRule::NonZero`](crate::raster::FillRule)): the stepper keeps
+    /// the edge's direction, `u`, 1 for an edge running up the rows (`b`
+    /// above `a`), 0 for one running down, for
+    /// [`load_wound`](Stepper::load_wound).
+    #[doc(hidden)]
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self>;
+    /// Computes the pixel for the current row, as
+    /// [`load_pixel`](Stepper::load_pixel) does, with the direction of a
+    /// stepper made by [`new_wound`](Stepper::new_wound) beside it:
+    /// [`pixel`](Stepper::pixel) is then `2·c + u`, `c` the pixel. A walk
+    /// by the non-zero rule loads its edges only so, and never by
+    /// `load_pixel`, which drops the direction.
+    #[doc(hidden)]
+    fn load_wound(&mut self);
     /// Makes `self` a copy of `other`, as `*self = *other`. A stepper may
     /// copy field by field: a copy of a whole record between two slots
     /// of one slice can become a call to `memmove`.
@@ -105,7 +120,11 @@ pub struct Edge {
     /// One past the last row sampled.
     pub(super) end: i32,
     /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
-    /// [`Edge::load_pixel`].
+    /// [`Edge::load_pixel`]. Or, in a walk by the non-zero rule, that
+    /// pixel times two plus the edge's direction ([`Stepper::load_wound`]),
+    /// and from [`Stepper::new_wound`] until the first load the direction
+    /// alone: the slot stays 32 bytes, and the even-odd walk reads and
+    /// writes nothing more.
     pub(super) px: i32,
 }
 
@@ -295,6 +314,16 @@ impl Stepper for Edge {
     #[inline(always)]
     fn step(&mut self) {
         Edge::step(self)
+    }
+    #[inline]
+    fn new_wound(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
+        let mut e = Edge::new(a, b, rows)?;
+        e.px = (a.y.units() > b.y.units()) as i32;
+        Some(e)
+    }
+    #[inline(always)]
+    fn load_wound(&mut self) {
+        self.px = ceil_px(self.x) << 1 | (self.px & 1);
     }
     #[inline(always)]
     fn columns(&self, rows: i32) -> Option<(i32, i32)> {

@@ -1,5 +1,6 @@
-//! Scan conversion of one polygon: the active-edge list, the even-odd
-//! pairing of crossings, and the clip registers applied to every span.
+//! Scan conversion of one polygon: the active-edge list, the pairing of
+//! crossings (even-odd here, non-zero in [`winding`](super::winding)), and
+//! the clip registers applied to every span.
 //!
 //! The edges of a polygon are set up once ([`Edge::new`], clipped to the
 //! window's rows) and sorted by first row. Row by row, edges whose first
@@ -25,6 +26,7 @@ use crate::fixed::{ceil_px, Vertex, HALF};
 use crate::port::{Counts, Span, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::raster::edge::{Edge, Stepper};
+use crate::raster::winding::{emit_nonzero, FillRule};
 use core::fmt;
 
 /// Why a polygon could not be drawn.
@@ -115,6 +117,78 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         I: IntoIterator<Item = Vertex>,
         T: SpanTarget + ?Sized,
     {
+        self.fill_by::<false, I, T>(vertices, clip, color, target)
+    }
+
+    /// [`fill`](Self::fill) by the fill rule `rule`: even-odd, or non-zero
+    /// winding (see [`FillRule`]).
+    ///
+    /// ```
+    /// use scanvert::prelude::*;
+    /// use scanvert::raster::FillRule;
+    /// use scanvert::pixelcolor::BinaryColor;
+    /// // A five-pointed star in one stroke: its middle winds twice.
+    /// let star = [(16, 2), (24, 28), (3, 12), (29, 12), (8, 28)]
+    ///     .map(|(x, y)| Vertex::from_bits(16 * x, 16 * y));
+    /// let mut px = [BinaryColor::Off; 32 * 32];
+    /// let mut fb = FrameBuffer::new(&mut px, 32, 32).unwrap();
+    /// let mut slots = [Edge::EMPTY; 5];
+    /// let clip = ClipRect::full(32, 32);
+    /// let mut raster = Rasterizer::new(&mut slots);
+    /// raster.fill_with(FillRule::EvenOdd, star, &clip, BinaryColor::On, &mut fb).unwrap();
+    /// assert_eq!(fb.pixel(16, 16), Some(BinaryColor::Off));
+    /// raster.fill_with(FillRule::NonZero, star, &clip, BinaryColor::On, &mut fb).unwrap();
+    /// assert_eq!(fb.pixel(16, 16), Some(BinaryColor::On));
+    /// ```
+    pub fn fill_with<I, T>(
+        &mut self,
+        rule: FillRule,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<Counts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        if rule == FillRule::NonZero {
+            return self.fill_nonzero(vertices, clip, color, target);
+        }
+        self.fill(vertices, clip, color, target)
+    }
+
+    /// [`fill_by`](Self::fill_by) the non-zero rule, out of line: the
+    /// even-odd fill, inlined into its callers, is compiled as it would
+    /// be without it.
+    #[inline(never)]
+    fn fill_nonzero<I, T>(
+        &mut self,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<Counts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
+        self.fill_by::<true, I, T>(vertices, clip, color, target)
+    }
+
+    /// The fill, by the non-zero rule when `NONZERO`, else even-odd.
+    #[inline(always)]
+    fn fill_by<const NONZERO: bool, I, T>(
+        &mut self,
+        vertices: I,
+        clip: &ClipRect,
+        color: T::Color,
+        target: &mut T,
+    ) -> Result<Counts, FillError<T::Error>>
+    where
+        I: IntoIterator<Item = Vertex>,
+        T: SpanTarget + ?Sized,
+    {
         let mut counts = Counts::default();
         target.begin_polygon();
         // The clip cut to the target once, so that every span it passes is
@@ -124,7 +198,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         if clip.is_empty() {
             return Ok(counts);
         }
-        let n = match self.build(vertices, clip) {
+        let n = match build_edges::<NONZERO, S>(self.edges, vertices, clip) {
             Some(n) => n,
             None => {
                 return Err(FillError::Capacity {
@@ -140,7 +214,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
         let mut walk = Walk::start(edges);
-        walk.run::<false, _, _>(
+        walk.run::<false, NONZERO, _, _>(
             edges,
             i32::MAX,
             (cx0, cx1),
@@ -198,18 +272,6 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
                 .map_err(FillError::Target),
         )
     }
-
-    /// Sets up the edges that cross a row centre inside `clip`; returns
-    /// their number, or `None` when they do not fit. Returns 0 when the
-    /// polygon's box misses the window's columns.
-    #[inline(always)]
-    fn build<I: IntoIterator<Item = Vertex>>(
-        &mut self,
-        vertices: I,
-        clip: &ClipRect,
-    ) -> Option<usize> {
-        build_edges(self.edges, vertices, clip)
-    }
 }
 
 /// The corners `(x_min, y_min, x_max, y_max)`, in units, of the
@@ -231,8 +293,10 @@ fn rectangle(v: &[Vertex; 4]) -> Option<(i32, i32, i32, i32)> {
 /// centre inside `clip` into `edges`; returns their number (0 when the
 /// polygon's box misses the clip columns), or `None` when they do not
 /// fit. The rasteriser and the band path's edge table
-/// ([`table`](super::table)) both set up polygons so.
-pub(super) fn build_edges<S: Stepper>(
+/// ([`table`](super::table)) both set up polygons so. `WOUND` sets them
+/// up for a walk by the non-zero rule ([`Stepper::new_wound`]).
+#[inline(always)]
+pub(super) fn build_edges<const WOUND: bool, S: Stepper>(
     edges: &mut [S],
     vertices: impl IntoIterator<Item = Vertex>,
     clip: &ClipRect,
@@ -246,7 +310,12 @@ pub(super) fn build_edges<S: Stepper>(
     let mut n = 0;
     let mut prev = first;
     let mut push = |a: Vertex, b: Vertex, n: &mut usize| -> Option<()> {
-        if let Some(e) = S::new(a, b, rows) {
+        let e = if WOUND {
+            S::new_wound(a, b, rows)
+        } else {
+            S::new(a, b, rows)
+        };
+        if let Some(e) = e {
             *edges.get_mut(*n)? = e;
             *n += 1;
         }
@@ -314,9 +383,12 @@ impl Walk {
     /// band ends (the band path's table): two edges that both go on past
     /// `y1` are stepped to it and the walk left at once, without the
     /// general retire loop (fewer branches a predictor misses, at every
-    /// band a polygon crosses).
+    /// band a polygon crosses). `NONZERO` walks by the non-zero rule
+    /// ([`winding`](super::winding)): every row through the general loop,
+    /// its edges loaded with their direction
+    /// ([`Stepper::load_wound`]).
     #[inline(always)]
-    pub(super) fn run<const BAND: bool, S: Stepper, T: SpanTarget + ?Sized>(
+    pub(super) fn run<const BAND: bool, const NONZERO: bool, S: Stepper, T: SpanTarget + ?Sized>(
         &mut self,
         edges: &mut [S],
         y1: i32,
@@ -354,7 +426,9 @@ impl Walk {
             }
             let (live, waiting) = edges.split_at_mut(active);
             match (paint.as_mut(), live) {
-                (Some((target, color)), [a, b]) if a.is_vertical() && b.is_vertical() => {
+                (Some((target, color)), [a, b])
+                    if !NONZERO && a.is_vertical() && b.is_vertical() =>
+                {
                     // Two vertical edges (a rectangle's sides): one span,
                     // the same on every row of the run; nothing to step.
                     a.load_pixel();
@@ -363,7 +437,7 @@ impl Walk {
                     emit_rows(y, stop, l, r, cx, *color, &mut **target, counts)?;
                     y = stop;
                 }
-                (Some((target, color)), [a, b]) => {
+                (Some((target, color)), [a, b]) if !NONZERO => {
                     // Two edges (every convex polygon, most rows of any
                     // other): stepped in locals, one span a row, no sort.
                     let (mut ea, mut eb) = (*a, *b);
@@ -443,19 +517,27 @@ impl Walk {
                 }
                 (Some((target, color)), live) => loop {
                     for e in live.iter_mut() {
-                        e.load_pixel();
+                        if NONZERO {
+                            e.load_wound();
+                        } else {
+                            e.load_pixel();
+                        }
                     }
                     insertion_sort(live);
-                    for pair in live.chunks_exact(2) {
-                        emit_span::<BAND, T>(
-                            y,
-                            pair[0].pixel(),
-                            pair[1].pixel(),
-                            cx,
-                            *color,
-                            &mut **target,
-                            counts,
-                        )?;
+                    if NONZERO {
+                        emit_nonzero::<BAND, S, T>(y, live, cx, *color, &mut **target, counts)?;
+                    } else {
+                        for pair in live.chunks_exact(2) {
+                            emit_span::<BAND, T>(
+                                y,
+                                pair[0].pixel(),
+                                pair[1].pixel(),
+                                cx,
+                                *color,
+                                &mut **target,
+                                counts,
+                            )?;
+                        }
                     }
                     y += 1;
                     if y >= stop {

@@ -9,7 +9,8 @@
 //! Every `poly` and `line` after
 //! the last `clear` (what comes before it is covered by it: a `clear`
 //! empties the table) is entered, in list order, with its colour and the
-//! clip registers in force at its place. A polygon's edges are set up
+//! clip registers (and, for a polygon, the fill rule) in force at its
+//! place. A polygon's edges are set up
 //! exactly as [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill)
 //! sets them up (the exact [`Edge`], restricted to the clip rows, sorted by
 //! first row; those of its first row are made active, as its walk's first
@@ -54,6 +55,7 @@ use crate::raster::draw::Draw;
 use crate::raster::edge::Edge;
 use crate::raster::line::Line;
 use crate::raster::scan::{build_edges, Walk};
+use crate::raster::winding::FillRule;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
@@ -75,6 +77,8 @@ pub struct TablePolygon {
     x0: u16,
     x1: u16,
     color: Rgb888,
+    /// A polygon's fill rule.
+    rule: FillRule,
 }
 
 impl TablePolygon {
@@ -88,6 +92,7 @@ impl TablePolygon {
         x0: 0,
         x1: 0,
         color: Rgb888::new(0, 0, 0),
+        rule: FillRule::EvenOdd,
     };
 
     /// `true` for a line.
@@ -303,11 +308,16 @@ impl<'a> EdgeTable<'a> {
                 }
                 Draw::Poly {
                     vertices,
+                    rule,
                     clip,
                     color,
                 } if full.is_none() && !clip.is_empty() => {
                     let room = &mut edges[used..];
-                    let Some(n) = build_edges(room, vertices, &clip) else {
+                    let built = match rule {
+                        FillRule::EvenOdd => build_edges::<false, _>(room, vertices, &clip),
+                        FillRule::NonZero => build_nonzero(room, vertices, &clip),
+                    };
+                    let Some(n) = built else {
                         full = Some(TableError::Edges {
                             offset,
                             capacity: edges.len(),
@@ -340,6 +350,7 @@ impl<'a> EdgeTable<'a> {
                         x0: clip.x0(),
                         x1: clip.x1(),
                         color,
+                        rule,
                     };
                     count += 1;
                     used += n;
@@ -567,12 +578,42 @@ fn run<T: SpanTarget + ?Sized>(
         y: p.y,
     };
     let paint = target.zip(color);
-    walk.run::<true, _, _>(edges, y1, (p.x0 as i32, p.x1 as i32), paint, counts)?;
+    let cx = (p.x0 as i32, p.x1 as i32);
+    match p.rule {
+        FillRule::EvenOdd => walk.run::<true, false, _, _>(edges, y1, cx, paint, counts)?,
+        FillRule::NonZero => run_nonzero(&mut walk, edges, y1, cx, paint, counts)?,
+    }
     // At most `n` (a `u16`).
     p.active = walk.active as u16;
     p.next = walk.next as u16;
     p.y = walk.y;
     Ok(())
+}
+
+/// [`build_edges`] for a walk by the non-zero rule, out of line: the
+/// even-odd set-up, inlined into the table's build, is compiled as it
+/// would be without it.
+#[inline(never)]
+fn build_nonzero<V: IntoIterator<Item = Vertex>>(
+    edges: &mut [Edge],
+    vertices: V,
+    clip: &crate::raster::clip::ClipRect,
+) -> Option<usize> {
+    build_edges::<true, _>(edges, vertices, clip)
+}
+
+/// [`Walk::run`] by the non-zero rule, out of line: the even-odd walk,
+/// inlined into the band loop, is compiled as it would be without it.
+#[inline(never)]
+fn run_nonzero<T: SpanTarget + ?Sized>(
+    walk: &mut Walk,
+    edges: &mut [Edge],
+    y1: i32,
+    cx: (i32, i32),
+    paint: Option<(&mut T, T::Color)>,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    walk.run::<true, true, _, _>(edges, y1, cx, paint, counts)
 }
 
 /// Rows `line.row()..y1` of one line, as

@@ -152,8 +152,8 @@ pub fn list_pipeline<const DEPTH: usize, const N: usize>(
     Ok(pipe)
 }
 
-/// Executes one command of a list into `out`. 2D commands (`clear`, `line`,
-/// `poly`) are left alone; `color` and `clip` change `st`, as they do for
+/// Executes one command of a list into `out`. 2D commands (`clear`, `fill`,
+/// `line`, `poly`) are left alone; `color` and `clip` change `st`, as they do for
 /// the rasteriser.
 pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
@@ -164,7 +164,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
 ) -> Result<Executed, SceneError> {
     let (w, h) = (st.width, st.height);
     match cmd {
-        Command::Clear(_) | Command::Poly(_) | Command::Line(..) => {}
+        Command::Clear(_) | Command::Fill(_) | Command::Poly(_) | Command::Line(..) => {}
         Command::Color(c) => st.color = c,
         Command::Clip(win) => st.clip = ClipRect::from_window(win, w, h),
         Command::Poly3(v) => {
