@@ -69,6 +69,7 @@ mod reader;
 mod writer;
 
 pub use draws::{Draws, ScratchTooSmall};
+pub(crate) use reader::decode;
 pub use reader::{
     Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Points, Summary, Vertices,
     Vertices3,

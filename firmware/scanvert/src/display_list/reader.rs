@@ -575,7 +575,7 @@ impl<'a> Iterator for Commands<'a> {
 /// packed or text tail as one slice; a read outside `rest` (which a
 /// checked list never makes) ends the iteration rather than panicking.
 #[inline(always)]
-fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
+pub(crate) fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
     /// The fixed part of a command of `N` bytes.
     #[inline(always)]
     fn fixed<const N: usize>(rest: &[u8]) -> Option<&[u8; N]> {

@@ -76,6 +76,21 @@ impl<'b> Writer<'b> {
         Ok(w)
     }
 
+    /// Commands with no header, into `buf` (a segment's record: see
+    /// [`scene::record`](crate::scene::record)).
+    pub(crate) fn body(buf: &'b mut [u8]) -> Self {
+        Writer {
+            buf,
+            len: 0,
+            version: VERSION_2D,
+        }
+    }
+
+    /// Bytes written so far.
+    pub(crate) fn written(&self) -> usize {
+        self.len
+    }
+
     fn put(&mut self, bytes: &[u8]) -> Result<(), WriteError> {
         let end = self.len + bytes.len();
         let dst = self

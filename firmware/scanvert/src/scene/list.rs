@@ -47,6 +47,15 @@ impl ListState {
         }
     }
 
+    /// The state at the start of a list of a `width × height` frame, the
+    /// clip registers on `clip`.
+    pub(crate) fn with_clip(width: u16, height: u16, clip: ClipRect) -> Self {
+        ListState {
+            clip,
+            ..ListState::new(width, height)
+        }
+    }
+
     /// The current colour.
     pub fn color(&self) -> Rgb888 {
         self.color
