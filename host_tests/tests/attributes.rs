@@ -386,3 +386,172 @@ fn unknown_segments_and_missing_records_are_typed_errors() {
     let want = reference(Box1::Placed(pl));
     assert_eq!(got.iter().zip(&want).filter(|(a, b)| a != b).count(), 0);
 }
+
+// ---- The text and binary forms ----
+
+use scanvert::display_list::{DisplayList, ErrorKind, Opcode};
+use scanvert_sim::cli::{render_scene, render_scene_bands_with, Scene as ListScene};
+use scanvert_sim::text::{assemble, disassemble};
+use std::path::Path;
+
+/// The pixels of `text` rendered whole, and the same in bands of 7 and
+/// 16 rows (checked equal).
+fn render(text: &str) -> Vec<Rgb565> {
+    let s = ListScene::from_bytes(Path::new("attributes.dl"), text.as_bytes().to_vec())
+        .expect("list reads");
+    let full = render_scene(&s).expect("renders").ram.contents().to_vec();
+    for (rows, mode) in [(7, Resolve::Crossing), (16, Resolve::Paint)] {
+        let band = render_scene_bands_with(&s, rows, mode).expect("bands");
+        assert_eq!(band.ram.contents(), &full[..], "bands of {rows}");
+    }
+    full
+}
+
+/// A list of two segments; `head` goes after the camera, `one` and
+/// `two` at the start of segments 1 and 2, `colour2` is segment 2's
+/// colour.
+fn list(head: &str, one: &str, two: &str, colour2: &str) -> String {
+    format!(
+        "frame 80 60
+perspective 60 1 100
+lookat 2 3 12  0 0 0
+{head}
+segment 1
+{one}
+color #3050e0
+push
+translate -1 0.5 0
+rotate y 25
+face -1 -1 1  1 -1 1  1 1 1  -1 1 1
+face 1 -1 1  1 -1 -1  1 1 -1  1 1 1
+face -1 1 1  1 1 1  1 1 -1  -1 1 -1
+pop
+face -2 1.5 0  2 1.5 0
+segment 2
+{two}
+color {colour2}
+v 2 -1 1
+v 4 -1 1
+v 4 2 0
+v 2 2 0
+f 1 2 3
+f 1 3 4
+poly3 2 2 40  20 2 40  10 12 40
+"
+    )
+}
+
+#[test]
+fn list_attributes_draw_what_the_lists_without_them_draw() {
+    let plain = render(&list("", "", "", "#20c040"));
+    assert_ne!(plain, render(&list("hide 1", "", "", "#20c040")));
+    // Hidden: as if segment 1 had no faces.
+    let no_one = list("", "hide 1", "", "#20c040")
+        .replace("face -1 -1 1", "# face")
+        .replace("face 1 -1 1", "# face")
+        .replace("face -1 1 1", "# face")
+        .replace("face -2 1.5 0", "# face")
+        .replace("hide 1", "");
+    assert_eq!(render(&list("hide 1", "", "", "#20c040")), render(&no_one));
+    // Wherever the attribute stands, and the last of each kind wins.
+    assert_eq!(render(&list("", "", "hide 1", "#20c040")), render(&no_one));
+    assert_eq!(render(&list("hide 1\nshow 1", "", "", "#20c040")), plain);
+    // Highlighted: as if drawn in that colour (no light here).
+    assert_eq!(
+        render(&list("highlight 2 #ffcc00", "", "", "#20c040")),
+        render(&list("", "", "", "#ffcc00"))
+    );
+    assert_eq!(
+        render(&list(
+            "highlight 2 #ffcc00\nhighlight 2 off",
+            "",
+            "",
+            "#20c040"
+        )),
+        plain
+    );
+    // Placed: as if its transforms started the segment.
+    assert_eq!(
+        render(&list(
+            "place 1 0.5 -0.25 -2  10 -40 0  0.75 1.25 1",
+            "",
+            "",
+            "#20c040"
+        )),
+        render(&list(
+            "",
+            "translate 0.5 -0.25 -2\nrotate x 10\nrotate y -40\nscale 0.75 1.25 1",
+            "",
+            "#20c040"
+        ))
+    );
+    assert_eq!(
+        render(&list("place 2 -1 0 1", "", "", "#20c040")),
+        render(&list("", "", "translate -1 0 1", "#20c040"))
+    );
+    // An attribute of a segment the list does not start changes nothing.
+    assert_eq!(
+        render(&list("hide 9\nplace 7 1 1 1", "", "", "#20c040")),
+        plain
+    );
+}
+
+#[test]
+fn list_attributes_round_trip_and_bad_ones_name_their_line_or_byte() {
+    let text = "frame 16 16
+hide 1
+show 65535
+highlight 2 #ffcc00 # a comment after the colour
+highlight 3 off
+place 1 1 2 3
+place 1 1 2 3  0 90 0.5
+place 1 1 2 3  0 0 0  2 1 1
+segment 1
+";
+    let a = assemble(text).expect("assembles");
+    let list = DisplayList::new_checked(&a.bytes).expect("reads");
+    let back = disassemble(&list);
+    assert_eq!(assemble(&back).expect("again").bytes, a.bytes, "{back}");
+    assert!(back.contains("highlight 2 #ffcc00\n"), "{back}");
+    assert!(back.contains("highlight 3 off\n"), "{back}");
+    assert!(back.contains("place 1 1 2 3\n"), "{back}");
+    assert!(back.contains("place 1 1 2 3 0 0 0 2 1 1\n"), "{back}");
+
+    for (bad, line) in [
+        ("frame 8 8\nhide\n", 2),
+        ("frame 8 8\n\nshow 65536\n", 3),
+        ("frame 8 8\nhighlight 1 #ffcc0\n", 2),
+        ("frame 8 8\nhighlight 1 on\n", 2),
+        ("frame 8 8\nhighlight 1\n", 2),
+        ("frame 8 8\nplace 1 1 2\n", 2),
+        ("frame 8 8\nplace 1 1 2 3 4\n", 2),
+        ("frame 8 8\nplace 1 1 2 3 0 0 0 1 1\n", 2),
+        ("frame 8 8\nplace -1 1 2 3\n", 2),
+    ] {
+        let e = assemble(bad)
+            .err()
+            .unwrap_or_else(|| panic!("{bad:?} assembles"));
+        assert_eq!(e.line, line, "{bad:?}: {e}");
+    }
+
+    // Binary: a highlight's flag over 1, or off with a colour, is a bad
+    // operand at its opcode; a place cut short is truncated there.
+    let a = assemble("frame 8 8\nsegment 1\nhighlight 1 off\n").unwrap();
+    let at = a.bytes.len() - 7;
+    assert_eq!(a.bytes[at], Opcode::Highlight as u8);
+    for (k, v) in [(3, 2u8), (4, 1), (6, 9)] {
+        let mut b = a.bytes.clone();
+        b[at + k] = v;
+        let e = DisplayList::new_checked(&b).unwrap_err();
+        assert_eq!(
+            (e.offset, e.kind),
+            (at, ErrorKind::BadOperand(Opcode::Highlight))
+        );
+    }
+    let a = assemble("frame 8 8\nplace 1 1 2 3\n").unwrap();
+    let mut b = a.bytes[..a.bytes.len() - 1].to_vec();
+    let body = (b.len() - 16) as u32;
+    b[12..16].copy_from_slice(&body.to_le_bytes());
+    let e = DisplayList::new_checked(&b).unwrap_err();
+    assert_eq!((e.offset, e.kind), (16, ErrorKind::Truncated));
+}

@@ -139,6 +139,14 @@ pub enum Opcode {
     MeshVertex = 0x32,
     /// A face through vertices of the segment's mesh table (`f`).
     MeshFace = 0x33,
+    /// Hide a segment.
+    Hide = 0x35,
+    /// Show a segment.
+    Show = 0x36,
+    /// Highlight a segment, or clear its highlight.
+    Highlight = 0x37,
+    /// Place a segment.
+    Place = 0x38,
 }
 
 impl Opcode {
@@ -166,6 +174,10 @@ impl Opcode {
             0x31 => Opcode::Label,
             0x32 => Opcode::MeshVertex,
             0x33 => Opcode::MeshFace,
+            0x35 => Opcode::Hide,
+            0x36 => Opcode::Show,
+            0x37 => Opcode::Highlight,
+            0x38 => Opcode::Place,
             _ => return None,
         })
     }
@@ -220,6 +232,10 @@ impl Opcode {
             Opcode::Label => "label",
             Opcode::MeshVertex => "v",
             Opcode::MeshFace => "f",
+            Opcode::Hide => "hide",
+            Opcode::Show => "show",
+            Opcode::Highlight => "highlight",
+            Opcode::Place => "place",
         }
     }
 

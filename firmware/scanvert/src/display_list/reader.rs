@@ -57,6 +57,9 @@ pub struct Summary {
     /// of the list and from each `segment`): the slots of the vertex
     /// table a render needs.
     pub vertices: usize,
+    /// `true` when the list has a segment attribute (`hide`, `show`,
+    /// `highlight`, `place`).
+    pub attributes: bool,
 }
 
 impl Summary {
@@ -82,6 +85,12 @@ impl Summary {
             _ => {
                 debug_assert!(op.is_3d());
                 self.first_3d.get_or_insert(offset);
+                if matches!(
+                    op,
+                    Opcode::Hide | Opcode::Show | Opcode::Highlight | Opcode::Place
+                ) {
+                    self.attributes = true;
+                }
                 match op {
                     Opcode::Poly3 => &mut self.poly3,
                     Opcode::Face => &mut self.face,
@@ -148,7 +157,7 @@ struct Rule {
 /// from [`Opcode::from_byte`], [`Opcode::version`] and [`Opcode::layout`],
 /// so that checking a command looks its rule up once rather than matching
 /// its opcode for each of them.
-static RULES: ([u8; 256], [Rule; 22]) = {
+static RULES: ([u8; 256], [Rule; 26]) = {
     let none = Rule {
         op: None,
         version: 0,
@@ -158,7 +167,7 @@ static RULES: ([u8; 256], [Rule; 22]) = {
         },
         operands: false,
     };
-    let (mut index, mut rules) = ([0u8; 256], [none; 22]);
+    let (mut index, mut rules) = ([0u8; 256], [none; 26]);
     let (mut byte, mut n) = (0, 1);
     while byte < 256 {
         if let Some(op) = Opcode::from_byte(byte as u8) {
@@ -168,7 +177,11 @@ static RULES: ([u8; 256], [Rule; 22]) = {
                 layout: op.layout(),
                 operands: matches!(
                     op,
-                    Opcode::Rotate | Opcode::Light | Opcode::Thickness | Opcode::Label
+                    Opcode::Rotate
+                        | Opcode::Light
+                        | Opcode::Thickness
+                        | Opcode::Label
+                        | Opcode::Highlight
                 ),
             };
             index[byte] = n as u8;
@@ -215,6 +228,12 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
         Opcode::Rotate => rest[layout::rotate::AXIS] > 2,
         Opcode::Light => rest[layout::light::PERCENT] > 100,
         Opcode::Thickness => i16_at(rest, layout::thickness::T) < 0,
+        Opcode::Highlight => {
+            use layout::highlight::{LEN, ON, R};
+            // Off carries no colour, so that every list reads back the
+            // same from its text.
+            rest[ON] > 1 || (rest[ON] == 0 && rest[R..LEN] != [0; LEN - R])
+        }
         Opcode::Label => {
             let text = &rest[layout.fixed..len];
             text.is_empty() || !text.iter().all(|c| (0x20..0x7f).contains(c))
@@ -460,6 +479,16 @@ pub enum Command<'a> {
     /// `v`s of the segment before it, checked), with the rules of
     /// [`Command::Face`].
     MeshFace(Packed<'a, u16>),
+    /// Hide the segment: its faces, points, lines, `poly3`s and labels
+    /// are not drawn.
+    Hide(u16),
+    /// Show the segment (undoes `Hide`).
+    Show(u16),
+    /// Draw the segment's faces, points, lines and `poly3`s in this
+    /// colour, unlit, or in their own (`None`).
+    Highlight(u16, Option<Rgb888>),
+    /// Place the segment: its commands are built after these transforms.
+    Place(u16, crate::scene::Placement),
     /// A text label, its first character's lower-left corner at a 3D point.
     Label {
         /// The anchor, model coordinates.
@@ -494,6 +523,10 @@ impl Command<'_> {
             Command::Label { .. } => Opcode::Label,
             Command::MeshVertex(_) => Opcode::MeshVertex,
             Command::MeshFace(_) => Opcode::MeshFace,
+            Command::Hide(_) => Opcode::Hide,
+            Command::Show(_) => Opcode::Show,
+            Command::Highlight(..) => Opcode::Highlight,
+            Command::Place(..) => Opcode::Place,
         }
     }
 
@@ -703,6 +736,35 @@ pub(crate) fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
                 Angle::from_bits(u16_at(b, ANGLE)),
             );
             (cmd, LEN)
+        }
+        Opcode::Hide | Opcode::Show => {
+            use layout::segment::{ID, LEN};
+            let id = u16_at(fixed::<LEN>(rest)?, ID);
+            let cmd = match op {
+                Opcode::Hide => Command::Hide(id),
+                _ => Command::Show(id),
+            };
+            (cmd, LEN)
+        }
+        Opcode::Highlight => {
+            use layout::highlight::{B, G, ID, LEN, ON, R};
+            let b = fixed::<LEN>(rest)?;
+            let color = (b[ON] != 0).then(|| Rgb888::new(b[R], b[G], b[B]));
+            (Command::Highlight(u16_at(b, ID), color), LEN)
+        }
+        Opcode::Place => {
+            use layout::place::{ID, LEN, ROTATE, SCALE, TRANSLATE};
+            let b = fixed::<LEN>(rest)?;
+            let a = |k: usize| {
+                let at = ROTATE.start + 2 * k;
+                Angle::from_bits(u16_at(b, at..at + 2))
+            };
+            let p = crate::scene::Placement {
+                translate: point_at(b, TRANSLATE),
+                rotate: [a(0), a(1), a(2)],
+                scale: point_at(b, SCALE),
+            };
+            (Command::Place(u16_at(b, ID), p), LEN)
         }
         Opcode::Label => {
             use layout::label::{AT, TEXT, TEXT_LEN};

@@ -108,7 +108,7 @@ pub mod storage;
 pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
-pub use list::{list_pipeline, Executed, ListState};
+pub use list::{list_pipeline, Attributes, Executed, ListState};
 pub use mesh::VertexTable;
 pub use record::Placement;
 pub use storage::{Capacities, SceneStorage};
@@ -1023,7 +1023,14 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     pub fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<Outcome, SceneError> {
         let clip = self.scene.clip;
         let (pipeline, mut out) = self.split();
-        let r = list::face(pipeline, &mut out, points.iter().copied(), color, clip)?;
+        let r = list::face(
+            pipeline,
+            &mut out,
+            points.iter().copied(),
+            color,
+            clip,
+            None,
+        )?;
         self.record(Some(color), |w| w.face(points.iter().copied()));
         Ok(r)
     }
@@ -1054,7 +1061,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         }
         for face in indices.chunks(sides.max(1)) {
             let ix = face.iter().map(|&i| usize::from(i));
-            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip)? {
+            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip, None)? {
                 Outcome::Emitted => stats.faces += 1,
                 Outcome::Culled => stats.culled += 1,
                 _ => stats.clipped_away += 1,

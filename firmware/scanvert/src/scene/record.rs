@@ -345,7 +345,11 @@ impl<'a> Records<'a> {
             | Command::Poly(_)
             | Command::Line(..)
             | Command::Color(_)
-            | Command::Clip(_) => {}
+            | Command::Clip(_)
+            | Command::Hide(_)
+            | Command::Show(_)
+            | Command::Highlight(..)
+            | Command::Place(..) => {}
             _ => self.give_up(),
         }
     }
