@@ -28,7 +28,7 @@ pub const END: &str = "<!-- ram-table:end -->";
 mod slot {
     pub const TRAPEZOID: usize = 34;
     pub const FACE: usize = 56;
-    pub const SEGMENT: usize = 28;
+    pub const SEGMENT: usize = 32;
     pub const INDEX_ROW: usize = 2;
     pub const EDGE_SLOT: usize = 32;
     /// An active slot.

@@ -16,7 +16,7 @@
 //! |---|---|---|---|
 //! | trapezoids | [`Trapezoid`], 34 bytes | edges' ends, rows, face, segment, columns, links | [`MAX_POOL`] |
 //! | faces | [`Face`], 56 bytes | exact plane, fixed-point depth, colour, tie key | [`MAX_POOL`] |
-//! | segments | [`Segment`], 28 bytes | chains and counters | [`MAX_POOL`] |
+//! | segments | [`Segment`], 32 bytes | chains, counters, hidden, highlight | [`MAX_POOL`] |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
 //! | edge slots | [`EdgeSlot`], 32 bytes | scratch while a polygon is cut | its vertex count |
 //!
