@@ -698,10 +698,7 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
 /// For each change: what it was, what it did (no procedure runs: the
 /// placement re-cuts the bars from their record) and the frame drawn
 /// after it. The last frame is `step`'s own.
-pub fn attribute_frames(
-    size: Size,
-    step: Step,
-) -> Result<Vec<(&'static str, Update, Vec<Rgb565>)>, CliError> {
+pub fn attribute_frames(size: Size, step: Step) -> Result<Vec<AttributeFrame>, CliError> {
     let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
     // Sized by running the changes: the bars placed higher take other
     // rows and cover other faces.
@@ -745,6 +742,10 @@ pub fn attribute_frames(
     }
     Ok(out)
 }
+
+/// One frame of [`attribute_frames`]: the change, what it did, the
+/// frame drawn after it.
+pub type AttributeFrame = (&'static str, Update, Vec<Rgb565>);
 
 /// Bytes of the demo's segment records: room for all of them (a face of
 /// four points takes 51 bytes, and the demo has 280). A record that did
