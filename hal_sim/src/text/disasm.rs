@@ -247,7 +247,8 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
             Command::Hide(id) | Command::Show(id) => write!(s, " {id}"),
             Command::Highlight(id, Some(c)) => write!(s, " {id} {}", hex(c)),
             Command::Highlight(id, None) => write!(s, " {id} off"),
-            Command::Place(id, p) => {
+            Command::Place(placed) => {
+                let (id, p) = (placed.id(), placed.placement());
                 let _ = write!(s, " {id} {}", point(p.translate));
                 let turned = p.rotate != Placement::IDENTITY.rotate;
                 let scaled = p.scale != Placement::IDENTITY.scale;

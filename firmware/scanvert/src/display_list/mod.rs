@@ -71,8 +71,8 @@ mod writer;
 pub use draws::{Draws, ScratchTooSmall};
 pub(crate) use reader::decode;
 pub use reader::{
-    Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Points, Summary, Vertices,
-    Vertices3,
+    Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Placed, Points, Summary,
+    Vertices, Vertices3,
 };
 pub use writer::{WriteError, Writer};
 

@@ -488,7 +488,8 @@ pub enum Command<'a> {
     /// colour, unlit, or in their own (`None`).
     Highlight(u16, Option<Rgb888>),
     /// Place the segment: its commands are built after these transforms.
-    Place(u16, crate::scene::Placement),
+    /// Kept as its bytes, so that a command stays as small as it was.
+    Place(Placed<'a>),
     /// A text label, its first character's lower-left corner at a 3D point.
     Label {
         /// The anchor, model coordinates.
@@ -545,6 +546,31 @@ impl Command<'_> {
         match self {
             Command::Poly(v) => Some(v.len()),
             _ => None,
+        }
+    }
+}
+
+/// A `place` command's operands, read when asked.
+#[derive(Clone, Copy, Debug)]
+pub struct Placed<'a>(&'a [u8; layout::place::LEN]);
+
+impl Placed<'_> {
+    /// The segment.
+    pub fn id(&self) -> u16 {
+        u16_at(self.0, layout::place::ID)
+    }
+
+    /// The placement.
+    pub fn placement(&self) -> crate::scene::Placement {
+        use layout::place::{ROTATE, SCALE, TRANSLATE};
+        let a = |k: usize| {
+            let at = ROTATE.start + 2 * k;
+            Angle::from_bits(u16_at(self.0, at..at + 2))
+        };
+        crate::scene::Placement {
+            translate: point_at(self.0, TRANSLATE),
+            rotate: [a(0), a(1), a(2)],
+            scale: point_at(self.0, SCALE),
         }
     }
 }
@@ -753,18 +779,8 @@ pub(crate) fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
             (Command::Highlight(u16_at(b, ID), color), LEN)
         }
         Opcode::Place => {
-            use layout::place::{ID, LEN, ROTATE, SCALE, TRANSLATE};
-            let b = fixed::<LEN>(rest)?;
-            let a = |k: usize| {
-                let at = ROTATE.start + 2 * k;
-                Angle::from_bits(u16_at(b, at..at + 2))
-            };
-            let p = crate::scene::Placement {
-                translate: point_at(b, TRANSLATE),
-                rotate: [a(0), a(1), a(2)],
-                scale: point_at(b, SCALE),
-            };
-            (Command::Place(u16_at(b, ID), p), LEN)
+            use layout::place::LEN;
+            (Command::Place(Placed(fixed::<LEN>(rest)?)), LEN)
         }
         Opcode::Label => {
             use layout::label::{AT, TEXT, TEXT_LEN};

@@ -65,7 +65,7 @@ pub fn attributes(list: &DisplayList<'_>, id: u16) -> Attributes {
             Command::Hide(s) if s == id => a.hidden = true,
             Command::Show(s) if s == id => a.hidden = false,
             Command::Highlight(s, c) if s == id => a.highlight = c,
-            Command::Place(s, p) if s == id => a.placement = p,
+            Command::Place(p) if p.id() == id => a.placement = p.placement(),
             _ => {}
         }
     }
@@ -219,8 +219,10 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
     cmd: Command<'_>,
 ) -> Result<Executed, SceneError> {
     let (w, h) = (st.width, st.height);
-    let a = st.attributes;
-    if a.hidden
+    // Not the whole `Attributes`: copied for every command, its placement
+    // costs the cut stage on the Cortex-M4.
+    let (hidden, highlight) = (st.attributes.hidden, st.attributes.highlight);
+    if hidden
         && matches!(
             cmd,
             Command::Face(_) | Command::MeshFace(_) | Command::Poly3(_) | Command::Label { .. }
@@ -233,13 +235,13 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
         Command::Color(c) => st.color = c,
         Command::Clip(win) => st.clip = ClipRect::from_window(win, w, h),
         Command::Poly3(v) => {
-            let drawn = out.poly3(&v, a.highlight.unwrap_or(st.color), &st.clip)?;
+            let drawn = out.poly3(&v, highlight.unwrap_or(st.color), &st.clip)?;
             return Ok(Executed::Poly3 { drawn });
         }
         Command::Segment(_) => {
             pipe.reset_stack();
             table.clear();
-            a.placement.apply(pipe.stack_mut())?;
+            st.attributes.placement.apply(pipe.stack_mut())?;
         }
         // Taken by `attributes` when a `segment` starts.
         Command::Hide(_) | Command::Show(_) | Command::Highlight(..) | Command::Place(..) => {}
@@ -250,13 +252,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
         Command::MeshFace(indices) => {
             let indices = indices.iter().map(usize::from);
             return Ok(Executed::Face(mesh_face(
-                pipe,
-                out,
-                table,
-                indices,
-                st.color,
-                st.clip,
-                a.highlight,
+                pipe, out, table, indices, st.color, st.clip, highlight,
             )?));
         }
         Command::Perspective { fov, near, far } => {
@@ -298,7 +294,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
                 points.iter(),
                 st.color,
                 st.clip,
-                a.highlight,
+                highlight,
             )?));
         }
         Command::Label { at, text } => {

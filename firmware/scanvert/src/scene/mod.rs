@@ -1121,13 +1121,15 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     ) -> Result<Executed, SceneError> {
         let (pipeline, mut out) = self.split();
         let r = list::execute(pipeline, &mut out, state, table, cmd)?;
-        if matches!(cmd, Command::Face(_)) && *state.clip() != self.scene.clip {
-            // The record is replayed under the scene's clip.
-            self.scene.records.give_up();
+        if self.scene.records.recording() {
+            if matches!(cmd, Command::Face(_)) && *state.clip() != self.scene.clip {
+                // The record is replayed under the scene's clip.
+                self.scene.records.give_up();
+            }
+            self.scene
+                .records
+                .command(self.segment, &cmd, state.color());
         }
-        self.scene
-            .records
-            .command(self.segment, &cmd, state.color());
         if matches!(cmd, Command::Label { .. }) && self.scene.is_hidden(self.segment) {
             self.scene.labels.set_hidden(self.segment as u16, true);
         }

@@ -179,6 +179,12 @@ impl<'a> Records<'a> {
         }
     }
 
+    /// `true` while a segment is being recorded.
+    #[inline(always)]
+    pub(crate) fn recording(&self) -> bool {
+        self.open.is_some()
+    }
+
     /// Bytes of the buffer.
     pub(crate) fn capacity(&self) -> usize {
         self.bytes.len()
