@@ -28,7 +28,7 @@ pub const END: &str = "<!-- ram-table:end -->";
 mod slot {
     pub const TRAPEZOID: usize = 34;
     pub const FACE: usize = 56;
-    pub const SEGMENT: usize = 28;
+    pub const SEGMENT: usize = 32;
     pub const INDEX_ROW: usize = 2;
     pub const EDGE_SLOT: usize = 32;
     /// An active slot.
@@ -153,7 +153,7 @@ fn the_arithmetic_of_the_parts() {
     let r = Ram::of(&c);
     assert_eq!(r.trapezoids, 340);
     assert_eq!(r.faces, 168);
-    assert_eq!(r.segments, 56);
+    assert_eq!(r.segments, 64);
     assert_eq!(r.index, 480);
     assert_eq!(r.edge_slots, 512);
     assert_eq!(r.active, 660);
@@ -163,7 +163,7 @@ fn the_arithmetic_of_the_parts() {
     assert_eq!(r.band, 10_240);
     assert_eq!(
         r.total(),
-        340 + 168 + 56 + 480 + 512 + 660 + 1280 + 89 + 336 + 10_240
+        340 + 168 + 64 + 480 + 512 + 660 + 1280 + 89 + 336 + 10_240
     );
     assert_eq!(frame_buffer(320, 240), 153_600);
     assert_eq!(z_buffer(320, 240, 2), 307_200);

@@ -192,7 +192,9 @@ usage: scanvert demo [--out DIR] [--frames N] [--size WxH] [--no-speed]
 
 Animates 40 bars over a map of 80 tiles, with place names and values as labels, at
 512x256 (or --size) through the simulated display (double-buffered): first the threshold that
-highlights bars changes, so only the bars are rebuilt, then the camera moves. Prints
+highlights bars changes, so only the bars are rebuilt, then the camera moves. Then six
+more frames show the segment attributes on the last one, with no procedure run: the
+bars highlighted, the names hidden, the bars placed higher, and each undone. Prints
 per frame the segments regenerated and the trapezoids, then the frames per second on
 this host.
 

@@ -12,7 +12,10 @@
 //!
 //! The animation first raises and lowers the threshold (only `bars` is
 //! rebuilt), then moves the camera around the scene (every segment is
-//! rebuilt). Each frame is drawn into the back bank of a double-buffered
+//! rebuilt). `scanvert demo` then shows the segment attributes on the
+//! last frame ([`attribute_frames`]): the bars highlighted, the names
+//! hidden, the bars placed higher, and all undone, with no procedure
+//! run. Each frame is drawn into the back bank of a double-buffered
 //! [`DualPortRam`] while the refresh controller reads the front bank on
 //! its own clock ([`CoSimulation`]); the banks swap in vertical retrace,
 //! and the frame the monitor shows next is written as a PNG.
@@ -42,7 +45,7 @@ use scanvert::geometry::{Angle, Light, Perspective, Pipeline, Point3, View, View
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::port::SpanTarget;
 use scanvert::scene::label::DEFAULT_FONT;
-use scanvert::scene::{Builder, Capacities, Procedure, Scene, SceneError, Update};
+use scanvert::scene::{Builder, Capacities, Placement, Procedure, Scene, SceneError, Update};
 use scanvert::visible::sweep::Resolve;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -663,6 +666,23 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
     if let Some(average) = trapezoids.checked_div(i) {
         let _ = writeln!(s, "trapezoids per frame: {average} on average");
     }
+    if let Some(&last) = steps(frames).last() {
+        for (change, update, pixels) in attribute_frames(size, last)? {
+            let path: PathBuf = dir.join(format!("frame-{i:02}.png"));
+            let png = crate::image::encode_pixels(size.width.into(), size.height.into(), &pixels)
+                .map_err(|e| error::io(&path, e))?;
+            crate::output::write_output(&path, &png)?;
+            let _ = writeln!(
+                s,
+                "frame {i}: {change}: procedures run {}, segments re-cut {} ({} trapezoids) -> {}",
+                update.regenerated,
+                update.recut,
+                update.trapezoids,
+                crate::error::shown(&path)
+            );
+            i += 1;
+        }
+    }
     if measure {
         let (camera, threshold, still) = speeds_at(size)?;
         let _ = writeln!(
@@ -672,6 +692,88 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
     }
     Ok(s)
 }
+
+/// The segment attributes on the scene of `step`: the bars highlighted,
+/// the names hidden, the bars placed 3 units higher, then each undone.
+/// For each change: what it was, what it did (no procedure runs: the
+/// placement re-cuts the bars from their record) and the frame drawn
+/// after it. The last frame is `step`'s own.
+pub fn attribute_frames(size: Size, step: Step) -> Result<Vec<AttributeFrame>, CliError> {
+    let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
+    // Sized by running the changes: the bars placed higher take other
+    // rows and cover other faces.
+    let pipe = pipeline(size)?;
+    let start = Capacities {
+        segments: SEGMENTS.len(),
+        rows: size.height as usize,
+        runs: size.width as usize,
+        edges: N,
+        ..Capacities::default()
+    };
+    let caps = SceneHeap::fit(start, |mut mem| {
+        let mut records = vec![0u8; RECORDS];
+        let mut scene = Scene::new(mem.reborrow(), pipe.clone())?;
+        scene.keep_records(&mut records);
+        apply(&mut scene, None, step)?;
+        let mut most = scene.needed()?;
+        for (_, change) in ATTRIBUTE_CHANGES {
+            change(&mut scene)?;
+            most = most.max(scene.needed()?);
+        }
+        Ok(most)
+    })
+    .map_err(|e| fail(&e))?;
+    let mut mem = Memory {
+        size,
+        heap: SceneHeap::new(caps),
+    };
+    let mut records = vec![0u8; RECORDS];
+    let mut scene = mem.scene()?;
+    scene.keep_records(&mut records);
+    advance(&mut scene, None, step)?;
+    let (w, h) = (size.width, size.height);
+    let mut out = Vec::new();
+    for (what, change) in ATTRIBUTE_CHANGES {
+        let update = change(&mut scene).map_err(|e| fail(&e))?;
+        let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
+        let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("frame");
+        draw(&mut scene, &mut fb);
+        out.push((what, update, pixels));
+    }
+    Ok(out)
+}
+
+/// One frame of [`attribute_frames`]: the change, what it did, the
+/// frame drawn after it.
+pub type AttributeFrame = (&'static str, Update, Vec<Rgb565>);
+
+/// Bytes of the demo's segment records: room for all of them (a face of
+/// four points takes 51 bytes, and the demo has 280). A record that did
+/// not fit would make the placement run the bars' procedure, which the
+/// tests rule out.
+const RECORDS: usize = 1 << 16;
+
+type AttributeChange = fn(&mut DemoScene<'_>) -> Result<Update, SceneError>;
+
+/// Frames [`attribute_frames`] draws, one a change.
+pub const ATTRIBUTE_FRAMES: usize = 6;
+
+/// The changes of [`attribute_frames`], in order.
+const ATTRIBUTE_CHANGES: [(&str, AttributeChange); ATTRIBUTE_FRAMES] = [
+    ("highlight bars #ffd700", |s| {
+        s.set_highlight(1, Some(Rgb888::new(255, 215, 0)))
+    }),
+    ("hide names", |s| s.set_visible(2, false)),
+    ("place bars 3 units higher", |s| {
+        s.place(
+            1,
+            Placement::translation(Q16::ZERO, Q16::from_int(3), Q16::ZERO),
+        )
+    }),
+    ("place bars back", |s| s.place(1, Placement::IDENTITY)),
+    ("show names", |s| s.set_visible(2, true)),
+    ("highlight bars off", |s| s.set_highlight(1, None)),
+];
 
 /// The demo's scene at `step`, built from scratch, handed to `f` with the
 /// demo's background: what the band tests and benchmarks draw, in the

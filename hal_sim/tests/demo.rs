@@ -42,7 +42,29 @@ fn the_memory_found_by_running_the_frames_is_enough() {
         let size = Size::new(w, h).expect("a size");
         let report = run_at(size, &dir, frames, false)
             .unwrap_or_else(|e| panic!("{w}x{h}, {frames} frames: {e}"));
-        assert_eq!(report.lines().count(), frames + 2, "{report}");
+        assert_eq!(
+            report.lines().count(),
+            frames + 2 + scanvert_sim::demo::ATTRIBUTE_FRAMES,
+            "{report}"
+        );
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The segment attributes on the demo's last frame run no procedure, the
+/// placement re-cuts the bars from their record, and undoing them all
+/// gives the frame back.
+#[test]
+fn attributes_change_the_frame_without_running_procedures() {
+    use scanvert_sim::demo::{attribute_frames, DEFAULT_SIZE};
+    let last = *steps(8).last().expect("steps");
+    let frames = attribute_frames(DEFAULT_SIZE, last).expect("attributes run");
+    let want = reference_frame(last).expect("renders");
+    assert_eq!(frames.len(), 6);
+    for (i, (what, update, pixels)) in frames.iter().enumerate() {
+        assert_eq!(update.regenerated, 0, "{what}");
+        let placed = what.starts_with("place");
+        assert_eq!(update.recut, placed as u32, "{what}");
+        assert_eq!(pixels == &want, i == 5, "{what}");
+    }
 }

@@ -65,7 +65,11 @@ fn peak_of(size: Size, frames: usize) -> usize {
     PEAK.store(base, Relaxed);
     let report = run_at(size, &dir, frames, false).expect("the demo runs");
     let peak = PEAK.load(Relaxed) - base;
-    assert_eq!(report.lines().count(), frames + 2, "{report}");
+    assert_eq!(
+        report.lines().count(),
+        frames + 2 + scanvert_sim::demo::ATTRIBUTE_FRAMES,
+        "{report}"
+    );
     for i in 0..frames {
         assert!(dir.join(format!("frame-{i:02}.png")).is_file(), "frame {i}");
     }

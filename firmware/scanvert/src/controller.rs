@@ -558,6 +558,9 @@ pub fn needs_with(
         if let (Some(e), true) = (window, is_scene_command(&cmd)) {
             return Err(error_at(offset, e));
         }
+        if let Command::Segment(id) = cmd {
+            st.enter_segment(crate::scene::list::attributes(list, id));
+        }
         execute(&mut pipe, &mut count, &mut st, &mut table, cmd)
             .map_err(|e| error_at(offset, e))?;
     }
@@ -996,6 +999,9 @@ fn build_layer<'s, 't>(
     for (offset, cmd) in list.commands() {
         if let (Some(e), true) = (window, is_scene_command(&cmd)) {
             return Err(error_at(offset, e));
+        }
+        if let Command::Segment(id) = cmd {
+            st.enter_segment(crate::scene::list::attributes(list, id));
         }
         match b
             .command_in(cmd, &mut st, &mut table)

@@ -19,6 +19,7 @@ use scanvert::geometry::{Angle, Point3, View, Q16};
 use scanvert::pixelcolor::Rgb888;
 use scanvert::raster::clip::ClipWindow;
 use scanvert::raster::FillRule;
+use scanvert::scene::Placement;
 
 /// A text scene assembled into the binary form.
 #[derive(Clone, Debug)]
@@ -69,6 +70,10 @@ enum Cmd {
     MeshVertex(Point3),
     /// The indices as written, then 0-based once [`walk`] resolved them.
     MeshFace(Vec<i64>),
+    Hide(u16),
+    Show(u16),
+    Highlight(u16, Option<Rgb888>),
+    Place(u16, Placement),
 }
 
 impl Cmd {
@@ -97,6 +102,10 @@ impl Cmd {
             Cmd::Label(..) => Opcode::Label,
             Cmd::MeshVertex(_) => Opcode::MeshVertex,
             Cmd::MeshFace(_) => Opcode::MeshFace,
+            Cmd::Hide(_) => Opcode::Hide,
+            Cmd::Show(_) => Opcode::Show,
+            Cmd::Highlight(..) => Opcode::Highlight,
+            Cmd::Place(..) => Opcode::Place,
         }
     }
 
@@ -139,6 +148,10 @@ impl Cmd {
             Cmd::MeshVertex(p) => w.mesh_vertex(*p),
             // Resolved by `walk`: 0 ≤ i < 65536.
             Cmd::MeshFace(v) => w.mesh_face(v.iter().map(|&i| i as u16)),
+            Cmd::Hide(id) => w.hide(*id),
+            Cmd::Show(id) => w.show(*id),
+            Cmd::Highlight(id, c) => w.highlight(*id, *c),
+            Cmd::Place(id, p) => w.place(*id, p),
         }
     }
 }
@@ -305,8 +318,9 @@ fn words(line: &[u8]) -> Vec<&[u8]> {
     let mut out: Vec<&[u8]> = Vec::new();
     let separators = |c: &u8| matches!(c, b' ' | b'\t' | b'\r');
     for word in line.split(separators).filter(|w| !w.is_empty()) {
-        let colour_slot =
-            out.len() == 1 && (out[0] == b"clear".as_slice() || out[0] == b"color".as_slice());
+        let colour_slot = (out.len() == 1
+            && (out[0] == b"clear".as_slice() || out[0] == b"color".as_slice()))
+            || (out.len() == 2 && out[0] == b"highlight".as_slice());
         let cut = if colour_slot && word[0] == b'#' {
             word[1..].iter().position(|&c| c == b'#').map(|p| p + 1)
         } else {
@@ -619,6 +633,52 @@ fn parse_command(name: &str, operands: &[&[u8]], line: &[u8]) -> Result<Cmd, Tex
                 .map(|w| int(w, -(u32::MAX as i64), u32::MAX as i64, "an index"))
                 .collect::<Result<Vec<_>, _>>()?;
             Ok(Cmd::MeshFace(indices))
+        }
+        "hide" | "show" => {
+            let command = if name == "hide" { "hide" } else { "show" };
+            operand_count(command, "1 (ID)", operands, operands.len() == 1)?;
+            let id = int(operands[0], 0, 65535, "0 … 65535")? as u16;
+            Ok(if name == "hide" {
+                Cmd::Hide(id)
+            } else {
+                Cmd::Show(id)
+            })
+        }
+        "highlight" => {
+            operand_count(
+                "highlight",
+                "2 (ID #rrggbb|off)",
+                operands,
+                operands.len() == 2,
+            )?;
+            let id = int(operands[0], 0, 65535, "0 … 65535")? as u16;
+            let c = match operands[1] {
+                b"off" => None,
+                w => Some(colour(w)?),
+            };
+            Ok(Cmd::Highlight(id, c))
+        }
+        "place" => {
+            operand_count(
+                "place",
+                "4, 7 or 10 (ID X Y Z [AX AY AZ [SX SY SZ]])",
+                operands,
+                matches!(operands.len(), 4 | 7 | 10),
+            )?;
+            let id = int(operands[0], 0, 65535, "0 … 65535")? as u16;
+            let mut p = Placement {
+                translate: point(&operands[1..])?,
+                ..Placement::IDENTITY
+            };
+            if operands.len() >= 7 {
+                for (slot, w) in p.rotate.iter_mut().zip(&operands[4..7]) {
+                    *slot = angle(w)?;
+                }
+            }
+            if operands.len() == 10 {
+                p.scale = point(&operands[7..])?;
+            }
+            Ok(Cmd::Place(id, p))
         }
         "label" => {
             operand_count("label", "X Y Z and a text", operands, operands.len() >= 4)?;

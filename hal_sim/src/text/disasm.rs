@@ -6,6 +6,7 @@ use scanvert::display_list::{Axis, Command, DisplayList, VERSION_2D};
 use scanvert::fixed::Coord;
 use scanvert::geometry::{Angle, Point3, Q16};
 use scanvert::pixelcolor::{Rgb888, RgbColor};
+use scanvert::scene::Placement;
 use std::fmt::Write;
 
 /// `raw · 2^−frac_bits` exactly, in the fewest decimals (`frac_bits` ≤ 16):
@@ -241,6 +242,24 @@ pub fn disassemble(list: &DisplayList<'_>) -> String {
             Command::MeshFace(ix) => {
                 for i in ix.iter() {
                     let _ = write!(s, " {}", i as u32 + 1);
+                }
+                Ok(())
+            }
+            Command::Hide(id) | Command::Show(id) => write!(s, " {id}"),
+            Command::Highlight(id, Some(c)) => write!(s, " {id} {}", hex(c)),
+            Command::Highlight(id, None) => write!(s, " {id} off"),
+            Command::Place(placed) => {
+                let (id, p) = (placed.id(), placed.placement());
+                let _ = write!(s, " {id} {}", point(p.translate));
+                let turned = p.rotate != Placement::IDENTITY.rotate;
+                let scaled = p.scale != Placement::IDENTITY.scale;
+                if turned || scaled {
+                    for a in p.rotate {
+                        let _ = write!(s, " {}", format_angle(a));
+                    }
+                }
+                if scaled {
+                    let _ = write!(s, " {}", point(p.scale));
                 }
                 Ok(())
             }

@@ -29,6 +29,9 @@
 //! | [`point`] | `v` | 13 | |
 //! | [`mesh_face`] | `f` | 3 | `n × 2` (`n` ≥ 1): `u16` 0-based indices into the segment's table |
 //! | [`fill`] | `fill` | 2 | |
+//! | [`segment`] | `hide`, `show` | 3 | |
+//! | [`highlight`] | `highlight` | 7 | |
+//! | [`place`] | `place` | 33 | |
 //!
 //! The tests at the end check that the table and the field modules agree.
 
@@ -187,6 +190,39 @@ pub mod segment {
     pub const ID: Field = 1..3;
     /// Size.
     pub const LEN: usize = 3;
+}
+
+/// `highlight`: a segment, on or off, a colour (0 when off).
+pub mod highlight {
+    use super::Field;
+    /// `u16` segment.
+    pub const ID: Field = 1..3;
+    /// `u8`: 1 on, 0 off.
+    pub const ON: usize = 3;
+    /// Red.
+    pub const R: usize = 4;
+    /// Green.
+    pub const G: usize = 5;
+    /// Blue.
+    pub const B: usize = 6;
+    /// Size.
+    pub const LEN: usize = 7;
+}
+
+/// `place`: a segment, a translation, three angles (about x, y, z), a
+/// scale.
+pub mod place {
+    use super::Field;
+    /// `u16` segment.
+    pub const ID: Field = 1..3;
+    /// The translation, a point.
+    pub const TRANSLATE: Field = 3..15;
+    /// The angles about x, y and z, `u16` each.
+    pub const ROTATE: Field = 15..21;
+    /// The scale, a point.
+    pub const SCALE: Field = 21..33;
+    /// Size.
+    pub const LEN: usize = 33;
 }
 
 /// `perspective`: an angle and two Q16.16 depths.
@@ -363,7 +399,9 @@ impl Opcode {
             Opcode::Line => Layout::fixed(line::LEN),
             Opcode::Poly => Layout::packed(poly::STRIDE, poly::LEAST),
             Opcode::Poly3 => Layout::packed(poly3::STRIDE, poly3::LEAST),
-            Opcode::Segment => Layout::fixed(segment::LEN),
+            Opcode::Segment | Opcode::Hide | Opcode::Show => Layout::fixed(segment::LEN),
+            Opcode::Highlight => Layout::fixed(highlight::LEN),
+            Opcode::Place => Layout::fixed(place::LEN),
             Opcode::Perspective => Layout::fixed(perspective::LEN),
             Opcode::Ortho => Layout::fixed(ortho::LEN),
             Opcode::View => Layout::fixed(view::LEN),
@@ -390,7 +428,7 @@ mod tests {
     use super::*;
 
     /// Every opcode, in code order.
-    const ALL: [Opcode; 22] = [
+    const ALL: [Opcode; 26] = [
         Opcode::Clear,
         Opcode::Clip,
         Opcode::Color,
@@ -413,6 +451,10 @@ mod tests {
         Opcode::MeshVertex,
         Opcode::MeshFace,
         Opcode::Fill,
+        Opcode::Hide,
+        Opcode::Show,
+        Opcode::Highlight,
+        Opcode::Place,
     ];
 
     #[test]
@@ -428,7 +470,21 @@ mod tests {
     #[test]
     fn fields_tile_their_commands() {
         // Each command's fields are contiguous from byte 1 to its fixed size.
-        let tiles: [(&[Field], usize); 8] = [
+        let tiles: [(&[Field], usize); 10] = [
+            (
+                &[
+                    highlight::ID,
+                    highlight::ON..highlight::R,
+                    highlight::R..highlight::G,
+                    highlight::G..highlight::B,
+                    highlight::B..highlight::LEN,
+                ],
+                highlight::LEN,
+            ),
+            (
+                &[place::ID, place::TRANSLATE, place::ROTATE, place::SCALE],
+                place::LEN,
+            ),
             (&[clip::X0, clip::Y0, clip::X1, clip::Y1], clip::LEN),
             (&[line::X0, line::Y0, line::X1, line::Y1], line::LEN),
             (
@@ -506,5 +562,9 @@ mod tests {
         assert_eq!(size(Opcode::MeshVertex, 0), 13);
         assert_eq!(size(Opcode::MeshFace, 3), 3 + 2 * 3);
         assert_eq!(size(Opcode::Fill, 0), 2);
+        assert_eq!(size(Opcode::Hide, 0), 3);
+        assert_eq!(size(Opcode::Show, 0), 3);
+        assert_eq!(size(Opcode::Highlight, 0), 7);
+        assert_eq!(size(Opcode::Place, 0), 33);
     }
 }

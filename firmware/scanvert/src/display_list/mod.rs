@@ -77,9 +77,10 @@ mod reader;
 mod writer;
 
 pub use draws::{Draws, ScratchTooSmall};
+pub(crate) use reader::decode;
 pub use reader::{
-    Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Points, Summary, Vertices,
-    Vertices3,
+    Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Placed, Points, Summary,
+    Vertices, Vertices3,
 };
 pub use writer::{WriteError, Writer};
 
@@ -148,6 +149,14 @@ pub enum Opcode {
     MeshFace = 0x33,
     /// The fill rule of the `poly`s that follow (version 2).
     Fill = 0x34,
+    /// Hide a segment.
+    Hide = 0x35,
+    /// Show a segment.
+    Show = 0x36,
+    /// Highlight a segment, or clear its highlight.
+    Highlight = 0x37,
+    /// Place a segment.
+    Place = 0x38,
 }
 
 impl Opcode {
@@ -176,6 +185,10 @@ impl Opcode {
             0x32 => Opcode::MeshVertex,
             0x33 => Opcode::MeshFace,
             0x34 => Opcode::Fill,
+            0x35 => Opcode::Hide,
+            0x36 => Opcode::Show,
+            0x37 => Opcode::Highlight,
+            0x38 => Opcode::Place,
             _ => return None,
         })
     }
@@ -237,6 +250,10 @@ impl Opcode {
             Opcode::MeshVertex => "v",
             Opcode::MeshFace => "f",
             Opcode::Fill => "fill",
+            Opcode::Hide => "hide",
+            Opcode::Show => "show",
+            Opcode::Highlight => "highlight",
+            Opcode::Place => "place",
         }
     }
 

@@ -58,6 +58,9 @@ pub struct Summary {
     /// of the list and from each `segment`): the slots of the vertex
     /// table a render needs.
     pub vertices: usize,
+    /// `true` when the list has a segment attribute (`hide`, `show`,
+    /// `highlight`, `place`).
+    pub attributes: bool,
 }
 
 impl Summary {
@@ -83,6 +86,12 @@ impl Summary {
             _ => {
                 debug_assert!(op.is_3d());
                 self.first_3d.get_or_insert(offset);
+                if matches!(
+                    op,
+                    Opcode::Hide | Opcode::Show | Opcode::Highlight | Opcode::Place
+                ) {
+                    self.attributes = true;
+                }
                 match op {
                     Opcode::Poly3 => &mut self.poly3,
                     Opcode::Face => &mut self.face,
@@ -149,7 +158,7 @@ struct Rule {
 /// from [`Opcode::from_byte`], [`Opcode::version`] and [`Opcode::layout`],
 /// so that checking a command looks its rule up once rather than matching
 /// its opcode for each of them.
-static RULES: ([u8; 256], [Rule; 23]) = {
+static RULES: ([u8; 256], [Rule; 27]) = {
     let none = Rule {
         op: None,
         version: 0,
@@ -159,7 +168,7 @@ static RULES: ([u8; 256], [Rule; 23]) = {
         },
         operands: false,
     };
-    let (mut index, mut rules) = ([0u8; 256], [none; 23]);
+    let (mut index, mut rules) = ([0u8; 256], [none; 27]);
     let (mut byte, mut n) = (0, 1);
     while byte < 256 {
         if let Some(op) = Opcode::from_byte(byte as u8) {
@@ -174,6 +183,7 @@ static RULES: ([u8; 256], [Rule; 23]) = {
                         | Opcode::Thickness
                         | Opcode::Fill
                         | Opcode::Label
+                        | Opcode::Highlight
                 ),
             };
             index[byte] = n as u8;
@@ -221,6 +231,12 @@ fn command_len(body: &[u8], at: usize, version: u16) -> Result<(Opcode, usize), 
         Opcode::Light => rest[layout::light::PERCENT] > 100,
         Opcode::Thickness => i16_at(rest, layout::thickness::T) < 0,
         Opcode::Fill => FillRule::from_byte(rest[layout::fill::RULE]).is_none(),
+        Opcode::Highlight => {
+            use layout::highlight::{LEN, ON, R};
+            // Off carries no colour, so that every list reads back the
+            // same from its text.
+            rest[ON] > 1 || (rest[ON] == 0 && rest[R..LEN] != [0; LEN - R])
+        }
         Opcode::Label => {
             let text = &rest[layout.fixed..len];
             text.is_empty() || !text.iter().all(|c| (0x20..0x7f).contains(c))
@@ -468,6 +484,17 @@ pub enum Command<'a> {
     /// `v`s of the segment before it, checked), with the rules of
     /// [`Command::Face`].
     MeshFace(Packed<'a, u16>),
+    /// Hide the segment: its faces, points, lines, `poly3`s and labels
+    /// are not drawn.
+    Hide(u16),
+    /// Show the segment (undoes `Hide`).
+    Show(u16),
+    /// Draw the segment's faces, points, lines and `poly3`s in this
+    /// colour, unlit, or in their own (`None`).
+    Highlight(u16, Option<Rgb888>),
+    /// Place the segment: its commands are built after these transforms.
+    /// Kept as its bytes, so that a command stays as small as it was.
+    Place(Placed<'a>),
     /// A text label, its first character's lower-left corner at a 3D point.
     Label {
         /// The anchor, model coordinates.
@@ -503,6 +530,10 @@ impl Command<'_> {
             Command::Label { .. } => Opcode::Label,
             Command::MeshVertex(_) => Opcode::MeshVertex,
             Command::MeshFace(_) => Opcode::MeshFace,
+            Command::Hide(_) => Opcode::Hide,
+            Command::Show(_) => Opcode::Show,
+            Command::Highlight(..) => Opcode::Highlight,
+            Command::Place(..) => Opcode::Place,
         }
     }
 
@@ -521,6 +552,31 @@ impl Command<'_> {
         match self {
             Command::Poly(v) => Some(v.len()),
             _ => None,
+        }
+    }
+}
+
+/// A `place` command's operands, read when asked.
+#[derive(Clone, Copy, Debug)]
+pub struct Placed<'a>(&'a [u8; layout::place::LEN]);
+
+impl Placed<'_> {
+    /// The segment.
+    pub fn id(&self) -> u16 {
+        u16_at(self.0, layout::place::ID)
+    }
+
+    /// The placement.
+    pub fn placement(&self) -> crate::scene::Placement {
+        use layout::place::{ROTATE, SCALE, TRANSLATE};
+        let a = |k: usize| {
+            let at = ROTATE.start + 2 * k;
+            Angle::from_bits(u16_at(self.0, at..at + 2))
+        };
+        crate::scene::Placement {
+            translate: point_at(self.0, TRANSLATE),
+            rotate: [a(0), a(1), a(2)],
+            scale: point_at(self.0, SCALE),
         }
     }
 }
@@ -584,7 +640,7 @@ impl<'a> Iterator for Commands<'a> {
 /// packed or text tail as one slice; a read outside `rest` (which a
 /// checked list never makes) ends the iteration rather than panicking.
 #[inline(always)]
-fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
+pub(crate) fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
     /// The fixed part of a command of `N` bytes.
     #[inline(always)]
     fn fixed<const N: usize>(rest: &[u8]) -> Option<&[u8; N]> {
@@ -717,6 +773,25 @@ fn decode(rest: &[u8]) -> Option<(Command<'_>, usize)> {
                 Angle::from_bits(u16_at(b, ANGLE)),
             );
             (cmd, LEN)
+        }
+        Opcode::Hide | Opcode::Show => {
+            use layout::segment::{ID, LEN};
+            let id = u16_at(fixed::<LEN>(rest)?, ID);
+            let cmd = match op {
+                Opcode::Hide => Command::Hide(id),
+                _ => Command::Show(id),
+            };
+            (cmd, LEN)
+        }
+        Opcode::Highlight => {
+            use layout::highlight::{B, G, ID, LEN, ON, R};
+            let b = fixed::<LEN>(rest)?;
+            let color = (b[ON] != 0).then(|| Rgb888::new(b[R], b[G], b[B]));
+            (Command::Highlight(u16_at(b, ID), color), LEN)
+        }
+        Opcode::Place => {
+            use layout::place::LEN;
+            (Command::Place(Placed(fixed::<LEN>(rest)?)), LEN)
         }
         Opcode::Label => {
             use layout::label::{AT, TEXT, TEXT_LEN};

@@ -77,6 +77,21 @@ impl<'b> Writer<'b> {
         Ok(w)
     }
 
+    /// Commands with no header, into `buf` (a segment's record: see
+    /// [`scene::record`](crate::scene::record)).
+    pub(crate) fn body(buf: &'b mut [u8]) -> Self {
+        Writer {
+            buf,
+            len: 0,
+            version: VERSION_2D,
+        }
+    }
+
+    /// Bytes written so far.
+    pub(crate) fn written(&self) -> usize {
+        self.len
+    }
+
     fn put(&mut self, bytes: &[u8]) -> Result<(), WriteError> {
         let end = self.len + bytes.len();
         let dst = self
@@ -354,6 +369,48 @@ impl<'b> Writer<'b> {
             self.put(&i.to_le_bytes())?;
         }
         self.check_count(start, Opcode::MeshFace, n)
+    }
+
+    /// `hide`: segment `id` is not drawn.
+    pub fn hide(&mut self, id: u16) -> Result<(), WriteError> {
+        self.command(Opcode::Hide, id.to_le_bytes())
+    }
+
+    /// `show`: segment `id` is drawn.
+    pub fn show(&mut self, id: u16) -> Result<(), WriteError> {
+        self.command(Opcode::Show, id.to_le_bytes())
+    }
+
+    /// `highlight`: segment `id` drawn in `color`, unlit, or in its own
+    /// colours (`None`).
+    pub fn highlight(&mut self, id: u16, color: Option<Rgb888>) -> Result<(), WriteError> {
+        use layout::highlight::{B, G, ID, LEN, ON, R};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Highlight as u8;
+        b[ID].copy_from_slice(&id.to_le_bytes());
+        if let Some(c) = color {
+            (b[ON], b[R], b[G], b[B]) = (1, c.r(), c.g(), c.b());
+        }
+        self.whole(b)
+    }
+
+    /// `place`: segment `id` built after `placement`'s transforms.
+    pub fn place(
+        &mut self,
+        id: u16,
+        placement: &crate::scene::Placement,
+    ) -> Result<(), WriteError> {
+        use layout::place::{ID, LEN, ROTATE, SCALE, TRANSLATE};
+        let mut b = [0u8; LEN];
+        b[layout::OPCODE] = Opcode::Place as u8;
+        b[ID].copy_from_slice(&id.to_le_bytes());
+        b[TRANSLATE].copy_from_slice(&point(placement.translate));
+        for (k, a) in placement.rotate.iter().enumerate() {
+            let at = ROTATE.start + 2 * k;
+            b[at..at + 2].copy_from_slice(&a.to_bits().to_le_bytes());
+        }
+        b[SCALE].copy_from_slice(&point(placement.scale));
+        self.whole(b)
     }
 
     /// `label`: `text` (1..=255 bytes of printable ASCII) at a 3D point.

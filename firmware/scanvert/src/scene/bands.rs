@@ -292,6 +292,25 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         }
     }
 
+    /// Runs `change` on the scene (an attribute of segment `s`:
+    /// [`set_visible`](Self::set_visible),
+    /// [`set_highlight`](Self::set_highlight), [`place`](Self::place))
+    /// and marks in `dirty` the rows segment `s` showed on before it and
+    /// shows on after it, so that [`draw_marked`](Self::draw_marked)
+    /// ships every pixel the change made different.
+    pub fn marking<R>(
+        &mut self,
+        s: usize,
+        font: &MonoFont<'_>,
+        dirty: &mut DirtyRows<'_>,
+        change: impl FnOnce(&mut Self) -> R,
+    ) -> R {
+        self.mark_segment_rows(s, font, dirty);
+        let r = change(self);
+        self.mark_segment_rows(s, font, dirty);
+        r
+    }
+
     /// Adds to `sig[y]`, for every row `y`, a hash of what segment `s`
     /// puts on the row: each trapezoid's pixels on it (its span) with its
     /// face (plane, colour, tie key), and its labels' pixels on it in

@@ -66,6 +66,8 @@ pub struct Label {
     color: Rgb888,
     start: u32,
     len: u8,
+    /// Its segment is hidden: kept, not drawn.
+    hidden: bool,
     segment: u16,
 }
 
@@ -77,6 +79,7 @@ impl Label {
         color: Rgb888::new(0, 0, 0),
         start: 0,
         len: 0,
+        hidden: false,
         segment: 0,
     };
 
@@ -273,6 +276,7 @@ impl<'a> LabelStore<'a> {
             // The text slice of a 32-bit target is below 2³² bytes.
             start: start as u32,
             len: n as u8,
+            hidden: false,
             segment,
         };
         self.len += 1;
@@ -304,6 +308,16 @@ impl<'a> LabelStore<'a> {
         self.len = keep;
         self.text_len = text_at;
         removed
+    }
+
+    /// Keeps the labels of segment `segment` but does not draw them
+    /// (`true`), or draws them again (`false`).
+    pub fn set_hidden(&mut self, segment: u16, hidden: bool) {
+        for l in &mut self.slots[..self.len] {
+            if l.segment == segment {
+                l.hidden = hidden;
+            }
+        }
     }
 
     /// Removes every label.
@@ -485,7 +499,7 @@ impl LabelStore<'_> {
             font.character_size.height as i32,
         );
         let (y0, y1) = (rows.0.max(0), rows.1.min(h as i32));
-        for l in &self.slots[..self.len] {
+        for l in self.slots[..self.len].iter().filter(|l| !l.hidden) {
             // |x|, |y| ≤ 2²⁴, text ≤ 255 characters of a font below 2¹⁶
             // pixels: every sum below is far inside i32.
             let right = l.x + (l.len as i32 - 1) * pitch + cw;

@@ -13,7 +13,7 @@
 //! its clip registers and its frame ([`ListState`]).
 
 use crate::color::DEFAULT_COLOR;
-use crate::display_list::{Axis, Command, Vertices3};
+use crate::display_list::{Axis, Command, DisplayList, Vertices3};
 use crate::fixed::Vertex3;
 use crate::geometry::{
     Angle, Light, Orthographic, Outcome, Perspective, Pipeline, PipelineError, Point3, PolygonSink,
@@ -23,7 +23,7 @@ use crate::raster::clip::ClipRect;
 use crate::visible::store::front_facing;
 use embedded_graphics_core::pixelcolor::Rgb888;
 
-use super::{label, SceneError, VertexTable};
+use super::{label, Placement, SceneError, VertexTable};
 
 /// What a list carries besides the geometry stage: the current colour,
 /// the clip registers, and the list's frame (clip windows are cut to it).
@@ -33,6 +33,43 @@ pub struct ListState {
     clip: ClipRect,
     width: u16,
     height: u16,
+    /// The attributes of the segment being built ([`attributes`]).
+    attributes: Attributes,
+}
+
+/// What a list says of one of its segments: `hide`/`show`, `highlight`
+/// and `place`, the last of each naming it anywhere in the list.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Attributes {
+    /// Hidden: its drawing commands are skipped.
+    pub hidden: bool,
+    /// Its faces, points, lines and `poly3`s are drawn in this colour,
+    /// unlit.
+    pub highlight: Option<Rgb888>,
+    /// Its commands are built after these transforms.
+    pub placement: Placement,
+}
+
+/// The attributes `list` gives segment `id` (see [`Attributes`]): the
+/// whole list is one frame, so an attribute holds wherever it stands.
+/// A list without attributes costs nothing
+/// ([`Summary::attributes`](crate::display_list::Summary::attributes)),
+/// one with them a walk of its commands.
+pub fn attributes(list: &DisplayList<'_>, id: u16) -> Attributes {
+    let mut a = Attributes::default();
+    if !list.summary().attributes {
+        return a;
+    }
+    for (_, cmd) in list.commands() {
+        match cmd {
+            Command::Hide(s) if s == id => a.hidden = true,
+            Command::Show(s) if s == id => a.hidden = false,
+            Command::Highlight(s, c) if s == id => a.highlight = c,
+            Command::Place(p) if p.id() == id => a.placement = p.placement(),
+            _ => {}
+        }
+    }
+    a
 }
 
 impl ListState {
@@ -44,6 +81,22 @@ impl ListState {
             clip: ClipRect::full(width, height),
             width,
             height,
+            attributes: Attributes::default(),
+        }
+    }
+
+    /// Takes the attributes of the segment a `segment` command is about
+    /// to start (from [`attributes`]): they hold up to the next one.
+    pub fn enter_segment(&mut self, attributes: Attributes) {
+        self.attributes = attributes;
+    }
+
+    /// The state at the start of a list of a `width × height` frame, the
+    /// clip registers on `clip`.
+    pub(crate) fn with_clip(width: u16, height: u16, clip: ClipRect) -> Self {
+        ListState {
+            clip,
+            ..ListState::new(width, height)
         }
     }
 
@@ -119,11 +172,14 @@ pub(crate) trait Out {
 struct Faces<'o, O> {
     out: &'o mut O,
     clip: ClipRect,
+    /// A highlight's colour, drawn instead of the lit one.
+    highlight: Option<Rgb888>,
 }
 
 impl<O: Out> PolygonSink for Faces<'_, O> {
     type Error = SceneError;
     fn polygon(&mut self, v: &[Vertex3], color: Rgb888, two: bool) -> Result<(), SceneError> {
+        let color = self.highlight.unwrap_or(color);
         self.out.polygon(v.iter().copied(), color, &self.clip, two)
     }
 }
@@ -163,18 +219,32 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
     cmd: Command<'_>,
 ) -> Result<Executed, SceneError> {
     let (w, h) = (st.width, st.height);
+    // Not the whole `Attributes`: copied for every command, its placement
+    // costs the cut stage on the Cortex-M4.
+    let (hidden, highlight) = (st.attributes.hidden, st.attributes.highlight);
+    if hidden
+        && matches!(
+            cmd,
+            Command::Face(_) | Command::MeshFace(_) | Command::Poly3(_) | Command::Label { .. }
+        )
+    {
+        return Ok(Executed::State);
+    }
     match cmd {
         Command::Clear(_) | Command::Fill(_) | Command::Poly(_) | Command::Line(..) => {}
         Command::Color(c) => st.color = c,
         Command::Clip(win) => st.clip = ClipRect::from_window(win, w, h),
         Command::Poly3(v) => {
-            let drawn = out.poly3(&v, st.color, &st.clip)?;
+            let drawn = out.poly3(&v, highlight.unwrap_or(st.color), &st.clip)?;
             return Ok(Executed::Poly3 { drawn });
         }
         Command::Segment(_) => {
             pipe.reset_stack();
             table.clear();
+            st.attributes.placement.apply(pipe.stack_mut())?;
         }
+        // Taken by `attributes` when a `segment` starts.
+        Command::Hide(_) | Command::Show(_) | Command::Highlight(..) | Command::Place(..) => {}
         Command::MeshVertex(p) => {
             table.push(pipe.view_point(p))?;
             return Ok(Executed::Vertex);
@@ -182,7 +252,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
         Command::MeshFace(indices) => {
             let indices = indices.iter().map(usize::from);
             return Ok(Executed::Face(mesh_face(
-                pipe, out, table, indices, st.color, st.clip,
+                pipe, out, table, indices, st.color, st.clip, highlight,
             )?));
         }
         Command::Perspective { fov, near, far } => {
@@ -224,6 +294,7 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
                 points.iter(),
                 st.color,
                 st.clip,
+                highlight,
             )?));
         }
         Command::Label { at, text } => {
@@ -246,8 +317,13 @@ pub(crate) fn face<const DEPTH: usize, const N: usize, O: Out>(
     points: impl ExactSizeIterator<Item = Point3>,
     color: Rgb888,
     clip: ClipRect,
+    highlight: Option<Rgb888>,
 ) -> Result<Outcome, SceneError> {
-    let mut sink = Faces { out, clip };
+    let mut sink = Faces {
+        out,
+        clip,
+        highlight,
+    };
     pipe.polygon_from(points, color, &mut sink)
         .map_err(pipeline_error)
 }
@@ -263,10 +339,15 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
     indices: impl ExactSizeIterator<Item = usize> + Clone,
     color: Rgb888,
     clip: ClipRect,
+    highlight: Option<Rgb888>,
 ) -> Result<Outcome, SceneError> {
     table.check(indices.clone())?;
     let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
-    let mut sink = Faces { out, clip };
+    let mut sink = Faces {
+        out,
+        clip,
+        highlight,
+    };
     pipe.polygon_view(points, color, &mut sink)
         .map_err(pipeline_error)
 }

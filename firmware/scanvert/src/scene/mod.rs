@@ -103,15 +103,17 @@ pub mod label;
 #[doc(hidden)]
 pub mod list;
 pub mod mesh;
+pub mod record;
 pub mod storage;
 
 pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 #[doc(hidden)]
-pub use list::{list_pipeline, Executed, ListState};
+pub use list::{list_pipeline, Attributes, Executed, ListState};
 #[doc(hidden)]
 pub use mesh::VertexTable;
+pub use record::Placement;
 pub use storage::{Capacities, SceneStorage};
 
 use crate::color::ListColor;
@@ -130,6 +132,7 @@ use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::Rgb888;
 use label::{LabelCounts, LabelError};
+use record::Records;
 
 /// The caller's memory of a [`Scene`], of any capacities: slices over
 /// the pools. [`SceneStorage`] owns one with its capacities as const
@@ -261,6 +264,12 @@ pub enum SceneError {
         /// Vertices in the table.
         vertices: usize,
     },
+    /// A segment's placement does not fit in the record buffer
+    /// ([`Scene::keep_records`]; none given: 0 bytes).
+    Records {
+        /// Bytes of the buffer.
+        capacity: usize,
+    },
 }
 
 impl fmt::Display for SceneError {
@@ -280,6 +289,9 @@ impl fmt::Display for SceneError {
             }
             SceneError::Index { index, vertices } => {
                 write!(f, "f names vertex {} of a table of {vertices}", index + 1)
+            }
+            SceneError::Records { capacity } => {
+                write!(f, "the segment records' {capacity} bytes are full")
             }
         }
     }
@@ -383,6 +395,12 @@ pub struct Update {
     /// segment covered before or covers after was marked, changed or
     /// not.
     pub coarse_marks: bool,
+    /// Segments re-cut from their records without running their
+    /// procedures ([`Scene::place`]).
+    pub recut: u32,
+    /// Stale segments left as they are because they are hidden
+    /// ([`Scene::set_visible`]): they are rebuilt when shown.
+    pub hidden: u32,
 }
 
 /// What one [`Scene::draw`] did.
@@ -411,6 +429,8 @@ pub struct Scene<'a, const DEPTH: usize, const N: usize> {
     /// another workspace ([`Scene::bands_in`]) then only compares its
     /// capacity, instead of finding the number again.
     most: Option<u32>,
+    /// The segments' records ([`Scene::keep_records`]).
+    records: Records<'a>,
 }
 
 impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
@@ -440,6 +460,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             pipeline,
             clip: ClipRect::full(width, height),
             most: None,
+            records: Records::default(),
         };
         scene.invalidate_all();
         Ok(scene)
@@ -528,6 +549,10 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             if !self.is_stale(s) {
                 continue;
             }
+            if self.is_hidden(s) {
+                u.hidden += 1;
+                continue;
+            }
             let before = self.store.segment(s).map(|g| g.counters());
             let given = self.pipeline.stats().faces_in;
             let labels = self.labels.len();
@@ -561,6 +586,148 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         r
     }
 
+    /// `true` when segment `s` is hidden ([`set_visible`](Self::set_visible)).
+    pub fn is_hidden(&self, s: usize) -> bool {
+        self.store.segment(s).is_some_and(|g| g.is_hidden())
+    }
+
+    /// Shows (`true`) or hides (`false`) segment `s`. A hidden segment
+    /// keeps its trapezoids and labels but no pass sees them, and an
+    /// update leaves it stale rather than rebuilding it
+    /// ([`Update::hidden`]); showing it puts them back, with nothing cut
+    /// (a segment that went stale while hidden is rebuilt by the next
+    /// update). No procedure runs: the [`Update`] says so. Its rows
+    /// change: [`mark_segment_rows`](Self::mark_segment_rows) marks them
+    /// for [`draw_marked`](Self::draw_marked).
+    pub fn set_visible(&mut self, s: usize, visible: bool) -> Result<Update, SceneError> {
+        self.store.set_hidden(s, !visible)?;
+        self.labels.set_hidden(s as u16, !visible);
+        self.most = None;
+        Ok(Update::default())
+    }
+
+    /// Draws segment `s`'s faces, points and lines in `color`, unlit,
+    /// instead of their own colours, or in their own again (`None`). Its
+    /// labels keep their colours. The store's faces are recoloured where
+    /// they are: nothing is cut, no procedure runs (the [`Update`] says
+    /// so), and a rebuild keeps the highlight. Its rows change:
+    /// [`mark_segment_rows`](Self::mark_segment_rows) marks them.
+    pub fn set_highlight(&mut self, s: usize, color: Option<Rgb888>) -> Result<Update, SceneError> {
+        self.store.set_highlight(s, color)?;
+        Ok(Update::default())
+    }
+
+    /// The highlight of segment `s`, if any.
+    pub fn highlight(&self, s: usize) -> Option<Rgb888> {
+        self.store.segment(s).and_then(|g| g.highlight())
+    }
+
+    /// Keeps the segments' records in `bytes` from now on, so that
+    /// [`place`](Self::place) moves a segment without running its
+    /// procedure (see [`record`]; [`records_needed`](Self::records_needed)
+    /// sizes it). Every segment becomes stale, to be recorded by the next
+    /// update; placements set before are dropped.
+    pub fn keep_records(&mut self, bytes: &'a mut [u8]) {
+        self.records = Records::new(bytes);
+        self.invalidate_all();
+    }
+
+    /// The most bytes of the record buffer the scene has held at once:
+    /// run the program's frames, as for [`needed`](Self::needed), and take
+    /// the largest.
+    pub fn records_needed(&self) -> usize {
+        self.records.peak()
+    }
+
+    /// Segment `s`'s placement ([`Placement::IDENTITY`] until placed).
+    pub fn placement(&self, s: usize) -> Placement {
+        self.records.placement(s as u16)
+    }
+
+    /// Places segment `s`: it is built as if its procedure began with
+    /// `placement`'s transforms (see [`Placement`]), now and at every
+    /// rebuild. A segment with a complete record (see [`record`]) is
+    /// re-transformed and re-cut from it at once, its procedure not run
+    /// ([`Update::recut`]); one without is marked stale, and the next
+    /// update runs its procedure. The rows it covered before and covers
+    /// after change: [`mark_segment_rows`](Self::mark_segment_rows), called
+    /// before and after, marks them.
+    ///
+    /// Fails for an unknown segment, and with [`SceneError::Records`]
+    /// when the record buffer has no room for the placement. A failure
+    /// of the re-cut (a pool ran out, a vertex left the range) leaves the
+    /// segment empty and stale, as a failed update does.
+    pub fn place(&mut self, s: usize, placement: Placement) -> Result<Update, SceneError> {
+        if self.store.segment(s).is_none() {
+            self.store.set_stale(s, true)?;
+        }
+        if !self.records.set_placement(s as u16, placement) {
+            return Err(SceneError::Records {
+                capacity: self.records.capacity(),
+            });
+        }
+        if self.is_stale(s) || self.records.commands(s as u16).is_none() {
+            self.store.set_stale(s, true)?;
+            return Ok(Update::default());
+        }
+        let before = self.store.segment(s).map(|g| g.counters());
+        let given = self.pipeline.stats().faces_in;
+        let r = self.replay(s);
+        if r.is_err() {
+            self.empty(s);
+        }
+        r?;
+        let mut u = Update {
+            recut: 1,
+            ..Update::default()
+        };
+        if let (Some(b), Some(g)) = (before, self.store.segment(s)) {
+            let a = g.counters();
+            u.polygons = a.polygons.wrapping_sub(b.polygons);
+            u.trapezoids = a.trapezoids.wrapping_sub(b.trapezoids);
+        }
+        u.given = self.pipeline.stats().faces_in.wrapping_sub(given);
+        u.labels = self
+            .labels
+            .iter()
+            .filter(|(l, _)| usize::from(l.segment()) == s)
+            .count() as u32;
+        Ok(u)
+    }
+
+    /// Builds segment `s` again from its record, under its placement.
+    fn replay(&mut self, s: usize) -> Result<(), SceneError> {
+        self.most = None;
+        self.store.clear_segment(s)?;
+        self.labels.clear_segment(s as u16);
+        self.store.set_stale(s, false)?;
+        self.pipeline.reset_stack();
+        let hidden = self.is_hidden(s);
+        let Scene {
+            store,
+            labels,
+            pipeline,
+            records,
+            clip,
+            ..
+        } = self;
+        records.placement(s as u16).apply(pipeline.stack_mut())?;
+        let mut st = ListState::with_clip(store.width(), store.height(), *clip);
+        let mut out = SegmentOut {
+            store,
+            labels,
+            segment: s,
+        };
+        let mut none = VertexTable::none();
+        for cmd in record::commands(records.commands(s as u16).unwrap_or(&[])) {
+            list::execute(pipeline, &mut out, &mut st, &mut none, cmd)?;
+        }
+        if hidden {
+            self.labels.set_hidden(s as u16, true);
+        }
+        Ok(())
+    }
+
     /// Empties segment `s` and returns a [`Builder`] to describe it anew
     /// (what [`rebuild`](Self::rebuild) does around a procedure). The
     /// segment counts as built from here on.
@@ -570,6 +737,12 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         self.labels.clear_segment(s as u16);
         self.store.set_stale(s, false)?;
         self.pipeline.reset_stack();
+        self.records.begin(s as u16);
+        let placement = self.records.placement(s as u16);
+        if let Err(e) = placement.apply(self.pipeline.stack_mut()) {
+            self.empty(s);
+            return Err(e.into());
+        }
         Ok(Builder {
             scene: self,
             segment: s,
@@ -793,39 +966,63 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     }
 
     /// The modelling transform stack (the camera's matrix at the bottom).
+    /// What is done to it here is not recorded: the segment's record is
+    /// given up (see [`record`]), and placing it runs its procedure.
     #[doc(hidden)]
     pub fn stack_mut(&mut self) -> &mut TransformStack<DEPTH> {
+        self.scene.records.give_up();
         self.scene.pipeline.stack_mut()
+    }
+
+    /// Records what `write` writes in the segment's record.
+    fn record(
+        &mut self,
+        color: Option<Rgb888>,
+        write: impl FnOnce(
+            &mut crate::display_list::Writer<'_>,
+        ) -> Result<(), crate::display_list::WriteError>,
+    ) {
+        self.scene.records.append(self.segment, color, write);
     }
 
     /// Saves the modelling transform.
     pub fn push(&mut self) -> Result<(), SceneError> {
-        Ok(self.stack_mut().push()?)
+        self.scene.pipeline.stack_mut().push()?;
+        self.record(None, |w| w.push());
+        Ok(())
     }
 
     /// Restores the modelling transform saved last.
     pub fn pop(&mut self) -> Result<(), SceneError> {
-        Ok(self.stack_mut().pop()?)
+        self.scene.pipeline.stack_mut().pop()?;
+        self.record(None, |w| w.pop());
+        Ok(())
     }
 
     /// Translates what follows by `(x, y, z)`.
     pub fn translate(&mut self, x: Q16, y: Q16, z: Q16) -> Result<(), SceneError> {
-        Ok(self.stack_mut().translate(x, y, z)?)
+        self.scene.pipeline.stack_mut().translate(x, y, z)?;
+        self.record(None, |w| w.translate(Point3::new(x, y, z)));
+        Ok(())
     }
 
     /// Rotates what follows about `axis`.
     pub fn rotate(&mut self, axis: Axis, angle: Angle) -> Result<(), SceneError> {
-        let s = self.stack_mut();
-        Ok(match axis {
+        let s = self.scene.pipeline.stack_mut();
+        match axis {
             Axis::X => s.rotate_x(angle),
             Axis::Y => s.rotate_y(angle),
             Axis::Z => s.rotate_z(angle),
-        }?)
+        }?;
+        self.scene.records.rotate(self.segment, axis, angle);
+        Ok(())
     }
 
     /// Scales what follows, per axis.
     pub fn scale(&mut self, x: Q16, y: Q16, z: Q16) -> Result<(), SceneError> {
-        Ok(self.stack_mut().scale(x, y, z)?)
+        self.scene.pipeline.stack_mut().scale(x, y, z)?;
+        self.record(None, |w| w.scale(Point3::new(x, y, z)));
+        Ok(())
     }
 
     /// A polygon in model coordinates: one point, a point; two, a line;
@@ -833,7 +1030,16 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     pub fn face(&mut self, points: &[Point3], color: Rgb888) -> Result<Outcome, SceneError> {
         let clip = self.scene.clip;
         let (pipeline, mut out) = self.split();
-        list::face(pipeline, &mut out, points.iter().copied(), color, clip)
+        let r = list::face(
+            pipeline,
+            &mut out,
+            points.iter().copied(),
+            color,
+            clip,
+            None,
+        )?;
+        self.record(Some(color), |w| w.face(points.iter().copied()));
+        Ok(r)
     }
 
     /// A mesh in model coordinates: each of `vertices` transformed once
@@ -862,11 +1068,24 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         }
         for face in indices.chunks(sides.max(1)) {
             let ix = face.iter().map(|&i| usize::from(i));
-            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip)? {
+            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip, None)? {
                 Outcome::Emitted => stats.faces += 1,
                 Outcome::Culled => stats.culled += 1,
                 _ => stats.clipped_away += 1,
             }
+        }
+        // Recorded as faces through the same points: the same pixels.
+        for face in indices.chunks(sides.max(1)) {
+            // Every index was checked by the face drawn above.
+            let points = face.iter().map(|&i| {
+                vertices
+                    .get(usize::from(i))
+                    .copied()
+                    .unwrap_or(Point3::ORIGIN)
+            });
+            self.scene
+                .records
+                .append(self.segment, Some(color), |w| w.face(points));
         }
         Ok(stats)
     }
@@ -876,7 +1095,12 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
     /// lies before the near plane or too far off the window to show.
     pub fn label(&mut self, at: Point3, text: &str, color: Rgb888) -> Result<bool, SceneError> {
         let (pipeline, mut out) = self.split();
-        list::place_label(pipeline, &mut out, at, text, color)
+        let placed = list::place_label(pipeline, &mut out, at, text, color)?;
+        self.record(Some(color), |w| w.label(at, text));
+        if self.scene.is_hidden(self.segment) {
+            self.scene.labels.set_hidden(self.segment as u16, true);
+        }
+        Ok(placed)
     }
 
     /// Executes one command of a display list into the segment, with the
@@ -904,7 +1128,20 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         table: &mut VertexTable<'_>,
     ) -> Result<Executed, SceneError> {
         let (pipeline, mut out) = self.split();
-        list::execute(pipeline, &mut out, state, table, cmd)
+        let r = list::execute(pipeline, &mut out, state, table, cmd)?;
+        if self.scene.records.recording() {
+            if matches!(cmd, Command::Face(_)) && *state.clip() != self.scene.clip {
+                // The record is replayed under the scene's clip.
+                self.scene.records.give_up();
+            }
+            self.scene
+                .records
+                .command(self.segment, &cmd, state.color());
+        }
+        if matches!(cmd, Command::Label { .. }) && self.scene.is_hidden(self.segment) {
+            self.scene.labels.set_hidden(self.segment as u16, true);
+        }
+        Ok(r)
     }
 
     /// The pipeline, and the segment as the interpreter's output.

@@ -64,7 +64,7 @@ use crate::visible::trapezoid::{EdgeSlot, Trapezoid};
 /// |---|---|---|---|
 /// | `TRAPEZOIDS` | trapezoids | 34 bytes | at most 65535 are used (a `u16` index, one value reserved); as many as the polygons are cut into |
 /// | `FACES` | faces | 56 bytes | at most 65535 used; one per polygon with a trapezoid |
-/// | `SEGMENTS` | segments | 28 bytes | at most 65535 used; a display list uses one |
+/// | `SEGMENTS` | segments | 32 bytes | at most 65535 used; a display list uses one |
 /// | `ROWS` | the scan-line index | 2 bytes | at least the frame's height (at most 4096) |
 /// | `EDGES` | edge slots | 32 bytes | scratch for one polygon: as many as its vertices (at most 65535) |
 /// | `ACTIVE` | active list | 132 bytes | at most 65535 used; the most trapezoids overlapping one row |
@@ -338,7 +338,7 @@ const _: () = {
     use core::mem::size_of;
     assert!(size_of::<Trapezoid>() == 34);
     assert!(size_of::<Face>() == 56);
-    assert!(size_of::<Segment>() == 28);
+    assert!(size_of::<Segment>() == 32);
     assert!(size_of::<EdgeSlot>() == 32);
     assert!(size_of::<Active>() == 132);
     assert!(size_of::<Run>() == 4);

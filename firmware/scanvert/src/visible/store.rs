@@ -16,7 +16,7 @@
 //! |---|---|---|---|
 //! | trapezoids | [`Trapezoid`], 34 bytes | edges' ends, rows, face, segment, columns, links | [`MAX_POOL`] |
 //! | faces | [`Face`], 56 bytes | exact plane, fixed-point depth, colour, tie key | [`MAX_POOL`] |
-//! | segments | [`Segment`], 28 bytes | chains and counters | [`MAX_POOL`] |
+//! | segments | [`Segment`], 32 bytes | chains, counters, hidden, highlight | [`MAX_POOL`] |
 //! | scan-line index | `u16` per row | first trapezoid starting on the row | the frame's height |
 //! | edge slots | [`EdgeSlot`], 32 bytes | scratch while a polygon is cut | its vertex count |
 //!
@@ -80,14 +80,21 @@ pub const LINE_BIAS: u16 = 256;
 
 /// A polygon of the store: its exact plane and fixed-point depth (read by
 /// every trapezoid of it), colour and tie key.
+///
+/// The colour drawn is its own, or its segment's highlight
+/// ([`TrapezoidStore::set_highlight`]); its own is kept beside it, in the
+/// bits the drawn colour leaves free, so that clearing a highlight needs
+/// nothing but the face.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Face {
     plane: Plane,
     depth: Depth,
-    /// `0x00rrggbb`.
+    /// `0xRRrrggbb`: the colour drawn in the low 24 bits, the red of the
+    /// face's own colour in the high 8.
     color: u32,
     key: u32,
-    segment: u16,
+    /// The green and blue of the face's own colour.
+    own: u16,
     next: u16,
 }
 
@@ -98,7 +105,7 @@ impl Face {
         depth: Depth { z: 0, zx: 0, zy: 0 },
         color: 0,
         key: 0,
-        segment: NONE,
+        own: 0,
         next: NONE,
     };
 
@@ -115,16 +122,26 @@ impl Face {
         self.depth
     }
 
-    /// The colour.
+    /// The colour drawn: its own, or its segment's highlight.
     pub fn color(&self) -> Rgb888 {
         let c = self.color;
         Rgb888::new((c >> 16) as u8, (c >> 8) as u8, c as u8)
     }
 
-    /// The colour as `0x00rrggbb`.
+    /// Its own colour, as its polygon was added.
+    pub fn own_color(&self) -> Rgb888 {
+        let o = self.own_bits();
+        Rgb888::new((o >> 16) as u8, (o >> 8) as u8, o as u8)
+    }
+
+    fn own_bits(&self) -> u32 {
+        (self.color >> 24) << 16 | self.own as u32
+    }
+
+    /// The colour drawn as `0x00rrggbb`.
     #[inline(always)]
     pub(crate) fn color_bits(&self) -> u32 {
-        self.color
+        self.color & 0x00ff_ffff
     }
 
     /// The tie key: lower is in front at equal depth.
@@ -133,9 +150,10 @@ impl Face {
         self.key
     }
 
-    /// The segment that owns it.
+    /// The segment that owns it (the key's high half: a segment's index
+    /// is below [`MAX_POOL`]).
     pub fn segment(&self) -> u16 {
-        self.segment
+        (self.key >> 16) as u16
     }
 }
 
@@ -169,6 +187,9 @@ pub struct Segment {
     face_count: u32,
     ordinal: u16,
     stale: bool,
+    hidden: bool,
+    /// `0` none, else `0x0100_0000 | 0x00rrggbb`.
+    highlight: u32,
     work: Counters,
 }
 
@@ -181,6 +202,8 @@ impl Segment {
         face_count: 0,
         ordinal: 0,
         stale: false,
+        hidden: false,
+        highlight: 0,
         work: Counters {
             polygons: 0,
             trapezoids: 0,
@@ -207,6 +230,19 @@ impl Segment {
     /// [`TrapezoidStore::set_stale`]).
     pub fn is_stale(&self) -> bool {
         self.stale
+    }
+
+    /// Hidden: its trapezoids are kept but out of the scan-line index
+    /// ([`TrapezoidStore::set_hidden`]).
+    pub fn is_hidden(&self) -> bool {
+        self.hidden
+    }
+
+    /// The colour its faces are drawn in instead of their own
+    /// ([`TrapezoidStore::set_highlight`]).
+    pub fn highlight(&self) -> Option<Rgb888> {
+        let h = self.highlight;
+        (h != 0).then(|| Rgb888::new((h >> 16) as u8, (h >> 8) as u8, h as u8))
     }
 }
 
@@ -500,18 +536,11 @@ impl<'a> TrapezoidStore<'a> {
     pub fn clear_segment(&mut self, s: usize) -> Result<(), StoreError> {
         let seg = segment_at(self.segments, s)?;
         let mut t = seg.traps;
+        // A hidden segment's trapezoids are out of the row lists already.
+        let linked = !seg.hidden;
         while let Some(tr) = self.traps.get(t as usize).copied() {
-            // Unlink from the row list.
-            match self.traps.get_mut(tr.prev_row as usize) {
-                Some(p) => p.next_row = tr.next_row,
-                None => {
-                    if let Some(h) = self.rows.get_mut(tr.top() as usize) {
-                        *h = tr.next_row;
-                    }
-                }
-            }
-            if let Some(n) = self.traps.get_mut(tr.next_row as usize) {
-                n.prev_row = tr.prev_row;
+            if linked {
+                unlink_row(self.traps, self.rows, t);
             }
             self.traps[t as usize] = Trapezoid {
                 next_seg: self.free_trap,
@@ -537,6 +566,45 @@ impl<'a> TrapezoidStore<'a> {
         seg.face_count = 0;
         seg.ordinal = 0;
         seg.work.clears = seg.work.clears.wrapping_add(1);
+        Ok(())
+    }
+
+    /// Hides segment `s` (`true`): its trapezoids leave the scan-line
+    /// index, so no pass sees them, and stay in the segment, so showing it
+    /// again (`false`) puts them back without cutting anything. Polygons
+    /// added to a hidden segment are kept hidden too. O(the segment's
+    /// trapezoids) when the mark changes, nothing otherwise.
+    pub fn set_hidden(&mut self, s: usize, hidden: bool) -> Result<(), StoreError> {
+        let seg = segment_at(self.segments, s)?;
+        if seg.hidden == hidden {
+            return Ok(());
+        }
+        seg.hidden = hidden;
+        let mut t = seg.traps;
+        while let Some(tr) = self.traps.get(t as usize).copied() {
+            if hidden {
+                unlink_row(self.traps, self.rows, t);
+            } else {
+                link_row(self.traps, self.rows, t);
+            }
+            t = tr.next_seg;
+        }
+        Ok(())
+    }
+
+    /// Draws segment `s`'s faces in `color` instead of their own, or in
+    /// their own again (`None`); polygons added to it later take the
+    /// highlight too. Each face keeps its own colour, so nothing is cut
+    /// or rebuilt: O(the segment's faces).
+    pub fn set_highlight(&mut self, s: usize, color: Option<Rgb888>) -> Result<(), StoreError> {
+        let seg = segment_at(self.segments, s)?;
+        seg.highlight = color.map_or(0, |c| 0x0100_0000 | rgb_bits(c));
+        let mut f = seg.faces;
+        while let Some(face) = self.faces.get_mut(f as usize) {
+            let drawn = color.map_or(face.own_bits(), rgb_bits);
+            face.color = (face.color & 0xff00_0000) | drawn;
+            f = face.next;
+        }
         Ok(())
     }
 
@@ -730,7 +798,11 @@ impl<'a> TrapezoidStore<'a> {
             added: 0,
             face: NONE,
             plane: &plane,
-            color: rgb_bits(color),
+            color: match seg.highlight {
+                0 => rgb_bits(color),
+                h => h & 0x00ff_ffff,
+            },
+            own: rgb_bits(color),
             key,
             segment: s as u16,
             clip,
@@ -739,14 +811,64 @@ impl<'a> TrapezoidStore<'a> {
         (self.free_trap, self.unused_trap) = (add.free, add.unused);
         (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
         (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
-        seg.trapezoids += add.added;
-        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(add.added);
-        self.live += add.added;
-        if add.face != NONE {
+        let (added, face) = (add.added, add.face);
+        seg.trapezoids += added;
+        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(added);
+        self.live += added;
+        if face != NONE {
             seg.face_count += 1;
             self.live_faces += 1;
         }
+        if seg.hidden {
+            // The newest trapezoids head the segment's chain.
+            let mut t = seg.traps;
+            for _ in 0..added {
+                let next = self.traps.get(t as usize).map_or(NONE, |tr| tr.next_seg);
+                unlink_row(self.traps, self.rows, t);
+                t = next;
+            }
+        }
         n
+    }
+}
+
+/// Takes trapezoid `t` out of its row's list.
+fn unlink_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
+    let Some(tr) = traps.get(t as usize).copied() else {
+        return;
+    };
+    match traps.get_mut(tr.prev_row as usize) {
+        Some(p) => p.next_row = tr.next_row,
+        None => {
+            if let Some(h) = rows.get_mut(tr.top() as usize) {
+                *h = tr.next_row;
+            }
+        }
+    }
+    if let Some(n) = traps.get_mut(tr.next_row as usize) {
+        n.prev_row = tr.prev_row;
+    }
+    if let Some(me) = traps.get_mut(t as usize) {
+        me.next_row = NONE;
+        me.prev_row = NONE;
+    }
+}
+
+/// Puts trapezoid `t` at the head of its row's list.
+fn link_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
+    let Some(top) = traps.get(t as usize).map(|tr| tr.top() as usize) else {
+        return;
+    };
+    let head = rows.get(top).copied().unwrap_or(NONE);
+    if let Some(h) = traps.get_mut(head as usize) {
+        h.prev_row = t;
+    }
+    if let Some(me) = traps.get_mut(t as usize) {
+        me.next_row = head;
+        me.prev_row = NONE;
+    }
+    if let Some(h) = rows.get_mut(top) {
+        *h = t;
     }
 }
 
@@ -776,6 +898,9 @@ struct Adding<'p> {
     /// The face's plane, colour, key and segment.
     plane: &'p Plane,
     color: u32,
+    /// The polygon's own colour (`color` is its segment's highlight, if
+    /// any).
+    own: u32,
     key: u32,
     segment: u16,
     clip: ClipRect,
@@ -804,9 +929,9 @@ impl Adding<'_> {
                 *slot = Face {
                     plane: *self.plane,
                     depth: self.plane.depth(),
-                    color: self.color,
+                    color: self.color | (self.own >> 16) << 24,
                     key: self.key,
-                    segment: self.segment,
+                    own: self.own as u16,
                     next: self.seg_faces,
                 };
             }
