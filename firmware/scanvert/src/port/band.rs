@@ -290,18 +290,20 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
         Ok(())
     }
 
-    /// Without `fill_span`'s clipping of the end: the row is still
-    /// checked against the band's (the target's size is the frame's).
+    /// Without `fill_span`'s clipping of the end. The row is checked by
+    /// the slice alone: the pixels are cut to the band's rows, so a row
+    /// above the band (wrapped to a large one) or below it starts past
+    /// their end (`65535 · 65535 + 65535` fits a 32-bit `usize`; with a
+    /// narrower one the sums wrap, never panic).
     #[inline(always)]
     fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Self::Error> {
-        let Some(row) = span.y.checked_sub(self.y0).filter(|&r| r < self.rows) else {
-            return Ok(());
-        };
-        let base = row as usize * self.width as usize;
-        if let Some(run) = self
-            .pixels
-            .get_mut(base + span.x0 as usize..base + span.x1 as usize)
-        {
+        let row = span.y.wrapping_sub(self.y0);
+        let base = (row as usize).wrapping_mul(self.width as usize);
+        let (x0, x1) = (
+            base.wrapping_add(span.x0 as usize),
+            base.wrapping_add(span.x1 as usize),
+        );
+        if let Some(run) = self.pixels.get_mut(x0..x1) {
             crate::port::framebuffer::fill_run(run, color);
         }
         Ok(())
