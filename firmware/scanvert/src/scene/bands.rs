@@ -232,46 +232,6 @@ fn pass<'s, 'a, 'w, C: ListColor>(
     })
 }
 
-/// A hash of what decides a face's pixels against others: its plane in
-/// lowest terms (`a·x + b·y + c·z = d` divided by the coefficients'
-/// greatest common divisor), its colour and its tie key.
-fn face_hash(f: &crate::visible::Face) -> u64 {
-    let (a, b, c) = f.plane().normal();
-    let d = f.plane().offset();
-    let g = [a as i128, b as i128, c as i128]
-        .into_iter()
-        .fold(d.unsigned_abs(), |g, v| gcd(g, v.unsigned_abs()))
-        .max(1) as i128;
-    let mut k = Mix::new();
-    for v in [a as i128 / g, b as i128 / g, c as i128 / g, d / g] {
-        k.add(v as u64);
-        k.add((v >> 64) as u64);
-    }
-    k.add(f.color_bits() as u64);
-    k.add(f.key() as u64);
-    k.finish()
-}
-
-/// The greatest common divisor (`gcd(0, 0) = 0`), by Stein's binary
-/// algorithm: shifts and subtractions, no 128-bit division.
-fn gcd(mut a: u128, mut b: u128) -> u128 {
-    if a == 0 || b == 0 {
-        return a | b;
-    }
-    let twos = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        b >>= b.trailing_zeros();
-        if a > b {
-            core::mem::swap(&mut a, &mut b);
-        }
-        b -= a;
-        if b == 0 {
-            return a << twos;
-        }
-    }
-}
-
 /// Segments whose stale marks [`Scene::update_marking`] remembers; with
 /// more segments, every row is marked.
 const MARKED_SEGMENTS: usize = 256;
@@ -312,40 +272,25 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     }
 
     /// Adds to `sig[y]`, for every row `y`, a hash of what segment `s`
-    /// puts on the row: each trapezoid's pixels on it (its span) with its
-    /// face (plane, colour, tie key), and its labels' pixels on it in
-    /// `font`. Sums are order-free, and a face's plane is
-    /// hashed in lowest terms, so the same pixels of the same faces hash
-    /// the same however the segment was built or cut: a bar that grows
-    /// changes only the rows it grows into.
+    /// puts on the row: its trapezoids (edges, rows, columns, their
+    /// faces' depth and colour) and its labels' pixels on the row in
+    /// `font`. Sums are order-free, so the same content hashes the same
+    /// however it was built; a label whose glyphs change on some of its
+    /// rows changes only those.
     fn add_signature(&self, s: usize, font: &MonoFont<'_>, sig: &mut [u64]) {
         let h = sig.len() as i32;
         for (_, t) in self.store.segment_trapezoids(s) {
-            let face = self.store.face(t.face()).map_or(0, face_hash);
-            let (top, end) = (t.top().max(0), t.end().min(h));
-            let (x0, x1) = t.columns();
-            let (mut l, mut r) = (t.left(), t.right());
-            // The edges start at the trapezoid's top row.
-            for _ in t.top()..top {
-                l.step();
-                r.step();
+            let mut k = Mix::new();
+            let face = self.store.face(t.face()).map_or([0; 4], |f| {
+                let d = f.depth();
+                [d.z, d.zx, d.zy, f.color_bits() as i32]
+            });
+            for f in t.fields().into_iter().chain(face) {
+                k.add(f as u32 as u64);
             }
-            for y in top..end {
-                l.load_pixel();
-                r.load_pixel();
-                let (a, b) = (l.pixel().max(x0 as i32), r.pixel().min(x1 as i32));
-                if a < b {
-                    let mut k = Mix::new();
-                    k.add(face);
-                    k.add(y as u32 as u64);
-                    k.add(a as u32 as u64);
-                    k.add(b as u32 as u64);
-                    sig[y as usize] = sig[y as usize].wrapping_add(k.finish());
-                }
-                if y + 1 < t.end() {
-                    l.step();
-                    r.step();
-                }
+            let k = k.finish();
+            for y in t.top().max(0)..t.end().min(h) {
+                sig[y as usize] = sig[y as usize].wrapping_add(k);
             }
         }
         let ch = font.character_size.height as i32;
@@ -380,11 +325,10 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// rebuilt segment showed on before or shows on after is marked, and
     /// the update says so ([`Update::coarse_marks`]).
     ///
-    /// The hash of a row is the sum of 64-bit mixes of what each of the
-    /// segment's trapezoids and labels shows on it (a trapezoid's span
-    /// there and its face's plane in lowest terms, colour and tie key; a
-    /// label's glyph pixels on the row): two different contents of a row
-    /// hash the same with a chance of about 2⁻⁶⁴. Changes the update does not see
+    /// The hash of a row is the sum of 64-bit mixes of each trapezoid's
+    /// every field and each label's glyph pixels on the row: two
+    /// different contents of a row hash the same with a chance of about
+    /// 2⁻⁶⁴. Changes the update does not see
     /// (the background) are the caller's to mark; those that mark every
     /// segment stale (the camera, the projection, the light, the clip)
     /// it sees. With more than 256 segments every row is marked.

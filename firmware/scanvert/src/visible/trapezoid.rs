@@ -1026,7 +1026,6 @@ impl Trapezoid {
     /// Every field but the store's links, as `i32`s: two trapezoids with
     /// the same fields and faces of the same depth and colour draw the
     /// same pixels.
-    #[cfg(test)]
     pub(crate) fn fields(&self) -> [i32; 12] {
         let (l, r) = (self.left, self.right);
         [
