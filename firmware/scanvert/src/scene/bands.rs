@@ -16,7 +16,7 @@
 //! once, each drawing some bands and skipping the others (two cores taking
 //! every other band).
 
-use super::{label, Frame, LabelStore, Scene, Update};
+use super::{Frame, LabelStore, Scene, Update};
 use crate::color::ListColor;
 pub use crate::port::band::DirtyRows;
 use crate::port::band::Mix;
@@ -273,10 +273,10 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
 
     /// Adds to `sig[y]`, for every row `y`, a hash of what segment `s`
     /// puts on the row: its trapezoids (edges, rows, columns, their
-    /// faces' depth and colour) and its labels' pixels on the row in
-    /// `font`. Sums are order-free, so the same content hashes the same
-    /// however it was built; a label whose glyphs change on some of its
-    /// rows changes only those.
+    /// faces' depth and colour)
+    /// and its labels' cells (anchor, colour, text) in `font`. Sums are
+    /// order-free, so the same content hashes the same however it was
+    /// built.
     fn add_signature(&self, s: usize, font: &MonoFont<'_>, sig: &mut [u64]) {
         let h = sig.len() as i32;
         for (_, t) in self.store.segment_trapezoids(s) {
@@ -299,20 +299,18 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
                 continue;
             }
             let (x, y) = l.anchor();
+            let mut k = Mix::new();
+            k.add(x as u32 as u64);
+            k.add(y as u32 as u64);
             let c = l.color();
-            let color = ((c.r() as u64) << 16) | ((c.g() as u64) << 8) | c.b() as u64;
-            for r in 0..ch {
-                let row = y - ch + r;
-                if row < 0 || row >= h {
-                    continue;
-                }
-                // The cell's row: its set pixels, where they are, in the
-                // label's colour. A row with none shows nothing.
-                let mut k = Mix::new();
-                if label::glyph_row(font, (x, row), text, r, &mut k) {
-                    k.add(color);
-                    sig[row as usize] = sig[row as usize].wrapping_add(k.finish());
-                }
+            k.add(((c.r() as u64) << 16) | ((c.g() as u64) << 8) | c.b() as u64);
+            for b in text.bytes() {
+                k.add(b as u64);
+            }
+            k.add(text.len() as u64);
+            let k = k.finish();
+            for y in (y - ch).max(0)..y.min(h) {
+                sig[y as usize] = sig[y as usize].wrapping_add(k);
             }
         }
     }
@@ -326,9 +324,8 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// the update says so ([`Update::coarse_marks`]).
     ///
     /// The hash of a row is the sum of 64-bit mixes of each trapezoid's
-    /// every field and each label's glyph pixels on the row: two
-    /// different contents of a row hash the same with a chance of about
-    /// 2⁻⁶⁴. Changes the update does not see
+    /// and label's every field: two different contents of a row hash the
+    /// same with a chance of about 2⁻⁶⁴. Changes the update does not see
     /// (the background) are the caller's to mark; those that mark every
     /// segment stale (the camera, the projection, the light, the clip)
     /// it sees. With more than 256 segments every row is marked.

@@ -414,44 +414,6 @@ fn glyph_cell(font: &MonoFont<'_>, c: char) -> Option<(i32, i32)> {
     Some((gx as i32, gy as i32))
 }
 
-/// Adds to `k` the pixels that `text`, anchored with its cell's left at
-/// `at.0`, sets on row `r` of its cell (frame row `at.1`), as
-/// [`LabelStore::draw_rows`] draws them: each set pixel's column, a word
-/// of 64 columns at a time. Returns whether any pixel is set.
-pub(crate) fn glyph_row(
-    font: &MonoFont<'_>,
-    at: (i32, i32),
-    text: &str,
-    r: i32,
-    k: &mut crate::port::band::Mix,
-) -> bool {
-    let pitch = (font.character_size.width + font.character_spacing) as i32;
-    let cw = font.character_size.width as i32;
-    let mut any = false;
-    k.add(at.1 as u32 as u64);
-    let mut x = at.0;
-    for c in text.chars() {
-        if let Some((gx, gy)) = glyph_cell(font, c) {
-            let mut bits = 0u64;
-            for i in 0..cw {
-                if font.image.pixel(Point::new(gx + i, gy + r)) == Some(On) {
-                    bits |= 1 << (i % 64);
-                    any = true;
-                }
-                if i % 64 == 63 || i == cw - 1 {
-                    if bits != 0 {
-                        k.add(x as u32 as u64 | ((i / 64) as u64) << 32);
-                        k.add(bits);
-                    }
-                    bits = 0;
-                }
-            }
-        }
-        x += pitch;
-    }
-    any
-}
-
 impl LabelStore<'_> {
     /// Draws the labels that reach rows `rows.0..rows.1` as
     /// [`draw`](Self::draw) does, for a band of those rows, and only their
