@@ -73,10 +73,12 @@
 mod draws;
 #[doc(hidden)]
 pub mod layout;
+mod placement;
 mod reader;
 mod writer;
 
 pub use draws::{Draws, ScratchTooSmall};
+pub use placement::Placement;
 pub(crate) use reader::decode;
 pub use reader::{
     Axis, Command, Commands, DisplayList, FromBytes, Items, Packed, Placed, Points, Summary,

@@ -567,13 +567,13 @@ impl Placed<'_> {
     }
 
     /// The placement.
-    pub fn placement(&self) -> crate::scene::Placement {
+    pub fn placement(&self) -> super::Placement {
         use layout::place::{ROTATE, SCALE, TRANSLATE};
         let a = |k: usize| {
             let at = ROTATE.start + 2 * k;
             Angle::from_bits(u16_at(self.0, at..at + 2))
         };
-        crate::scene::Placement {
+        super::Placement {
             translate: point_at(self.0, TRANSLATE),
             rotate: [a(0), a(1), a(2)],
             scale: point_at(self.0, SCALE),

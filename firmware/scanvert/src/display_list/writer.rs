@@ -395,11 +395,7 @@ impl<'b> Writer<'b> {
     }
 
     /// `place`: segment `id` built after `placement`'s transforms.
-    pub fn place(
-        &mut self,
-        id: u16,
-        placement: &crate::scene::Placement,
-    ) -> Result<(), WriteError> {
+    pub fn place(&mut self, id: u16, placement: &super::Placement) -> Result<(), WriteError> {
         use layout::place::{ID, LEN, ROTATE, SCALE, TRANSLATE};
         let mut b = [0u8; LEN];
         b[layout::OPCODE] = Opcode::Place as u8;

@@ -14,7 +14,7 @@
 //! parameter: by the non-zero rule, every row goes through its general
 //! loop, where each edge's pixel is loaded with the edge's direction
 //! beside it ([`Stepper::load_wound`]: `2·c + u`, `u` 1 for an edge
-//! running up), sorted, and paired by [`emit_nonzero`]. The direction
+//! running up), sorted, and paired by `emit_nonzero`. The direction
 //! rides in the pixel's slot, so an edge stays the size it is and the
 //! even-odd walk, its two-edge runs included, is compiled as without it.
 //!

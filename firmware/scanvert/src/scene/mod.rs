@@ -108,12 +108,12 @@ pub mod storage;
 
 pub use bands::{DirtyRows, SceneBands, SceneBandsError};
 
+pub use crate::display_list::Placement;
 pub use label::{Label, LabelStore, DEFAULT_FONT};
 #[doc(hidden)]
 pub use list::{list_pipeline, Attributes, Executed, ListState};
 #[doc(hidden)]
 pub use mesh::VertexTable;
-pub use record::Placement;
 pub use storage::{Capacities, SceneStorage};
 
 use crate::color::ListColor;
