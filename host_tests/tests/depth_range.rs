@@ -141,7 +141,7 @@ fn floor_and_wall() -> (Polys, Polys) {
 }
 
 /// The depth range of the plane the trapezoid stage gives `v` (Newell's,
-/// or flattened: see `visible::trapezoid`) over the pixels it covers.
+/// or fitted: see `visible::trapezoid`) over the pixels it covers.
 fn stored_depth_range(v: &[(i32, i32, i32)], w: u16, h: u16) -> Option<(i128, i128)> {
     let mut slots = vec![EdgeSlot::EMPTY; v.len()];
     let poly = Polygon::load(
@@ -449,5 +449,64 @@ proptest! {
             .take(8)
             .collect();
         prop_assert!(differ.is_empty(), "pixel, bisection, crossing: {:?}", differ);
+    }
+}
+
+// ---------------------------------------------------------------------
+// A large face the window cuts, under a box standing on it.
+
+/// A cube standing on a ground plate, seen from 2 units above the plate
+/// and beyond the plate's corner: with the plate 200 units square, the
+/// clips cut it to a polygon whose rounded vertices are not quite planar
+/// and whose plane, scaled about its first vertex alone, was flattened
+/// to that vertex's depth and drawn over the whole cube. Each mode, whole
+/// and in 7-row bands, must show the cube exactly as over a plate of 8
+/// units, which the clips leave whole.
+#[test]
+fn a_window_cut_plate_stays_under_the_box_standing_on_it() {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("depth_range_plate");
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let render = |half: u32, extra: &[&str]| -> Vec<u8> {
+        let text = format!(
+            "frame 320 240\nclear #101820\nperspective 50 1 100\nlookat 8 1 2  0 0.5 0\n\
+             light 2 5 3 75\nsegment 1\ncolor #00ff00\n\
+             face -{half} -1 {half}  {half} -1 {half}  {half} -1 -{half}  -{half} -1 -{half}\n\
+             segment 2\ncolor #ff0000\n\
+             face -1 -1 1  1 -1 1  1 1 1  -1 1 1\nface 1 -1 -1  -1 -1 -1  -1 1 -1  1 1 -1\n\
+             face 1 -1 1  1 -1 -1  1 1 -1  1 1 1\nface -1 -1 -1  -1 -1 1  -1 1 1  -1 1 -1\n\
+             face -1 1 1  1 1 1  1 1 -1  -1 1 -1\nface -1 -1 -1  1 -1 -1  1 -1 1  -1 -1 1\n"
+        );
+        let scene = dir.join(format!("plate{half}.dl"));
+        let png = dir.join(format!("plate{half}{}.png", extra.join("")));
+        std::fs::write(&scene, &text).expect("write scene");
+        let mut args = vec![
+            "render".to_string(),
+            scene.to_str().unwrap().to_string(),
+            "--out".to_string(),
+            png.to_str().unwrap().to_string(),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        scanvert_sim::cli::run(&args).expect("renders");
+        let bytes = std::fs::read(&png).expect("png written");
+        scanvert_sim::image::decode_png(&bytes).expect("decode").2
+    };
+    // The cube's pixels: red, lit (green and blue zero).
+    let cube = |rgb: &[u8]| -> Vec<bool> {
+        rgb.chunks(3)
+            .map(|p| p[0] > 0 && p[1] == 0 && p[2] == 0)
+            .collect()
+    };
+    for extra in [
+        &["--resolve", "crossing"][..],
+        &["--resolve", "bisect"],
+        &["--resolve", "paint"],
+        &["--resolve", "crossing", "--band-rows", "7"],
+        &["--resolve", "paint", "--band-rows", "7"],
+    ] {
+        let small = cube(&render(4, extra));
+        let large = cube(&render(100, extra));
+        assert!(small.iter().filter(|&&c| c).count() > 5000, "{extra:?}");
+        let differ = small.iter().zip(&large).filter(|(a, b)| a != b).count();
+        assert_eq!(differ, 0, "{extra:?}: {differ} pixels of the cube differ");
     }
 }

@@ -90,19 +90,27 @@
 //!   vertices' depth there), unchanged. (A quadrilateral is checked first
 //!   at its vertices, in the pass that finds its plane: when it passes
 //!   there it passes at those ends, which are vertices.);
-//! * otherwise the plane is *flattened*: its slopes are scaled by
-//!   `k / 2¹⁶` (`a` and `b` times `k / 2¹⁶`, rounded toward zero; `c` and
-//!   the first vertex kept) with `k` found by bisection so that the depth
-//!   is in `[z_min, z_max]` at those ends and would not be at `k + 1`. At
-//!   `k = 0` the plane is the constant depth `z₀`, which is. So a polygon
-//!   that rounding moved a little off its plane keeps nearly all of its
-//!   slope. It costs 17 more passes over the edges, only for such
-//!   polygons.
+//! * otherwise the plane is *fitted*: its slopes are scaled by
+//!   `k / 2¹⁶` (`a` and `b` times `k / 2¹⁶`, rounded toward zero; `c`
+//!   kept) with the greatest `k` whose depths at those ends span no more
+//!   than `[z_min, z_max]` does (`k = 2¹⁶` when the full slopes do;
+//!   otherwise found by bisection), and the plane is then moved by the
+//!   fewest whole units of depth that bring those depths into
+//!   `[z_min, z_max]`. At `k = 0` the plane is a constant depth, which
+//!   always fits. So a polygon that rounding moved a little off its plane
+//!   (a large face the clips cut, a nearly edge-on one) keeps its slope
+//!   and lies within a few units of where it was. Scaling alone, about
+//!   the first vertex, is not enough: when that vertex is at one end of
+//!   the range and rounding tilts the plane past the same end elsewhere,
+//!   only the constant depth of that vertex fits, and a ground plate cut
+//!   by the window would be drawn at its nearest depth, over what stands
+//!   on it. It costs two passes over the edges, and 17 more for the
+//!   bisection, only for such polygons.
 //!
 //! So a non-planar `poly3` (or face) is drawn with the pixel rule's
 //! coverage, as every polygon is, and the depth of one plane through its
 //! first vertex, between its vertices' depths: Newell's, or Newell's
-//! flattened when that leaves them. That plane is compared exactly, in
+//! fitted when that leaves them. That plane is compared exactly, in
 //! both ways of resolving, so both draw the same pixels.
 //!
 //! A point's or a line's polygon ([`Polygon::load_lifted`], `lift` units
@@ -112,8 +120,8 @@
 //! as the geometry stage delivers it unless the window clip cut it;
 //! then rounding tilts it by a few units, and as its two ends' corners
 //! are at the extremes of its depths, bounded by `[z_min, z_max]` it
-//! would be flattened, often to a constant depth, losing its slope along
-//! the line.
+//! would be fitted, its slope scaled down and its depth moved by those
+//! few units; the widened range keeps Newell's plane itself.
 //!
 //! # Depth ranges
 //!
@@ -1306,10 +1314,10 @@ impl<'s> Polygon<'s> {
         // A line's quad is planar but for the rounding of its corners,
         // and the corners at each end are at an extreme of its depths:
         // bounded by `[z_min, z_max]`, a plane that rounding tilts past
-        // one of them is flattened, down to a constant depth, and loses
-        // its slope along the line. Bounded by `[z_min − lift, z_max +
-        // lift]`, it keeps it unless the tilt exceeds `lift`; moved, it
-        // lies in `[z_min − 2·lift, z_max]`.
+        // one of them would be fitted, scaled and moved by a few units.
+        // Bounded by `[z_min − lift, z_max + lift]`, it is kept whole
+        // unless the tilt exceeds `lift`; moved, it lies in
+        // `[z_min − 2·lift, z_max]`.
         let (zlo, zhi) = (sums.z.0 - lift as i32, sums.z.1 + lift as i32);
         self.plane = match sums.n {
             ..=3 => sums.finish(),
@@ -1322,7 +1330,7 @@ impl<'s> Polygon<'s> {
     }
 
     /// `plane`, or if its depth leaves `z` (the vertices' depth range) at
-    /// an end of an edge set up, a flattened plane whose depth does not
+    /// an end of an edge set up, a fitted plane whose depth does not
     /// (see *Non-planar polygons* in the [module](self) docs).
     fn bounded(&self, plane: Plane, z: (i32, i32)) -> Plane {
         let slots = &self.slots[..self.edges];
@@ -1352,19 +1360,7 @@ impl<'s> Polygon<'s> {
         } else if holds(&plane) {
             return plane;
         }
-        // The plane scaled by k/2¹⁶ holds at k = 0 (the depth z₀ of a
-        // vertex) and not at k = 2¹⁶: bisect for a k that holds with
-        // k + 1 failing, 16 more checks.
-        let (mut lo, mut hi) = (0i64, 1i64 << 16);
-        while hi - lo > 1 {
-            let mid = lo + (hi - lo) / 2;
-            if holds(&plane.flattened(mid)) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        plane.flattened(lo)
+        fitted(&plane, slots, z)
     }
 
     /// Sets up the edge `p → q` (units, each within `i16`) when it
@@ -1400,7 +1396,7 @@ impl<'s> Polygon<'s> {
     }
 
     /// The polygon's plane, `None` when it is edge-on: Newell's, or
-    /// flattened into its vertices' depth range when that leaves it.
+    /// fitted into its vertices' depth range when that leaves it.
     pub fn plane(&self) -> Option<&Plane> {
         self.plane.as_ref()
     }
@@ -1522,6 +1518,76 @@ impl<'s> Polygon<'s> {
             }
         }
         Ok(c.count)
+    }
+}
+
+/// The depths of `plane` at the ends of `slots`, in whole units: the
+/// least rounded down and the greatest rounded up. Every end shares the
+/// plane's `c > 0`, so the least and greatest `c`·depth give them: two
+/// divisions.
+#[cold]
+fn depth_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
+    let (mut lo, mut hi) = (i128::MAX, i128::MIN);
+    for e in slots.iter().map(|s| &s.ends) {
+        for (x, y) in [(e.x0, e.y0), (e.x1, e.y1)] {
+            // Below 2⁶⁷: see `Plane::rhs_at`.
+            let v = plane.rhs_at(x as i128, y as i128);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    let c = plane.c as i128;
+    (lo.div_euclid(c), -(-hi).div_euclid(c))
+}
+
+/// A plane whose depth lies in `z` at every end of `slots`, as near
+/// `plane` as a scale of its slopes and a shift of its depth make it: its
+/// slopes scaled by `k / 2¹⁶` ([`Plane::flattened`]) with the greatest
+/// `k` (by bisection, 16 more passes over the ends, only when the full
+/// slopes do not fit) whose depths there span no more than `z` does,
+/// then moved by the fewest whole units of depth that bring them into
+/// `z`. At `k = 0` the depths span nothing, so one always fits. Scaling
+/// alone, about the first vertex, does not do: when that vertex is at
+/// one end of `z` and rounding tilts the plane past that end elsewhere,
+/// no slope but zero fits.
+#[cold]
+#[inline(never)]
+fn fitted(plane: &Plane, slots: &[EdgeSlot], z: (i32, i32)) -> Plane {
+    let room = (z.1 - z.0) as i128;
+    let fits = |k: i64| {
+        let (lo, hi) = depth_span(&plane.flattened(k), slots);
+        hi - lo <= room
+    };
+    let k = if fits(1 << 16) {
+        1 << 16
+    } else {
+        let (mut lo, mut hi) = (0i64, 1i64 << 16);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if fits(mid) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        lo
+    };
+    let scaled = plane.flattened(k);
+    let (lo, hi) = depth_span(&scaled, slots);
+    // The shifts that fit form `[z₀ − lo, z₁ − hi]`, not empty: take the
+    // one nearest zero. It is small unless the first vertex (the origin,
+    // whose depth is in `z`) lies far from the ends along a steep slope;
+    // past 2¹⁶ units the plane of constant depth is taken instead, so the
+    // origin's depth stays within 2¹⁷ units and `Plane::rhs_at` within
+    // its bound.
+    let shift = (z.0 as i128 - lo).max(0).min(z.1 as i128 - hi);
+    if shift.abs() > 1 << 16 {
+        return plane.flattened(0);
+    }
+    let (x0, y0, z0) = scaled.origin;
+    Plane {
+        origin: (x0, y0, z0 + shift as i32),
+        ..scaled
     }
 }
 
@@ -2512,6 +2578,45 @@ mod tests {
         assert!(flattened > 100, "{flattened}");
     }
 
+    /// Large quads on random planes, their vertices' depths rounded to
+    /// whole units (as the geometry stage leaves a face the clips cut):
+    /// whatever plane is loaded stays within a unit or two of each vertex,
+    /// never flattened to the first vertex's depth.
+    #[test]
+    fn a_rounded_plane_is_fitted_near_its_vertices() {
+        let mut rng = Rng(0x5eed_f17e);
+        let clip = ClipRect::full(4096, 4096);
+        let mut slots = [EdgeSlot::EMPTY; 4];
+        let (mut fitted, mut worst) = (0, 0i128);
+        for _ in 0..3000 {
+            // z = z₀ + (p·x + q·y) / 64, in units.
+            // |z| < 4000 + 2 · 100 · 6400 / 64 < 2¹⁵: none clamped.
+            let (p, q) = (rng.below(201) - 100, rng.below(201) - 100);
+            let z0 = rng.below(8001) - 4000;
+            // A convex quad at least 20 px on a side.
+            let (x0, y0) = (rng.below(16 * 200), rng.below(16 * 200));
+            let (w, h) = (320 + rng.below(16 * 180), 320 + rng.below(16 * 180));
+            let (x1, y1) = (x0 + w, y0 + h);
+            let quad = [(x0, y0), (x0 + 5, y1), (x1, y1 - 7), (x1 - 3, y0 + 2)].map(|(x, y)| {
+                let z = z0 + (p as i64 * x as i64 + q as i64 * y as i64).div_euclid(64) as i32;
+                v3(x, y, z.clamp(-32768, 32767))
+            });
+            let Some(newell) = Plane::of(quad) else {
+                continue;
+            };
+            let loaded = Polygon::load(&mut slots, quad, &clip).unwrap();
+            let got = *loaded.plane().unwrap();
+            fitted += (got != newell) as u32;
+            for v in quad {
+                let (e, c) = (got.rhs_at(v.x.units() as i128, v.y.units() as i128), got.c);
+                let d = (e - v.z.units() as i128 * c as i128).abs();
+                worst = worst.max(d / c as i128);
+            }
+        }
+        assert!(fitted > 100, "{fitted}");
+        assert!(worst <= 2, "{worst}");
+    }
+
     #[test]
     fn triangles_are_never_flattened() {
         let mut rng = Rng(0x7777_1234);
@@ -2628,9 +2733,9 @@ mod tests {
     }
 
     /// Rounding tilts a line's quad off its plane; bounded by its depth
-    /// range, Newell's plane is then flattened (often to a constant
-    /// depth: the corners of one end are at an extreme of the range);
-    /// bounded by the range widened by the move, it is kept.
+    /// range, Newell's plane is then fitted (scaled and moved: the
+    /// corners of one end are at an extreme of the range); bounded by the
+    /// range widened by the move, it is kept.
     #[test]
     fn a_line_quad_moved_toward_the_eye_keeps_its_slope() {
         let mut rng = Rng(0x0715_e0ff);
