@@ -25,6 +25,10 @@
 # fails, and a rewrite keeps the page's RISC-V subsection as it was (it
 # says so on stderr).
 set -euo pipefail
+# The image and the board are their own workspaces and are built, then
+# copied, from their own target directories: a CARGO_TARGET_DIR from the
+# caller's shell would build them elsewhere and leave stale ELFs here.
+unset CARGO_TARGET_DIR
 cd "$(dirname "$0")"
 image_dir=$PWD
 root=$(cd ../.. && pwd)
