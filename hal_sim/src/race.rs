@@ -249,32 +249,33 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 6.9 % on
-    /// average and 37.9 % at worst (the 2D lists' rows: 1.5 % to 10.2 %
+    /// Against the 1,992 measured rows the model's error is 8.1 % on
+    /// average and 49.1 % at worst (the 2D lists' rows: 2.2 % to 14.5 %
     /// on average, the 3D lists' 12.0 % and 10.0 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
-    /// large part). A row's cost hardly grows with its width (a quarter
-    /// of an instruction a pixel); the edge table's live set costs 20
-    /// instructions a word of 32 polygons on every row (W3's 313 words),
-    /// and a run moved by an insertion 6. Preparing a list is fitted to
+    /// large part). A row's cost hardly grows with its width (an eighth
+    /// of an instruction a pixel); a 2D polygon live on the row costs 92
+    /// instructions besides its span, the edge table's live set 19 a
+    /// word of 32 polygons on every row (W3's 313 words), and a run
+    /// moved by an insertion 6. Preparing a list is fitted to
     /// the eight lists' counts. Labels are in none of the measured lists,
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 870,
-        width: 4,
-        span: 2860,
+        row: 1183,
+        width: 2,
+        span: 3271,
         pixel: -3,
-        run: 540,
-        entered: 8238,
-        resolved: 3284,
+        run: 568,
+        entered: 8274,
+        resolved: 2878,
         label: 0,
-        live: 3490,
-        word: 322,
-        moved: 99,
-        frame: 116562,
-        command: 10716,
-        trapezoid: 756,
+        live: 1479,
+        word: 303,
+        moved: 90,
+        frame: 116366,
+        command: 11217,
+        trapezoid: 1260,
     };
 
     /// Instructions of a row of `work`, at least 1.
