@@ -30,7 +30,11 @@
 //! leave (their bit is cleared). A polygon walks its rows with the full
 //! frame's own loop (`raster::scan`'s `Walk`); where a run of two edges
 //! meets the band's end and both go on, they are stepped to the next
-//! band's first row and the walk is left at once.
+//! band's first row and the walk is left at once. A polygon's last row
+//! of a band (every row of a one-row band, as racing the beam composes
+//! them) whose two active edges both go on past it, with no edge joining
+//! on it, is drawn without the walk: one span, both edges stepped in
+//! place.
 //! [`EdgeTable::skip`] steps the same way without emitting anything.
 //! Nothing is set up again, and the list is not read again.
 //!
