@@ -55,6 +55,20 @@
 //! [`race`] runs the refresh controller clock by clock on the ring, and
 //! the two agree (a test checks it).
 //!
+//! # Preparing a frame in the spare time of the one before
+//!
+//! Preparing a frame before its row 0 ([`schedule`]) must fit in the
+//! retrace with the rows the ring lets the producer bank there. A
+//! producer with two sets of the frame's memory (two edge tables, two 3D
+//! layers) can instead prepare frame `n + 1` while frame `n` is raced:
+//! in the time it waits for a slot of the ring, and after its last row
+//! until the next retrace (the rows come first: a row starts as soon as
+//! its slot is free, as an interrupt would start it). Frame `n + 1` then
+//! starts at its retrace already prepared. [`schedule_spread`] computes
+//! this: the rows' misses as if the frame were prepared, and whether the
+//! preparation fits in the spare time of one frame period (the frame
+//! shown once a period, its preparation one frame ahead).
+//!
 //! Lines of the frame below the timing's active area are not produced;
 //! lines of the active area below the frame, and pixels beyond a row's
 //! runs, are black and never missed. `N` in `M of N lines` is the lines
@@ -249,32 +263,33 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 6.9 % on
-    /// average and 37.9 % at worst (the 2D lists' rows: 1.5 % to 10.2 %
+    /// Against the 1,992 measured rows the model's error is 8.1 % on
+    /// average and 49.1 % at worst (the 2D lists' rows: 2.2 % to 14.5 %
     /// on average, the 3D lists' 12.0 % and 10.0 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
-    /// large part). A row's cost hardly grows with its width (a quarter
-    /// of an instruction a pixel); the edge table's live set costs 20
-    /// instructions a word of 32 polygons on every row (W3's 313 words),
-    /// and a run moved by an insertion 6. Preparing a list is fitted to
+    /// large part). A row's cost hardly grows with its width (an eighth
+    /// of an instruction a pixel); a 2D polygon live on the row costs 92
+    /// instructions besides its span, the edge table's live set 19 a
+    /// word of 32 polygons on every row (W3's 313 words), and a run
+    /// moved by an insertion 6. Preparing a list is fitted to
     /// the eight lists' counts. Labels are in none of the measured lists,
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 870,
-        width: 4,
-        span: 2860,
+        row: 1183,
+        width: 2,
+        span: 3271,
         pixel: -3,
-        run: 540,
-        entered: 8238,
-        resolved: 3284,
+        run: 568,
+        entered: 8274,
+        resolved: 2878,
         label: 0,
-        live: 3490,
-        word: 322,
-        moved: 99,
-        frame: 116562,
-        command: 10716,
-        trapezoid: 756,
+        live: 1479,
+        word: 303,
+        moved: 90,
+        frame: 116366,
+        command: 11217,
+        trapezoid: 1260,
     };
 
     /// Instructions of a row of `work`, at least 1.
@@ -372,6 +387,8 @@ struct Clocks {
     active: u128,
     /// Ring rows.
     k: u32,
+    /// Pixel clocks of a frame: every line, the retrace's too.
+    period: u128,
 }
 
 impl Clocks {
@@ -385,6 +402,7 @@ impl Clocks {
             line,
             active: u128::from(timing.horizontal().active),
             k: u32::from(k.max(1)),
+            period: u128::from(v.total()) * line,
         }
     }
 
@@ -454,6 +472,51 @@ pub fn schedule_cores(
     missed
 }
 
+/// [`schedule`] with the frame's preparation spread over the spare time
+/// of the frame before it (see the [module](self) docs): which of the
+/// rows miss their deadline, the frame prepared before its retrace, and
+/// `true` when the `prepare` instructions fit in the time the producer
+/// does not spend on rows in one frame period (waiting for a slot, and
+/// from its last row to the next retrace).
+pub fn schedule_spread(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    cpu: CpuClock,
+    k: u16,
+) -> (Vec<bool>, bool) {
+    let c = Clocks::new(timing, cpu, k);
+    let (mut finish, mut spare) = (0u128, 0u128);
+    let mut missed = Vec::with_capacity(rows.len());
+    for (y, &cost) in rows.iter().enumerate() {
+        let y = y as u32;
+        let free = c.free(y);
+        if free > finish {
+            spare += free - finish;
+            finish = free;
+        }
+        finish += c.cost(cost);
+        missed.push(finish > c.line_start(y));
+    }
+    spare += (c.period * c.pixel).saturating_sub(finish);
+    (missed, c.cost(prepare) <= spare)
+}
+
+/// The lowest CPU clock, in whole kilohertz, at which no row misses its
+/// deadline and the preparation fits, by [`schedule_spread`], or `None`
+/// when even [`CpuClock::MAX_MHZ`] does not do.
+pub fn lowest_clock_spread(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    k: u16,
+) -> Option<CpuClock> {
+    lowest_by(|c| {
+        let (missed, fits) = schedule_spread(prepare, rows, timing, c, k);
+        fits && !missed.contains(&true)
+    })
+}
+
 /// The lowest CPU clock, in whole kilohertz, at which no row misses its
 /// deadline, or `None` when even [`CpuClock::MAX_MHZ`] misses (a frame
 /// whose preparation or rows take longer than the beam gives them).
@@ -470,10 +533,14 @@ pub fn lowest_clock_cores(
     k: u16,
     cores: usize,
 ) -> Option<CpuClock> {
-    let ok = |khz: u64| {
-        CpuClock::from_hz(khz * 1000)
-            .is_some_and(|c| !schedule_cores(prepare, rows, timing, c, k, cores).contains(&true))
-    };
+    lowest_by(|c| !schedule_cores(prepare, rows, timing, c, k, cores).contains(&true))
+}
+
+/// The lowest clock, in whole kilohertz, that `ok` takes, for an `ok`
+/// that takes every clock above one it takes; `None` when it does not
+/// take [`CpuClock::MAX_MHZ`].
+fn lowest_by(ok: impl Fn(CpuClock) -> bool) -> Option<CpuClock> {
+    let ok = |khz: u64| CpuClock::from_hz(khz * 1000).is_some_and(&ok);
     let (mut lo, mut hi) = (0u64, CpuClock::MAX_MHZ * 1000);
     if !ok(hi) {
         return None;
@@ -1111,6 +1178,54 @@ mod tests {
             let two = schedule_cores(prepare, &costs, &t, cpu, k, 2);
             for (a, b) in one.iter().zip(&two) {
                 prop_assert!(!b || *a, "a row missed with two cores and not with one");
+            }
+        }
+    }
+
+    #[test]
+    fn a_preparation_spread_over_the_frame_before_fits_in_its_spare_time() {
+        // Lines of 16 µs, 10 of them a frame (4 of retrace): 160 µs a
+        // period. Six rows of 1 µs with K = 1 leave 154 µs spare (waiting
+        // for slots, and after the last row); prepared before row 0, at
+        // most 63 µs fit (`the_ring_bounds_how_far_ahead_the_producer_runs`).
+        let t = timing(8, 6);
+        let cpu = CpuClock::from_mhz(1).unwrap();
+        let rows = [1u64; 6];
+        let (missed, fits) = schedule_spread(154, &rows, &t, cpu, 1);
+        assert_eq!((missed, fits), (vec![false; 6], true));
+        assert!(!schedule_spread(155, &rows, &t, cpu, 1).1);
+        assert!(schedule(154, &rows, &t, cpu, 1).contains(&true));
+        // The lowest clock: the rows' or the preparation's, whichever
+        // needs more.
+        let c = lowest_clock_spread(154, &rows, &t, 1).unwrap();
+        assert!(c.hz() <= 1_000_000, "{c}");
+        assert!(!schedule_spread(154, &rows, &t, c, 1).0.contains(&true));
+        let below = CpuClock::from_hz(c.hz() - 1000).unwrap();
+        let (m, fits) = schedule_spread(154, &rows, &t, below, 1);
+        assert!(!fits || m.contains(&true));
+    }
+
+    proptest! {
+        #[test]
+        fn a_spread_preparation_misses_no_row_the_retrace_does_not(
+            costs in proptest::collection::vec(1u64..80, 1..12),
+            prepare in 0u64..400,
+            k in 1u16..5,
+            mhz in 1u64..4,
+        ) {
+            let t = timing(5, costs.len() as u16);
+            let cpu = CpuClock::from_mhz(mhz).unwrap();
+            let (spread, fits) = schedule_spread(prepare, &costs, &t, cpu, k);
+            // The rows as if the frame were prepared already.
+            prop_assert_eq!(&spread, &schedule(0, &costs, &t, cpu, k));
+            let before = schedule(prepare, &costs, &t, cpu, k);
+            for (a, b) in spread.iter().zip(&before) {
+                prop_assert!(!a || *b);
+            }
+            // A preparation that fits before row 0 with no row missed
+            // fits in the spare time too.
+            if !before.contains(&true) {
+                prop_assert!(fits);
             }
         }
     }

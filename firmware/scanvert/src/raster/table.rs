@@ -30,7 +30,11 @@
 //! leave (their bit is cleared). A polygon walks its rows with the full
 //! frame's own loop (`raster::scan`'s `Walk`); where a run of two edges
 //! meets the band's end and both go on, they are stepped to the next
-//! band's first row and the walk is left at once.
+//! band's first row and the walk is left at once. A polygon's last row
+//! of a band (every row of a one-row band, as racing the beam composes
+//! them) whose two active edges both go on past it, with no edge joining
+//! on it, is drawn without the walk: one span, both edges stepped in
+//! place.
 //! [`EdgeTable::skip`] steps the same way without emitting anything.
 //! Nothing is set up again, and the list is not read again.
 //!
@@ -545,7 +549,9 @@ impl<'a> EdgeTable<'a> {
                     }
                 } else {
                     let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
-                    run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
+                    if !last_row_of_two(p, edges, y1, color, target.as_deref_mut(), &mut counts)? {
+                        run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
+                    }
                     p.done()
                 };
                 keep &= !((done as usize) << b);
@@ -588,6 +594,60 @@ fn run<T: SpanTarget + ?Sized>(
     p.next = walk.next as u16;
     p.y = walk.y;
     Ok(())
+}
+
+/// Row `y1 − 1` of a polygon on that row (its walk at `y1 − 1`) whose
+/// two active edges both go on past it and whose next edge starts at
+/// `y1` or below, by the even-odd rule: the span between the two
+/// crossings, cut to the clip columns, drawn into `target` (or nothing
+/// without one), and both edges stepped to row `y1`. This is what
+/// [`run`] does for such a row (the last row of a band, every row of a
+/// racing row's one-row band), without the walk's loop, its copies of
+/// the edges and its checks for edges joining or leaving. `false`, with
+/// nothing done, for any other polygon or row.
+#[inline(always)]
+fn last_row_of_two<T: SpanTarget + ?Sized>(
+    p: &mut TablePolygon,
+    edges: &mut [Edge],
+    y1: i32,
+    color: Option<T::Color>,
+    target: Option<&mut T>,
+    counts: &mut Counts,
+) -> Result<bool, T::Error> {
+    if p.active != 2 || p.rule != FillRule::EvenOdd || p.y.wrapping_add(1) != y1 {
+        return Ok(false);
+    }
+    let joins = edges.get(p.next as usize).is_some_and(|e| e.top() < y1);
+    let [a, b, ..] = edges else {
+        return Ok(false);
+    };
+    if joins || a.end() <= y1 || b.end() <= y1 {
+        return Ok(false);
+    }
+    if let (Some(t), Some(color)) = (target, color) {
+        a.load_pixel();
+        b.load_pixel();
+        let (l, r) = if a.pixel() <= b.pixel() {
+            (a.pixel(), b.pixel())
+        } else {
+            (b.pixel(), a.pixel())
+        };
+        let (x0, x1) = (l.max(p.x0 as i32), r.min(p.x1 as i32));
+        if x0 < x1 {
+            // In 0..=4096 by the clip guarantee, as the walk's spans.
+            let span = Span {
+                y: p.y as u16,
+                x0: x0 as u16,
+                x1: x1 as u16,
+            };
+            t.fill_span(span, color)?;
+            counts.span((x1 - x0) as u32);
+        }
+    }
+    a.step();
+    b.step();
+    p.y = y1;
+    Ok(true)
 }
 
 /// [`build_edges`] for a walk by the non-zero rule, out of line: the
