@@ -120,7 +120,12 @@ options:
                        it is a deadline miss, shown pure red (#ff0000). Prints
                        `deadline misses: M of N lines`, then the ring's memory
                        (`ring: K rows of at most R runs (4 bytes a run): B bytes`),
-                       and exits 0 whether or not lines were missed
+                       and exits 0 whether or not lines were missed. Without
+                       --timing, a frame that fits in 640x480 is raced on the
+                       reference design's raster (32 us lines, 521 a frame), in
+                       its top-left corner, the timing the racing figures of
+                       docs/performance.md are given at, and the image is the
+                       frame; a larger frame is raced in auto's mode
   --fifo K             with --race: the ring's rows, 1 to 65535 (default: 2); the
                        graphic controller runs at most K rows ahead of the beam
   --ring FORMAT        with --race: the format of the ring's rows, which the refresh
@@ -208,15 +213,16 @@ options:
   --no-speed           skip measuring the frames per second
   --race MHZ           show every frame by racing the beam with no frame RAM, as
                        `scanvert render --race` does (`scanvert help render`), in the
-                       mode of --timing (default: auto); prints a line
+                       mode of --timing (default: the reference design's raster,
+                       the frame in its top-left corner); prints a line
                        `frame NN: deadline misses: M of N lines` a frame instead,
                        then the ring's memory for the largest frame
   --fifo K             with --race: the ring's rows (default: 2)
   --ring FORMAT        with --race: the ring's rows as runs (default) or scanvideo
                        tokens, as for `scanvert render`
   --timing MODE        with --race: the video timing of the simulated monitor, as
-                       for `scanvert render` (default: auto, a mode whose visible
-                       area is the 512x256 frame)
+                       for `scanvert render` (default: as for `scanvert render
+                       --race`, the reference design's raster)
   --help, -h           this help";
 
 /// The help of `command`, or `None` for a command that does not exist.
@@ -688,6 +694,24 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
     Ok(a)
 }
 
+/// The mode a race shows a `w × h` frame in, and the size to cut the
+/// monitor's image to: with `--timing`, that mode and no cut; without,
+/// the reference design's raster with the image cut to the frame when the
+/// frame fits in it (the timing the racing figures are given at), else
+/// auto's mode.
+fn race_timing(
+    name: Option<&str>,
+    w: u16,
+    h: u16,
+) -> Result<(VideoTiming, Option<(u16, u16)>), CliError> {
+    let reference = VideoTiming::REFERENCE_640X480;
+    match name {
+        Some(name) => Ok((timing_for(name, w, h)?, None)),
+        None if w <= reference.width() && h <= reference.height() => Ok((reference, Some((w, h)))),
+        None => Ok((VideoTiming::for_frame(w, h), None)),
+    }
+}
+
 fn timing_for(name: &str, w: u16, h: u16) -> Result<VideoTiming, CliError> {
     let t = match name {
         "auto" => VideoTiming::for_frame(w, h),
@@ -839,7 +863,6 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
             let scene = Scene::load(&path)?;
             let list = scene.list();
             let mode = a.timing.as_deref().unwrap_or("auto");
-            let timing = timing_for(mode, list.width(), list.height())?;
             if a.fifo.is_some() && a.race.is_none() {
                 return Err(usage("render: --fifo goes with --race"));
             }
@@ -853,8 +876,10 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
                     ));
                 }
                 let format = a.ring.unwrap_or_default();
-                return crate::race::render(&scene, &timing, cpu, a.fifo, format, &out, warn);
+                let (timing, cut) = race_timing(a.timing.as_deref(), list.width(), list.height())?;
+                return crate::race::render(&scene, &timing, cut, cpu, a.fifo, format, &out, warn);
             }
+            let timing = timing_for(mode, list.width(), list.height())?;
             let resolve = a.resolve.unwrap_or_default();
             let mut r = match a.band_rows {
                 Some(n) => render_scene_bands_with(&scene, n, resolve)?,
@@ -992,9 +1017,9 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
             }
             if let Some(cpu) = a.race {
                 let (w, h) = (crate::demo::WIDTH, crate::demo::HEIGHT);
-                let timing = timing_for(a.timing.as_deref().unwrap_or("auto"), w, h)?;
+                let (timing, cut) = race_timing(a.timing.as_deref(), w, h)?;
                 let (frames, format) = (a.frames.unwrap_or(8), a.ring.unwrap_or_default());
-                return crate::race::demo(&dir, frames, &timing, cpu, a.fifo, format);
+                return crate::race::demo(&dir, frames, &timing, cut, cpu, a.fifo, format);
             }
             let size = a.size.unwrap_or(crate::demo::DEFAULT_SIZE);
             crate::demo::run_at(size, &dir, a.frames.unwrap_or(8), !a.no_speed)

@@ -922,9 +922,11 @@ pub fn ring_line(r: &RaceFrame) -> String {
 /// `scanvert render SCENE --out IMAGE --race MHZ [--fifo K]`: shows the
 /// scene by racing the beam of `timing` and writes what the monitor
 /// showed; returns the line of misses.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn render(
     scene: &crate::cli::Scene,
     timing: &VideoTiming,
+    cut: Option<(u16, u16)>,
     cpu: CpuClock,
     fifo: Option<u16>,
     format: RowFormat,
@@ -957,9 +959,27 @@ pub(crate) fn render(
         &CostModel::M4,
         format,
     );
-    let png = crate::image::encode_png(&shown.frame).map_err(|e| crate::error::io(out, e))?;
+    let png = crate::image::encode_png(&cut_to(&shown.frame, cut))
+        .map_err(|e| crate::error::io(out, e))?;
     crate::output::write_output(out, &png)?;
     Ok(misses_line(shown.misses(), shown.lines()) + &ring_line(&shown))
+}
+
+/// The monitor's image cut to its top-left `w × h` (a frame raced on a
+/// larger raster), or whole.
+fn cut_to(frame: &Frame, cut: Option<(u16, u16)>) -> Frame {
+    let Some((w, h)) = cut else {
+        return frame.clone();
+    };
+    let (w, h) = (w.min(frame.width()), h.min(frame.height()));
+    let pixels = frame
+        .pixels()
+        .chunks(usize::from(frame.width()))
+        .take(usize::from(h))
+        .flat_map(|row| &row[..usize::from(w)])
+        .copied()
+        .collect();
+    Frame::from_pixels(w, h, pixels).unwrap_or_else(|| frame.clone())
 }
 
 #[cfg(test)]
@@ -1461,6 +1481,7 @@ pub(crate) fn demo(
     dir: &std::path::Path,
     frames: usize,
     timing: &VideoTiming,
+    cut: Option<(u16, u16)>,
     cpu: CpuClock,
     fifo: Option<u16>,
     format: RowFormat,
@@ -1496,7 +1517,7 @@ pub(crate) fn demo(
                 }
             };
             let path = dir.join(format!("frame-{i:02}.png"));
-            let written = crate::image::encode_png(&shown.frame)
+            let written = crate::image::encode_png(&cut_to(&shown.frame, cut))
                 .map_err(|e| crate::error::io(&path, e))
                 .and_then(|png| crate::output::write_output(&path, &png));
             match written {

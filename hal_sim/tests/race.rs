@@ -150,6 +150,32 @@ fn a_slow_cpu_misses_lines_shown_red_and_counted() {
     assert!(some, "no clock missed some lines and not others");
 }
 
+/// Without `--timing`, a frame that fits in 640 × 480 is raced on the
+/// reference design's raster (32 µs lines), where the racing figures are
+/// given: the 2D demo misses nothing at 168 MHz with the default ring of
+/// 2 rows, and the image is the frame, equal to the plain render. Its own
+/// mode (`--timing auto`, 16 µs lines at 320 px) is twice as tight.
+#[test]
+fn the_demo_races_at_168_mhz_on_the_reference_raster_by_default() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../scenes/demo.dl");
+    let (_, plain) = render(&src, "demo-plain", &[]);
+    let (out, px) = render(&src, "demo-168", &["--race", "168"]);
+    assert_eq!(misses(&out), (0, 200), "{out}");
+    assert!(px == plain, "the raced demo differs from the plain render");
+    let (out, px) = render(
+        &src,
+        "demo-168-auto",
+        &["--race", "168", "--timing", "auto"],
+    );
+    let (m, n) = misses(&out);
+    assert_eq!(n, 200);
+    assert!(m > 0, "{out}");
+    assert_eq!(red_rows(&px, 320), m);
+    let (out, px) = render(&src, "demo-1", &["--race", "1"]);
+    assert_eq!(misses(&out), (200, 200), "{out}");
+    assert_eq!(red_rows(&px, 320), 200);
+}
+
 #[test]
 fn bad_race_options_are_usage_errors_and_write_no_image() {
     let src = scene("bad", SCENE);
