@@ -758,3 +758,46 @@ impl SpanTarget for NullTarget {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use testkit::{reference, workloads};
+
+    /// Pixels where [`PlainFill`] and the rule differ, over the first
+    /// `n` polygons of `wl`, each drawn alone.
+    fn plain_mismatches(wl: &Workload, n: usize) -> (u64, u64) {
+        let mut c = PlainFill::new(wl);
+        let (mut off, mut covered) = (0, 0);
+        for (i, p) in wl.polys.iter().enumerate().take(n) {
+            let p = reference::units(p);
+            let b = reference::pixel_box(&p, 3, wl.width, wl.height);
+            c.draw_one(i);
+            for y in b.1..b.3 {
+                for x in b.0..b.2 {
+                    let want = reference::covers(&p, x, y);
+                    covered += u64::from(want);
+                    off += u64::from(c.covered(x, y) != want);
+                }
+            }
+            c.reset(b);
+        }
+        (off, covered)
+    }
+
+    #[test]
+    fn the_plain_filler_follows_the_rule_where_16_16_resolves_it() {
+        // Whole-pixel squares and the rotated square: exact.
+        assert_eq!(plain_mismatches(&workloads::w1(), 226).0, 0);
+        assert_eq!(plain_mismatches(&workloads::w4(), 218).0, 0);
+        // Random triangles and slivers: off by a rounding here and there.
+        for wl in [workloads::w3(), workloads::w6()] {
+            let (off, covered) = plain_mismatches(&wl, 500);
+            assert!(
+                covered > 0 && off * 100 < covered,
+                "{}: {off} of {covered}",
+                wl.id
+            );
+        }
+    }
+}

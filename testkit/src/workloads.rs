@@ -210,3 +210,29 @@ pub fn w6() -> Workload {
 pub fn all() -> Vec<Workload> {
     vec![w1(), w2(), w3(), w4(), w5()]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_slivers_lie_inside_their_frame_and_are_thin() {
+        let wl = w6();
+        assert_eq!(wl.polys.len(), 2_000);
+        for p in &wl.polys {
+            for v in p {
+                let (x, y) = (v.x.units(), v.y.units());
+                assert!((0..16 * wl.width as i32).contains(&x), "{p:?}");
+                assert!((0..16 * wl.height as i32).contains(&y), "{p:?}");
+            }
+            // Twice the area over the longest side: at most 2 px (32
+            // units) wide, up to the rounding of the vertices.
+            let u = |k: usize| (p[k].x.units() as f64, p[k].y.units() as f64);
+            let (a, b, c) = (u(0), u(1), u(2));
+            let area2 = ((b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)).abs();
+            let side = |p: (f64, f64), q: (f64, f64)| (q.0 - p.0).hypot(q.1 - p.1);
+            let long = side(a, b).max(side(b, c)).max(side(c, a));
+            assert!(area2 > 0.0 && area2 / long <= 33.0, "{p:?}");
+        }
+    }
+}
