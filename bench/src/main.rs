@@ -1,11 +1,13 @@
 //! Speed against error: scanvert's rasterisers, their faster options and
-//! their peers on the 2D workloads W1–W5, and its scan-line visible
+//! their peers on the 2D workloads W1–W6, and its scan-line visible
 //! surfaces against z-buffers on the 3D scenes, timed in one process run.
 //!
 //! `cargo run --release -p scanvert-bench` writes `docs/performance.md`,
 //! `docs/speed-vs-error.png` and `docs/time-vs-trapezoids.png`. Speed is
 //! measured here only, never in a test. `-- --only W3` times one workload
-//! and writes nothing; `-- --only 3D` times the 3D scenes alone, and
+//! and writes nothing (`-- --only 2D` all of W1–W6, with the exact
+//! path's ratios to the plain 16.16 filler); `-- --only 3D` times the
+//! 3D scenes alone, and
 //! `-- --only 3D:170` those of 170 faces; `-- --only depth` runs the
 //! depth-complexity sweep and the P3/P4 split alone and rewrites their
 //! section of `docs/performance.md` (and `docs/time-vs-depth.png`,
@@ -228,7 +230,9 @@ const USAGE: &str = "\
 scanvert-bench: speed against error, written to docs/performance.md and its plots
 
   (no argument)             everything; rewrites the page and all its plots
-  --only W1|W2|W3|W4|W5     one 2D workload, printed, nothing written
+  --only W1|W2|W3|W4|W5|W6  one 2D workload, printed, nothing written
+  --only 2D                 every 2D workload, printed with the exact path's
+                            ratios to the plain 16.16 filler, nothing written
   --only 3D | --only 3D:N   the 3D scenes (of N faces), printed, nothing written
   --only depth              the depth-complexity sweep and the P3/P4 split;
                             rewrites their section of the page and their plots
@@ -317,8 +321,11 @@ fn main() -> std::io::Result<()> {
     let load_before = load_average();
     let mut rows = Vec::new();
     let mut checks = Vec::new();
-    for wl in workloads::all() {
-        if only.as_ref().is_some_and(|id| id != wl.id) {
+    // The image's W1–W5, and the host's slivers.
+    let mut all2d = workloads::all();
+    all2d.push(workloads::w6());
+    for wl in all2d {
+        if only.as_ref().is_some_and(|id| id != wl.id && id != "2D") {
             continue;
         }
         eprintln!("{}: {}", wl.id, wl.what);
@@ -381,6 +388,9 @@ fn main() -> std::io::Result<()> {
     let start3 = Instant::now();
     for scene in scenes3d::all() {
         if let Some(id) = &only {
+            if id == "2D" {
+                break;
+            }
             let all = id == "3D";
             let this = id.strip_prefix("3D:") == Some(scene.faces.to_string().as_str());
             if !all && !this {
@@ -417,6 +427,10 @@ fn main() -> std::io::Result<()> {
         scenes3.push(st);
     }
     let seconds3 = start3.elapsed().as_secs_f64();
+    if only.as_deref() == Some("2D") {
+        eprintln!("{}", ratios_to_plain(&rows));
+        return Ok(());
+    }
     if only.is_some() {
         eprintln!("3D part: {seconds3:.1} s");
         return Ok(());
@@ -451,6 +465,29 @@ fn main() -> std::io::Result<()> {
         run.seconds
     );
     Ok(())
+}
+
+/// Per 2D workload, each scanvert contender's speed over the plain 16.16
+/// filler's in the same run.
+fn ratios_to_plain(rows: &[Row]) -> String {
+    let mut s = String::from("ratios to the plain 16.16 filler (same run):\n");
+    for plain in rows
+        .iter()
+        .filter(|r| r.contender.starts_with("plain 16.16"))
+    {
+        for r in rows
+            .iter()
+            .filter(|r| r.workload == plain.workload && r.contender.starts_with("scanvert"))
+        {
+            s += &format!(
+                "  {} {:<50} {:>6.2}×\n",
+                r.workload,
+                r.contender,
+                r.rate / plain.rate
+            );
+        }
+    }
+    s
 }
 
 /// The depth-complexity sweep and the P3/P4 split of the 3D scenes, and

@@ -121,7 +121,7 @@ fn draw(f: &mut EgFrame<Rgb888>, rows: &[Row]) -> Result<(), core::convert::Infa
     )
     .draw(f)?;
     Text::new(
-        "scanvert speed vs error: 2D workloads W1, W3, W4, W5",
+        "scanvert speed vs error: 2D workloads W1, W3, W4, W5, W6",
         Point::new(L - 60, T - 22),
         text,
     )

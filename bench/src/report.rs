@@ -448,7 +448,8 @@ pub fn markdown(run: &Run, old: &str) -> String {
          W2 clears of 256×256; W3 10,000 random triangles (seeded), each within a\n\
          40×40 px box, vertices on the 1/16 px grid, in 512×256; W4 the W1 square\n\
          rotated by 17° (vertices rounded to 1/16 px, 218 positions); W5 one convex\n\
-         12-gon covering most of 512×256.\n\n\
+         12-gon covering most of 512×256; W6 2,000 slivers (seeded), triangles\n\
+         40–120 px long and 1–2 px wide at any angle, in 512×256 (host only).\n\n\
          ![speed against error](speed-vs-error.png)\n"
     );
     let _ = writeln!(

@@ -83,6 +83,24 @@ fn slivers_thinner_than_a_pixel() {
 }
 
 #[test]
+fn the_benchmarks_slivers_match_the_reference() {
+    // W6: triangles 40 to 120 px long and 1 to 2 px wide at any angle, in
+    // every order of their edges' first rows (the three rotations of each
+    // triangle, in both windings).
+    let wl = testkit::workloads::w6();
+    for p in wl.polys.iter().step_by(40) {
+        let p = testkit::reference::units(p);
+        for k in 0..3 {
+            let mut q = p.clone();
+            q.rotate_left(k);
+            check(&q, Window::full(wl.width, wl.height), wl.width, wl.height);
+            q.reverse();
+            check(&q, Window::full(wl.width, wl.height), wl.width, wl.height);
+        }
+    }
+}
+
+#[test]
 fn edges_one_sixteenth_from_horizontal() {
     // Rectangles whose top and bottom edges rise or fall by 1/16 over the
     // frame (or over 4000 px), at every sub-pixel height: a row centre is

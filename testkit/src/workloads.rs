@@ -1,5 +1,6 @@
 //! The 2D workloads W1–W5 of the benchmark (and of the firmware image's
-//! scenes `w1` … `w5`), generated deterministically.
+//! scenes `w1` … `w5`), and the benchmark's W6 (slivers, host only),
+//! generated deterministically.
 
 use crate::rng::Rng;
 use scanvert::fixed::Vertex;
@@ -163,7 +164,75 @@ pub fn w5() -> Workload {
     }
 }
 
-/// All 2D workloads, in order.
+/// W6: 2,000 slivers, triangles 40 to 120 px long and 1 to 2 px wide at
+/// the base, at any angle, in 512 × 256; vertices on the 1/16 px grid; no
+/// zero-area triangle. Timed by the benchmark on the host only (the
+/// firmware image embeds W1–W5).
+pub fn w6() -> Workload {
+    let mut rng = Rng(0x5117_e125_0bad_cafe);
+    let mut polys = Vec::with_capacity(2_000);
+    while polys.len() < 2_000 {
+        let a = rng.below(3600) as f64 / 3600.0 * std::f64::consts::TAU;
+        let (s, c) = a.sin_cos();
+        let len = rng.range(40, 121) as f64;
+        let wide = rng.range(16, 33) as f64 / 16.0;
+        // The sliver's middle, so that it stays inside the frame.
+        let (mx, my) = (256.0 + c * len / 2.0, 128.0 + s * len / 2.0);
+        let (hx, hy) = (
+            (256.0 - 4.0 - len / 2.0).max(0.0),
+            (128.0 - 4.0 - len / 2.0).max(0.0),
+        );
+        let ox = rng.range(-(hx as i32), hx as i32 + 1) as f64;
+        let oy = rng.range(-(hy as i32), hy as i32 + 1) as f64;
+        let (bx, by) = (mx - c * len + ox, my - s * len + oy);
+        let t = [
+            at(bx, by),
+            at(bx - s * wide, by + c * wide),
+            at(bx + c * len - s * wide / 2.0, by + s * len + c * wide / 2.0),
+        ];
+        let area = (t[1].x.units() - t[0].x.units()) * (t[2].y.units() - t[0].y.units())
+            - (t[2].x.units() - t[0].x.units()) * (t[1].y.units() - t[0].y.units());
+        if area != 0 {
+            polys.push(t.to_vec());
+        }
+    }
+    Workload {
+        id: "W6",
+        what: "2,000 slivers, 40–120 px long, 1–2 px wide, any angle, 512×256",
+        width: 512,
+        height: 256,
+        kind: Kind::Polygons,
+        polys,
+    }
+}
+
+/// All 2D workloads of the firmware image, in order.
 pub fn all() -> Vec<Workload> {
     vec![w1(), w2(), w3(), w4(), w5()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_slivers_lie_inside_their_frame_and_are_thin() {
+        let wl = w6();
+        assert_eq!(wl.polys.len(), 2_000);
+        for p in &wl.polys {
+            for v in p {
+                let (x, y) = (v.x.units(), v.y.units());
+                assert!((0..16 * wl.width as i32).contains(&x), "{p:?}");
+                assert!((0..16 * wl.height as i32).contains(&y), "{p:?}");
+            }
+            // Twice the area over the longest side: at most 2 px (32
+            // units) wide, up to the rounding of the vertices.
+            let u = |k: usize| (p[k].x.units() as f64, p[k].y.units() as f64);
+            let (a, b, c) = (u(0), u(1), u(2));
+            let area2 = ((b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1)).abs();
+            let side = |p: (f64, f64), q: (f64, f64)| (q.0 - p.0).hypot(q.1 - p.1);
+            let long = side(a, b).max(side(b, c)).max(side(c, a));
+            assert!(area2 > 0.0 && area2 / long <= 33.0, "{p:?}");
+        }
+    }
 }

@@ -176,8 +176,12 @@ impl Edge {
                 (x as i32, (x * dy as i64 - num) as i32)
             }
         };
-        let step = (ONE * dx).div_euclid(dy);
-        let rem = (ONE * dx).rem_euclid(dy);
+        // ⌊16·dx / dy⌋ and its remainder, from one truncating division.
+        let (mut step, mut rem) = ((ONE * dx) / dy, (ONE * dx) % dy);
+        if rem < 0 {
+            step -= 1;
+            rem += dy;
+        }
         Some(Edge {
             x,
             err,

@@ -210,7 +210,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         if n < 2 {
             return Ok(counts);
         }
-        edges.sort_unstable_by_key(|e| e.top());
+        sort_by_top(edges);
         let (cx0, cx1) = (clip.x0() as i32, clip.x1() as i32);
 
         let mut walk = Walk::start(edges);
@@ -695,6 +695,33 @@ fn emit_rows<T: SpanTarget + ?Sized>(
         counts.pixels += rows * (x1 - x0) as u32;
     }
     Ok(())
+}
+
+/// Sorts a polygon's edges by first row. Up to four (a triangle's, a
+/// quadrilateral's) by insertion with swaps in place: a few compares,
+/// where the core library's sort is a call into generic code that costs
+/// a small polygon more than its compares. More by the core library's
+/// sort, out of line. Equal first rows may come in any order: the walk
+/// joins every edge of a row before it draws the row.
+#[inline(always)]
+fn sort_by_top<S: Stepper>(e: &mut [S]) {
+    if e.len() > 4 {
+        sort_by_top_long(e);
+        return;
+    }
+    for i in 1..e.len() {
+        let mut j = i;
+        while j > 0 && e[j - 1].top() > e[j].top() {
+            e.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+}
+
+/// [`sort_by_top`] of more than four edges.
+#[inline(never)]
+fn sort_by_top_long<S: Stepper>(e: &mut [S]) {
+    e.sort_unstable_by_key(|e| e.top());
 }
 
 /// Sorts by crossing pixel; linear when the order is the last row's.
