@@ -93,6 +93,33 @@ pub(crate) fn is_front(projection: &Projection, v0: [i64; 3], n: [i128; 3]) -> b
     }
 }
 
+/// [`is_front`] for a triangle, whose Newell normal is its one corner
+/// `n = (v₁ − v₀) × (v₂ − v₀)` (each component below 2⁶³, module docs),
+/// in 32 × 32-bit products: each component is split as `n = h · 2³² + l`
+/// (`l` unsigned), so `v₀ · n = (Σ v₀ h) · 2³² + Σ v₀ l`, where each
+/// `v₀ l` is split the same way. The high sum is below `3 · 2⁶¹ + 3 · 2³⁰`
+/// and the low one below `3 · 2³²`: exact in `i64`, and the sign of
+/// `v₀ · n` is that of the high sum after the low one's carry.
+#[inline]
+pub(crate) fn is_front_triangle(projection: &Projection, v0: [i64; 3], n: [i64; 3]) -> bool {
+    match projection {
+        Projection::Perspective(_) => {
+            let mut high = 0i64;
+            let mut low = 0i64;
+            for k in 0..3 {
+                // View-space coordinates are below 2³⁰ (module docs).
+                let v = v0[k] as i32 as i64;
+                let (h, l) = (n[k] >> 32, n[k] as u32 as i64);
+                let vl = v * l;
+                high += v * h + (vl >> 32);
+                low += vl & 0xffff_ffff;
+            }
+            high + (low >> 32) < 0
+        }
+        Projection::Orthographic(_) => n[2] < 0,
+    }
+}
+
 /// The normal to light a face with: `corner = (v₁ − v₀) × (v₂ − v₀)`
 /// when it points the way of Newell's `n`, negated when it points the
 /// other way (the first corner is a reflex one), and `n` shifted into
@@ -141,6 +168,56 @@ mod tests {
     /// Facing of a polygon by the module's rule.
     fn front(p: &Projection, v: &[[i64; 3]]) -> bool {
         is_front(p, v[0], newell(v))
+    }
+
+    /// The triangle test in 32-bit parts agrees with the `i128` one, at
+    /// the extremes of the view-space range and between them.
+    #[test]
+    fn the_triangle_test_is_the_general_one() {
+        const M: i64 = (1 << 30) - 1;
+        let picks = [
+            -M,
+            -M + 1,
+            -(1 << 29),
+            -12_345,
+            -1,
+            0,
+            1,
+            7,
+            1 << 20,
+            M - 1,
+            M,
+        ];
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for p in [persp(), ortho()] {
+            for _ in 0..20_000 {
+                let mut pick = || {
+                    let r = next();
+                    if r & 1 == 0 {
+                        picks[(r >> 8) as usize % picks.len()]
+                    } else {
+                        (r >> 8) as i64 % (M + 1)
+                    }
+                };
+                let t = [
+                    [pick(), pick(), pick()],
+                    [pick(), pick(), pick()],
+                    [pick(), pick(), pick()],
+                ];
+                let n = normal(t[0], t[1], t[2]);
+                assert_eq!(newell(&t), n.map(i128::from));
+                assert_eq!(is_front_triangle(&p, t[0], n), front(&p, &t), "{t:?}");
+                if n != [0; 3] {
+                    assert_eq!(light_normal(n, n.map(i128::from)), n);
+                }
+            }
+        }
     }
 
     #[test]

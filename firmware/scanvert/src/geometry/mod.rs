@@ -456,7 +456,15 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         }
 
         let mut color = color;
-        if let [v0, v1, v2, ..] = *work.current().as_slice() {
+        if let [v0, v1, v2] = *work.current().as_slice() {
+            // A triangle's Newell normal is its one corner, which also
+            // lights it (it points the way of itself).
+            let n = cull::normal(v0, v1, v2);
+            if !cull::is_front_triangle(&self.projection, v0, n) {
+                return Ok(Outcome::Culled);
+            }
+            color = light::shade(color, n, self.light_view, self.light.percent());
+        } else if let [v0, v1, v2, ..] = *work.current().as_slice() {
             let n = cull::newell(work.current());
             if !cull::is_front(&self.projection, v0, n) {
                 return Ok(Outcome::Culled);

@@ -341,13 +341,24 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
     clip: ClipRect,
     highlight: Option<Rgb888>,
 ) -> Result<Outcome, SceneError> {
-    table.check(indices.clone())?;
-    let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
     let mut sink = Faces {
         out,
         clip,
         highlight,
     };
+    // A triangle's indices are read and checked once, its points taken
+    // on the way.
+    if indices.len() == 3 {
+        let mut points = [None; 3];
+        for (p, i) in points.iter_mut().zip(indices) {
+            *p = table.at(i)?.raw();
+        }
+        return pipe
+            .polygon_view(points.into_iter(), color, &mut sink)
+            .map_err(pipeline_error);
+    }
+    table.check(indices.clone())?;
+    let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
     pipe.polygon_view(points, color, &mut sink)
         .map_err(pipeline_error)
 }

@@ -73,6 +73,15 @@ impl<'v> VertexTable<'v> {
         self.slots[..self.len].get(index).copied()
     }
 
+    /// The vertex at 0-based `index`; [`SceneError::Index`] when the
+    /// table does not have it.
+    pub(crate) fn at(&self, index: usize) -> Result<ViewPoint, SceneError> {
+        self.get(index).ok_or(SceneError::Index {
+            index,
+            vertices: self.len,
+        })
+    }
+
     /// The vertices at `indices`, for the pipeline; the first index the
     /// table does not have is [`SceneError::Index`].
     pub(crate) fn check(&self, indices: impl Iterator<Item = usize>) -> Result<(), SceneError> {
