@@ -107,6 +107,17 @@ use defmt_semihosting as _;
 pub type Pixel = Rgb565;
 /// The colour every frame starts from, as on the host.
 pub const BLACK: Pixel = Rgb565::BLACK;
+/// Chains the pixels of band words in a panel's wire order
+/// (`scanvert::port::packed_band`: each pixel high byte first) into
+/// `sum`, as `Checksum::write_pixels` chains the same pixels. Every half
+/// of every word is a pixel: the bands of the image's frames are of an
+/// even width.
+pub fn write_wire(sum: &mut scanvert::port::checksum::Checksum, words: &[u32]) {
+    for w in words {
+        let [a, b, c, d] = w.to_le_bytes();
+        sum.write(&[b, a, d, c]);
+    }
+}
 /// Largest frame: 512 × 256 pixels (256 KiB of RGB565).
 pub const FRAME_PIXELS: usize = 512 * 256;
 

@@ -285,11 +285,14 @@ where
     }
 
     /// The rectangle cut to the band's rows, written by
-    /// [`PackedFrameBuffer`]'s rectangle fill over the band.
+    /// [`PackedFrameBuffer`]'s rectangle fill over the band; one row of
+    /// it (a band of one row, or the rectangle's edge) as a span.
     fn fill_rect(&mut self, span: Span, height: u16, color: C) -> Result<(), Infallible> {
         let top = span.y.max(self.y0);
         let bottom = (span.y as u32 + height as u32).min(self.end() as u32);
-        if (top as u32) < bottom {
+        if top as u32 + 1 == bottom {
+            self.fill_span(Span { y: top, ..span }, color)?;
+        } else if (top as u32) < bottom {
             let y0 = self.y0;
             // The frame of the band's rows stores a pixel's raw bits as
             // they are: given the wire order's, it writes the wire order.
