@@ -83,7 +83,7 @@ impl<C: ListColor> SceneBands<'_, '_, '_, C> {
 
     /// [`draw`](Self::draw) into a band of words, two pixels a word in a
     /// panel's wire order
-    /// ([`PackedBand`](crate::port::packed_band::PackedBand)): the same
+    /// ([`PackedBand`]): the same
     /// pixels, written a word at a time; `words` holds at least
     /// `PackedBand::words_len(width, rows)`.
     pub fn draw_packed(
