@@ -537,3 +537,102 @@ proptest! {
         }
     }
 }
+
+/// Bands of pixels shipped into a panel that keeps its pixels.
+struct PixelPanel(Vec<Rgb565>, usize);
+
+impl BandTarget for PixelPanel {
+    type Color = Rgb565;
+    type Error = ();
+    fn ship(&mut self, y: u16, _: u16, px: &[Rgb565]) -> Result<(), ()> {
+        let at = y as usize * self.1;
+        self.0[at..at + px.len()].copy_from_slice(px);
+        Ok(())
+    }
+}
+
+/// Bands of words shipped into a panel that keeps its pixels, decoded
+/// from their bytes.
+struct WordPanel(Vec<Rgb565>, usize);
+
+impl PackedBandTarget for WordPanel {
+    type Color = Rgb565;
+    type Error = ();
+    fn ship(&mut self, y: u16, rows: u16, words: &[u32]) -> Result<(), ()> {
+        let n = rows as usize * self.1;
+        let at = y as usize * self.1;
+        self.0[at..at + n].copy_from_slice(&decode(&le_bytes(words)[..2 * n]));
+        Ok(())
+    }
+}
+
+/// A frame pass over a scene and two drawables, whole and by its marked
+/// rows, into words and into pixels: the same panel after every frame.
+#[test]
+fn a_frame_pass_of_layers_is_the_same_in_bands_of_words() {
+    use scanvert::frame::{DrawableLayer, FramePass, Layer, PackedLayer};
+    use scanvert::port::band::DirtyRows;
+    use scanvert_sim::demo::{steps, with_scene, HEIGHT, WIDTH};
+    let w = WIDTH as usize;
+    let style = MonoTextStyle::new(&FONT_6X10, Rgb565::WHITE);
+    let dot =
+        |x| Circle::new(Point::new(x, 41), 9).into_styled(PrimitiveStyle::with_fill(Rgb565::RED));
+    for rows in [1u16, 7, 16] {
+        let mut clock_a = DrawableLayer::new(Text::new("12:00", Point::new(3, 10), style));
+        let mut clock_b = DrawableLayer::new(Text::new("12:00", Point::new(3, 10), style));
+        let mut dot_a = DrawableLayer::new(dot(11));
+        let mut dot_b = DrawableLayer::new(dot(11));
+        let mut pass_a = FramePass::new((WIDTH, HEIGHT), Rgb565::BLUE);
+        let mut pass_b = FramePass::new((WIDTH, HEIGHT), Rgb565::BLUE);
+        let mut pixels = PixelPanel(vec![Rgb565::BLACK; w * HEIGHT as usize], w);
+        let mut words = WordPanel(vec![Rgb565::BLACK; w * HEIGHT as usize], w);
+        let mut band = vec![Rgb565::BLACK; rows as usize * w];
+        let mut band_words = vec![0u32; (rows as usize * w).div_ceil(2)];
+        for (k, step) in steps(3).into_iter().enumerate() {
+            with_scene(step, |scene, bg| {
+                let mut s = scene.bands(Resolve::Paint, bg, DEFAULT_FONT).expect("pass");
+                {
+                    let mut layers: [&mut dyn Layer<Rgb565>; 3] =
+                        [&mut s, &mut clock_a, &mut dot_a];
+                    if k == 0 {
+                        pass_a
+                            .draw(&mut layers, rows, &mut band, &mut pixels)
+                            .expect("pixels");
+                    } else {
+                        let mut bits = [0u32; DirtyRows::words(HEIGHT)];
+                        let mut dirty = DirtyRows::new(&mut bits, HEIGHT).unwrap();
+                        dirty.mark(30, 90);
+                        pass_a
+                            .draw_marked(&mut layers, &mut dirty, rows, &mut band, &mut pixels)
+                            .expect("pixels");
+                    }
+                }
+                let mut s = scene.bands(Resolve::Paint, bg, DEFAULT_FONT).expect("pass");
+                let mut layers: [&mut dyn PackedLayer<Rgb565>; 3] =
+                    [&mut s, &mut clock_b, &mut dot_b];
+                if k == 0 {
+                    pass_b
+                        .draw_packed(&mut layers, rows, &mut band_words, &mut words)
+                        .expect("words");
+                } else {
+                    let mut bits = [0u32; DirtyRows::words(HEIGHT)];
+                    let mut dirty = DirtyRows::new(&mut bits, HEIGHT).unwrap();
+                    dirty.mark(30, 90);
+                    pass_b
+                        .draw_marked_packed(
+                            &mut layers,
+                            &mut dirty,
+                            rows,
+                            &mut band_words,
+                            &mut words,
+                        )
+                        .expect("words");
+                }
+            })
+            .expect("demo scene");
+            assert!(pixels.0 == words.0, "rows {rows}, frame {k}");
+            dot_a.set(dot(20 + 9 * k as i32));
+            dot_b.set(dot(20 + 9 * k as i32));
+        }
+    }
+}

@@ -264,6 +264,20 @@ impl<C: ListColor> Layer<C> for ListBands<'_> {
     }
 }
 
+/// A display list's frame as a layer drawn into words.
+impl<C> super::frame::PackedLayer<C> for ListBands<'_>
+where
+    C: ListColor + Into<RawU16> + From<RawU16>,
+{
+    fn draw_packed(
+        &mut self,
+        band: &mut PackedBand<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        self.draw_band(band, background)
+    }
+}
+
 impl<'e> Controller<'e> {
     /// Prepares `list` to be drawn band by band (see the
     /// [module](self) docs), with `table` for its 2D polygons and lines: checks it
