@@ -316,8 +316,9 @@ struct Collect {
 impl PackedBandTarget for Collect {
     type Color = Rgb565;
     type Error = ();
-    fn ship(&mut self, y: u16, rows: u16, words: &[u32]) -> Result<(), ()> {
+    fn ship_words(&mut self, y: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), ()> {
         assert_eq!(y, self.next, "bands in order, none missing");
+        assert_eq!(width as usize, self.width);
         let n = rows as usize * self.width;
         assert_eq!(words.len(), n.div_ceil(2));
         self.pixels.extend(decode(&le_bytes(words)[..2 * n]));
@@ -558,7 +559,8 @@ struct WordPanel(Vec<Rgb565>, usize);
 impl PackedBandTarget for WordPanel {
     type Color = Rgb565;
     type Error = ();
-    fn ship(&mut self, y: u16, rows: u16, words: &[u32]) -> Result<(), ()> {
+    fn ship_words(&mut self, y: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), ()> {
+        assert_eq!(width as usize, self.1);
         let n = rows as usize * self.1;
         let at = y as usize * self.1;
         self.0[at..at + n].copy_from_slice(&decode(&le_bytes(words)[..2 * n]));

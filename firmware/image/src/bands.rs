@@ -58,9 +58,9 @@ struct Sum(Option<Checksum>);
 impl PackedBandTarget for Sum {
     type Color = crate::Pixel;
     type Error = Infallible;
-    fn ship(&mut self, _: u16, _: u16, words: &[u32]) -> Result<(), Infallible> {
+    fn ship_words(&mut self, _: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), Infallible> {
         if let Some(c) = self.0.as_mut() {
-            crate::write_wire(c, words);
+            crate::write_wire(c, words, rows as usize * width as usize);
         }
         Ok(())
     }

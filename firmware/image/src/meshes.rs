@@ -73,10 +73,10 @@ struct Sum {
 impl PackedBandTarget for Sum {
     type Color = Pixel;
     type Error = Infallible;
-    fn ship(&mut self, y: u16, rows: u16, words: &[u32]) -> Result<(), Infallible> {
+    fn ship_words(&mut self, y: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), Infallible> {
         self.in_order &= y == self.next;
         self.next = y.saturating_add(rows);
-        crate::write_wire(&mut self.sum, words);
+        crate::write_wire(&mut self.sum, words, rows as usize * width as usize);
         Ok(())
     }
 }

@@ -403,7 +403,7 @@ impl Controller<'_> {
                 .map_err(super::frame::widen)?;
             let len = PackedBand::<P::Color>::words_len(size.0, n);
             target
-                .ship(y, n, &words[..len])
+                .ship_words(y, n, size.0, &words[..len])
                 .map_err(|error| BandsError::Ship { y, error })?;
             y += n;
         }

@@ -63,19 +63,32 @@ pub trait PackedBandTarget {
     /// What shipping can fail with.
     type Error;
 
-    /// Ships rows `y..y + rows` of the frame: `words` holds their
-    /// `rows × width` pixels in wire order (see the
-    /// [module](self) docs: as bytes, `2 · rows · width` of them from the
-    /// start). The slice is the caller's band buffer; it is filled again
-    /// with the next band once this returns.
-    fn ship(&mut self, y: u16, rows: u16, words: &[u32]) -> Result<(), Self::Error>;
+    /// Ships rows `y..y + rows` of a frame `width` pixels wide: `words`,
+    /// [`PackedBand::words_len`]`(width, rows)` of them, hold the
+    /// `rows × width` pixels in wire order (see the [module](self) docs:
+    /// as bytes, `2 · rows · width` of them from the start). The slice is
+    /// the caller's band buffer; it is filled again with the next band
+    /// once this returns.
+    fn ship_words(
+        &mut self,
+        y: u16,
+        rows: u16,
+        width: u16,
+        words: &[u32],
+    ) -> Result<(), Self::Error>;
 }
 
 impl<B: PackedBandTarget + ?Sized> PackedBandTarget for &mut B {
     type Color = B::Color;
     type Error = B::Error;
-    fn ship(&mut self, y: u16, rows: u16, words: &[u32]) -> Result<(), Self::Error> {
-        (**self).ship(y, rows, words)
+    fn ship_words(
+        &mut self,
+        y: u16,
+        rows: u16,
+        width: u16,
+        words: &[u32],
+    ) -> Result<(), Self::Error> {
+        (**self).ship_words(y, rows, width, words)
     }
 }
 

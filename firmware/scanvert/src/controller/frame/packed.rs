@@ -235,7 +235,7 @@ where
                     .map_err(widen)?;
                 let len = PackedBand::<C>::words_len(self.size.0, n);
                 target
-                    .ship(y, n, &words[..len])
+                    .ship_words(y, n, self.size.0, &words[..len])
                     .map_err(|error| BandsError::Ship { y, error })?;
                 shipped += n as u32;
                 y += n;
