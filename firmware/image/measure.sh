@@ -276,7 +276,8 @@ EOF
 
 The mesh lists (\`scenes/meshes/\`, from \`testkit::meshes\`, written as
 \`scanvert import\` writes a model: \`v\`/\`f\` lines, a fitted view and a
-light) rendered with \`Controller::render_bands\` and no frame buffer,
+light) rendered with \`Controller::render_bands_packed\` (a band of words,
+two pixels a word in the panel's byte order) and no frame buffer,
 each band shipped into the frame's checksum (the host's). *Triangles*:
 the list's \`f\`s; *drawn*: those that reached the 3D layer.
 *Instructions* with \`Resolve::Crossing\` (the band checksum included),
@@ -305,16 +306,18 @@ EOF
 #### Band by band, with no frame buffer
 
 Built with `--features bands`, the image renders every list again
-through `Controller::render_bands` into one RGB565 band buffer, in bands
-of 1, 8, 16 and 64 rows, each band's checksum chained into the frame's,
-which equals the host's. Each ratio is over the `FrameBuffer` full frame
-above, which writes its pixels the same way; a band is filled with the
-background where the full frame was cleared before, untimed.
+through `Controller::render_bands_packed` into one band buffer of words
+(`PackedBand`: two RGB565 pixels a word, in the panel's byte order), in
+bands of 1, 8, 16 and 64 rows, each band's checksum chained into the
+frame's, which equals the host's. Each ratio is over the
+`PackedFrameBuffer` full frame above, which writes its pixels a word at
+a time too; a band is filled with the background where the full frame
+was cleared before, untimed.
 
-| list | full frame (`FrameBuffer`) | 1 row | 8 rows | 16 rows | 64 rows | 16 rows, instructions |
+| list | full frame (`PackedFrameBuffer`) | 1 row | 8 rows | 16 rows | 64 rows | 16 rows, instructions |
 |---|--:|--:|--:|--:|--:|--:|
 EOF
-  bands_table "$out/arm-bands.log" "$out/arm-halfword.log"
+  bands_table "$out/arm-bands.log" "$out/arm.log"
   echo
   echo "$rv_begin"
   if [ "$have_rv" = yes ]; then
@@ -388,7 +391,7 @@ budget_section() {
 
 Built with \`--features budget\`, the image renders only the README's
 3D demo at 320 × 240 (its 8 frames, as display lists from
-\`scanvert_sim::demo::frame_list\`) with \`Controller::render_bands\` in
+\`scanvert_sim::demo::frame_list\`) with \`Controller::render_bands_packed\` in
 bands of $(field "$demo.log" budget band_rows) rows and no frame buffer; with \`--features budget-poly3\`, the
 two 170-face lists at 512 × 256. Every band's checksum chains into the
 host's. The statics (\`src/budget.rs\`) hold only what the lists need
@@ -593,7 +596,7 @@ bands_of() {
   }' "$1"
 }
 
-bands_table() { # BANDS-LOG HALFWORD-LOG
+bands_table() { # BANDS-LOG FULL-FRAME-LOG
   frames "$2" | while read -r name w h polys clears spans pixels base; do
     # Lists the band renders draw (not those drawn again another way).
     bands_of "$1" | awk -v n="$name" '$1 == n { found = 1 } END { exit !found }' || continue

@@ -337,3 +337,71 @@ fn errors_are_typed() {
     ));
     assert!(!e.to_string().is_empty());
 }
+
+/// The same layers through the frame pass into a band of words
+/// (`PackedBand`), shipped by the panel as the words' bytes: the panel's
+/// memory equals the full render, byte for byte, with the same windows
+/// and bytes as bands of pixels, for chunks of whole and part words.
+#[test]
+fn bands_of_words_ship_the_bytes_of_bands_of_pixels() {
+    use scanvert::frame::PackedLayer;
+    let want = reference();
+    for rows in [1u16, 7, 16] {
+        for chunk in [4usize, 63, 64, 4096] {
+            let log = Rc::new(RefCell::new(Log::default()));
+            let mut buf = vec![0u8; chunk];
+            let mut panel = Panel::new(Spi(log.clone()), Dc(log.clone()), &mut buf);
+            let mut a = DrawableLayer::new(
+                Circle::new(Point::new(30, 40), 150)
+                    .into_styled(PrimitiveStyle::with_fill(Rgb565::RED)),
+            );
+            let mut b = DrawableLayer::new(
+                Rectangle::new(Point::new(100, 5), Size::new(90, 200))
+                    .into_styled(PrimitiveStyle::with_stroke(Rgb565::GREEN, 3)),
+            );
+            let mut layers: [&mut dyn PackedLayer<Rgb565>; 2] = [&mut a, &mut b];
+            let mut words = vec![0u32; (usize::from(rows) * usize::from(W)).div_ceil(2)];
+            let mut pass = FramePass::new((W, H), Rgb565::BLUE);
+            pass.draw_packed(&mut layers, rows, &mut words, &mut panel)
+                .unwrap();
+            let mut mem = vec![0u16; usize::from(W) * usize::from(H)];
+            let win = replay(&log.borrow(), &mut mem, 0, 0);
+            assert_eq!(mem, want, "rows {rows}, chunk {chunk}");
+            let (_, pixel_win, _) = run(rows, None, 64);
+            assert_eq!(win, pixel_win, "rows {rows}, chunk {chunk}");
+            let bytes: usize = log.borrow().writes.iter().map(|w| w.1.len()).sum();
+            assert_eq!(bytes, usize::from(W) * usize::from(H) * 2 + win.len() * 11);
+        }
+    }
+}
+
+/// A band of an odd number of pixels sends its pixels' bytes and not the
+/// padding half; a buffer under one word or too few words are refused.
+#[test]
+fn bands_of_words_send_no_padding_and_refuse_bad_shapes() {
+    use scanvert::port::PackedBandTarget;
+    let log = Rc::new(RefCell::new(Log::default()));
+    let mut buf = vec![0u8; 8];
+    let mut panel = Panel::new(Spi(log.clone()), Dc(log.clone()), &mut buf);
+    // 3 × 1: pixels 0x1234, 0x5678, 0x9abc, wire order, and a padding half.
+    let words = [0x7856_3412u32, 0xdead_bc9a];
+    panel.ship_words(2, 1, 3, &words).unwrap();
+    let l = log.borrow();
+    let data: Vec<u8> = l.writes.iter().skip(5).flat_map(|w| w.1.clone()).collect();
+    assert_eq!(data, [0x12, 0x34, 0x56, 0x78, 0x9a, 0xbc]);
+    drop(l);
+    assert!(matches!(
+        panel.ship_words(0, 1, 5, &words),
+        Err(PanelError::Shape)
+    ));
+    assert!(matches!(
+        panel.ship_words(0, 0, 3, &words),
+        Err(PanelError::Shape)
+    ));
+    let mut small = [0u8; 3];
+    let mut panel = Panel::new(Spi(log.clone()), Dc(log.clone()), &mut small);
+    assert!(matches!(
+        panel.ship_words(0, 1, 3, &words),
+        Err(PanelError::Shape)
+    ));
+}

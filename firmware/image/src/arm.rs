@@ -109,7 +109,7 @@ pub fn table_memory() -> Option<crate::bands::Table> {
         index: cortex_m::singleton!(: [u32; 2 * TABLE_POLYGONS] = [0; 2 * TABLE_POLYGONS])?,
         edges: cortex_m::singleton!(: [Edge; TABLE_EDGES] = [Edge::EMPTY; TABLE_EDGES])?,
         lines: cortex_m::singleton!(: [Option<Line>; TABLE_LINES] = [None; TABLE_LINES])?,
-        band: cortex_m::singleton!(: [crate::Pixel; BAND_PIXELS] = [crate::BLACK; BAND_PIXELS])?,
+        band: cortex_m::singleton!(: [u32; BAND_PIXELS / 2] = [0; BAND_PIXELS / 2])?,
     })
 }
 
@@ -127,7 +127,7 @@ pub fn budget_memory() -> Option<crate::budget::Memory> {
         index: cortex_m::singleton!(BUDGET_TABLE_INDEX: [u32; 2 * set::TABLE_POLYGONS] = [0; 2 * set::TABLE_POLYGONS])?,
         table_edges: cortex_m::singleton!(BUDGET_TABLE_EDGES: [Edge; set::TABLE_EDGES] = [Edge::EMPTY; set::TABLE_EDGES])?,
         lines: cortex_m::singleton!(BUDGET_TABLE_LINES: [Option<Line>; set::TABLE_LINES] = [None; set::TABLE_LINES])?,
-        band: cortex_m::singleton!(BUDGET_BAND: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+        band: cortex_m::singleton!(BUDGET_BAND: [u32; set::BAND_PIXELS / 2] = [0; set::BAND_PIXELS / 2])?,
     })
 }
 
@@ -143,6 +143,6 @@ pub fn mesh_memory() -> Option<crate::meshes::Memory> {
         storage: cortex_m::singleton!(MESH_SCENE: Storage = EMPTY)?,
         vertices: cortex_m::singleton!(MESH_VERTICES: [ViewPoint; set::VERTEX_SLOTS] = [ViewPoint::EMPTY; set::VERTEX_SLOTS])?,
         edges: cortex_m::singleton!(MESH_EDGES: [Edge; set::RASTER_EDGES] = [Edge::EMPTY; set::RASTER_EDGES])?,
-        band: cortex_m::singleton!(MESH_BAND: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+        band: cortex_m::singleton!(MESH_BAND: [u32; set::BAND_PIXELS / 2] = [0; set::BAND_PIXELS / 2])?,
     })
 }

@@ -1,6 +1,7 @@
 //! Every embedded list rendered again band by band
-//! (`Controller::render_bands`), with no frame buffer: bands of 1, 8, 16 and
-//! 64 rows through one band buffer of RGB565 pixels (whatever the frame
+//! (`Controller::render_bands_packed`), with no frame buffer: bands of 1,
+//! 8, 16 and 64 rows through one band buffer of words (`PackedBand`: two
+//! RGB565 pixels a word, in a panel's byte order, whatever the frame
 //! memory's cells), each band shipped into a running checksum.
 //! The checksum must equal the host's frame's; the instructions (of a
 //! run shipping nowhere, as the full frame's exclude its checksum) are
@@ -9,11 +10,11 @@
 //! 1.24 MiB of `.bss` with 256 lines, the band buffer 64 KiB):
 //! `cargo run --release --features bands`.
 
-use crate::{platform, Memory3d, Pixel, Resolved, Scene};
+use crate::{platform, Memory3d, Resolved, Scene};
 use core::convert::Infallible;
 use scanvert::controller::Controller;
 use scanvert::display_list::{Command, DisplayList};
-use scanvert::port::band::BandTarget;
+use scanvert::port::packed_band::PackedBandTarget;
 use scanvert::port::checksum::Checksum;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
@@ -44,7 +45,7 @@ pub struct Table {
     /// Lines.
     pub lines: &'static mut [Option<Line>; TABLE_LINES],
     /// The band buffer.
-    pub band: &'static mut [Pixel; BAND_PIXELS],
+    pub band: &'static mut [u32; BAND_PIXELS / 2],
 }
 
 /// Band heights measured.
@@ -54,12 +55,12 @@ const HEIGHTS: [u16; 4] = [1, 8, 16, 64];
 /// timed run) nowhere.
 struct Sum(Option<Checksum>);
 
-impl BandTarget for Sum {
+impl PackedBandTarget for Sum {
     type Color = crate::Pixel;
     type Error = Infallible;
-    fn ship(&mut self, _: u16, _: u16, px: &[crate::Pixel]) -> Result<(), Infallible> {
+    fn ship_words(&mut self, _: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), Infallible> {
         if let Some(c) = self.0.as_mut() {
-            c.write_pixels(px);
+            crate::write_wire(c, words, rows as usize * width as usize);
         }
         Ok(())
     }
@@ -133,7 +134,7 @@ fn render(
     if let Some(mode) = three {
         c = c.with_3d(mem.as_memory()).with_resolve(mode);
     }
-    c.render_bands(list, t, rows, &mut table.band[..], sum)
+    c.render_bands_packed(list, t, rows, &mut table.band[..], sum)
         .is_ok()
 }
 

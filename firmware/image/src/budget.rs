@@ -1,5 +1,5 @@
 //! The `budget` variants: lists rendered band by band
-//! (`Controller::render_bands`) with no frame buffer, in statics sized
+//! (`Controller::render_bands_packed`) with no frame buffer, in statics sized
 //! exactly for them and nothing else, so that the image's `.data` + `.bss`
 //! is the RAM they need (measure.sh reads it from the ELF's sections, by
 //! part from the statics' symbols).
@@ -11,7 +11,8 @@
 //!
 //! The statics (`platform::budget_memory`, each named `BUDGET_*`):
 //! the 3D layer's [`SceneStorage`] (store, workspace, labels), the band
-//! buffer of [`BAND_ROWS`](set::BAND_ROWS) rows of RGB565, the
+//! buffer of [`BAND_ROWS`](set::BAND_ROWS) rows of RGB565 (in words of two
+//! pixels, `PackedBand`), the
 //! rasteriser's edges and the 2D edge table, every capacity the most any
 //! of the lists needs (the constants of the `scenes.rs` module, which the
 //! host test `on_target_scenes` derives from `controller::needs`,
@@ -27,7 +28,7 @@ use crate::{platform, Pixel, Scene};
 use core::convert::Infallible;
 use scanvert::controller::Controller;
 use scanvert::display_list::DisplayList;
-use scanvert::port::band::BandTarget;
+use scanvert::port::packed_band::PackedBandTarget;
 use scanvert::port::checksum::Checksum;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
@@ -81,7 +82,7 @@ pub struct Memory {
     /// Its lines.
     pub lines: &'static mut [Option<Line>; set::TABLE_LINES],
     /// The band buffer.
-    pub band: &'static mut [Pixel; set::BAND_PIXELS],
+    pub band: &'static mut [u32; set::BAND_PIXELS / 2],
 }
 
 /// Ships bands into a running checksum, checking that they come in
@@ -92,13 +93,13 @@ struct Sum {
     in_order: bool,
 }
 
-impl BandTarget for Sum {
+impl PackedBandTarget for Sum {
     type Color = Pixel;
     type Error = Infallible;
-    fn ship(&mut self, y: u16, rows: u16, px: &[Pixel]) -> Result<(), Infallible> {
+    fn ship_words(&mut self, y: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), Infallible> {
         self.in_order &= y == self.next;
         self.next = y.saturating_add(rows);
-        self.sum.write_pixels(px);
+        crate::write_wire(&mut self.sum, words, rows as usize * width as usize);
         Ok(())
     }
 }
@@ -194,13 +195,13 @@ fn render(
     storage: &mut Storage,
     edges: &mut [Edge],
     table: TableMemory<'_>,
-    band: &mut [Pixel],
+    band: &mut [u32],
     sum: &mut Sum,
 ) -> Option<(u32, u32)> {
     let mut c = Controller::new(Rasterizer::new(edges))
         .with_3d(storage.as_memory())
         .with_resolve(Resolve::Crossing);
-    match c.render_bands(list, table, set::BAND_ROWS as u16, band, sum) {
+    match c.render_bands_packed(list, table, set::BAND_ROWS as u16, band, sum) {
         Ok(stats) => Some((stats.trapezoids, stats.visible.max_active)),
         Err(e) => {
             report_error(e);

@@ -107,6 +107,23 @@ use defmt_semihosting as _;
 pub type Pixel = Rgb565;
 /// The colour every frame starts from, as on the host.
 pub const BLACK: Pixel = Rgb565::BLACK;
+/// Chains the pixels of band words in a panel's wire order
+/// (`scanvert::port::packed_band`: each pixel high byte first) into
+/// `sum`, as `Checksum::write_pixels` chains the same `pixels` pixels
+/// (the high half of the last word is no pixel when they are odd).
+pub fn write_wire(sum: &mut scanvert::port::checksum::Checksum, words: &[u32], pixels: usize) {
+    let (whole, last) = words.split_at((pixels / 2).min(words.len()));
+    for w in whole {
+        let [a, b, c, d] = w.to_le_bytes();
+        sum.write(&[b, a, d, c]);
+    }
+    if pixels % 2 == 1 {
+        if let Some(w) = last.first() {
+            let [a, b, _, _] = w.to_le_bytes();
+            sum.write(&[b, a]);
+        }
+    }
+}
 /// Largest frame: 512 × 256 pixels (256 KiB of RGB565).
 pub const FRAME_PIXELS: usize = 512 * 256;
 

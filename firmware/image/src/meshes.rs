@@ -1,7 +1,8 @@
 //! The mesh lists (`scenes.rs`, module `meshes`): meshes of 720 to 1,280
 //! triangles at 240 × 240 as `scanvert import` writes them (`v`/`f`
-//! lines), each rendered band by band (`Controller::render_bands`, bands
-//! of [`BAND_ROWS`](set::BAND_ROWS) rows) with no frame buffer, in
+//! lines), each rendered band by band (`Controller::render_bands_packed`,
+//! bands of [`BAND_ROWS`](set::BAND_ROWS) rows of words of two pixels)
+//! with no frame buffer, in
 //! statics sized for them (the store, the workspace, the vertex table and
 //! one band buffer). Each band is shipped into a running checksum, which
 //! must equal the host's checksum of the whole frame.
@@ -19,7 +20,7 @@ use core::convert::Infallible;
 use scanvert::controller::{Controller, RenderStats};
 use scanvert::display_list::DisplayList;
 use scanvert::geometry::ViewPoint;
-use scanvert::port::band::BandTarget;
+use scanvert::port::packed_band::PackedBandTarget;
 use scanvert::port::checksum::Checksum;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::scan::Rasterizer;
@@ -58,7 +59,7 @@ pub struct Memory {
     /// The rasteriser's edge storage.
     pub edges: &'static mut [Edge; set::RASTER_EDGES],
     /// The band buffer.
-    pub band: &'static mut [Pixel; set::BAND_PIXELS],
+    pub band: &'static mut [u32; set::BAND_PIXELS / 2],
 }
 
 /// Ships bands into a running checksum, checking that they come in
@@ -69,13 +70,13 @@ struct Sum {
     in_order: bool,
 }
 
-impl BandTarget for Sum {
+impl PackedBandTarget for Sum {
     type Color = Pixel;
     type Error = Infallible;
-    fn ship(&mut self, y: u16, rows: u16, px: &[Pixel]) -> Result<(), Infallible> {
+    fn ship_words(&mut self, y: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), Infallible> {
         self.in_order &= y == self.next;
         self.next = y.saturating_add(rows);
-        self.sum.write_pixels(px);
+        crate::write_wire(&mut self.sum, words, rows as usize * width as usize);
         Ok(())
     }
 }
@@ -159,7 +160,7 @@ fn render(
         .with_3d(m.storage.as_memory())
         .with_vertices(&mut m.vertices[..])
         .with_resolve(resolve);
-    match c.render_bands(list, table, set::BAND_ROWS as u16, &mut m.band[..], sum) {
+    match c.render_bands_packed(list, table, set::BAND_ROWS as u16, &mut m.band[..], sum) {
         Ok(stats) => Some(stats),
         Err(e) => {
             #[cfg(not(feature = "defmt"))]
@@ -180,7 +181,7 @@ fn report_parts() {
     let storage = size_of::<Storage>();
     let vertices = set::VERTEX_SLOTS * size_of::<ViewPoint>();
     let edges = set::RASTER_EDGES * size_of::<Edge>();
-    let band = set::BAND_PIXELS * size_of::<Pixel>();
+    let band = set::BAND_PIXELS / 2 * size_of::<u32>();
     let total = storage + vertices + edges + band;
     #[cfg(not(feature = "defmt"))]
     println!(

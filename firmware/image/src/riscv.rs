@@ -65,7 +65,7 @@ pub fn table_memory() -> Option<crate::bands::Table> {
         index: riscv::singleton!(: [u32; 2 * TABLE_POLYGONS] = [0; 2 * TABLE_POLYGONS])?,
         edges: riscv::singleton!(: [Edge; TABLE_EDGES] = [Edge::EMPTY; TABLE_EDGES])?,
         lines: riscv::singleton!(: [Option<Line>; TABLE_LINES] = [None; TABLE_LINES])?,
-        band: riscv::singleton!(: [crate::Pixel; BAND_PIXELS] = [crate::BLACK; BAND_PIXELS])?,
+        band: riscv::singleton!(: [u32; BAND_PIXELS / 2] = [0; BAND_PIXELS / 2])?,
     })
 }
 
@@ -82,7 +82,7 @@ pub fn budget_memory() -> Option<crate::budget::Memory> {
         index: riscv::singleton!(: [u32; 2 * set::TABLE_POLYGONS] = [0; 2 * set::TABLE_POLYGONS])?,
         table_edges: riscv::singleton!(: [Edge; set::TABLE_EDGES] = [Edge::EMPTY; set::TABLE_EDGES])?,
         lines: riscv::singleton!(: [Option<Line>; set::TABLE_LINES] = [None; set::TABLE_LINES])?,
-        band: riscv::singleton!(: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+        band: riscv::singleton!(: [u32; set::BAND_PIXELS / 2] = [0; set::BAND_PIXELS / 2])?,
     })
 }
 
@@ -98,6 +98,6 @@ pub fn mesh_memory() -> Option<crate::meshes::Memory> {
         storage: riscv::singleton!(: Storage = EMPTY)?,
         vertices: riscv::singleton!(: [ViewPoint; set::VERTEX_SLOTS] = [ViewPoint::EMPTY; set::VERTEX_SLOTS])?,
         edges: riscv::singleton!(: [Edge; set::RASTER_EDGES] = [Edge::EMPTY; set::RASTER_EDGES])?,
-        band: riscv::singleton!(: [crate::Pixel; set::BAND_PIXELS] = [crate::BLACK; set::BAND_PIXELS])?,
+        band: riscv::singleton!(: [u32; set::BAND_PIXELS / 2] = [0; set::BAND_PIXELS / 2])?,
     })
 }

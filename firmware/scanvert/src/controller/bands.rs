@@ -20,6 +20,7 @@ use crate::color::ListColor;
 use crate::display_list::DisplayList;
 use crate::port::band::{check_band, check_buffer};
 use crate::port::band::{Band, BandTarget, BandsError};
+use crate::port::packed_band::{PackedBand, PackedBandTarget};
 use crate::port::runs::{RowRuns, Rows, RowsError};
 use crate::port::Counts;
 use crate::raster::table::{EdgeTable, TableError, TableMemory};
@@ -27,6 +28,7 @@ use crate::scene::label;
 use crate::visible::{Sweep, VisibleError};
 use core::convert::Infallible;
 use core::fmt;
+use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::{Rgb888, RgbColor};
 
 /// Why a list's bands could not be prepared or drawn.
@@ -141,6 +143,27 @@ impl ListBands<'_> {
         Ok(band.rows())
     }
 
+    /// [`draw`](Self::draw) into a band of words, two pixels a word in a
+    /// panel's wire order ([`PackedBand`]): the same pixels, written a
+    /// word at a time; `words` holds at least
+    /// [`PackedBand::words_len`]`(width, rows)`.
+    pub fn draw_packed<C>(
+        &mut self,
+        y: u16,
+        rows: u16,
+        words: &mut [u32],
+    ) -> Result<u16, ListBandsError<Infallible>>
+    where
+        C: ListColor + Into<RawU16> + From<RawU16>,
+    {
+        check_band(y, rows, self.next, self.size.1)?;
+        let mut band = PackedBand::<C>::new(words, self.size, y, rows)?;
+        let background = Some(C::from_rgb888(Rgb888::BLACK));
+        self.draw_band(&mut band, background)
+            .map_err(|e| BandsError::Render(self.layer_error(e)))?;
+        Ok(band.rows())
+    }
+
     /// Composes row `y` as colour runs into `row` (see
     /// [`port::runs`](crate::port::runs)), through the same stages and in
     /// the same order as [`draw`](Self::draw) draws a band of that row:
@@ -241,6 +264,20 @@ impl<C: ListColor> Layer<C> for ListBands<'_> {
     }
 }
 
+/// A display list's frame as a layer drawn into words.
+impl<C> super::frame::PackedLayer<C> for ListBands<'_>
+where
+    C: ListColor + Into<RawU16> + From<RawU16>,
+{
+    fn draw_packed(
+        &mut self,
+        band: &mut PackedBand<'_, C>,
+        background: Option<C>,
+    ) -> Result<Counts, VisibleError<Infallible>> {
+        self.draw_band(band, background)
+    }
+}
+
 impl<'e> Controller<'e> {
     /// Prepares `list` to be drawn band by band (see the
     /// [module](self) docs), with `table` for its 2D polygons and lines: checks it
@@ -331,6 +368,44 @@ impl<'e> Controller<'e> {
                 BandsError::Render(e) => BandsError::Render(bands.layer_error(e)),
                 BandsError::Ship { y, error } => BandsError::Ship { y, error },
             });
+        }
+        Ok(bands.stats())
+    }
+}
+
+impl Controller<'_> {
+    /// [`render_bands`](Self::render_bands) into a band buffer of words,
+    /// two pixels a word in a panel's wire order ([`PackedBand`]), each
+    /// band's words handed to `target`: the same pixels, written a word at
+    /// a time. `words` holds at least
+    /// [`PackedBand::words_len`]`(width, rows)`.
+    pub fn render_bands_packed<P>(
+        &mut self,
+        list: &DisplayList<'_>,
+        table: TableMemory<'_>,
+        rows: u16,
+        words: &mut [u32],
+        target: &mut P,
+    ) -> Result<RenderStats, ListBandsError<P::Error>>
+    where
+        P: PackedBandTarget + ?Sized,
+        P::Color: ListColor,
+    {
+        let size = (list.width(), list.height());
+        check_buffer(rows, size, words.len().saturating_mul(2))?;
+        let mut bands = ListBands::unprepared(list);
+        self.prepare(list, table, &mut bands)
+            .map_err(BandsError::Render)?;
+        let mut y = 0;
+        while y < size.1 {
+            let n = bands
+                .draw_packed::<P::Color>(y, rows, words)
+                .map_err(super::frame::widen)?;
+            let len = PackedBand::<P::Color>::words_len(size.0, n);
+            target
+                .ship_words(y, n, size.0, &words[..len])
+                .map_err(|error| BandsError::Ship { y, error })?;
+            y += n;
         }
         Ok(bands.stats())
     }

@@ -108,8 +108,10 @@ use embedded_graphics::mono_font::MonoFont;
 use embedded_graphics_core::pixelcolor::PixelColor;
 
 mod drawable;
+mod packed;
 
 pub use drawable::DrawableLayer;
+pub use packed::PackedLayer;
 
 /// Why a frame pass could not draw or ship a band: the band (nothing was
 /// drawn into it), a layer's visible-surface workspace, or the target.

@@ -13,6 +13,7 @@ pub mod checksum;
 pub mod draw_target;
 pub mod framebuffer;
 pub mod packed;
+pub mod packed_band;
 pub mod panel;
 pub mod runs;
 pub mod scanvideo;
@@ -20,6 +21,7 @@ pub mod scanvideo;
 pub use checksum::Checksum;
 pub use framebuffer::FrameBuffer;
 pub use packed::PackedFrameBuffer;
+pub use packed_band::{PackedBand, PackedBandTarget};
 pub use panel::{AsyncPanel, Panel, PanelError};
 
 use embedded_graphics_core::pixelcolor::PixelColor;

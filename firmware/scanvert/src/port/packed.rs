@@ -183,7 +183,7 @@ fn both_ends<const N: usize>(run: &mut [u32], v: u32) {
 /// words it touches are checked against the slice once: a wrong span
 /// writes nothing and never panics.
 #[inline(always)]
-fn fill_pixels(words: &mut [u32], a: usize, b: usize, v: u32) {
+pub(crate) fn fill_pixels(words: &mut [u32], a: usize, b: usize, v: u32) {
     let Some(mut run) = words.get_mut(a / 2..b.div_ceil(2)) else {
         return;
     };

@@ -4,7 +4,9 @@
 //!
 //! Per band: CASET (0x2a) for the columns, RASET (0x2b) for the rows,
 //! RAMWR (0x2c), then the pixels as big-endian RGB565 bytes, converted
-//! through a caller-owned byte buffer in chunks (no allocation).
+//! through a caller-owned byte buffer in chunks (no allocation). A band
+//! of words ([`PackedBand`](super::packed_band::PackedBand)) holds those
+//! bytes already: [`Panel`] copies them into the buffer as they are.
 //!
 //! [`Panel`] blocks until the bytes are sent. [`AsyncPanel`] does the same
 //! over `embedded-hal-async`'s [`SpiDevice`](embedded_hal_async::spi::SpiDevice),
@@ -20,6 +22,7 @@ use embedded_hal::digital::OutputPin;
 use embedded_hal::spi::SpiDevice;
 
 use super::band::{AsyncBandTarget, BandTarget};
+use super::packed_band::PackedBandTarget;
 
 /// DCS column address set.
 pub const CASET: u8 = 0x2a;
@@ -141,6 +144,52 @@ impl<SPI: SpiDevice, DC: OutputPin> BandTarget for Panel<'_, SPI, DC> {
                 n += 2;
             }
             self.spi.write(&self.buf[..n]).map_err(PanelError::Spi)?;
+        }
+        Ok(())
+    }
+}
+
+/// Bands of words ([`PackedBand`](super::packed_band::PackedBand)) to
+/// the panel: the words already hold the pixels in its byte order, so
+/// they are copied into `buf` as their bytes (`u32::to_le_bytes`), with
+/// no conversion a pixel, and sent in chunks of `buf` (rounded down to
+/// whole words), `2 × rows × width` bytes in all.
+impl<SPI: SpiDevice, DC: OutputPin> PackedBandTarget for Panel<'_, SPI, DC> {
+    type Color = Rgb565;
+    type Error = PanelError<SPI::Error, DC::Error>;
+
+    fn ship_words(
+        &mut self,
+        y: u16,
+        rows: u16,
+        width: u16,
+        words: &[u32],
+    ) -> Result<(), Self::Error> {
+        let bytes = 2 * usize::from(rows) * usize::from(width);
+        if rows == 0 || width == 0 || words.len() * 4 < bytes || self.buf.len() < 4 {
+            return Err(PanelError::Shape);
+        }
+        let cols = window(self.x_offset, usize::from(width)).ok_or(PanelError::Shape)?;
+        let row0 = self.y_offset.checked_add(y).ok_or(PanelError::Shape)?;
+        let rws = window(row0, usize::from(rows)).ok_or(PanelError::Shape)?;
+        self.command(CASET, &cols)?;
+        self.command(RASET, &rws)?;
+        self.command(RAMWR, &[])?;
+        self.dc.set_high().map_err(PanelError::Pin)?;
+        let per = self.buf.len() / 4;
+        let mut left = bytes;
+        for chunk in words.chunks(per) {
+            let mut n = 0;
+            for (w, out) in chunk.iter().zip(self.buf.chunks_exact_mut(4)) {
+                out.copy_from_slice(&w.to_le_bytes());
+                n += 4;
+            }
+            let n = n.min(left);
+            self.spi.write(&self.buf[..n]).map_err(PanelError::Spi)?;
+            left -= n;
+            if left == 0 {
+                break;
+            }
         }
         Ok(())
     }

@@ -21,12 +21,14 @@ use crate::color::ListColor;
 pub use crate::port::band::DirtyRows;
 use crate::port::band::Mix;
 use crate::port::band::{check_band, Band, BandsError};
+use crate::port::packed_band::PackedBand;
 use crate::port::runs::{RowRuns, Rows, RowsError};
 use crate::port::Counts;
 use crate::visible::store::TrapezoidStore;
 use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
 use core::convert::Infallible;
 use embedded_graphics::mono_font::MonoFont;
+use embedded_graphics_core::pixelcolor::raw::RawU16;
 use embedded_graphics_core::pixelcolor::RgbColor;
 
 /// The errors of the band path of a scene.
@@ -73,6 +75,29 @@ impl<C: ListColor> SceneBands<'_, '_, '_, C> {
         let size = (self.store.width(), self.store.height());
         check_band(y, rows, self.next, size.1)?;
         let mut band = Band::new(pixels, size, y, rows)?;
+        let background = Some(self.background);
+        self.draw_band(&mut band, background)
+            .map_err(BandsError::Render)?;
+        Ok(band.rows())
+    }
+
+    /// [`draw`](Self::draw) into a band of words, two pixels a word in a
+    /// panel's wire order
+    /// ([`PackedBand`]): the same
+    /// pixels, written a word at a time; `words` holds at least
+    /// `PackedBand::words_len(width, rows)`.
+    pub fn draw_packed(
+        &mut self,
+        y: u16,
+        rows: u16,
+        words: &mut [u32],
+    ) -> Result<u16, SceneBandsError<Infallible>>
+    where
+        C: Into<RawU16> + From<RawU16>,
+    {
+        let size = (self.store.width(), self.store.height());
+        check_band(y, rows, self.next, size.1)?;
+        let mut band = PackedBand::<C>::new(words, size, y, rows)?;
         let background = Some(self.background);
         self.draw_band(&mut band, background)
             .map_err(BandsError::Render)?;

@@ -136,6 +136,20 @@ impl<D: Dimensions> DrawableLayer<D> {
     }
 }
 
+impl<D: Dimensions> DrawableLayer<D> {
+    /// `true` when the drawable is shown and its bounding box meets rows
+    /// `y0..y1`.
+    pub(super) fn meets(&self, y0: u16, y1: u16) -> bool {
+        let (top, bottom) = rows_of(&self.item.bounding_box());
+        self.shown && bottom > y0 as i64 && top < y1 as i64
+    }
+
+    /// The drawable.
+    pub(super) fn item(&self) -> &D {
+        &self.item
+    }
+}
+
 impl<C, D> Layer<C> for DrawableLayer<D>
 where
     C: PixelColor,
@@ -147,11 +161,7 @@ where
         background: Option<C>,
     ) -> Result<Counts, VisibleError<Infallible>> {
         fill_background(band, background);
-        if !self.shown {
-            return Ok(Counts::default());
-        }
-        let (y0, y1) = rows_of(&self.item.bounding_box());
-        if y1 <= band.y() as i64 || y0 >= band.end() as i64 {
+        if !self.meets(band.y(), band.end()) {
             return Ok(Counts::default());
         }
         match self.item.draw(band) {
