@@ -14,8 +14,8 @@ use crate::{platform, Memory3d, Resolved, Scene};
 use core::convert::Infallible;
 use scanvert::controller::Controller;
 use scanvert::display_list::{Command, DisplayList};
-use scanvert::port::packed_band::PackedBandTarget;
 use scanvert::port::checksum::Checksum;
+use scanvert::port::packed_band::PackedBandTarget;
 use scanvert::raster::edge::Edge;
 use scanvert::raster::line::Line;
 use scanvert::raster::scan::Rasterizer;
@@ -58,7 +58,13 @@ struct Sum(Option<Checksum>);
 impl PackedBandTarget for Sum {
     type Color = crate::Pixel;
     type Error = Infallible;
-    fn ship_words(&mut self, _: u16, rows: u16, width: u16, words: &[u32]) -> Result<(), Infallible> {
+    fn ship_words(
+        &mut self,
+        _: u16,
+        rows: u16,
+        width: u16,
+        words: &[u32],
+    ) -> Result<(), Infallible> {
         if let Some(c) = self.0.as_mut() {
             crate::write_wire(c, words, rows as usize * width as usize);
         }
