@@ -593,6 +593,40 @@ fn two_edge_rows<const BAND: bool, const CLIP: bool, S: Stepper, T: SpanTarget +
     counts: (&mut u32, &mut u32),
 ) -> Result<(), T::Error> {
     let ((ea, eb), (mut y, stop)) = (e, rows);
+    if !BAND {
+        // Rows inside the target: each row's start follows from the last
+        // row's, with no `y · width` a row.
+        let stride = target.row_stride();
+        let mut row = target.row_start(y as u16);
+        let end = target.row_start(stop as u16);
+        loop {
+            ea.load_pixel();
+            eb.load_pixel();
+            let (l, r) = if ea.pixel() <= eb.pixel() {
+                (ea.pixel(), eb.pixel())
+            } else {
+                (eb.pixel(), ea.pixel())
+            };
+            let (x0, x1) = if CLIP {
+                (l.max(cx.0), r.min(cx.1))
+            } else {
+                (l, r)
+            };
+            if x0 < x1 {
+                // In 0..=4096 by the clip guarantee.
+                target.fill_row_inside(row, x0 as u16, x1 as u16, color)?;
+                *counts.1 += (x1 - x0) as u32;
+            } else {
+                *counts.0 += 1;
+            }
+            row += stride;
+            if row >= end {
+                return Ok(());
+            }
+            ea.step();
+            eb.step();
+        }
+    }
     loop {
         ea.load_pixel();
         eb.load_pixel();
