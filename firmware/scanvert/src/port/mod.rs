@@ -133,11 +133,13 @@ pub trait SpanTarget {
         self.fill_span(span, color)
     }
 
-    /// Where row `y` (`y < height`) starts, for
+    /// Where row `y` (`y <= height`: the row past the last is where a
+    /// run of rows ends) starts, for
     /// [`fill_row_inside`](Self::fill_row_inside): a frame buffer's index
     /// of the row's first pixel, so that a caller writing row after row
     /// adds [`row_stride`](Self::row_stride) instead of multiplying. The
-    /// default is `y` itself.
+    /// default is `y` itself. A target overrides the three together or
+    /// none of them.
     #[inline(always)]
     fn row_start(&self, y: u16) -> usize {
         y as usize
