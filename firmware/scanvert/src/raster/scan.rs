@@ -600,25 +600,43 @@ fn two_edge_rows<const BAND: bool, const CLIP: bool, S: Stepper, T: SpanTarget +
         let mut row = target.row_start(y as u16);
         let end = target.row_start(stop as u16);
         loop {
-            ea.load_pixel();
-            eb.load_pixel();
-            let (l, r) = if ea.pixel() <= eb.pixel() {
-                (ea.pixel(), eb.pixel())
-            } else {
-                (eb.pixel(), ea.pixel())
-            };
-            let (x0, x1) = if CLIP {
-                (l.max(cx.0), r.min(cx.1))
-            } else {
-                (l, r)
-            };
-            if x0 < x1 {
-                // In 0..=4096 by the clip guarantee.
-                target.fill_row_inside(row, x0 as u16, x1 as u16, color)?;
-                *counts.1 += (x1 - x0) as u32;
-            } else {
-                *counts.0 += 1;
+            // Rows where `ea` is left of `eb`, with no order test a row
+            // but this one.
+            loop {
+                ea.load_pixel();
+                eb.load_pixel();
+                let (l, r) = (ea.pixel(), eb.pixel());
+                if l >= r {
+                    break;
+                }
+                let (x0, x1) = if CLIP {
+                    (l.max(cx.0), r.min(cx.1))
+                } else {
+                    (l, r)
+                };
+                if x0 < x1 {
+                    // In 0..=4096 by the clip guarantee.
+                    target.fill_row_inside(row, x0 as u16, x1 as u16, color)?;
+                    *counts.1 += (x1 - x0) as u32;
+                } else {
+                    *counts.0 += 1;
+                }
+                row += stride;
+                if row >= end {
+                    return Ok(());
+                }
+                ea.step();
+                eb.step();
             }
+            if ea.pixel() > eb.pixel() {
+                // The other order (at a run's first row, or where a
+                // self-intersecting polygon's edges cross): the row again,
+                // the edges swapped.
+                core::mem::swap(ea, eb);
+                continue;
+            }
+            // Both edges on one pixel: an empty row.
+            *counts.0 += 1;
             row += stride;
             if row >= end {
                 return Ok(());
