@@ -7,11 +7,18 @@
 //! coordinates near a 64 × 48 frame or anywhere in Q12.4, under random clip
 //! registers (full, inside, partly outside, inverted, empty, extreme).
 
+use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use host_tests::harness::{
-    assert_same, render_counting, render_framebuffer, render_poly, Draw, DEFAULT_CAPACITY,
+    assert_same, build_list, render_counting, render_framebuffer, render_poly, Draw,
+    DEFAULT_CAPACITY,
 };
 use proptest::prelude::*;
-use testkit::reference::{rasterize, Window};
+use scanvert::controller::Controller;
+use scanvert::display_list::DisplayList;
+use scanvert::port::PackedFrameBuffer;
+use scanvert::raster::edge::Edge;
+use scanvert::raster::scan::Rasterizer;
+use testkit::reference::{rasterize, Coverage, Window};
 
 const W: u16 = 64;
 const H: u16 = 48;
@@ -265,6 +272,38 @@ proptest! {
         let got = render_framebuffer(&poly, win, W, H);
         let want = rasterize(&poly, win, W.into(), H.into());
         assert_same(&got, &want, &(&poly, win));
+    }
+
+    /// The same, through the two-pixels-a-word `PackedFrameBuffer` (the
+    /// Cortex-M4 image's target), whose rows the scan converter walks by
+    /// their start (`SpanTarget::row_start`): an even width (every row
+    /// starts on a word) and an odd one. The words past the frame, and the
+    /// padding half of an odd frame, are never written.
+    #[test]
+    fn packed_frame_buffer_port_matches_the_reference(
+        poly in polygon(point(near(W), near(H)), point(near(W), near(H)), 48 * 16),
+        win in window(W, H),
+        odd in any::<bool>(),
+    ) {
+        let (w, h) = if odd { (W - 1, H - 1) } else { (W, H) };
+        let draw = Draw { clip: Some(win), poly: poly.clone() };
+        let bytes = build_list(&[draw], w, h);
+        let list = DisplayList::new_checked(&bytes).expect("valid list");
+        let mut edges = [Edge::EMPTY; DEFAULT_CAPACITY];
+        let n = PackedFrameBuffer::<Rgb565>::words_len(w, h);
+        let mut words = vec![0u32; n + 1];
+        words[n] = 0xdead_beef;
+        let mut pk = PackedFrameBuffer::<Rgb565>::new(&mut words, w, h).expect("frame");
+        Controller::new(Rasterizer::new(&mut edges)).render(&list, &mut pk).expect("render");
+        let got = Coverage::from_fn(w.into(), h.into(), |i, j| {
+            pk.pixel(i as u16, j as u16) == Some(Rgb565::WHITE)
+        });
+        let want = rasterize(&poly, win, w.into(), h.into());
+        assert_same(&got, &want, &(&poly, win, (w, h)));
+        if (w as usize * h as usize) % 2 == 1 {
+            prop_assert_eq!(words[n - 1] >> 16, 0);
+        }
+        prop_assert_eq!(words[n], 0xdead_beef);
     }
 
     /// Several polygons in one list, each under its own clip registers (or

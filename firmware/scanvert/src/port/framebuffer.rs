@@ -151,6 +151,30 @@ impl<C: PixelColor> SpanTarget for FrameBuffer<'_, C> {
         Ok(())
     }
 
+    #[inline(always)]
+    fn row_start(&self, y: u16) -> usize {
+        y as usize * self.width as usize
+    }
+
+    #[inline(always)]
+    fn row_stride(&self) -> usize {
+        self.width as usize
+    }
+
+    #[inline(always)]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: C,
+    ) -> Result<(), Infallible> {
+        if let Some(run) = self.pixels.get_mut(row + x0 as usize..row + x1 as usize) {
+            fill_run(run, color);
+        }
+        Ok(())
+    }
+
     fn fill_rect(&mut self, span: Span, height: u16, color: C) -> Result<(), Infallible> {
         let y1 = (span.y as usize + height as usize).min(self.height as usize);
         let x1 = span.x1.min(self.width);

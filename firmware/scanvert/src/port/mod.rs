@@ -135,6 +135,47 @@ pub trait SpanTarget {
         self.fill_span(span, color)
     }
 
+    /// Where row `y` (`y <= height`: the row past the last is where a
+    /// run of rows ends) starts, for
+    /// [`fill_row_inside`](Self::fill_row_inside): a frame buffer's index
+    /// of the row's first pixel, so that a caller writing row after row
+    /// adds [`row_stride`](Self::row_stride) instead of multiplying. The
+    /// default is `y` itself. A target overrides the three together or
+    /// none of them.
+    #[inline(always)]
+    fn row_start(&self, y: u16) -> usize {
+        y as usize
+    }
+
+    /// How far [`row_start`](Self::row_start) moves from one row to the
+    /// next: the width of a frame buffer; 1 (the default) where the start
+    /// is the row.
+    #[inline(always)]
+    fn row_stride(&self) -> usize {
+        1
+    }
+
+    /// [`fill_span_inside`](Self::fill_span_inside) of the columns
+    /// `x0..x1` of the row that starts at `row` (a
+    /// [`row_start`](Self::row_start) plus whole
+    /// [`row_stride`](Self::row_stride)s, inside the target), with the same
+    /// conditions. The default writes the span of row `row`.
+    #[inline(always)]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        let span = Span {
+            y: row as u16,
+            x0,
+            x1,
+        };
+        self.fill_span_inside(span, color)
+    }
+
     /// Writes `color` to every pixel. The default fills the rows one span
     /// each; memory-mapped targets override it with one fill.
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
@@ -186,6 +227,24 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     #[inline(always)]
     fn fill_span_inside(&mut self, span: Span, color: Self::Color) -> Result<(), Self::Error> {
         (**self).fill_span_inside(span, color)
+    }
+    #[inline(always)]
+    fn row_start(&self, y: u16) -> usize {
+        (**self).row_start(y)
+    }
+    #[inline(always)]
+    fn row_stride(&self) -> usize {
+        (**self).row_stride()
+    }
+    #[inline(always)]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: Self::Color,
+    ) -> Result<(), Self::Error> {
+        (**self).fill_row_inside(row, x0, x1, color)
     }
     #[inline]
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {

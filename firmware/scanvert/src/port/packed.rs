@@ -249,6 +249,34 @@ where
         Ok(())
     }
 
+    #[inline(always)]
+    fn row_start(&self, y: u16) -> usize {
+        y as usize * self.width as usize
+    }
+
+    #[inline(always)]
+    fn row_stride(&self) -> usize {
+        self.width as usize
+    }
+
+    #[inline(always)]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: C,
+    ) -> Result<(), Infallible> {
+        let c = bits(color);
+        fill_pixels(
+            self.words,
+            row + x0 as usize,
+            row + x1 as usize,
+            c | c << 16,
+        );
+        Ok(())
+    }
+
     // Not inlined: called once a rectangle, and kept out of the scan
     // converter's loops, whose registers it would crowd.
     #[inline(never)]

@@ -582,7 +582,9 @@ impl Walk {
 /// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
 /// at row `y`, both live to `stop`), cut to the clip columns `cx` when
 /// `CLIP` (else they are inside them), counting the empty rows and the
-/// pixels into `counts`; leaves both edges at row `stop − 1`.
+/// pixels into `counts`; leaves both edges at row `stop − 1`. Outside a
+/// band walk the two may come back swapped (the pair's order does not
+/// matter to the caller).
 #[inline(always)]
 fn two_edge_rows<const BAND: bool, const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
     e: (&mut S, &mut S),
@@ -593,6 +595,58 @@ fn two_edge_rows<const BAND: bool, const CLIP: bool, S: Stepper, T: SpanTarget +
     counts: (&mut u32, &mut u32),
 ) -> Result<(), T::Error> {
     let ((ea, eb), (mut y, stop)) = (e, rows);
+    if !BAND {
+        // Rows inside the target: each row's start follows from the last
+        // row's, with no `y · width` a row.
+        let stride = target.row_stride();
+        let mut row = target.row_start(y as u16);
+        let end = target.row_start(stop as u16);
+        loop {
+            // Rows where `ea` is left of `eb`, with no order test a row
+            // but this one.
+            loop {
+                ea.load_pixel();
+                eb.load_pixel();
+                let (l, r) = (ea.pixel(), eb.pixel());
+                if l >= r {
+                    break;
+                }
+                let (x0, x1) = if CLIP {
+                    (l.max(cx.0), r.min(cx.1))
+                } else {
+                    (l, r)
+                };
+                if x0 < x1 {
+                    // In 0..=4096 by the clip guarantee.
+                    target.fill_row_inside(row, x0 as u16, x1 as u16, color)?;
+                    *counts.1 += (x1 - x0) as u32;
+                } else {
+                    *counts.0 += 1;
+                }
+                row += stride;
+                if row >= end {
+                    return Ok(());
+                }
+                ea.step();
+                eb.step();
+            }
+            if ea.pixel() > eb.pixel() {
+                // The other order (at a run's first row, or where a
+                // self-intersecting polygon's edges cross): the row again,
+                // the edges swapped.
+                core::mem::swap(ea, eb);
+                continue;
+            }
+            // Both edges on one pixel: an empty row.
+            *counts.0 += 1;
+            row += stride;
+            if row >= end {
+                return Ok(());
+            }
+            ea.step();
+            eb.step();
+        }
+    }
     loop {
         ea.load_pixel();
         eb.load_pixel();
@@ -967,6 +1021,58 @@ mod tests {
                 }
             }
             assert_eq!(counts.pixels, covered);
+        }
+    }
+
+    /// Bow-ties: two edges that cross inside one run of two (the row loop
+    /// takes one as the left edge and swaps them where they cross), at
+    /// many slopes and crossing rows, under the whole frame and a narrow
+    /// clip: every pixel is the rule's, and the counts are its pixels.
+    #[test]
+    fn edges_crossing_inside_a_run_match_the_pixel_rule() {
+        let mut px = [BinaryColor::Off; W as usize * H as usize];
+        let mut slots = [Edge::EMPTY; 4];
+        let clips = [
+            ClipRect::full(W, H),
+            ClipRect::from_window(
+                crate::raster::clip::ClipWindow {
+                    x0: 9,
+                    y0: 3,
+                    x1: 30,
+                    y1: 35,
+                },
+                W,
+                H,
+            ),
+        ];
+        for clip in clips {
+            for k in 0..200i16 {
+                let (x0, x1) = (k % 23 * 13 - 40, W as i16 * 16 + 40 - k % 17 * 11);
+                let (y0, y1) = (k % 7 * 9 - 20, H as i16 * 16 - k % 11 * 19);
+                // Top and bottom sides horizontal: on every row the two
+                // slanted edges alone, crossing once.
+                let poly = [
+                    Vertex::from_bits(x0, y0),
+                    Vertex::from_bits(x1, y1),
+                    Vertex::from_bits(x0 + k % 9 * 20, y1),
+                    Vertex::from_bits(x1 - k % 5 * 30, y0),
+                ];
+                px.fill(BinaryColor::Off);
+                let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+                let counts = Rasterizer::new(&mut slots)
+                    .fill(poly.iter().copied(), &clip, BinaryColor::On, &mut fb)
+                    .unwrap();
+                let mut covered = 0;
+                for j in 0..H as i32 {
+                    for i in 0..W as i32 {
+                        let want = clip.contains(i, j) && covers(&poly, i, j);
+                        let got = fb.pixel(i as u16, j as u16) == Some(BinaryColor::On);
+                        assert_eq!(got, want, "{poly:?} clip {clip:?} pixel ({i}, {j})");
+                        covered += want as u32;
+                    }
+                }
+                assert_eq!(counts.pixels, covered, "{poly:?}");
+            }
         }
     }
 
