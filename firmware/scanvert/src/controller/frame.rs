@@ -310,8 +310,7 @@ impl<C: PixelColor> FramePass<C> {
         let h = self.size.1;
         layers.take_changes(None);
         let done = self.draw_runs(layers, core::iter::once((0, h)), rows, band, target);
-        self.shown = done.is_ok().then_some(self.background);
-        done.map(|(counts, _)| counts)
+        self.shown_after(done).map(|(counts, _)| counts)
     }
 
     /// Draws only the rows that changed: every layer marks its changes in
@@ -339,8 +338,7 @@ impl<C: PixelColor> FramePass<C> {
         layers.take_changes(Some(dirty));
         self.mark_background(dirty);
         let done = self.draw_runs(layers, dirty.runs(), rows, band, target);
-        self.shown = done.is_ok().then_some(self.background);
-        done.map(|(_, shipped)| shipped)
+        self.shown_after(done).map(|(_, shipped)| shipped)
     }
 
     /// [`draw`](Self::draw) with shipping that overlaps drawing: bands go
@@ -362,8 +360,7 @@ impl<C: PixelColor> FramePass<C> {
         let done = self
             .ship_runs_async(layers, core::iter::once((0, h)), rows, buffers, target)
             .await;
-        self.shown = done.is_ok().then_some(self.background);
-        done.map(|(counts, _)| counts)
+        self.shown_after(done).map(|(counts, _)| counts)
     }
 
     /// [`draw_marked`](Self::draw_marked) with shipping that overlaps
@@ -386,8 +383,7 @@ impl<C: PixelColor> FramePass<C> {
         let done = self
             .ship_runs_async(layers, dirty.runs(), rows, buffers, target)
             .await;
-        self.shown = done.is_ok().then_some(self.background);
-        done.map(|(_, shipped)| shipped)
+        self.shown_after(done).map(|(_, shipped)| shipped)
     }
 
     /// Draws the runs of rows `runs` into the two buffers in turn; each
@@ -467,21 +463,46 @@ impl<C: PixelColor> FramePass<C> {
         self.restart();
         check_buffer(rows, self.size, band.len())?;
         let w = self.size.0 as usize;
+        self.each_band(runs, rows, |pass, y, n| {
+            let n = pass.band_of(layers, y, n, band).map_err(widen)?;
+            target
+                .ship(y, n, &band[..n as usize * w])
+                .map_err(|error| BandsError::Ship { y, error })?;
+            Ok(n)
+        })
+    }
+
+    /// The driver's loop, whatever the band is made of: `band(pass, y,
+    /// n)` draws and ships rows `y..y + n` and returns the rows it drew,
+    /// for each band of at most `rows` rows of the runs of rows `runs`,
+    /// top to bottom. Returns the counts and the rows shipped.
+    pub(crate) fn each_band<E, R>(
+        &mut self,
+        runs: R,
+        rows: u16,
+        mut band: impl FnMut(&mut Self, u16, u16) -> Result<u16, FrameError<E>>,
+    ) -> Result<(Counts, u32), FrameError<E>>
+    where
+        R: IntoIterator<Item = (u16, u16)>,
+    {
         let mut shipped = 0u32;
         for (y0, y1) in runs {
             let mut y = y0;
             while y < y1 {
-                let n = self
-                    .band_of(layers, y, rows.min(y1 - y), band)
-                    .map_err(widen)?;
-                target
-                    .ship(y, n, &band[..n as usize * w])
-                    .map_err(|error| BandsError::Ship { y, error })?;
+                let n = band(self, y, rows.min(y1 - y))?;
                 shipped += n as u32;
                 y += n;
             }
         }
         Ok((self.counts, shipped))
+    }
+
+    /// `done`, a frame's result, remembered: after a frame shipped whole
+    /// or by its marks, the panel shows this pass's background; after a
+    /// failed one, nothing is known of it.
+    pub(crate) fn shown_after<T, E>(&mut self, done: Result<T, E>) -> Result<T, E> {
+        self.shown = done.is_ok().then_some(self.background);
+        done
     }
 }
 

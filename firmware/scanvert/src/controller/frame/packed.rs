@@ -182,8 +182,7 @@ where
         let h = self.size.1;
         layers.take_changes(None);
         let done = self.packed_runs(layers, core::iter::once((0, h)), rows, words, target);
-        self.shown = done.is_ok().then_some(self.background);
-        done.map(|(counts, _)| counts)
+        self.shown_after(done).map(|(counts, _)| counts)
     }
 
     /// [`draw_marked`](Self::draw_marked) into a band of words: only the
@@ -204,8 +203,7 @@ where
         layers.take_changes(Some(dirty));
         self.mark_background(dirty);
         let done = self.packed_runs(layers, dirty.runs(), rows, words, target);
-        self.shown = done.is_ok().then_some(self.background);
-        done.map(|(_, shipped)| shipped)
+        self.shown_after(done).map(|(_, shipped)| shipped)
     }
 
     /// Draws and ships the runs of rows `runs` (top to bottom) into words,
@@ -226,21 +224,14 @@ where
     {
         self.restart();
         check_buffer(rows, self.size, words.len().saturating_mul(2))?;
-        let mut shipped = 0u32;
-        for (y0, y1) in runs {
-            let mut y = y0;
-            while y < y1 {
-                let n = self
-                    .band_of_packed(layers, y, rows.min(y1 - y), words)
-                    .map_err(widen)?;
-                let len = PackedBand::<C>::words_len(self.size.0, n);
-                target
-                    .ship_words(y, n, self.size.0, &words[..len])
-                    .map_err(|error| BandsError::Ship { y, error })?;
-                shipped += n as u32;
-                y += n;
-            }
-        }
-        Ok((self.counts, shipped))
+        let w = self.size.0;
+        self.each_band(runs, rows, |pass, y, n| {
+            let n = pass.band_of_packed(layers, y, n, words).map_err(widen)?;
+            let len = PackedBand::<C>::words_len(w, n);
+            target
+                .ship_words(y, n, w, &words[..len])
+                .map_err(|error| BandsError::Ship { y, error })?;
+            Ok(n)
+        })
     }
 }
