@@ -112,42 +112,42 @@ pub mod budget_demo {
         Scene {
             name: "demo-320x240-00",
             list: include_bytes!("../scenes/budget/demo-320x240-00.scvl"),
-            checksum: 0x152dfd02,
+            checksum: 0x9b3004a2,
         },
         Scene {
             name: "demo-320x240-01",
             list: include_bytes!("../scenes/budget/demo-320x240-01.scvl"),
-            checksum: 0x34adf269,
+            checksum: 0x8af19491,
         },
         Scene {
             name: "demo-320x240-02",
             list: include_bytes!("../scenes/budget/demo-320x240-02.scvl"),
-            checksum: 0x386d4dbb,
+            checksum: 0x25c9fcbb,
         },
         Scene {
             name: "demo-320x240-03",
             list: include_bytes!("../scenes/budget/demo-320x240-03.scvl"),
-            checksum: 0x34adf269,
+            checksum: 0x8af19491,
         },
         Scene {
             name: "demo-320x240-04",
             list: include_bytes!("../scenes/budget/demo-320x240-04.scvl"),
-            checksum: 0x52e53b09,
+            checksum: 0x0ca093fc,
         },
         Scene {
             name: "demo-320x240-05",
             list: include_bytes!("../scenes/budget/demo-320x240-05.scvl"),
-            checksum: 0xa656ada2,
+            checksum: 0x675d01cc,
         },
         Scene {
             name: "demo-320x240-06",
             list: include_bytes!("../scenes/budget/demo-320x240-06.scvl"),
-            checksum: 0x599df21e,
+            checksum: 0x45d00016,
         },
         Scene {
             name: "demo-320x240-07",
             list: include_bytes!("../scenes/budget/demo-320x240-07.scvl"),
-            checksum: 0xce3fb0b1,
+            checksum: 0xa26b91bc,
         },
     ];
 }

@@ -90,22 +90,26 @@
 //!   vertices' depth there), unchanged. (A quadrilateral is checked first
 //!   at its vertices, in the pass that finds its plane: when it passes
 //!   there it passes at those ends, which are vertices.);
-//! * otherwise the plane is *fitted*: its slopes are scaled by
-//!   `k / 2¹⁶` (`a` and `b` times `k / 2¹⁶`, rounded toward zero; `c`
-//!   kept) with the greatest `k` whose depths at those ends span no more
-//!   than `[z_min, z_max]` does (`k = 2¹⁶` when the full slopes do;
-//!   otherwise found by bisection), and the plane is then moved by the
-//!   fewest whole units of depth that bring those depths into
-//!   `[z_min, z_max]`. At `k = 0` the plane is a constant depth, which
-//!   always fits. So a polygon that rounding moved a little off its plane
-//!   (a large face the clips cut, a nearly edge-on one) keeps its slope
-//!   and lies within a few units of where it was. Scaling alone, about
-//!   the first vertex, is not enough: when that vertex is at one end of
-//!   the range and rounding tilts the plane past the same end elsewhere,
-//!   only the constant depth of that vertex fits, and a ground plate cut
-//!   by the window would be drawn at its nearest depth, over what stands
-//!   on it. It costs two passes over the edges, and 17 more for the
-//!   bisection, only for such polygons.
+//! * otherwise its slopes are scaled by `k / 2¹⁶` (`a` and `b` times
+//!   `k / 2¹⁶`, rounded toward zero; `c` and the first vertex kept) with
+//!   `k` found by bisection so that the depth is in `[z_min, z_max]` at
+//!   those ends and would not be at `k + 1` (at `k = 0` the plane is the
+//!   constant depth `z₀`, which is). It costs 17 more passes over the
+//!   edges, multiplies only, and is kept when it moves no depth of the
+//!   range by more than 2 units, `(1 − k/2¹⁶)·(z_max − z_min) ≤ 2`: a
+//!   face that rounding tilted past its range by a unit or two;
+//! * otherwise the plane is *fitted*: the slopes are scaled by the
+//!   greatest `k` whose depths at those ends span no more than
+//!   `[z_min, z_max]` does, and the plane is then moved by the fewest
+//!   whole units of depth that bring those depths into `[z_min, z_max]`.
+//!   Scaling alone fails this way when the first vertex is at the end of
+//!   the range that the tilt passes elsewhere: only small `k` hold, and a
+//!   ground plate cut by the window would be drawn at about its nearest
+//!   depth, over what stands on it. Fitted, a polygon that rounding
+//!   moved a little off its plane (a large face the clips cut, a nearly
+//!   edge-on one) keeps its slope and lies within a few units of where it
+//!   was. It costs up to 18 more passes with two divisions each, only
+//!   for such polygons.
 //!
 //! So a non-planar `poly3` (or face) is drawn with the pixel rule's
 //! coverage, as every polygon is, and the depth of one plane through its
@@ -1360,6 +1364,26 @@ impl<'s> Polygon<'s> {
         } else if holds(&plane) {
             return plane;
         }
+        // The plane scaled by k/2¹⁶ about the first vertex holds at k = 0
+        // (the depth z₀ of a vertex) and not at k = 2¹⁶: bisect for a k
+        // that holds with k + 1 failing, 16 more checks, multiplies only.
+        let (mut lo, mut hi) = (0i64, 1i64 << 16);
+        while hi - lo > 1 {
+            let mid = lo + (hi - lo) / 2;
+            if holds(&plane.flattened(mid)) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        // Scaled by k, no depth in the range moves by more than
+        // (1 − k/2¹⁶)·(z₁ − z₀): kept when that is at most 2 units, as
+        // for a face that rounding tilted past its range by a unit or
+        // two. Otherwise (the first vertex at the end of the range the
+        // tilt passes, where only small k hold) the plane is fitted.
+        if ((1i64 << 16) - lo) * (z.1 - z.0) as i64 <= 2 << 16 {
+            return plane.flattened(lo);
+        }
         fitted(&plane, slots, z)
     }
 
@@ -1536,8 +1560,19 @@ fn depth_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
             hi = hi.max(v);
         }
     }
-    let c = plane.c as i128;
-    (lo.div_euclid(c), -(-hi).div_euclid(c))
+    // `c` is below 2⁴⁸; `lo` and `hi` fit `i64` but for planes far out
+    // of the range, and a 64-bit division is many times cheaper than a
+    // 128-bit one on a 32-bit core.
+    match (i64::try_from(lo), i64::try_from(hi)) {
+        (Ok(lo), Ok(hi)) if hi < i64::MAX => {
+            let c = plane.c;
+            (lo.div_euclid(c) as i128, -((-hi).div_euclid(c)) as i128)
+        }
+        _ => {
+            let c = plane.c as i128;
+            (lo.div_euclid(c), -(-hi).div_euclid(c))
+        }
+    }
 }
 
 /// A plane whose depth lies in `z` at every end of `slots`, as near
@@ -1546,10 +1581,9 @@ fn depth_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
 /// `k` (by bisection, 16 more passes over the ends, only when the full
 /// slopes do not fit) whose depths there span no more than `z` does,
 /// then moved by the fewest whole units of depth that bring them into
-/// `z`. At `k = 0` the depths span nothing, so one always fits. Scaling
-/// alone, about the first vertex, does not do: when that vertex is at
-/// one end of `z` and rounding tilts the plane past that end elsewhere,
-/// no slope but zero fits.
+/// `z`. At `k = 0` the depths span nothing, so one always fits. For the
+/// planes that scaling alone, about the first vertex, leaves with little
+/// slope (see the [module](self) docs).
 #[cold]
 #[inline(never)]
 fn fitted(plane: &Plane, slots: &[EdgeSlot], z: (i32, i32)) -> Plane {
