@@ -147,7 +147,7 @@ pub mod budget_demo {
         Scene {
             name: "demo-320x240-07",
             list: include_bytes!("../scenes/budget/demo-320x240-07.scvl"),
-            checksum: 0xa26b91bc,
+            checksum: 0x577a1e59,
         },
     ];
 }

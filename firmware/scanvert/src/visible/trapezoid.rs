@@ -99,8 +99,9 @@
 //!   range by more than 2 units, `(1 − k/2¹⁶)·(z_max − z_min) ≤ 2`: a
 //!   face that rounding tilted past its range by a unit or two;
 //! * otherwise the plane is *fitted*: the slopes are scaled by the
-//!   greatest `k` whose depths at those ends span no more than
-//!   `[z_min, z_max]` does, and the plane is then moved by the fewest
+//!   `k` whose depths at those ends span no more than `[z_min, z_max]`
+//!   does (found from the span of the full slopes' depths: where it
+//!   would be `z_max − z_min`, else 2 units less), and the plane is then moved by the fewest
 //!   whole units of depth that bring those depths into `[z_min, z_max]`.
 //!   Scaling alone fails this way when the first vertex is at the end of
 //!   the range that the tilt passes elsewhere: only small `k` hold, and a
@@ -108,8 +109,8 @@
 //!   depth, over what stands on it. Fitted, a polygon that rounding
 //!   moved a little off its plane (a large face the clips cut, a nearly
 //!   edge-on one) keeps its slope and lies within a few units of where it
-//!   was. It costs up to 18 more passes with two divisions each, only
-//!   for such polygons.
+//!   was. It costs two to four more passes, and a bisection only where
+//!   the rounding of the slopes weighs, only for such polygons.
 //!
 //! So a non-planar `poly3` (or face) is drawn with the pixel rule's
 //! coverage, as every polygon is, and the depth of one plane through its
@@ -1551,15 +1552,7 @@ impl<'s> Polygon<'s> {
 /// divisions.
 #[cold]
 fn depth_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
-    let (mut lo, mut hi) = (i128::MAX, i128::MIN);
-    for e in slots.iter().map(|s| &s.ends) {
-        for (x, y) in [(e.x0, e.y0), (e.x1, e.y1)] {
-            // Below 2⁶⁷: see `Plane::rhs_at`.
-            let v = plane.rhs_at(x as i128, y as i128);
-            lo = lo.min(v);
-            hi = hi.max(v);
-        }
-    }
+    let (lo, hi) = rhs_span(plane, slots);
     // `c` is below 2⁴⁸; `lo` and `hi` fit `i64` but for planes far out
     // of the range, and a 64-bit division is many times cheaper than a
     // 128-bit one on a 32-bit core.
@@ -1575,12 +1568,27 @@ fn depth_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
     }
 }
 
+/// The least and greatest `c`·depth of `plane` at the ends of `slots`.
+fn rhs_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
+    let (mut lo, mut hi) = (i128::MAX, i128::MIN);
+    for e in slots.iter().map(|s| &s.ends) {
+        for (x, y) in [(e.x0, e.y0), (e.x1, e.y1)] {
+            // Below 2⁶⁷: see `Plane::rhs_at`.
+            let v = plane.rhs_at(x as i128, y as i128);
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+    }
+    (lo, hi)
+}
+
 /// A plane whose depth lies in `z` at every end of `slots`, as near
 /// `plane` as a scale of its slopes and a shift of its depth make it: its
-/// slopes scaled by `k / 2¹⁶` ([`Plane::flattened`]) with the greatest
-/// `k` (by bisection, 16 more passes over the ends, only when the full
-/// slopes do not fit) whose depths there span no more than `z` does,
-/// then moved by the fewest whole units of depth that bring them into
+/// slopes scaled by `k / 2¹⁶` ([`Plane::flattened`]) with a `k` whose
+/// depths there span no more than `z` does (the full slopes when they
+/// do; else the `k` at which the span would be `z`'s, or `z`'s less 2
+/// units, or below that by bisection when rounding needs more), then
+/// moved by the fewest whole units of depth that bring them into
 /// `z`. At `k = 0` the depths span nothing, so one always fits. For the
 /// planes that scaling alone, about the first vertex, leaves with little
 /// slope (see the [module](self) docs).
@@ -1595,7 +1603,21 @@ fn fitted(plane: &Plane, slots: &[EdgeSlot], z: (i32, i32)) -> Plane {
     let k = if fits(1 << 16) {
         1 << 16
     } else {
-        let (mut lo, mut hi) = (0i64, 1i64 << 16);
+        // The depths' span scales with k: the k at which it would be the
+        // room, then the room less 2 units (for the rounding of the ends'
+        // depths and of the slopes), tried first; bisected below that when
+        // the rounding is more.
+        let (lo, hi) = rhs_span(plane, slots);
+        let at = |room: i128| {
+            (room.max(0) * plane.c as i128 * (1 << 16) / (hi - lo).max(1)).min((1 << 16) - 1) as i64
+        };
+        let (mut lo, mut hi) = (0i64, at(room - 2));
+        if fits(at(room)) {
+            lo = at(room);
+            hi = lo;
+        } else if fits(hi) {
+            lo = hi;
+        }
         while hi - lo > 1 {
             let mid = lo + (hi - lo) / 2;
             if fits(mid) {
