@@ -1570,6 +1570,27 @@ fn depth_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
 
 /// The least and greatest `c`·depth of `plane` at the ends of `slots`.
 fn rhs_span(plane: &Plane, slots: &[EdgeSlot]) -> (i128, i128) {
+    // The usual case in `i64`, as in `Polygon::bounded`: with |a|, |b|,
+    // |c| < 2³¹, every term is one 32 × 32 → 64-bit multiply and the sum
+    // is below 2⁵⁰.
+    if let (Ok(a), Ok(b), Ok(c)) = (
+        i32::try_from(plane.a),
+        i32::try_from(plane.b),
+        i32::try_from(plane.c),
+    ) {
+        let (x0, y0, z0) = plane.origin_units();
+        let base = c as i64 * z0 as i64;
+        let (mut lo, mut hi) = (i64::MAX, i64::MIN);
+        for e in slots.iter().map(|s| &s.ends) {
+            for (x, y) in [(e.x0, e.y0), (e.x1, e.y1)] {
+                let v =
+                    a as i64 * (x0 - x as i32) as i64 + b as i64 * (y0 - y as i32) as i64 + base;
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+        return (lo as i128, hi as i128);
+    }
     let (mut lo, mut hi) = (i128::MAX, i128::MIN);
     for e in slots.iter().map(|s| &s.ends) {
         for (x, y) in [(e.x0, e.y0), (e.x1, e.y1)] {
