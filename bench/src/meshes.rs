@@ -28,6 +28,8 @@
 //! `docs/performance.md`.
 
 use crate::numbers::thousands;
+// A face's depth at pixel centres, the 3D section's z-buffer's.
+use crate::visible3d::ZPlane;
 use embedded_graphics_core::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use scanvert::display_list::{Command, DisplayList};
 use scanvert::fixed::{Vertex, Vertex3};
@@ -198,48 +200,6 @@ fn deliver(
     for f in faces {
         let it = f.iter().map(|&i| view[i as usize]);
         let _ = pipe.polygon_view(it, ink, out);
-    }
-}
-
-/// A face's depth `Z(i, j) = z + i·zx + j·zy` at pixel centres, in 2⁻¹⁴
-/// of a Q12.4 unit (the z-buffer of the 3D section's, set up here from
-/// the delivered vertices by Newell's normal).
-#[derive(Clone, Copy, Default)]
-struct ZPlane {
-    z: i32,
-    zx: i32,
-    zy: i32,
-}
-
-fn round_div(n: i128, c: i128) -> i128 {
-    (2 * n + c).div_euclid(2 * c)
-}
-
-impl ZPlane {
-    fn of(face: &[Vertex3]) -> Option<ZPlane> {
-        let (mut a, mut b, mut c) = (0i64, 0i64, 0i64);
-        for k in 0..face.len() {
-            let (p, q) = (face[k], face[(k + 1) % face.len()]);
-            let (x0, y0, z0) = (p.x.units() as i64, p.y.units() as i64, p.z.units() as i64);
-            let (x1, y1, z1) = (q.x.units() as i64, q.y.units() as i64, q.z.units() as i64);
-            a += (y0 - y1) * (z0 + z1);
-            b += (z0 - z1) * (x0 + x1);
-            c += (x0 - x1) * (y0 + y1);
-        }
-        if c == 0 {
-            return None;
-        }
-        if c < 0 {
-            (a, b, c) = (-a, -b, -c);
-        }
-        let p = face[0];
-        let (a, b, c) = (a as i128, b as i128, c as i128);
-        let d = a * p.x.units() as i128 + b * p.y.units() as i128 + c * p.z.units() as i128;
-        Some(ZPlane {
-            z: round_div((d - 8 * a - 8 * b) << 14, c) as i32,
-            zx: round_div(-a << 18, c) as i32,
-            zy: round_div(-b << 18, c) as i32,
-        })
     }
 }
 

@@ -256,9 +256,9 @@ impl DepthCell for i32 {
 /// with code of its own).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ZPlane {
-    z: i32,
-    zx: i32,
-    zy: i32,
+    pub(crate) z: i32,
+    pub(crate) zx: i32,
+    pub(crate) zy: i32,
 }
 
 /// `n / c` rounded to nearest, `c > 0`, in `i64` when the numbers fit.
