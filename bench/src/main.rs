@@ -21,7 +21,9 @@
 //! calibrated on W1, the others predicted) and rewrites its section;
 //! `-- --only race` fits the racing cost model to the image's row counts
 //! and rewrites the racing tables; `-- --only ram` counts the RAM of band
-//! rendering by part and rewrites its table.
+//! rendering by part and rewrites its table. `-- --only meshes` times the
+//! mesh sweep and rewrites its section and `docs/mesh-sweep.svg`;
+//! `-- --only meshes --print` prints it and writes nothing.
 
 mod bands;
 mod contenders;
@@ -242,6 +244,7 @@ scanvert-bench: speed against error, written to docs/performance.md and its plot
                             triangles, 240 x 240): scanvert's resolves, its bands
                             and stages, and two i32 z-buffers; rewrites its section
                             of docs/performance.md and docs/mesh-sweep.svg
+  --only meshes --print     the same, printed, nothing written
   --only worst              the worst cases (staggered faces, 1,000 to 38,835);
                             rewrites its section of the page and its plot
   --only model              the write port's cycle model on the image's 2D lists
@@ -288,6 +291,9 @@ fn main() -> std::io::Result<()> {
         profile_w1(&args[2], args[3].parse().unwrap_or(100));
         return Ok(());
     }
+    if args.len() == 4 && args[1] == "--only" && args[2] == "meshes" && args[3] == "--print" {
+        return only_meshes(false);
+    }
     // `--only W2`: time one workload, print it, write nothing.
     let only = (args.len() == 3 && args[1] == "--only").then(|| args[2].clone());
     if only.as_deref() == Some("depth") {
@@ -297,7 +303,7 @@ fn main() -> std::io::Result<()> {
         return only_worst();
     }
     if only.as_deref() == Some("meshes") {
-        return only_meshes();
+        return only_meshes(true);
     }
     if only.as_deref() == Some("race") {
         let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs/performance.md");
@@ -597,7 +603,9 @@ fn only_worst() -> std::io::Result<()> {
 
 /// `--only meshes`: the mesh sweep timed; its section of
 /// `docs/performance.md` and `docs/mesh-sweep.svg` rewritten.
-fn only_meshes() -> std::io::Result<()> {
+/// The mesh sweep, printed; with `write`, also spliced into
+/// docs/performance.md, and its plot written.
+fn only_meshes(write: bool) -> std::io::Result<()> {
     let machine = format!("load average {} before the run", load_average());
     let rows = meshes::measure(Duration::from_millis(100), meshes::ROUNDS);
     let docs = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../docs");
@@ -605,6 +613,9 @@ fn only_meshes() -> std::io::Result<()> {
     let old = std::fs::read_to_string(&md_path).unwrap_or_default();
     let section = meshes::section(&rows, &machine);
     print!("{section}");
+    if !write {
+        return Ok(());
+    }
     let md = report::splice(
         &old,
         meshes::BEGIN,

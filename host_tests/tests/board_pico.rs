@@ -9,7 +9,7 @@ mod ui;
 
 use embedded_graphics::Drawable;
 use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
-use scanvert::port::band::BandTarget;
+use scanvert::port::packed_band::PackedBandTarget;
 use scanvert::prelude::*;
 use scanvert::scene::DEFAULT_FONT;
 use scanvert::Resolve;
@@ -21,12 +21,19 @@ struct Panel {
     rows: u32,
 }
 
-impl BandTarget for Panel {
+impl PackedBandTarget for Panel {
     type Color = Rgb565;
     type Error = core::convert::Infallible;
-    fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), Self::Error> {
+    fn ship_words(&mut self, y: u16, rows: u16, w: u16, words: &[u32]) -> Result<(), Self::Error> {
+        // Wire order: each pixel's two bytes big-endian, from the start.
+        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+        let n = rows as usize * w as usize;
         let at = y as usize * W as usize;
-        self.pixels[at..at + px.len()].copy_from_slice(px);
+        for (i, p) in bytes.chunks_exact(2).take(n).enumerate() {
+            let raw = u16::from_be_bytes([p[0], p[1]]);
+            self.pixels[at + i] =
+                Rgb565::from(embedded_graphics_core::pixelcolor::raw::RawU16::new(raw));
+        }
         self.rows += rows as u32;
         Ok(())
     }

@@ -16,7 +16,7 @@ mod ui;
 use crate::platform;
 use core::convert::Infallible;
 use scanvert::pixelcolor::Rgb565;
-use scanvert::port::band::BandTarget;
+use scanvert::port::packed_band::PackedBandTarget;
 use semihosting::println;
 use static_cell::ConstStaticCell;
 
@@ -26,10 +26,10 @@ const FRAMES: u32 = 24;
 /// A panel that counts the rows it is sent.
 struct Rows(u32);
 
-impl BandTarget for Rows {
+impl PackedBandTarget for Rows {
     type Color = Rgb565;
     type Error = Infallible;
-    fn ship(&mut self, _y: u16, rows: u16, _px: &[Rgb565]) -> Result<(), Infallible> {
+    fn ship_words(&mut self, _y: u16, rows: u16, _w: u16, _px: &[u32]) -> Result<(), Infallible> {
         self.0 += rows as u32;
         Ok(())
     }

@@ -2,8 +2,9 @@
 //! firmware engineer with a 240 × 240 SPI panel (an ST7789) and no room
 //! for a frame buffer writes.
 //!
-//! One frame is a stack of layers, drawn band by band (16 rows, 7.5 KiB)
-//! by one [`FramePass`] and shipped to the panel:
+//! One frame is a stack of layers, drawn band by band (16 rows, 7.5 KiB,
+//! two pixels a word in the panel's byte order, ready for its DMA) by one
+//! [`FramePass`] and shipped to the panel:
 //!
 //! 1. a display list's 2D UI: the background, a title bar and a toolbar;
 //! 2. a 3D scene: a lit cube that turns, with hidden surfaces, and a HUD
@@ -27,8 +28,10 @@ use embedded_graphics::primitives::{Circle, PrimitiveStyle, Styled};
 use embedded_graphics::text::Text;
 use embedded_graphics::Drawable;
 use scanvert::display_list::Axis;
-use scanvert::frame::{DrawableLayer, FramePass, Layer};
-use scanvert::port::band::{BandTarget, DirtyRows};
+use scanvert::frame::{DrawableLayer, FramePass, PackedLayer};
+use scanvert::pixelcolor::raw::RawU16;
+use scanvert::port::band::DirtyRows;
+use scanvert::port::packed_band::{PackedBand, PackedBandTarget};
 use scanvert::prelude::*;
 use scanvert::raster::table::{TableMemory, TablePolygon};
 use scanvert::scene::{Capacities, DEFAULT_FONT};
@@ -60,12 +63,18 @@ struct Panel {
     rows: u32,
 }
 
-impl BandTarget for Panel {
+impl PackedBandTarget for Panel {
     type Color = Rgb565;
     type Error = core::convert::Infallible;
-    fn ship(&mut self, y: u16, rows: u16, px: &[Rgb565]) -> Result<(), Self::Error> {
+    /// The words as the SPI bus would send them: their bytes in memory
+    /// order, each pixel's two bytes big-endian.
+    fn ship_words(&mut self, y: u16, rows: u16, w: u16, words: &[u32]) -> Result<(), Self::Error> {
+        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
         let at = y as usize * W as usize;
-        self.pixels[at..at + px.len()].copy_from_slice(px);
+        let n = rows as usize * w as usize;
+        for (i, p) in bytes.chunks_exact(2).take(n).enumerate() {
+            self.pixels[at + i] = RawU16::new(u16::from_be_bytes([p[0], p[1]])).into();
+        }
         self.rows += rows as u32;
         Ok(())
     }
@@ -125,7 +134,7 @@ fn draw_frame(
     (clock, dot): (&mut Clock, &mut Dot),
     pass: &mut FramePass<Rgb565>,
     dirty: &mut DirtyRows<'_>,
-    band: &mut [Rgb565],
+    band: &mut [u32],
     panel: &mut Panel,
 ) -> Result<u32, Box<dyn std::error::Error>> {
     // The 2D layer: its polygons entered once into an edge table.
@@ -145,8 +154,8 @@ fn draw_frame(
     let mut ui = controller.bands(list, table)?;
     // The 3D layer over it: faces and the HUD label, no background.
     let mut view = scene.bands(Resolve::default(), Rgb565::BLACK, DEFAULT_FONT)?;
-    let layers: &mut [&mut dyn Layer<Rgb565>] = &mut [&mut ui, &mut view, clock, dot];
-    Ok(pass.draw_marked(layers, dirty, ROWS, band, panel)?)
+    let layers: &mut [&mut dyn PackedLayer<Rgb565>] = &mut [&mut ui, &mut view, clock, dot];
+    Ok(pass.draw_marked_packed(layers, dirty, ROWS, band, panel)?)
 }
 
 /// The same frame rendered whole, layer by layer, into a frame buffer.
@@ -187,7 +196,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut bits = [0u32; DirtyRows::words(H)];
     let mut dirty = DirtyRows::new(&mut bits, H).ok_or("bits")?;
     let mut scratch = vec![0u64; 2 * H as usize];
-    let mut band = vec![Rgb565::BLACK; ROWS as usize * W as usize];
+    let mut band = vec![0u32; PackedBand::<Rgb565>::words_len(W, ROWS)];
     let mut panel = Panel {
         pixels: vec![Rgb565::RED; W as usize * H as usize],
         rows: 0,

@@ -1,8 +1,9 @@
 //! The rendering core: what the panel shows, with no hardware in it.
 //!
 //! A 240 × 240 frame is a stack of layers, drawn band by band (16 rows,
-//! 7.5 KiB) by one [`FramePass`] and shipped to any [`BandTarget`] (the
-//! board's SPI panel, or a host test's model of it):
+//! 7.5 KiB, two pixels a word in the panel's byte order) by one
+//! [`FramePass`] and shipped to any [`PackedBandTarget`] (the board's SPI
+//! panel, or a host test's model of it):
 //!
 //! 1. a display list's 2D UI: the background, a title bar and a toolbar;
 //! 2. a 3D scene: a lit cube that turns, with hidden surfaces, and a HUD
@@ -22,8 +23,9 @@ use embedded_graphics::primitives::{Circle, PrimitiveStyle, Styled};
 use embedded_graphics::text::Text;
 use scanvert::controller::PrepareError;
 use scanvert::display_list::Axis;
-use scanvert::frame::{DrawableLayer, FrameError, FramePass, Layer};
-use scanvert::port::band::{BandTarget, DirtyRows};
+use scanvert::frame::{DrawableLayer, FrameError, FramePass, PackedLayer};
+use scanvert::port::band::DirtyRows;
+use scanvert::port::packed_band::{PackedBand, PackedBandTarget};
 use scanvert::prelude::*;
 use scanvert::raster::table::{TableMemory, TablePolygon};
 use scanvert::scene::{Capacities, UpdateError, DEFAULT_FONT};
@@ -58,6 +60,9 @@ pub type Storage = scanvert::scene_storage!(CAPS);
 /// vertices after clipping.
 type Segment<'s, 'a> = Builder<'s, 'a, 4, 16>;
 
+/// Words of a band: two pixels a word.
+const BAND_WORDS: usize = PackedBand::<Rgb565>::words_len(W, ROWS);
+
 /// Bytes of the 2D UI's display list.
 const LIST: usize = 128;
 /// Polygons of the 2D UI, and their vertices.
@@ -72,7 +77,7 @@ pub struct Memory {
     storage: Storage,
     dirty: [u32; DirtyRows::words(H)],
     scratch: [u64; 2 * H as usize],
-    band: [Rgb565; ROWS as usize * W as usize],
+    band: [u32; BAND_WORDS],
     polygons: [TablePolygon; POLYGONS],
     index: [u32; 2 * POLYGONS],
     table_edges: [Edge; VERTICES],
@@ -87,7 +92,7 @@ impl Memory {
             storage: Storage::new(),
             dirty: [0; DirtyRows::words(H)],
             scratch: [0; 2 * H as usize],
-            band: [Rgb565::BLACK; ROWS as usize * W as usize],
+            band: [0; BAND_WORDS],
             polygons: [TablePolygon::EMPTY; POLYGONS],
             index: [0; 2 * POLYGONS],
             table_edges: [Edge::EMPTY; VERTICES],
@@ -213,7 +218,7 @@ pub struct Ui<'m> {
     pass: FramePass<Rgb565>,
     dirty: DirtyRows<'m>,
     scratch: &'m mut [u64],
-    band: &'m mut [Rgb565],
+    band: &'m mut [u32],
     table: TableMemory<'m>,
     edges: &'m mut [Edge],
     frame: u32,
@@ -268,7 +273,7 @@ impl<'m> Ui<'m> {
     /// the next one sends every row: the panel may not have the last.
     pub fn step<P>(&mut self, panel: &mut P) -> Result<u32, Error<P::Error>>
     where
-        P: BandTarget<Color = Rgb565> + ?Sized,
+        P: PackedBandTarget<Color = Rgb565> + ?Sized,
     {
         let frame = self.frame;
         // The application's changes: the cube turns, the clock and the dot.
@@ -291,11 +296,11 @@ impl<'m> Ui<'m> {
         let mut view = self
             .scene
             .bands(Resolve::default(), Rgb565::BLACK, DEFAULT_FONT)?;
-        let layers: &mut [&mut dyn Layer<Rgb565>] =
+        let layers: &mut [&mut dyn PackedLayer<Rgb565>] =
             &mut [&mut ui, &mut view, &mut self.clock, &mut self.dot];
         let sent = self
             .pass
-            .draw_marked(layers, &mut self.dirty, ROWS, self.band, panel)?;
+            .draw_marked_packed(layers, &mut self.dirty, ROWS, self.band, panel)?;
         self.dirty.clear();
         self.frame += 1;
         Ok(sent)
