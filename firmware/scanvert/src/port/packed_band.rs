@@ -260,7 +260,7 @@ where
         (self.width, self.height)
     }
 
-    #[inline]
+    #[inline(always)]
     fn fill_span(&mut self, span: Span, color: C) -> Result<(), Infallible> {
         let Some(row) = span.y.checked_sub(self.y0).filter(|&r| r < self.rows) else {
             return Ok(());
