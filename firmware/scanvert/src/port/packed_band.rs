@@ -260,7 +260,11 @@ where
         (self.width, self.height)
     }
 
-    #[inline]
+    /// Inlined into the band walk, which writes every span through it: as
+    /// a call (the span stored for it, the walk's registers saved and
+    /// reloaded around it) a short span of W3 cost about 16 Cortex-M4
+    /// instructions more (`docs/performance-log.md`).
+    #[inline(always)]
     fn fill_span(&mut self, span: Span, color: C) -> Result<(), Infallible> {
         let Some(row) = span.y.checked_sub(self.y0).filter(|&r| r < self.rows) else {
             return Ok(());
