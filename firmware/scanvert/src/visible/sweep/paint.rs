@@ -504,10 +504,18 @@ fn enter(
     *spread = (*spread).max(zmax as i64 - zmin as i64);
     let me = (slot, (lo, hi), (zmin, zmax), (yi, last));
     let past = zmax.saturating_add(DEPTH_TOLERANCE as i32);
+    // Most pairs are apart in columns: tested first.
+    let apart = |act: &[Active], u: usize| {
+        let cz = act[u].cover.z;
+        lo >= cz >> 16 || hi <= cz & 0xffff
+    };
     for p in (0..at).rev() {
         let u = act[p].cover.p as usize;
         if act[u].cover.r > past {
             break;
+        }
+        if apart(act, u) {
+            continue;
         }
         if !pair(act, pool, me, u, true) {
             return false;
@@ -521,6 +529,9 @@ fn enter(
         let u = act[p].cover.p as usize;
         if act[u].cover.r < below {
             break;
+        }
+        if apart(act, u) {
+            continue;
         }
         if !pair(act, pool, me, u, false) {
             return false;
