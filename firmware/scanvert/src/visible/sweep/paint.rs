@@ -622,8 +622,9 @@ where
     let yi = y as i32;
     let (zq, zxq) = (z_row(&act[slot].entry, yi), act[slot].entry.zx);
     let t = DEPTH_TOLERANCE as i32;
-    while q != NIL {
-        let (u, next) = pool.get(q);
+    // (`NIL` is past the records: the walk ends there.)
+    while let Some(&rec) = pool.runs.get(q as usize) {
+        let (u, next) = (rec.len() as usize, rec.ink());
         // A partner not stepped to the row has ended: a live one is
         // earlier in the order, so stepped already. Its slot may hold
         // another trapezoid since: one stepped to the row is live, and
