@@ -821,6 +821,9 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
     let gx = ey.zx as i64 - ex.zx as i64;
     let gy = ey.zy as i64 - ex.zy as i64;
     let a = 16 * (z00(act, y) - z00(act, x));
+    // On row `jj` the bound is `a + gx·(x0 + step·(jj − j)) + 16·gy·jj`,
+    // linear in `jj`: its least over `j0..=j1` is at the end its slope
+    // points away from.
     let bound = |s: usize| {
         let e = &act[s].entry;
         let j = act[s].hot.slot as i64;
@@ -829,8 +832,10 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
         } else {
             (e.right.units() as i64, e.right.step_units() as i64 + 1)
         };
-        let at = |jj: i64| a + gx * (x0 + step * (jj - j)) + 16 * gy * jj;
-        at(j0 as i64).min(at(j1 as i64))
+        let at_j = a + gx * x0 + 16 * gy * j;
+        let slope = gx * step + 16 * gy;
+        let jj = if slope >= 0 { j0 } else { j1 } as i64;
+        at_j + slope * (jj - j)
     };
     bound(x).max(bound(y)) >= 16 * DEPTH_TOLERANCE
 }
