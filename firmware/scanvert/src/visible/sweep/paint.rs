@@ -837,7 +837,8 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
         let jj = if slope >= 0 { j0 } else { j1 } as i64;
         at_j + slope * (jj - j)
     };
-    bound(x).max(bound(y)) >= 16 * DEPTH_TOLERANCE
+    // Either bound is one: the second is needed only when the first fails.
+    bound(x) >= 16 * DEPTH_TOLERANCE || bound(y) >= 16 * DEPTH_TOLERANCE
 }
 
 /// The part of `a..b` (common pixels of slots `x` and `u` on row `y`)
