@@ -504,10 +504,18 @@ fn enter(
     *spread = (*spread).max(zmax as i64 - zmin as i64);
     let me = (slot, (lo, hi), (zmin, zmax), (yi, last));
     let past = zmax.saturating_add(DEPTH_TOLERANCE as i32);
+    // Most pairs are apart in columns: tested first.
+    let apart = |act: &[Active], u: usize| {
+        let cz = act[u].cover.z;
+        lo >= cz >> 16 || hi <= cz & 0xffff
+    };
     for p in (0..at).rev() {
         let u = act[p].cover.p as usize;
         if act[u].cover.r > past {
             break;
+        }
+        if apart(act, u) {
+            continue;
         }
         if !pair(act, pool, me, u, true) {
             return false;
@@ -521,6 +529,9 @@ fn enter(
         let u = act[p].cover.p as usize;
         if act[u].cover.r < below {
             break;
+        }
+        if apart(act, u) {
+            continue;
         }
         if !pair(act, pool, me, u, false) {
             return false;
@@ -611,8 +622,9 @@ where
     let yi = y as i32;
     let (zq, zxq) = (z_row(&act[slot].entry, yi), act[slot].entry.zx);
     let t = DEPTH_TOLERANCE as i32;
-    while q != NIL {
-        let (u, next) = pool.get(q);
+    // (`NIL` is past the records: the walk ends there.)
+    while let Some(&rec) = pool.runs.get(q as usize) {
+        let (u, next) = (rec.len() as usize, rec.ink());
         // A partner not stepped to the row has ended: a live one is
         // earlier in the order, so stepped already. Its slot may hold
         // another trapezoid since: one stepped to the row is live, and
@@ -809,6 +821,9 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
     let gx = ey.zx as i64 - ex.zx as i64;
     let gy = ey.zy as i64 - ex.zy as i64;
     let a = 16 * (z00(act, y) - z00(act, x));
+    // On row `jj` the bound is `a + gx·(x0 + step·(jj − j)) + 16·gy·jj`,
+    // linear in `jj`: its least over `j0..=j1` is at the end its slope
+    // points away from.
     let bound = |s: usize| {
         let e = &act[s].entry;
         let j = act[s].hot.slot as i64;
@@ -817,10 +832,13 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
         } else {
             (e.right.units() as i64, e.right.step_units() as i64 + 1)
         };
-        let at = |jj: i64| a + gx * (x0 + step * (jj - j)) + 16 * gy * jj;
-        at(j0 as i64).min(at(j1 as i64))
+        let at_j = a + gx * x0 + 16 * gy * j;
+        let slope = gx * step + 16 * gy;
+        let jj = if slope >= 0 { j0 } else { j1 } as i64;
+        at_j + slope * (jj - j)
     };
-    bound(x).max(bound(y)) >= 16 * DEPTH_TOLERANCE
+    // Either bound is one: the second is needed only when the first fails.
+    bound(x) >= 16 * DEPTH_TOLERANCE || bound(y) >= 16 * DEPTH_TOLERANCE
 }
 
 /// The part of `a..b` (common pixels of slots `x` and `u` on row `y`)
