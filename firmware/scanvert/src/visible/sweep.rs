@@ -513,8 +513,9 @@ impl<'a> Workspace<'a> {
     /// Finds the most trapezoids of `store` that overlap one row, without
     /// resolving anything, and checks it against the active list; checks
     /// that a row of the store's width fits the run buffer. O(rows +
-    /// trapezoids) when the run buffer has more runs than the store has
-    /// rows, else O(rows + trapezoids × log overlap).
+    /// trapezoids) when the run buffer has at least as many runs as the
+    /// store has rows (a square frame's or a wide one's), else O(rows +
+    /// trapezoids × log overlap).
     pub fn check(
         &mut self,
         store: &TrapezoidStore<'_>,
@@ -525,10 +526,11 @@ impl<'a> Workspace<'a> {
             });
         }
         let cap = self.capacity();
-        if let Some(ends) = self.runs.get_mut(..=store.height() as usize) {
+        if let Some(ends) = self.runs.get_mut(..store.height() as usize) {
             // The trapezoids that end on each row, counted in the runs'
             // lengths as each starts (at most 65535: the store's), and the
-            // overlap kept row by row.
+            // overlap kept row by row. Those that end at the store's
+            // height are never taken off: no row follows.
             ends.fill(Run::EMPTY);
             let (mut k, mut most) = (0usize, 0usize);
             for y in 0..store.height() {
