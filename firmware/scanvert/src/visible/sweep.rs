@@ -33,6 +33,12 @@
 //!      resolved from its two ends and, if they differ, subdivided
 //!      ([`Resolve`]) until every part has the same nearest trapezoid at
 //!      both ends (or, if they agree, counted as *multiple*).
+//!
+//!    Where nothing covers the sweep's position, a trapezoid that ends by
+//!    the next one's `l` is alone on all its pixels: its span is written
+//!    with no cover and no depth compare (the counts are those of a front
+//!    found alone). A closed mesh's row after culling, faces side by side,
+//!    goes all this way.
 //! 5. The row's runs go to the caller ([`rle`](crate::visible::rle) format), or
 //!    with [`draw`] straight to the frame-buffer port as spans.
 //! 6. Trapezoids that end drop out; the rest step down a row.
@@ -1495,6 +1501,53 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         }
     };
     while x < width {
+        // Leave the trapezoids ending here or before: the last ones.
+        while let Some(c) = nc.checked_sub(1).and_then(|q| act.get(q)) {
+            if c.cover.r > x {
+                break;
+            }
+            nc -= 1;
+        }
+        if nc == 0 {
+            // Nothing covers x: a trapezoid that ends by the next one's
+            // `l` is alone on all its pixels, and is written with no depth
+            // compare and no cover (the spans and counts are the front's
+            // that the loop below would find: a mesh's row, its faces side
+            // by side, goes all this way).
+            while p < k {
+                let h = &act[p].hot;
+                if h.l > x {
+                    // Up to the next `l` (the width at most: a trapezoid
+                    // with no pixel sorts last, its `l` past it).
+                    if x >= width {
+                        return;
+                    }
+                    let next = h.l.min(width);
+                    cx.stats.empty += 1;
+                    cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+                    x = next;
+                    if x >= width {
+                        return;
+                    }
+                }
+                let h = &act[p].hot;
+                if next_l(act, p + 1) < h.r {
+                    break;
+                }
+                let (r, face, color) = (h.r, h.face, h.color);
+                cx.stats.single += 1;
+                cx.emit(r - x, face, color);
+                x = r;
+                p += 1;
+            }
+            if p >= k {
+                if x < width {
+                    cx.stats.empty += 1;
+                    cx.emit(width - x, Run::BACKGROUND, BACKGROUND);
+                }
+                return;
+            }
+        }
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
         while p < k && act[p].hot.l <= x {
@@ -1503,13 +1556,6 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             insert(act, &mut nc, c);
         }
         let mut next = next_l(act, p);
-        // Leave the trapezoids ending here or before: the last ones.
-        while let Some(c) = nc.checked_sub(1).and_then(|q| act.get(q)) {
-            if c.cover.r > x {
-                break;
-            }
-            nc -= 1;
-        }
         let cov = &act[..nc.min(k)];
         let Some(last) = cov.last() else {
             cx.stats.empty += 1;
