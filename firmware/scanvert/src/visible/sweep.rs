@@ -2877,6 +2877,38 @@ mod tests {
         );
     }
 
+    /// `Workspace::check` finds the most trapezoids live on one row, by
+    /// counting ends row by row when the runs hold the store's rows (a
+    /// frame as wide as it is high, or wider) and by its heap when they
+    /// do not (a narrower one): the most found by brute force either way.
+    #[test]
+    fn check_counts_the_most_on_a_row_both_ways() {
+        let mut rng = Rng(0x0c0f_fee5);
+        for _ in 0..200 {
+            let n = 1 + rng.below(8) as usize;
+            let polys: [[Vertex3; 3]; 8] =
+                core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
+            let polys = &polys[..n];
+            for w in [H - 1, H, H + 1] {
+                let mut mem = Pools::new(64, H);
+                let store = mem.store(polys, w, H);
+                let most = (0..H as i32)
+                    .map(|y| {
+                        (0..store.len() as u16)
+                            .filter_map(|t| store.trapezoid(t))
+                            .filter(|t| t.top() <= y && y < t.end())
+                            .count() as u32
+                    })
+                    .max()
+                    .unwrap_or(0);
+                let mut active = [Active::EMPTY; 64];
+                let mut runs = [Run::EMPTY; H as usize + 1];
+                let mut ws = Workspace::new(&mut active, &mut runs[..w as usize]);
+                assert_eq!(ws.check(&store), Ok(most), "{w} × {H}: {polys:?}");
+            }
+        }
+    }
+
     /// The active list of `sweep` stepped over rows `y..y + n` one by one
     /// (as drawn rows step it, nothing resolved): the reference for
     /// [`jump`].
