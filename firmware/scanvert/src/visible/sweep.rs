@@ -33,6 +33,12 @@
 //!      resolved from its two ends and, if they differ, subdivided
 //!      ([`Resolve`]) until every part has the same nearest trapezoid at
 //!      both ends (or, if they agree, counted as *multiple*).
+//!
+//!    Where nothing covers the sweep's position, a trapezoid that ends by
+//!    the next one's `l` is alone on all its pixels: its span is written
+//!    with no cover and no depth compare (the counts are those of a front
+//!    found alone). A closed mesh's row after culling, faces side by side,
+//!    goes all this way.
 //! 5. The row's runs go to the caller ([`rle`](crate::visible::rle) format), or
 //!    with [`draw`] straight to the frame-buffer port as spans.
 //! 6. Trapezoids that end drop out; the rest step down a row.
@@ -513,8 +519,9 @@ impl<'a> Workspace<'a> {
     /// Finds the most trapezoids of `store` that overlap one row, without
     /// resolving anything, and checks it against the active list; checks
     /// that a row of the store's width fits the run buffer. O(rows +
-    /// trapezoids) when the run buffer has more runs than the store has
-    /// rows, else O(rows + trapezoids × log overlap).
+    /// trapezoids) when the run buffer has at least as many runs as the
+    /// store has rows (a square frame's or a wide one's), else O(rows +
+    /// trapezoids × log overlap).
     pub fn check(
         &mut self,
         store: &TrapezoidStore<'_>,
@@ -525,10 +532,11 @@ impl<'a> Workspace<'a> {
             });
         }
         let cap = self.capacity();
-        if let Some(ends) = self.runs.get_mut(..=store.height() as usize) {
+        if let Some(ends) = self.runs.get_mut(..store.height() as usize) {
             // The trapezoids that end on each row, counted in the runs'
             // lengths as each starts (at most 65535: the store's), and the
-            // overlap kept row by row.
+            // overlap kept row by row. Those that end at the store's
+            // height are never taken off: no row follows.
             ends.fill(Run::EMPTY);
             let (mut k, mut most) = (0usize, 0usize);
             for y in 0..store.height() {
@@ -1493,6 +1501,53 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         }
     };
     while x < width {
+        // Leave the trapezoids ending here or before: the last ones.
+        while let Some(c) = nc.checked_sub(1).and_then(|q| act.get(q)) {
+            if c.cover.r > x {
+                break;
+            }
+            nc -= 1;
+        }
+        if nc == 0 {
+            // Nothing covers x: a trapezoid that ends by the next one's
+            // `l` is alone on all its pixels, and is written with no depth
+            // compare and no cover (the spans and counts are the front's
+            // that the loop below would find: a mesh's row, its faces side
+            // by side, goes all this way).
+            while p < k {
+                let h = &act[p].hot;
+                if h.l > x {
+                    // Up to the next `l` (the width at most: a trapezoid
+                    // with no pixel sorts last, its `l` past it).
+                    if x >= width {
+                        return;
+                    }
+                    let next = h.l.min(width);
+                    cx.stats.empty += 1;
+                    cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
+                    x = next;
+                    if x >= width {
+                        return;
+                    }
+                }
+                let h = &act[p].hot;
+                if next_l(act, p + 1) < h.r {
+                    break;
+                }
+                let (r, face, color) = (h.r, h.face, h.color);
+                cx.stats.single += 1;
+                cx.emit(r - x, face, color);
+                x = r;
+                p += 1;
+            }
+            if p >= k {
+                if x < width {
+                    cx.stats.empty += 1;
+                    cx.emit(width - x, Run::BACKGROUND, BACKGROUND);
+                }
+                return;
+            }
+        }
         // Enter the trapezoids starting here: pending ones have l ≥ x, so
         // these have l = x (and some pixels, see `Hot::l`).
         while p < k && act[p].hot.l <= x {
@@ -1501,13 +1556,6 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             insert(act, &mut nc, c);
         }
         let mut next = next_l(act, p);
-        // Leave the trapezoids ending here or before: the last ones.
-        while let Some(c) = nc.checked_sub(1).and_then(|q| act.get(q)) {
-            if c.cover.r > x {
-                break;
-            }
-            nc -= 1;
-        }
         let cov = &act[..nc.min(k)];
         let Some(last) = cov.last() else {
             cx.stats.empty += 1;
@@ -2827,6 +2875,38 @@ mod tests {
             Workspace::new(&mut active, &mut runs).check(&store),
             Err(VisibleError::Runs { capacity: 4 })
         );
+    }
+
+    /// `Workspace::check` finds the most trapezoids live on one row, by
+    /// counting ends row by row when the runs hold the store's rows (a
+    /// frame as wide as it is high, or wider) and by its heap when they
+    /// do not (a narrower one): the most found by brute force either way.
+    #[test]
+    fn check_counts_the_most_on_a_row_both_ways() {
+        let mut rng = Rng(0x0c0f_fee5);
+        for _ in 0..200 {
+            let n = 1 + rng.below(8) as usize;
+            let polys: [[Vertex3; 3]; 8] =
+                core::array::from_fn(|_| random_tri(&mut rng, (-2000, 2000)));
+            let polys = &polys[..n];
+            for w in [H - 1, H, H + 1] {
+                let mut mem = Pools::new(64, H);
+                let store = mem.store(polys, w, H);
+                let most = (0..H as i32)
+                    .map(|y| {
+                        (0..store.len() as u16)
+                            .filter_map(|t| store.trapezoid(t))
+                            .filter(|t| t.top() <= y && y < t.end())
+                            .count() as u32
+                    })
+                    .max()
+                    .unwrap_or(0);
+                let mut active = [Active::EMPTY; 64];
+                let mut runs = [Run::EMPTY; H as usize + 1];
+                let mut ws = Workspace::new(&mut active, &mut runs[..w as usize]);
+                assert_eq!(ws.check(&store), Ok(most), "{w} × {H}: {polys:?}");
+            }
+        }
     }
 
     /// The active list of `sweep` stepped over rows `y..y + n` one by one
