@@ -1068,7 +1068,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         }
         for face in indices.chunks(sides.max(1)) {
             let ix = face.iter().map(|&i| usize::from(i));
-            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip, None)? {
+            match list::mesh_face(pipeline, &mut out, &mut table, ix, color, clip, None)? {
                 Outcome::Emitted => stats.faces += 1,
                 Outcome::Culled => stats.culled += 1,
                 _ => stats.clipped_away += 1,
