@@ -147,6 +147,16 @@ pub(crate) trait Out {
         clip: &ClipRect,
         point_or_line: bool,
     ) -> Result<(), SceneError>;
+    /// A triangle, as [`polygon`](Out::polygon) takes it (not a point or
+    /// a line).
+    fn triangle(
+        &mut self,
+        v: [Vertex3; 3],
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
+        self.polygon(v, color, clip, false)
+    }
     /// A `poly3`: its vertices as [`polygon`](Out::polygon) when they are
     /// front-facing ([`front_facing`]); `Ok(false)`, nothing done, when
     /// they are not.
@@ -180,6 +190,9 @@ impl<O: Out> PolygonSink for Faces<'_, O> {
     type Error = SceneError;
     fn polygon(&mut self, v: &[Vertex3], color: Rgb888, two: bool) -> Result<(), SceneError> {
         let color = self.highlight.unwrap_or(color);
+        if let (false, &[a, b, c]) = (two, v) {
+            return self.out.triangle([a, b, c], color, &self.clip);
+        }
         self.out.polygon(v.iter().copied(), color, &self.clip, two)
     }
 }

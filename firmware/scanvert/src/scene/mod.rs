@@ -926,6 +926,18 @@ impl list::Out for SegmentOut<'_, '_> {
             .map_err(SceneError::Store)
     }
 
+    fn triangle(
+        &mut self,
+        v: [Vertex3; 3],
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
+        self.store
+            .add_triangle(self.segment, v, color, clip)
+            .map(|_| ())
+            .map_err(SceneError::Store)
+    }
+
     fn poly3(
         &mut self,
         vertices: &crate::display_list::Vertices3<'_>,
