@@ -880,6 +880,61 @@ mod tests {
     }
 
     #[test]
+    fn a_mesh_triangle_is_polygon_view_with_or_without_kept_vertices() {
+        // Random triangles of few points (so that they share corners),
+        // inside the window, across its sides, the near and far planes
+        // and behind the eye; each through `polygon_view` and twice
+        // through `mesh_triangle` (the second time from the kept output
+        // vertices), in both projections.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move |n: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as i32
+        };
+        let q = Q16::from_int;
+        let ortho = Orthographic::new(q(10), q(1), q(100)).unwrap();
+        for projection in [Projection::from(*pipe().projection()), ortho.into()] {
+            let mut p = pipe();
+            p.set_projection(projection);
+            let mut q = pipe();
+            q.set_projection(projection);
+            let mut slots = [ViewPoint::EMPTY; 12];
+            for s in slots.iter_mut() {
+                let z = rnd(130 << 16) - (10 << 16);
+                let xy = |r: &mut dyn FnMut(i32) -> i32| r(120 << 16) - (60 << 16);
+                *s = ViewPoint::new(Some([xy(&mut rnd), xy(&mut rnd), z]));
+            }
+            slots[11] = ViewPoint::EMPTY;
+            for _ in 0..4000 {
+                let c = [rnd(12), rnd(12), rnd(12)].map(|i| i as usize);
+                let points = c.map(|i| slots[i].raw());
+                let (mut a, mut b, mut k) =
+                    (Collect::default(), Collect::default(), Collect::default());
+                let want = p.polygon_view(points.into_iter(), Rgb888::RED, &mut a);
+                let got = q.mesh_triangle(&mut slots, c, Rgb888::RED, &mut b);
+                let kept = q.mesh_triangle(&mut slots, c, Rgb888::RED, &mut k);
+                assert_eq!(got, want, "{points:?}");
+                assert_eq!(kept, want, "{points:?}");
+                assert_eq!(b.polys, a.polys, "{points:?}");
+                assert_eq!(k.polys, a.polys, "{points:?}");
+            }
+            let s = p.stats();
+            let t = q.stats();
+            assert_eq!(s.faces_in * 2, t.faces_in);
+            assert_eq!(s.emitted * 2, t.emitted);
+            assert_eq!(s.culled * 2, t.culled);
+            assert_eq!(s.clipped_away * 2, t.clipped_away);
+            assert_eq!(s.rejected * 2, t.rejected);
+            assert!(
+                s.emitted > 100 && s.culled > 100 && s.clipped_away > 100,
+                "{s:?}"
+            );
+        }
+    }
+
+    #[test]
     fn area_test() {
         let v = |x: i16, y: i16| Vertex3 {
             x: Coord::from_bits(x),
