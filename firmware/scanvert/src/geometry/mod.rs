@@ -895,7 +895,7 @@ mod tests {
         };
         let q = Q16::from_int;
         let ortho = Orthographic::new(q(10), q(1), q(100)).unwrap();
-        for projection in [Projection::from(*pipe().projection()), ortho.into()] {
+        for projection in [*pipe().projection(), ortho.into()] {
             let mut p = pipe();
             p.set_projection(projection);
             let mut q = pipe();
