@@ -567,13 +567,10 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         color: Rgb888,
         sink: &mut S,
     ) -> Result<Outcome, PipelineError<S::Error>> {
-        let mut p = [ViewPoint::EMPTY; 3];
-        for (q, &i) in p.iter_mut().zip(&corners) {
-            *q = *slots.get(i).ok_or(PipelineError::Range)?;
-        }
         let mut v = [[0i64; 3]; 3];
-        for (w, q) in v.iter_mut().zip(&p) {
-            *w = q.raw().ok_or(PipelineError::Range)?.map(i64::from);
+        for (w, &i) in v.iter_mut().zip(&corners) {
+            let p = slots.get(i).and_then(ViewPoint::raw);
+            *w = p.ok_or(PipelineError::Range)?.map(i64::from);
         }
         // As `run` culls and lights a triangle.
         let n = cull::normal(v[0], v[1], v[2]);
@@ -591,7 +588,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         let mut inside = v.iter().all(|w| near <= w[2] && w[2] <= far);
         if inside {
             for k in 0..3 {
-                out[k] = match p[k].screen() {
+                out[k] = match slots.get(corners[k]).and_then(ViewPoint::screen) {
                     Some(o) => o,
                     None => {
                         let q = self.projection.project(v[k], &self.viewport);
