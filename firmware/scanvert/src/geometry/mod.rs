@@ -577,6 +577,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         if !cull::is_front_triangle(&self.projection, v[0], n) {
             return Ok(Outcome::Culled);
         }
+        let base = color;
         let color = light::shade(color, n, self.light_view, self.light.percent());
         let (near, far) = (
             self.projection.near_raw() as i64,
@@ -608,15 +609,9 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             }
         }
         if !inside {
-            let mut work = Work::<N>::new();
-            let mut depth = (i32::MAX, i32::MIN);
-            for w in v {
-                depth = (depth.0.min(w[2] as i32), depth.1.max(w[2] as i32));
-                work.current_mut()
-                    .push(w)
-                    .map_err(|_| PipelineError::Capacity { capacity: N })?;
-            }
-            return self.clip_and_project(&mut work, depth, false, color, sink);
+            // A clip is needed: the general stages from the points (the
+            // cull and the light again, on this rare path).
+            return self.clipped_triangle(v, base, sink);
         }
         // Three vertices have an area exactly when they are not on one
         // line (two equal ones are): `has_area` of what `run` would
@@ -634,6 +629,21 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         sink.polygon(&out, color, false)
             .map_err(PipelineError::Sink)?;
         Ok(Outcome::Emitted)
+    }
+
+    /// A mesh triangle that needs a clip: `run` of its view-space points
+    /// `v`, unlit colour `color`. Out of line and cold, so that the
+    /// triangles that need none do not carry its frame.
+    #[cold]
+    #[inline(never)]
+    fn clipped_triangle<S: PolygonSink>(
+        &self,
+        v: [[i64; 3]; 3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        let points = v.map(|w| Some(w.map(|c| c as i32)));
+        self.run(points.into_iter(), color, sink)
     }
 
     fn run<I: ExactSizeIterator<Item = Option<[i32; 3]>>, S: PolygonSink>(
@@ -676,23 +686,8 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             color = light::shade(color, n, self.light_view, self.light.percent());
         }
 
-        self.clip_and_project(&mut work, depth, two_sided, color, sink)
-    }
-
-    /// The stages after the light: the clips and the projection of the
-    /// view-space polygon in `work`, whose depths span `depth`, and the
-    /// sink.
-    fn clip_and_project<S: PolygonSink>(
-        &self,
-        work: &mut Work<N>,
-        depth: (i32, i32),
-        two_sided: bool,
-        color: Rgb888,
-        sink: &mut S,
-    ) -> Result<Outcome, PipelineError<S::Error>> {
-        let full = || PipelineError::Capacity { capacity: N };
         let (near, far) = (self.projection.near_raw(), self.projection.far_raw());
-        near_clip::clip_depth(work, near, far, depth).map_err(|_| full())?;
+        near_clip::clip_depth(&mut work, near, far, depth).map_err(|_| full())?;
         let poly = work.current_mut();
         if poly.is_empty() || (!two_sided && poly.len() < 3) {
             return Ok(Outcome::ClippedAway);
@@ -720,7 +715,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             }
         }
 
-        window_clip::clip_window(work, &self.viewport, codes).map_err(|_| full())?;
+        window_clip::clip_window(&mut work, &self.viewport, codes).map_err(|_| full())?;
         let mut out = heapless::Vec::<Vertex3, N>::new();
         for &v in work.current() {
             let v = project::to_vertex3(v);

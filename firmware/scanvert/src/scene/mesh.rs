@@ -5,6 +5,13 @@
 //! as the most `v`s of one segment
 //! ([`Summary::vertices`](crate::display_list::Summary::vertices), which
 //! [`controller::needs`](crate::controller::needs) reports too).
+//!
+//! A triangle's corners that lie inside the depth range and the window
+//! keep their output vertex in their slots
+//! ([`Pipeline::mesh_triangle`]): each such vertex is projected once
+//! under one projection and window, whatever the faces through it. The
+//! table remembers which ([`Pipeline::screen_epoch`]) and forgets them
+//! when the pipeline's projection or window changed.
 
 use crate::geometry::{Pipeline, ViewPoint};
 
