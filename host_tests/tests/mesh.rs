@@ -231,6 +231,31 @@ fn a_mesh_cut_by_the_near_plane_and_the_window() {
 }
 
 #[test]
+fn faces_after_a_change_of_projection_in_the_segment() {
+    // The faces through the table after `perspective` or `ortho` are
+    // projected by the new projection, not the one the first faces were.
+    let s = sphere(1.0, 14, 8);
+    for change in ["perspective 30 0.5 100\n", "ortho 40 -50 50\n"] {
+        let (mut a, mut b) = scenes(HEAD, &[("color #c08040\n", &s)]);
+        a.push_str(change);
+        b.push_str(change);
+        a.push_str("color #4080c0\n");
+        b.push_str("color #4080c0\n");
+        for f in &s.faces {
+            a.push('f');
+            b.push_str("face");
+            for &i in f {
+                a.push_str(&format!(" {}", i + 1));
+                b.push_str(&format!(" {}", s.vertices[i]));
+            }
+            a.push('\n');
+            b.push('\n');
+        }
+        assert_same_pixels("reprojected", &a, &b);
+    }
+}
+
+#[test]
 fn points_and_lines_through_the_table() {
     let scene = "frame 64 48\nclear #000000\nview 0 0 6 0 0\nthickness 2\ncolor #ffff00\n\
                  v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1\nf -2 -1\nf 1 3\n";

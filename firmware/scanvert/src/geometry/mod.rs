@@ -188,18 +188,93 @@ pub enum Outcome {
 /// it ([`Pipeline::view_point`]), or the mark of one that left the range
 /// of view space (a polygon through it is [`PipelineError::Range`]).
 /// Meshes keep their transformed vertices in slices of these.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+///
+/// A mesh's vertex table also keeps, in its slot, where the projection
+/// put the point when that lies inside the window and the depth range
+/// (the output vertex, so that the faces through it after the first
+/// project nothing). That is a cache of the table: equality and hashing
+/// look at the view-space point alone.
+///
+/// # Size
+/// 20 bytes: three `i32`s, the projected vertex's three `i16`s and a
+/// `u16` of flags.
+#[derive(Clone, Copy, Debug, Default)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
-pub struct ViewPoint(Option<[i32; 3]>);
+pub struct ViewPoint {
+    xyz: [i32; 3],
+    screen: [i16; 3],
+    /// [`ViewPoint::IN_RANGE`] and [`ViewPoint::PROJECTED`].
+    flags: u16,
+}
 
 impl ViewPoint {
     /// A slot not yet filled (out of range).
-    pub const EMPTY: ViewPoint = ViewPoint(None);
+    pub const EMPTY: ViewPoint = ViewPoint {
+        xyz: [0; 3],
+        screen: [0; 3],
+        flags: 0,
+    };
+
+    /// Set when `xyz` is a point of view space's range.
+    const IN_RANGE: u16 = 1;
+    /// Set when `screen` holds the point's output vertex under the
+    /// projection and window its table was last told of
+    /// ([`Pipeline::screen_epoch`]), the point being inside both.
+    const PROJECTED: u16 = 2;
+
+    fn new(xyz: Option<[i32; 3]>) -> ViewPoint {
+        match xyz {
+            Some(xyz) => ViewPoint {
+                xyz,
+                flags: Self::IN_RANGE,
+                ..ViewPoint::EMPTY
+            },
+            None => ViewPoint::EMPTY,
+        }
+    }
 
     /// The coordinates in view space (Q16.16 raw), `None` when the point
     /// left its range.
+    #[inline]
     pub fn raw(&self) -> Option<[i32; 3]> {
-        self.0
+        (self.flags & Self::IN_RANGE != 0).then_some(self.xyz)
+    }
+
+    /// The output vertex kept by [`Pipeline::mesh_triangle`], if any.
+    #[inline]
+    fn screen(&self) -> Option<Vertex3> {
+        (self.flags & Self::PROJECTED != 0).then(|| Vertex3 {
+            x: Coord::from_bits(self.screen[0]),
+            y: Coord::from_bits(self.screen[1]),
+            z: Coord::from_bits(self.screen[2]),
+        })
+    }
+
+    /// Keeps `o` as the point's output vertex.
+    #[inline]
+    fn keep_screen(&mut self, o: Vertex3) {
+        self.screen = [o.x.to_bits(), o.y.to_bits(), o.z.to_bits()];
+        self.flags |= Self::PROJECTED;
+    }
+
+    /// Forgets the output vertex (the projection or the window changed).
+    #[inline]
+    pub(crate) fn forget_screen(&mut self) {
+        self.flags &= !Self::PROJECTED;
+    }
+}
+
+impl PartialEq for ViewPoint {
+    fn eq(&self, other: &ViewPoint) -> bool {
+        self.raw() == other.raw()
+    }
+}
+
+impl Eq for ViewPoint {}
+
+impl core::hash::Hash for ViewPoint {
+    fn hash<H: core::hash::Hasher>(&self, state: &mut H) {
+        self.raw().hash(state)
     }
 }
 
@@ -246,6 +321,9 @@ pub struct Pipeline<const DEPTH: usize, const N: usize> {
     light_view: [i32; 3],
     thickness: Coord,
     stats: PipelineStats,
+    /// Changed with the projection or the window: what a mesh's kept
+    /// output vertices were made under ([`Pipeline::screen_epoch`]).
+    screen_epoch: u32,
 }
 
 impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
@@ -267,6 +345,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             light_view: Light::AMBIENT.direction(),
             thickness: Coord::from_bits(16),
             stats: PipelineStats::default(),
+            screen_epoch: 0,
         }
     }
 
@@ -310,6 +389,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     /// Replaces the projection.
     pub fn set_projection(&mut self, projection: impl Into<Projection>) {
         self.projection = projection.into();
+        self.screen_epoch = self.screen_epoch.wrapping_add(1);
     }
 
     /// The window.
@@ -320,6 +400,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     /// Replaces the window.
     pub fn set_viewport(&mut self, viewport: Viewport) {
         self.viewport = viewport;
+        self.screen_epoch = self.screen_epoch.wrapping_add(1);
     }
 
     /// The light.
@@ -399,7 +480,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
     /// first stage of [`polygon`](Self::polygon) puts it: a mesh's vertex,
     /// transformed once and used by every face through it.
     pub fn view_point(&self, p: Point3) -> ViewPoint {
-        ViewPoint(self.stack.current().apply(p).ok())
+        ViewPoint::new(self.stack.current().apply(p).ok())
     }
 
     /// [`polygon`](Self::polygon) of points already in view space (from
@@ -431,6 +512,138 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         };
         *counter = counter.wrapping_add(1);
         r
+    }
+
+    /// What a mesh's kept output vertices
+    /// ([`mesh_triangle`](Self::mesh_triangle)) were made under: it changes
+    /// with the projection and the window. A table whose vertices were
+    /// projected under another forgets them
+    /// ([`VertexTable`](crate::scene::VertexTable)). It wraps after 2³²
+    /// changes.
+    #[doc(hidden)]
+    pub fn screen_epoch(&self) -> u32 {
+        self.screen_epoch
+    }
+
+    /// [`polygon_view`](Self::polygon_view) of the triangle through the
+    /// points `slots[corners[k]]` of a mesh's vertex table, with the same
+    /// outcome, counters and polygon. A corner that lies inside the
+    /// depth range and the window keeps its output vertex in its slot,
+    /// and the next face through it takes it from there instead of
+    /// projecting it again: the slots' kept vertices must be of this
+    /// pipeline's [`screen_epoch`](Self::screen_epoch). A triangle with a
+    /// corner outside either is clipped as `polygon_view` clips it. A
+    /// corner past `slots` is [`PipelineError::Range`] (the table checks
+    /// its indices before).
+    #[doc(hidden)]
+    pub fn mesh_triangle<S: PolygonSink>(
+        &mut self,
+        slots: &mut [ViewPoint],
+        corners: [usize; 3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        let s = &mut self.stats;
+        s.faces_in = s.faces_in.wrapping_add(1);
+        let r = self.triangle(slots, corners, color, sink);
+        let s = &mut self.stats;
+        let counter = match r {
+            Ok(Outcome::Emitted) => &mut s.emitted,
+            Ok(Outcome::Culled) => &mut s.culled,
+            Ok(Outcome::ClippedAway | Outcome::Empty) => &mut s.clipped_away,
+            Err(_) => &mut s.rejected,
+        };
+        *counter = counter.wrapping_add(1);
+        r
+    }
+
+    /// The body of [`mesh_triangle`](Self::mesh_triangle): `run`'s stages
+    /// for three points, with no copy of them where no clip is needed.
+    #[inline(always)]
+    fn triangle<S: PolygonSink>(
+        &self,
+        slots: &mut [ViewPoint],
+        corners: [usize; 3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        let mut v = [[0i64; 3]; 3];
+        for (w, &i) in v.iter_mut().zip(&corners) {
+            let p = slots.get(i).and_then(ViewPoint::raw);
+            *w = p.ok_or(PipelineError::Range)?.map(i64::from);
+        }
+        // As `run` culls and lights a triangle.
+        let n = cull::normal(v[0], v[1], v[2]);
+        if !cull::is_front_triangle(&self.projection, v[0], n) {
+            return Ok(Outcome::Culled);
+        }
+        let base = color;
+        let color = light::shade(color, n, self.light_view, self.light.percent());
+        let (near, far) = (
+            self.projection.near_raw() as i64,
+            self.projection.far_raw() as i64,
+        );
+        // Inside the depth range and the window, the clips change nothing
+        // and the polygon is the corners' output vertices.
+        let mut out = [Vertex3::default(); 3];
+        let mut inside = v.iter().all(|w| near <= w[2] && w[2] <= far);
+        if inside {
+            for k in 0..3 {
+                out[k] = match slots.get(corners[k]).and_then(ViewPoint::screen) {
+                    Some(o) => o,
+                    None => {
+                        let q = self.projection.project(v[k], &self.viewport);
+                        let mut codes = Outcodes::EMPTY;
+                        codes.add(&q, &self.viewport);
+                        if !codes.is_inside() {
+                            inside = false;
+                            break;
+                        }
+                        let o = project::to_vertex3(q);
+                        if let Some(slot) = slots.get_mut(corners[k]) {
+                            slot.keep_screen(o);
+                        }
+                        o
+                    }
+                };
+            }
+        }
+        if !inside {
+            // A clip is needed: the general stages from the points (the
+            // cull and the light again, on this rare path).
+            return self.clipped_triangle(v, base, sink);
+        }
+        // Three vertices have an area exactly when they are not on one
+        // line (two equal ones are): `has_area` of what `run` would
+        // have left after dropping repeated vertices.
+        let d = |q: Vertex3| {
+            (
+                q.x.units() as i64 - out[0].x.units() as i64,
+                q.y.units() as i64 - out[0].y.units() as i64,
+            )
+        };
+        let ((ax, ay), (bx, by)) = (d(out[1]), d(out[2]));
+        if ax * by - ay * bx == 0 {
+            return Ok(Outcome::ClippedAway);
+        }
+        sink.polygon(&out, color, false)
+            .map_err(PipelineError::Sink)?;
+        Ok(Outcome::Emitted)
+    }
+
+    /// A mesh triangle that needs a clip: `run` of its view-space points
+    /// `v`, unlit colour `color`. Out of line and cold, so that the
+    /// triangles that need none do not carry its frame.
+    #[cold]
+    #[inline(never)]
+    fn clipped_triangle<S: PolygonSink>(
+        &self,
+        v: [[i64; 3]; 3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        let points = v.map(|w| Some(w.map(|c| c as i32)));
+        self.run(points.into_iter(), color, sink)
     }
 
     fn run<I: ExactSizeIterator<Item = Option<[i32; 3]>>, S: PolygonSink>(
@@ -656,6 +869,61 @@ mod tests {
             p.polygon(&[P(0, 0, 10)], Rgb888::GREEN, &mut sink),
             Ok(Outcome::ClippedAway)
         );
+    }
+
+    #[test]
+    fn a_mesh_triangle_is_polygon_view_with_or_without_kept_vertices() {
+        // Random triangles of few points (so that they share corners),
+        // inside the window, across its sides, the near and far planes
+        // and behind the eye; each through `polygon_view` and twice
+        // through `mesh_triangle` (the second time from the kept output
+        // vertices), in both projections.
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move |n: i32| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % n as u64) as i32
+        };
+        let q = Q16::from_int;
+        let ortho = Orthographic::new(q(10), q(1), q(100)).unwrap();
+        for projection in [*pipe().projection(), ortho.into()] {
+            let mut p = pipe();
+            p.set_projection(projection);
+            let mut q = pipe();
+            q.set_projection(projection);
+            let mut slots = [ViewPoint::EMPTY; 12];
+            for s in slots.iter_mut() {
+                let z = rnd(130 << 16) - (10 << 16);
+                let xy = |r: &mut dyn FnMut(i32) -> i32| r(120 << 16) - (60 << 16);
+                *s = ViewPoint::new(Some([xy(&mut rnd), xy(&mut rnd), z]));
+            }
+            slots[11] = ViewPoint::EMPTY;
+            for _ in 0..4000 {
+                let c = [rnd(12), rnd(12), rnd(12)].map(|i| i as usize);
+                let points = c.map(|i| slots[i].raw());
+                let (mut a, mut b, mut k) =
+                    (Collect::default(), Collect::default(), Collect::default());
+                let want = p.polygon_view(points.into_iter(), Rgb888::RED, &mut a);
+                let got = q.mesh_triangle(&mut slots, c, Rgb888::RED, &mut b);
+                let kept = q.mesh_triangle(&mut slots, c, Rgb888::RED, &mut k);
+                assert_eq!(got, want, "{points:?}");
+                assert_eq!(kept, want, "{points:?}");
+                assert_eq!(b.polys, a.polys, "{points:?}");
+                assert_eq!(k.polys, a.polys, "{points:?}");
+            }
+            let s = p.stats();
+            let t = q.stats();
+            assert_eq!(s.faces_in * 2, t.faces_in);
+            assert_eq!(s.emitted * 2, t.emitted);
+            assert_eq!(s.culled * 2, t.culled);
+            assert_eq!(s.clipped_away * 2, t.clipped_away);
+            assert_eq!(s.rejected * 2, t.rejected);
+            assert!(
+                s.emitted > 100 && s.culled > 100 && s.clipped_away > 100,
+                "{s:?}"
+            );
+        }
     }
 
     #[test]

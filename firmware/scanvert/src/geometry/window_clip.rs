@@ -190,6 +190,12 @@ impl Outcodes {
         self.any |= code;
         self.all &= code;
     }
+
+    /// `true` when no vertex lies beyond a side: the clip changes nothing.
+    #[inline]
+    pub(super) fn is_inside(&self) -> bool {
+        self.any == 0
+    }
 }
 
 /// Clips the current polygon of `work`, whose vertices have the codes

@@ -147,6 +147,16 @@ pub(crate) trait Out {
         clip: &ClipRect,
         point_or_line: bool,
     ) -> Result<(), SceneError>;
+    /// A triangle, as [`polygon`](Out::polygon) takes it (not a point or
+    /// a line).
+    fn triangle(
+        &mut self,
+        v: [Vertex3; 3],
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
+        self.polygon(v, color, clip, false)
+    }
     /// A `poly3`: its vertices as [`polygon`](Out::polygon) when they are
     /// front-facing ([`front_facing`]); `Ok(false)`, nothing done, when
     /// they are not.
@@ -180,6 +190,9 @@ impl<O: Out> PolygonSink for Faces<'_, O> {
     type Error = SceneError;
     fn polygon(&mut self, v: &[Vertex3], color: Rgb888, two: bool) -> Result<(), SceneError> {
         let color = self.highlight.unwrap_or(color);
+        if let (false, &[a, b, c]) = (two, v) {
+            return self.out.triangle([a, b, c], color, &self.clip);
+        }
         self.out.polygon(v.iter().copied(), color, &self.clip, two)
     }
 }
@@ -335,7 +348,7 @@ pub(crate) fn face<const DEPTH: usize, const N: usize, O: Out>(
 pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
     out: &mut O,
-    table: &VertexTable<'_>,
+    table: &mut VertexTable<'_>,
     indices: impl ExactSizeIterator<Item = usize> + Clone,
     color: Rgb888,
     clip: ClipRect,
@@ -346,15 +359,16 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         clip,
         highlight,
     };
-    // A triangle's indices are read and checked once, its points taken
-    // on the way.
+    // A triangle's indices are checked once; its corners' output
+    // vertices are kept in the table for the faces after it.
     if indices.len() == 3 {
-        let mut points = [None; 3];
-        for (p, i) in points.iter_mut().zip(indices) {
-            *p = table.at(i)?.raw();
+        let mut corners = [0; 3];
+        for (c, i) in corners.iter_mut().zip(indices) {
+            *c = table.checked(i)?;
         }
+        let slots = table.for_pipeline(pipe);
         return pipe
-            .polygon_view(points.into_iter(), color, &mut sink)
+            .mesh_triangle(slots, corners, color, &mut sink)
             .map_err(pipeline_error);
     }
     table.check(indices.clone())?;

@@ -5,8 +5,15 @@
 //! as the most `v`s of one segment
 //! ([`Summary::vertices`](crate::display_list::Summary::vertices), which
 //! [`controller::needs`](crate::controller::needs) reports too).
+//!
+//! A triangle's corners that lie inside the depth range and the window
+//! keep their output vertex in their slots
+//! ([`Pipeline::mesh_triangle`]): each such vertex is projected once
+//! under one projection and window, whatever the faces through it. The
+//! table remembers which ([`Pipeline::screen_epoch`]) and forgets them
+//! when the pipeline's projection or window changed.
 
-use crate::geometry::ViewPoint;
+use crate::geometry::{Pipeline, ViewPoint};
 
 use super::SceneError;
 
@@ -20,12 +27,19 @@ use super::SceneError;
 pub struct VertexTable<'v> {
     slots: &'v mut [ViewPoint],
     len: usize,
+    /// The [`Pipeline::screen_epoch`] its vertices' kept output vertices
+    /// were made under.
+    epoch: u32,
 }
 
 impl<'v> VertexTable<'v> {
     /// An empty table in `slots`.
     pub fn new(slots: &'v mut [ViewPoint]) -> Self {
-        VertexTable { slots, len: 0 }
+        VertexTable {
+            slots,
+            len: 0,
+            epoch: 0,
+        }
     }
 
     /// A table with no slots, for a list or a segment without mesh.
@@ -33,6 +47,7 @@ impl<'v> VertexTable<'v> {
         VertexTable {
             slots: &mut [],
             len: 0,
+            epoch: 0,
         }
     }
 
@@ -73,13 +88,33 @@ impl<'v> VertexTable<'v> {
         self.slots[..self.len].get(index).copied()
     }
 
-    /// The vertex at 0-based `index`; [`SceneError::Index`] when the
-    /// table does not have it.
-    pub(crate) fn at(&self, index: usize) -> Result<ViewPoint, SceneError> {
-        self.get(index).ok_or(SceneError::Index {
-            index,
-            vertices: self.len,
-        })
+    /// `index` if the table has it, [`SceneError::Index`] if not.
+    #[inline]
+    pub(crate) fn checked(&self, index: usize) -> Result<usize, SceneError> {
+        if index < self.len {
+            Ok(index)
+        } else {
+            Err(SceneError::Index {
+                index,
+                vertices: self.len,
+            })
+        }
+    }
+
+    /// The table's vertices, for [`Pipeline::mesh_triangle`]: their kept
+    /// output vertices forgotten first when `pipe`'s projection or window
+    /// changed since they were made.
+    #[inline]
+    pub(crate) fn for_pipeline<const DEPTH: usize, const N: usize>(
+        &mut self,
+        pipe: &Pipeline<DEPTH, N>,
+    ) -> &mut [ViewPoint] {
+        let slots = &mut self.slots[..self.len];
+        if self.epoch != pipe.screen_epoch() {
+            self.epoch = pipe.screen_epoch();
+            slots.iter_mut().for_each(ViewPoint::forget_screen);
+        }
+        slots
     }
 
     /// The vertices at `indices`, for the pipeline; the first index the

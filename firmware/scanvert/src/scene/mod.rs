@@ -926,6 +926,18 @@ impl list::Out for SegmentOut<'_, '_> {
             .map_err(SceneError::Store)
     }
 
+    fn triangle(
+        &mut self,
+        v: [Vertex3; 3],
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
+        self.store
+            .add_triangle(self.segment, v, color, clip)
+            .map(|_| ())
+            .map_err(SceneError::Store)
+    }
+
     fn poly3(
         &mut self,
         vertices: &crate::display_list::Vertices3<'_>,
@@ -1068,7 +1080,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         }
         for face in indices.chunks(sides.max(1)) {
             let ix = face.iter().map(|&i| usize::from(i));
-            match list::mesh_face(pipeline, &mut out, &table, ix, color, clip, None)? {
+            match list::mesh_face(pipeline, &mut out, &mut table, ix, color, clip, None)? {
                 Outcome::Emitted => stats.faces += 1,
                 Outcome::Culled => stats.culled += 1,
                 _ => stats.clipped_away += 1,

@@ -682,6 +682,22 @@ impl<'a> TrapezoidStore<'a> {
         self.add_from(s, Source::Once(vertices.into_iter()), color, clip, lift)
     }
 
+    /// [`add_polygon`](Self::add_polygon) of a triangle: its outline
+    /// (Newell's sums, depth and column ranges) worked out from its three
+    /// vertices at once ([`Outline::of`]) before its edges are set up,
+    /// with no loop. The same trapezoids as `add_polygon`.
+    pub(crate) fn add_triangle(
+        &mut self,
+        s: usize,
+        v: [Vertex3; 3],
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<u32, StoreError> {
+        let it = v.into_iter();
+        let outline = Outline::of(it.clone()).map_err(StoreError::from);
+        self.add_from(s, Source::Outlined(it, outline), color, clip, 0)
+    }
+
     /// A `poly3`'s vertices into segment `s` as
     /// [`add_polygon`](Self::add_polygon) when they are front-facing
     /// ([`front_facing`]), which the first pass over them finds;
