@@ -299,6 +299,21 @@ pub struct PipelineStats {
     pub rejected: u32,
 }
 
+impl PipelineStats {
+    /// Counts one face given, and what became of it.
+    #[inline(always)]
+    fn count<E>(&mut self, r: &Result<Outcome, E>) {
+        self.faces_in = self.faces_in.wrapping_add(1);
+        let counter = match r {
+            Ok(Outcome::Emitted) => &mut self.emitted,
+            Ok(Outcome::Culled) => &mut self.culled,
+            Ok(Outcome::ClippedAway | Outcome::Empty) => &mut self.clipped_away,
+            Err(_) => &mut self.rejected,
+        };
+        *counter = counter.wrapping_add(1);
+    }
+}
+
 /// The geometry stage: a transform stack of depth `DEPTH`, a projection,
 /// a window, a light and a point/line thickness, delivering polygons of up
 /// to `N` vertices.
@@ -500,17 +515,8 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         if points.len() == 0 {
             return Ok(Outcome::Empty);
         }
-        let s = &mut self.stats;
-        s.faces_in = s.faces_in.wrapping_add(1);
         let r = self.run(points, color, sink);
-        let s = &mut self.stats;
-        let counter = match r {
-            Ok(Outcome::Emitted) => &mut s.emitted,
-            Ok(Outcome::Culled) => &mut s.culled,
-            Ok(Outcome::ClippedAway | Outcome::Empty) => &mut s.clipped_away,
-            Err(_) => &mut s.rejected,
-        };
-        *counter = counter.wrapping_add(1);
+        self.stats.count(&r);
         r
     }
 
@@ -543,17 +549,8 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         color: Rgb888,
         sink: &mut S,
     ) -> Result<Outcome, PipelineError<S::Error>> {
-        let s = &mut self.stats;
-        s.faces_in = s.faces_in.wrapping_add(1);
         let r = self.triangle(slots, corners, color, sink);
-        let s = &mut self.stats;
-        let counter = match r {
-            Ok(Outcome::Emitted) => &mut s.emitted,
-            Ok(Outcome::Culled) => &mut s.culled,
-            Ok(Outcome::ClippedAway | Outcome::Empty) => &mut s.clipped_away,
-            Err(_) => &mut s.rejected,
-        };
-        *counter = counter.wrapping_add(1);
+        self.stats.count(&r);
         r
     }
 
