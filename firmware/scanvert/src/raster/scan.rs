@@ -198,6 +198,18 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         if clip.is_empty() {
             return Ok(counts);
         }
+        let mut vertices = vertices.into_iter();
+        // A triangle (as its iterator says: exactly three vertices) goes
+        // straight to its two runs, with no edge slots, sort or walk. With
+        // fewer than three slots the walk's capacity error stands.
+        if !NONZERO && vertices.size_hint() == (3, Some(3)) && self.edges.len() >= 3 {
+            if let (Some(a), Some(b), Some(c)) = (vertices.next(), vertices.next(), vertices.next())
+            {
+                fill_triangle::<S, T>([a, b, c], clip, color, target, &mut counts)
+                    .map_err(FillError::Target)?;
+            }
+            return Ok(counts);
+        }
         let n = match build_edges::<NONZERO, S>(self.edges, vertices, clip) {
             Some(n) => n,
             None => {
@@ -577,6 +589,97 @@ impl Walk {
         (self.active, self.next, self.y) = (active, next, y);
         Ok(())
     }
+}
+
+/// The triangle `v` (even-odd), under the clip `clip` (cut to the
+/// target): the same pixels, counts and calls of the target as the walk
+/// of its three edges. Its edges by rows are the long one from the top
+/// vertex to the bottom one and the two short ones, whose rows are the
+/// long one's, split at the middle vertex: two runs of two edges.
+#[inline(always)]
+fn fill_triangle<S: Stepper, T: SpanTarget + ?Sized>(
+    v: [Vertex; 3],
+    clip: &ClipRect,
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    let [mut a, mut b, mut c] = v;
+    if a.y.units() > b.y.units() {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if b.y.units() > c.y.units() {
+        core::mem::swap(&mut b, &mut c);
+    }
+    if a.y.units() > b.y.units() {
+        core::mem::swap(&mut a, &mut b);
+    }
+    let rows = (clip.y0() as i32, clip.y1() as i32);
+    let Some(long) = S::new(a, c, rows) else {
+        return Ok(());
+    };
+    // The long edge's rows are the upper edge's, then the lower edge's
+    // (either may have none): the first run starts on the long edge's
+    // first row, the second on the row the first ends.
+    let (first, mut then) = match (S::new(a, b, rows), S::new(b, c, rows)) {
+        (Some(u), l) => (u, l),
+        (None, Some(l)) => (l, None),
+        (None, None) => return Ok(()),
+    };
+    let cx = (clip.x0() as i32, clip.x1() as i32);
+    let top = long.top();
+    let (mut pair, mut y) = ((long, first), top);
+    let mut c = (0u32, 0u32);
+    loop {
+        let stop = pair.0.end().min(pair.1.end());
+        two_edge_run::<S, T>(&mut pair, (y, stop), cx, color, target, &mut c)?;
+        y = stop;
+        let Some(next) = then.take() else {
+            break;
+        };
+        // The short edge ends here, the long one goes on a row.
+        if pair.0.end() == y {
+            pair.0 = next;
+            pair.1.step();
+        } else {
+            pair.1 = next;
+            pair.0.step();
+        }
+    }
+    let spans = (y - top) as u32 - c.0;
+    counts.spans = counts.spans.saturating_add(spans);
+    counts.pixels = counts.pixels.saturating_add(c.1);
+    Ok(())
+}
+
+/// The rows `y..stop` (`y < stop`) of the two edges `e` (at row `y`, both
+/// live to `stop`) outside a band walk: [`two_edge_rows`] without the clip
+/// where both edges stay inside its columns over them, else with it.
+#[inline(always)]
+fn two_edge_run<S: Stepper, T: SpanTarget + ?Sized>(
+    e: &mut (S, S),
+    rows: (i32, i32),
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: &mut (u32, u32),
+) -> Result<(), T::Error> {
+    let n = rows.1 - rows.0;
+    let inside = |e: &S| {
+        e.columns(n)
+            .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
+    };
+    let (mut ea, mut eb) = *e;
+    let (mut empty, mut pixels) = *counts;
+    let c = (&mut empty, &mut pixels);
+    let r = if inside(&ea) && inside(&eb) {
+        two_edge_rows::<false, false, _, T>((&mut ea, &mut eb), rows, cx, color, target, c)
+    } else {
+        two_edge_rows::<false, true, _, T>((&mut ea, &mut eb), rows, cx, color, target, c)
+    };
+    *e = (ea, eb);
+    *counts = (empty, pixels);
+    r
 }
 
 /// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
