@@ -621,65 +621,61 @@ fn fill_triangle<S: Stepper, T: SpanTarget + ?Sized>(
     // The long edge's rows are the upper edge's, then the lower edge's
     // (either may have none): the first run starts on the long edge's
     // first row, the second on the row the first ends.
-    let (first, mut then) = match (S::new(a, b, rows), S::new(b, c, rows)) {
+    let (first, then) = match (S::new(a, b, rows), S::new(b, c, rows)) {
         (Some(u), l) => (u, l),
         (None, Some(l)) => (l, None),
         (None, None) => return Ok(()),
     };
     let cx = (clip.x0() as i32, clip.x1() as i32);
+    // Every exact crossing lies between the leftmost and rightmost
+    // vertices: inside the clip columns there, no run needs the clip.
+    let (lo, hi) = (
+        a.x.units().min(b.x.units()).min(c.x.units()),
+        a.x.units().max(b.x.units()).max(c.x.units()),
+    );
+    let runs = (long, first, then);
+    if S::EXACT && ceil_px(lo - HALF) >= cx.0 && ceil_px(hi - HALF) <= cx.1 {
+        triangle_runs::<false, S, T>(runs, cx, color, target, counts)
+    } else {
+        triangle_runs::<true, S, T>(runs, cx, color, target, counts)
+    }
+}
+
+/// The two runs of a triangle ([`fill_triangle`]): the long edge beside
+/// the first short one, then beside the second, cut to the clip columns
+/// `cx` when `CLIP`.
+#[inline(always)]
+fn triangle_runs<const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
+    (long, first, mut then): (S, S, Option<S>),
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
     let top = long.top();
-    let (mut pair, mut y) = ((long, first), top);
-    let mut c = (0u32, 0u32);
+    let (mut ea, mut eb, mut y) = (long, first, top);
+    let (mut empty, mut pixels) = (0u32, 0u32);
     loop {
-        let stop = pair.0.end().min(pair.1.end());
-        two_edge_run::<S, T>(&mut pair, (y, stop), cx, color, target, &mut c)?;
+        let stop = ea.end().min(eb.end());
+        let c = (&mut empty, &mut pixels);
+        two_edge_rows::<false, CLIP, S, T>((&mut ea, &mut eb), (y, stop), cx, color, target, c)?;
         y = stop;
         let Some(next) = then.take() else {
             break;
         };
         // The short edge ends here, the long one goes on a row.
-        if pair.0.end() == y {
-            pair.0 = next;
-            pair.1.step();
+        if ea.end() == y {
+            ea = next;
+            eb.step();
         } else {
-            pair.1 = next;
-            pair.0.step();
+            eb = next;
+            ea.step();
         }
     }
-    let spans = (y - top) as u32 - c.0;
+    let spans = (y - top) as u32 - empty;
     counts.spans = counts.spans.saturating_add(spans);
-    counts.pixels = counts.pixels.saturating_add(c.1);
+    counts.pixels = counts.pixels.saturating_add(pixels);
     Ok(())
-}
-
-/// The rows `y..stop` (`y < stop`) of the two edges `e` (at row `y`, both
-/// live to `stop`) outside a band walk: [`two_edge_rows`] without the clip
-/// where both edges stay inside its columns over them, else with it.
-#[inline(always)]
-fn two_edge_run<S: Stepper, T: SpanTarget + ?Sized>(
-    e: &mut (S, S),
-    rows: (i32, i32),
-    cx: (i32, i32),
-    color: T::Color,
-    target: &mut T,
-    counts: &mut (u32, u32),
-) -> Result<(), T::Error> {
-    let n = rows.1 - rows.0;
-    let inside = |e: &S| {
-        e.columns(n)
-            .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
-    };
-    let (mut ea, mut eb) = *e;
-    let (mut empty, mut pixels) = *counts;
-    let c = (&mut empty, &mut pixels);
-    let r = if inside(&ea) && inside(&eb) {
-        two_edge_rows::<false, false, _, T>((&mut ea, &mut eb), rows, cx, color, target, c)
-    } else {
-        two_edge_rows::<false, true, _, T>((&mut ea, &mut eb), rows, cx, color, target, c)
-    };
-    *e = (ea, eb);
-    *counts = (empty, pixels);
-    r
 }
 
 /// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
