@@ -16,7 +16,8 @@
 //! rows in between form a run that needs no membership test. In a run of
 //! two active edges (every row of a convex polygon, most rows of others)
 //! both edges are stepped in locals, and the pair needs one compare and no
-//! sort.
+//! sort. A triangle is that from the start: its long edge beside one short
+//! edge, then beside the other, with no edge slots, sort or walk.
 //!
 //! Sorting the integer pixels instead of the exact crossings gives the same
 //! pixels: a pixel is covered when an odd number of crossings lie at or
@@ -106,6 +107,13 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// even-odd rule, writing only pixels inside `clip`. The target is told
     /// of the polygon first ([`SpanTarget::begin_polygon`]), whether or not
     /// any of it is drawn.
+    ///
+    /// A triangle whose iterator says so (a `size_hint` of exactly three,
+    /// as slices' and display lists' iterators give) is drawn without the
+    /// edge slots, as two runs of two edges: the same pixels, counts and
+    /// calls of the target. Only its first three vertices are read, so an
+    /// iterator that yields more than its `size_hint` allows is drawn as
+    /// the triangle of its first three.
     pub fn fill<I, T>(
         &mut self,
         vertices: I,
