@@ -16,7 +16,8 @@
 //! rows in between form a run that needs no membership test. In a run of
 //! two active edges (every row of a convex polygon, most rows of others)
 //! both edges are stepped in locals, and the pair needs one compare and no
-//! sort.
+//! sort. A triangle is that from the start: its long edge beside one short
+//! edge, then beside the other, with no edge slots, sort or walk.
 //!
 //! Sorting the integer pixels instead of the exact crossings gives the same
 //! pixels: a pixel is covered when an odd number of crossings lie at or
@@ -106,6 +107,13 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
     /// even-odd rule, writing only pixels inside `clip`. The target is told
     /// of the polygon first ([`SpanTarget::begin_polygon`]), whether or not
     /// any of it is drawn.
+    ///
+    /// A triangle whose iterator says so (a `size_hint` of exactly three,
+    /// as slices' and display lists' iterators give) is drawn without the
+    /// edge slots, as two runs of two edges: the same pixels, counts and
+    /// calls of the target. Only its first three vertices are read, so an
+    /// iterator that yields more than its `size_hint` allows is drawn as
+    /// the triangle of its first three.
     pub fn fill<I, T>(
         &mut self,
         vertices: I,
@@ -196,6 +204,18 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         let (w, h) = target.size();
         let clip = &clip.within(w, h);
         if clip.is_empty() {
+            return Ok(counts);
+        }
+        let mut vertices = vertices.into_iter();
+        // A triangle (as its iterator says: exactly three vertices) goes
+        // straight to its two runs, with no edge slots, sort or walk. With
+        // fewer than three slots the walk's capacity error stands.
+        if !NONZERO && vertices.size_hint() == (3, Some(3)) && self.edges.len() >= 3 {
+            if let (Some(a), Some(b), Some(c)) = (vertices.next(), vertices.next(), vertices.next())
+            {
+                fill_triangle::<S, T>([a, b, c], clip, color, target, &mut counts)
+                    .map_err(FillError::Target)?;
+            }
             return Ok(counts);
         }
         let n = match build_edges::<NONZERO, S>(self.edges, vertices, clip) {
@@ -577,6 +597,93 @@ impl Walk {
         (self.active, self.next, self.y) = (active, next, y);
         Ok(())
     }
+}
+
+/// The triangle `v` (even-odd), under the clip `clip` (cut to the
+/// target): the same pixels, counts and calls of the target as the walk
+/// of its three edges. Its edges by rows are the long one from the top
+/// vertex to the bottom one and the two short ones, whose rows are the
+/// long one's, split at the middle vertex: two runs of two edges.
+#[inline(always)]
+fn fill_triangle<S: Stepper, T: SpanTarget + ?Sized>(
+    v: [Vertex; 3],
+    clip: &ClipRect,
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    let [mut a, mut b, mut c] = v;
+    if a.y.units() > b.y.units() {
+        core::mem::swap(&mut a, &mut b);
+    }
+    if b.y.units() > c.y.units() {
+        core::mem::swap(&mut b, &mut c);
+    }
+    if a.y.units() > b.y.units() {
+        core::mem::swap(&mut a, &mut b);
+    }
+    let rows = (clip.y0() as i32, clip.y1() as i32);
+    let Some(long) = S::new(a, c, rows) else {
+        return Ok(());
+    };
+    // The long edge's rows are the upper edge's, then the lower edge's
+    // (either may have none): the first run starts on the long edge's
+    // first row, the second on the row the first ends.
+    let (first, then) = match (S::new(a, b, rows), S::new(b, c, rows)) {
+        (Some(u), l) => (u, l),
+        (None, Some(l)) => (l, None),
+        (None, None) => return Ok(()),
+    };
+    let cx = (clip.x0() as i32, clip.x1() as i32);
+    // Every exact crossing lies between the leftmost and rightmost
+    // vertices: inside the clip columns there, no run needs the clip.
+    let (lo, hi) = (
+        a.x.units().min(b.x.units()).min(c.x.units()),
+        a.x.units().max(b.x.units()).max(c.x.units()),
+    );
+    let runs = (long, first, then);
+    if S::EXACT && ceil_px(lo - HALF) >= cx.0 && ceil_px(hi - HALF) <= cx.1 {
+        triangle_runs::<false, S, T>(runs, cx, color, target, counts)
+    } else {
+        triangle_runs::<true, S, T>(runs, cx, color, target, counts)
+    }
+}
+
+/// The two runs of a triangle ([`fill_triangle`]): the long edge beside
+/// the first short one, then beside the second, cut to the clip columns
+/// `cx` when `CLIP`.
+#[inline(always)]
+fn triangle_runs<const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
+    (long, first, mut then): (S, S, Option<S>),
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    let top = long.top();
+    let (mut ea, mut eb, mut y) = (long, first, top);
+    let (mut empty, mut pixels) = (0u32, 0u32);
+    loop {
+        let stop = ea.end().min(eb.end());
+        let c = (&mut empty, &mut pixels);
+        two_edge_rows::<false, CLIP, S, T>((&mut ea, &mut eb), (y, stop), cx, color, target, c)?;
+        y = stop;
+        let Some(next) = then.take() else {
+            break;
+        };
+        // The short edge ends here, the long one goes on a row.
+        if ea.end() == y {
+            ea = next;
+            eb.step();
+        } else {
+            eb = next;
+            ea.step();
+        }
+    }
+    let spans = (y - top) as u32 - empty;
+    counts.spans = counts.spans.saturating_add(spans);
+    counts.pixels = counts.pixels.saturating_add(pixels);
+    Ok(())
 }
 
 /// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
