@@ -34,7 +34,10 @@
 //! edges' rows add up to twice the polygon's (so exactly two edges are
 //! active on every row), and hands over to the steps above where a band
 //! needs them (the two edges cross, or coincide) or a chain breaks,
-//! which then skip the trapezoids it has made (their first ones).
+//! which then skip the trapezoids it has made (their first ones). A
+//! triangle from the `poly3` and mesh adders is cut before that without
+//! the walk (`cut_triangle`: the long edge, one cross product, the
+//! split at the middle vertex's row), the walk's trapezoids again.
 //!
 //! The even-odd pairs of the exact crossings on a row are the pixel rule's
 //! spans, and sorting by the exact crossings keeps `c_left ≤ c_right` on
@@ -1195,7 +1198,7 @@ pub struct Polygon<'s> {
     edges: usize,
     plane: Option<Plane>,
     cols: (i32, i32),
-    /// Three vertices: [`Polygon::cut`] tries [`cut_triangle`] first.
+    /// Three vertices: [`Polygon::cut_triangles`] tries [`cut_triangle`] first.
     triangle: bool,
 }
 
@@ -1441,12 +1444,22 @@ impl<'s> Polygon<'s> {
     /// write a pixel in the clip columns (both edges the same, or wholly
     /// left or right of the columns) are not emitted.
     pub fn cut<E>(self, emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
-        self.cut_with(true, emit)
+        self.cut_with::<false, E>(true, emit)
+    }
+
+    /// [`Polygon::cut`], a triangle's trapezoids found by [`cut_triangle`]
+    /// (the same ones), other polygons' as `cut` finds them.
+    pub(crate) fn cut_triangles<E>(
+        self,
+        emit: impl FnMut(Side, Side) -> Result<(), E>,
+    ) -> Result<u32, E> {
+        self.cut_with::<true, E>(true, emit)
     }
 
     /// [`Polygon::cut`], trying the two chains' walk first when `chains`
-    /// (the tests compare both ways).
-    fn cut_with<E>(
+    /// (the tests compare both ways), and before it a triangle's cut when
+    /// `TRI`.
+    fn cut_with<const TRI: bool, E>(
         self,
         chains: bool,
         emit: impl FnMut(Side, Side) -> Result<(), E>,
@@ -1464,7 +1477,7 @@ impl<'s> Polygon<'s> {
         };
         if chains {
             // Nothing emitted when the triangle's cut declines.
-            if self.triangle && cut_triangle(slots, &mut c)? {
+            if TRI && self.triangle && cut_triangle(slots, &mut c)? {
                 return Ok(c.count);
             }
             if cut_chains(slots, Rows::of(slots), &mut c)? {
@@ -2330,7 +2343,7 @@ mod tests {
                 let mut k = 0;
                 let p = Polygon::load(slots, poly.iter().copied(), &clip).unwrap();
                 let got = p
-                    .cut_with(chains, |l, r| {
+                    .cut_with::<false, ()>(chains, |l, r| {
                         out[k] = (l, r);
                         k += 1;
                         Ok::<(), ()>(())
@@ -2448,7 +2461,7 @@ mod tests {
                 assert!(p.triangle || p.edges < 2);
                 p.triangle = triangle;
                 let got = p
-                    .cut(|l, r| {
+                    .cut_triangles(|l, r| {
                         out[k] = (l, r);
                         k += 1;
                         Ok::<(), ()>(())
