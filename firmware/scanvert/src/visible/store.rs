@@ -679,7 +679,7 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        self.add_from(s, Source::Once(vertices.into_iter()), color, clip, lift)
+        self.add_from::<_, false>(s, Source::Once(vertices.into_iter()), color, clip, lift)
     }
 
     /// [`add_polygon`](Self::add_polygon) of a triangle: its outline
@@ -695,7 +695,7 @@ impl<'a> TrapezoidStore<'a> {
     ) -> Result<u32, StoreError> {
         let it = v.into_iter();
         let outline = Outline::of(it.clone()).map_err(StoreError::from);
-        self.add_from(s, Source::Outlined(it, outline), color, clip, 0)
+        self.add_from::<_, true>(s, Source::Outlined(it, outline), color, clip, 0)
     }
 
     /// A `poly3`'s vertices into segment `s` as
@@ -713,12 +713,12 @@ impl<'a> TrapezoidStore<'a> {
         match Outline::of(it.clone()) {
             Ok(o) if !o.front() => Ok(false),
             Ok(o) => self
-                .add_from(s, Source::Outlined(it, Ok(o)), color, clip, 0)
+                .add_from::<_, true>(s, Source::Outlined(it, Ok(o)), color, clip, 0)
                 .map(|_| true),
             // Too many vertices: an error only for a drawn one.
             Err(e) => match front_facing(vertices) {
                 true => self
-                    .add_from(s, Source::Outlined(it, Err(e.into())), color, clip, 0)
+                    .add_from::<_, true>(s, Source::Outlined(it, Err(e.into())), color, clip, 0)
                     .map(|_| true),
                 false => Ok(false),
             },
@@ -726,9 +726,12 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     /// [`add_polygon`](Self::add_polygon) of the vertices of `src`, the
-    /// plane moved `lift` units toward the eye.
+    /// plane moved `lift` units toward the eye; a triangle cut without the
+    /// chains' walk when `TRI` ([`Polygon::cut_triangles`]: the adders of
+    /// `poly3`s and mesh triangles; the general adder's code is left
+    /// without it).
     #[inline(always)]
-    fn add_from<I>(
+    fn add_from<I, const TRI: bool>(
         &mut self,
         s: usize,
         src: Source<I>,
@@ -739,7 +742,7 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: Iterator<Item = Vertex3>,
     {
-        match self.add_inner(s, src, color, clip, lift) {
+        match self.add_inner::<I, TRI>(s, src, color, clip, lift) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -751,7 +754,7 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     #[inline(always)]
-    fn add_inner<I>(
+    fn add_inner<I, const TRI: bool>(
         &mut self,
         s: usize,
         src: Source<I>,
@@ -823,7 +826,10 @@ impl<'a> TrapezoidStore<'a> {
             segment: s as u16,
             clip,
         };
-        let n = poly.cut(|l, r| add.trapezoid(l, r));
+        let n = match TRI {
+            true => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
+            false => poly.cut(|l, r| add.trapezoid(l, r)),
+        };
         (self.free_trap, self.unused_trap) = (add.free, add.unused);
         (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
         (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);

@@ -34,7 +34,10 @@
 //! edges' rows add up to twice the polygon's (so exactly two edges are
 //! active on every row), and hands over to the steps above where a band
 //! needs them (the two edges cross, or coincide) or a chain breaks,
-//! which then skip the trapezoids it has made (their first ones).
+//! which then skip the trapezoids it has made (their first ones). A
+//! triangle from the `poly3` and mesh adders is cut before that without
+//! the walk (`cut_triangle`: the long edge, one cross product, the
+//! split at the middle vertex's row), the walk's trapezoids again.
 //!
 //! The even-odd pairs of the exact crossings on a row are the pixel rule's
 //! spans, and sorting by the exact crossings keeps `c_left ≤ c_right` on
@@ -1195,6 +1198,8 @@ pub struct Polygon<'s> {
     edges: usize,
     plane: Option<Plane>,
     cols: (i32, i32),
+    /// Three vertices: [`Polygon::cut_triangles`] tries [`cut_triangle`] first.
+    triangle: bool,
 }
 
 /// What [`cut_chains`] needs of the rows of the edges set up: the first
@@ -1301,6 +1306,7 @@ impl<'s> Polygon<'s> {
             edges: 0,
             plane: None,
             cols: (clip.x0() as i32, clip.x1() as i32),
+            triangle: false,
         }
     }
 
@@ -1324,6 +1330,7 @@ impl<'s> Polygon<'s> {
         // unless the tilt exceeds `lift`; moved, it lies in
         // `[z_min − 2·lift, z_max]`.
         let (zlo, zhi) = (sums.z.0 - lift as i32, sums.z.1 + lift as i32);
+        self.triangle = sums.n == 3;
         self.plane = match sums.n {
             ..=3 => sums.finish(),
             _ if sums.within => sums.finish(),
@@ -1437,12 +1444,22 @@ impl<'s> Polygon<'s> {
     /// write a pixel in the clip columns (both edges the same, or wholly
     /// left or right of the columns) are not emitted.
     pub fn cut<E>(self, emit: impl FnMut(Side, Side) -> Result<(), E>) -> Result<u32, E> {
-        self.cut_with(true, emit)
+        self.cut_with::<false, E>(true, emit)
+    }
+
+    /// [`Polygon::cut`], a triangle's trapezoids found by [`cut_triangle`]
+    /// (the same ones), other polygons' as `cut` finds them.
+    pub(crate) fn cut_triangles<E>(
+        self,
+        emit: impl FnMut(Side, Side) -> Result<(), E>,
+    ) -> Result<u32, E> {
+        self.cut_with::<true, E>(true, emit)
     }
 
     /// [`Polygon::cut`], trying the two chains' walk first when `chains`
-    /// (the tests compare both ways).
-    fn cut_with<E>(
+    /// (the tests compare both ways), and before it a triangle's cut when
+    /// `TRI`.
+    fn cut_with<const TRI: bool, E>(
         self,
         chains: bool,
         emit: impl FnMut(Side, Side) -> Result<(), E>,
@@ -1459,6 +1476,10 @@ impl<'s> Polygon<'s> {
             skip: 0,
         };
         if chains {
+            // Nothing emitted when the triangle's cut declines.
+            if TRI && self.triangle && cut_triangle(slots, &mut c)? {
+                return Ok(c.count);
+            }
             if cut_chains(slots, Rows::of(slots), &mut c)? {
                 return Ok(c.count);
             }
@@ -1834,6 +1855,95 @@ where
     }
     if let Some((ol, or, start)) = open {
         c.close(&slots[ol].ends, &slots[or].ends, start, y)?;
+    }
+    Ok(true)
+}
+
+/// [`cut_chains`]'s cut of a triangle, from the edges set up (`slots`,
+/// in polygon order) without the walk: `Ok(false)`, with nothing
+/// emitted, where the walk would not finish alone (two edges that
+/// coincide or are collinear, a band of one row through the top vertex)
+/// or the slots are not what a triangle sets up; the caller then cuts
+/// as before.
+///
+/// Every row of a triangle is crossed by two of its edges. Two set up
+/// share the rows and a vertex: one band, ordered by [`band_order`].
+/// Three are the long edge from the top vertex T to the bottom one B,
+/// which crosses the first and the last row, the edge T → M, which
+/// crosses the first, and M → B, which crosses the last: two bands,
+/// split at the row where T → M ends and M → B starts. On the first,
+/// T → M is left of T → B when `S = (M − T) × (B − T)` is negative
+/// (edges from one top vertex: [`band_order`]); on the second, M → B
+/// and T → B share B and their cross product is `−S`, so M → B is left
+/// of T → B when T → M was. One product for both bands.
+#[inline]
+fn cut_triangle<F, E>(slots: &[EdgeSlot], c: &mut Closer<F>) -> Result<bool, E>
+where
+    F: FnMut(Side, Side) -> Result<(), E>,
+{
+    let (tm, mb, tb) = match slots {
+        [p, q] => {
+            if p.top != q.top || p.end != q.end {
+                return Ok(false);
+            }
+            let Some(p_left) = band_order(p, q, p.top, p.end - 1) else {
+                return Ok(false);
+            };
+            let (l, r) = if p_left { (p, q) } else { (q, p) };
+            c.close(&l.ends, &r.ends, p.top, p.end)?;
+            return Ok(true);
+        }
+        // The long edge is the one of the three whose rows hold the
+        // others'; the edge after it in polygon order starts where it
+        // starts when the polygon is walked one way, ends where it ends
+        // the other way.
+        [e0, e1, e2] => {
+            let long = |t: &EdgeSlot, o: &EdgeSlot, p: &EdgeSlot| {
+                t.top <= o.top.min(p.top) && t.end >= o.end.max(p.end)
+            };
+            let (tb, x, y) = if long(e0, e1, e2) {
+                (e0, e1, e2)
+            } else if long(e1, e2, e0) {
+                (e1, e2, e0)
+            } else {
+                (e2, e0, e1)
+            };
+            if x.top == tb.top {
+                (x, y, tb)
+            } else {
+                (y, x, tb)
+            }
+        }
+        _ => return Ok(false),
+    };
+    let (t, m, b) = (&tb.ends, &tm.ends, &mb.ends);
+    // What a triangle's edges are, checked (a few compares) rather than
+    // assumed.
+    if tm.top != tb.top
+        || tm.end != mb.top
+        || mb.end != tb.end
+        || (m.x0, m.y0) != (t.x0, t.y0)
+        || (b.x1, b.y1) != (t.x1, t.y1)
+        || (m.x1, m.y1) != (b.x0, b.y0)
+    {
+        return Ok(false);
+    }
+    // Each difference below 2¹⁶, each product below 2³².
+    let d = |x0: i16, y0: i16, x1: i16, y1: i16| (x1 as i64 - x0 as i64, y1 as i64 - y0 as i64);
+    let (dxm, dym) = d(t.x0, t.y0, m.x1, m.y1);
+    let (dxb, dyb) = d(t.x0, t.y0, t.x1, t.y1);
+    let s = dxm * dyb - dxb * dym;
+    // The first band's last row through T: both crossings are T on it.
+    let split = tm.end;
+    if s == 0 || (split - 1) * ONE + HALF == t.y0 as i32 {
+        return Ok(false);
+    }
+    if s < 0 {
+        c.close(m, t, tb.top, split)?;
+        c.close(b, t, split, tb.end)?;
+    } else {
+        c.close(t, m, tb.top, split)?;
+        c.close(t, b, split, tb.end)?;
     }
     Ok(true)
 }
@@ -2233,7 +2343,7 @@ mod tests {
                 let mut k = 0;
                 let p = Polygon::load(slots, poly.iter().copied(), &clip).unwrap();
                 let got = p
-                    .cut_with(chains, |l, r| {
+                    .cut_with::<false, ()>(chains, |l, r| {
                         out[k] = (l, r);
                         k += 1;
                         Ok::<(), ()>(())
@@ -2266,6 +2376,124 @@ mod tests {
         assert!(walked * 3 > total, "{walked} of {total}");
         // And the walk gave up after emitting, so the sweep skipped some.
         assert!(gave_up_late > 50, "{gave_up_late}");
+    }
+
+    /// A triangle's cut ([`cut_triangle`]) emits the walk's trapezoids
+    /// ([`cut_chains`], then the sweep where it stops), the same records
+    /// in the same order, or declines with nothing emitted: over the
+    /// whole `i16` range and near the frame, with vertices on row
+    /// centres, two or three on one row, repeated or collinear ones,
+    /// both windings, and clips that cut the rows and the columns.
+    #[test]
+    fn triangle_cut_is_the_walks() {
+        let mut rng = Rng(0x7c07_3a11);
+        let mut slots = [EdgeSlot::EMPTY; 4];
+        let (mut direct, mut declined, mut none) = (0u32, 0u32, 0u32);
+        for case in 0..300_000u32 {
+            let big = case % 5 == 1;
+            let (fw, fh) = if big {
+                (4096u16, 4096u16)
+            } else {
+                (W as u16, H as u16)
+            };
+            let mut r = |axis: i32| -> i32 {
+                match case % 5 {
+                    // The whole range.
+                    0 | 1 => rng.range(-32768, 32768),
+                    // Near the frame, any unit.
+                    2 => rng.range(-64, axis * 16 + 64),
+                    // Near the frame, on a coarse grid: shared rows and
+                    // columns, row centres.
+                    3 => rng.range(-2, axis + 2) * 16 + [0, 8][rng.below(2) as usize],
+                    // Small, around one row centre.
+                    _ => 16 * (axis / 2) + 8 + rng.range(-20, 21),
+                }
+            };
+            let mut p = [(0i32, 0i32); 3];
+            for v in p.iter_mut() {
+                *v = (r(W), r(H));
+            }
+            match case % 7 {
+                // Two on one row.
+                0 => p[1].1 = p[0].1,
+                // A vertex repeated.
+                1 => p[2] = p[rng.below(2) as usize],
+                // Collinear: the third on the line through the others.
+                2 => {
+                    let (dx, dy) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
+                    let k = rng.range(-2, 3);
+                    let q = (p[0].0 + k * dx, p[0].1 + k * dy);
+                    if (-32768..32768).contains(&q.0) && (-32768..32768).contains(&q.1) {
+                        p[2] = q;
+                    }
+                }
+                // The top on a row centre.
+                3 => p[0].1 = p[0].1 - p[0].1.rem_euclid(16) + 8,
+                // All on one row.
+                4 => (p[1].1, p[2].1) = (p[0].1, p[0].1),
+                _ => {}
+            }
+            let poly = p.map(|(x, y)| v3(x, y, rng.range(-32768, 32768)));
+            let clip = if case % 3 == 0 {
+                let (x0, y0) = (rng.below(fw as u32) as i16, rng.below(fh as u32) as i16);
+                ClipRect::from_window(
+                    ClipWindow {
+                        x0,
+                        y0,
+                        x1: x0.saturating_add(rng.below(fw as u32) as i16),
+                        y1: y0.saturating_add(rng.below(fh as u32) as i16),
+                    },
+                    fw,
+                    fh,
+                )
+            } else {
+                ClipRect::full(fw, fh)
+            };
+            let run = |triangle: bool, slots: &mut [EdgeSlot]| {
+                let side = Side {
+                    ends: Ends::default(),
+                    top: 0,
+                    end: 0,
+                };
+                let mut out = [(side, side); 8];
+                let mut k = 0;
+                let mut p = Polygon::load(slots, poly.iter().copied(), &clip).unwrap();
+                assert!(p.triangle || p.edges < 2);
+                p.triangle = triangle;
+                let got = p
+                    .cut_triangles(|l, r| {
+                        out[k] = (l, r);
+                        k += 1;
+                        Ok::<(), ()>(())
+                    })
+                    .unwrap();
+                assert_eq!(got as usize, k);
+                (out, k)
+            };
+            let (want, nw) = run(false, &mut slots);
+            let (got, ng) = run(true, &mut slots);
+            assert_eq!(&got[..ng], &want[..nw], "case {case}: {poly:?} {clip:?}");
+            // How often the triangle's cut decides alone.
+            let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+            if p.edges < 2 {
+                none += 1;
+                continue;
+            }
+            let mut c = Closer {
+                emit: |_: Side, _: Side| Ok::<(), ()>(()),
+                cols: p.cols,
+                count: 0,
+                skip: 0,
+            };
+            if cut_triangle(&p.slots[..p.edges], &mut c).unwrap() {
+                direct += 1;
+            } else {
+                assert_eq!(c.count, 0);
+                declined += 1;
+            }
+        }
+        assert!(direct > 100_000, "{direct} {declined} {none}");
+        assert!(declined > 5_000, "{direct} {declined} {none}");
     }
 
     /// `(1024·cos, 1024·sin)` of `a` tenths of a degree, near enough for
