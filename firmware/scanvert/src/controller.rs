@@ -87,7 +87,7 @@ use crate::raster::draw::Draw;
 use crate::raster::line;
 use crate::raster::scan::{FillError, Rasterizer};
 use crate::scene::label::{self, LabelError};
-use crate::scene::list::{execute, Out};
+use crate::scene::list::{execute, MeshCounts, Out};
 use crate::scene::VertexTable;
 use crate::scene::{
     list_pipeline, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
@@ -996,7 +996,8 @@ fn build_layer<'s, 't>(
     let mut st = ListState::new(list.width(), list.height());
     let mut b = scene.open(0).map_err(|e| error_at(first, e))?;
     let mut table = VertexTable::new(vertices);
-    for (offset, cmd) in list.commands() {
+    let mut cmds = list.commands();
+    while let Some((offset, cmd)) = cmds.next() {
         if let (Some(e), true) = (window, is_scene_command(&cmd)) {
             return Err(error_at(offset, e));
         }
@@ -1007,7 +1008,17 @@ fn build_layer<'s, 't>(
             .command_in(cmd, &mut st, &mut table)
             .map_err(|e| error_at(offset, e))?
         {
-            Executed::Vertex => stats.vertices += 1,
+            Executed::Vertex => {
+                stats.vertices += 1;
+                // The `v`s and `f`s after a `v` in one loop.
+                let mut n = MeshCounts::default();
+                let r = b.mesh_run(&mut cmds, &st, &mut table, &mut n);
+                stats.vertices += n.vertices;
+                stats.faces += n.faces;
+                stats.culled += n.culled;
+                stats.clipped_away += n.clipped_away;
+                r.map_err(|(offset, e)| error_at(offset, e))?;
+            }
             Executed::Poly3 { drawn: true } => stats.poly3 += 1,
             Executed::Poly3 { drawn: false } | Executed::Face(Outcome::Culled) => stats.culled += 1,
             Executed::Face(Outcome::Emitted) => stats.faces += 1,
