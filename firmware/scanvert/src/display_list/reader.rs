@@ -918,6 +918,20 @@ impl<'a, V: FromBytes + 'a> Packed<'a, V> {
     }
 }
 
+impl Packed<'_, u16> {
+    /// An `f`'s three indices when it has exactly three (a triangle),
+    /// read from the list's bytes at once.
+    #[inline(always)]
+    pub fn triangle(&self) -> Option<[u16; 3]> {
+        let b: &[u8; 6] = self.bytes.try_into().ok()?;
+        Some([
+            u16::from_le_bytes([b[0], b[1]]),
+            u16::from_le_bytes([b[2], b[3]]),
+            u16::from_le_bytes([b[4], b[5]]),
+        ])
+    }
+}
+
 impl<'a, V: FromBytes + 'a> IntoIterator for Packed<'a, V> {
     type Item = V;
     type IntoIter = Items<'a, V>;

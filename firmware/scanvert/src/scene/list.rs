@@ -360,9 +360,17 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
                 counts.vertices += 1;
             }
             Command::MeshFace(ix) => {
-                let indices = ix.iter().map(usize::from);
-                let outcome = mesh_face(pipe, out, table, indices, color, clip, highlight)
-                    .map_err(|e| (offset, e))?;
+                let outcome = match ix.triangle() {
+                    Some(t) => {
+                        let corners = t.map(usize::from);
+                        mesh_triangle(pipe, out, table, corners, color, clip, highlight)
+                    }
+                    None => {
+                        let indices = ix.iter().map(usize::from);
+                        mesh_face(pipe, out, table, indices, color, clip, highlight)
+                    }
+                }
+                .map_err(|e| (offset, e))?;
                 match outcome {
                     Outcome::Emitted => counts.faces += 1,
                     Outcome::Culled => counts.culled += 1,
@@ -416,21 +424,43 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         clip,
         highlight,
     };
-    // A triangle's indices are checked once; its corners' output
-    // vertices are kept in the table for the faces after it.
     if indices.len() == 3 {
         let mut corners = [0; 3];
         for (c, i) in corners.iter_mut().zip(indices) {
-            *c = table.checked(i)?;
+            *c = i;
         }
-        let slots = table.for_pipeline(pipe);
-        return pipe
-            .mesh_triangle(slots, corners, color, &mut sink)
-            .map_err(pipeline_error);
+        return mesh_triangle(pipe, sink.out, table, corners, color, clip, highlight);
     }
     table.check(indices.clone())?;
     let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
     pipe.polygon_view(points, color, &mut sink)
+        .map_err(pipeline_error)
+}
+
+/// A triangle through vertices `corners` (0-based) of `table` into
+/// `out`, as [`mesh_face`] draws it. Its indices are checked once; its
+/// corners' output vertices are kept in the table for the faces after
+/// it. Out of line for the reason `face` is.
+#[inline(never)]
+pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
+    pipe: &mut Pipeline<DEPTH, N>,
+    out: &mut O,
+    table: &mut VertexTable<'_>,
+    corners: [usize; 3],
+    color: Rgb888,
+    clip: ClipRect,
+    highlight: Option<Rgb888>,
+) -> Result<Outcome, SceneError> {
+    let mut sink = Faces {
+        out,
+        clip,
+        highlight,
+    };
+    for &c in &corners {
+        table.checked(c)?;
+    }
+    let slots = table.for_pipeline(pipe);
+    pipe.mesh_triangle(slots, corners, color, &mut sink)
         .map_err(pipeline_error)
 }
 
