@@ -78,7 +78,7 @@
 //! [`Builder::command`]: crate::scene::Builder::command
 
 use crate::color::ListColor;
-use crate::display_list::{Command, DisplayList, Summary};
+use crate::display_list::{Command, Commands, DisplayList, Summary};
 use crate::geometry::project::WINDOW_MAX;
 use crate::geometry::{Outcome, Pipeline, ViewPoint};
 use crate::port::SpanTarget;
@@ -90,7 +90,7 @@ use crate::scene::label::{self, LabelError};
 use crate::scene::list::{execute, MeshCounts, Out};
 use crate::scene::VertexTable;
 use crate::scene::{
-    list_pipeline, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
+    list_pipeline, Builder, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
 };
 use crate::visible::store::StoreError;
 use crate::visible::trapezoid::{EdgeSlot, Polygon};
@@ -1004,30 +1004,58 @@ fn build_layer<'s, 't>(
         if let Command::Segment(id) = cmd {
             st.enter_segment(crate::scene::list::attributes(list, id));
         }
-        match b
+        let executed = b
             .command_in(cmd, &mut st, &mut table)
-            .map_err(|e| error_at(offset, e))?
-        {
+            .map_err(|e| error_at(offset, e))?;
+        let mesh = match executed {
             Executed::Vertex => {
                 stats.vertices += 1;
-                // The `v`s and `f`s after a `v` in one loop.
-                let mut n = MeshCounts::default();
-                let r = b.mesh_run(&mut cmds, &st, &mut table, &mut n);
-                stats.vertices += n.vertices;
-                stats.faces += n.faces;
-                stats.culled += n.culled;
-                stats.clipped_away += n.clipped_away;
-                r.map_err(|(offset, e)| error_at(offset, e))?;
+                true
             }
-            Executed::Poly3 { drawn: true } => stats.poly3 += 1,
-            Executed::Poly3 { drawn: false } | Executed::Face(Outcome::Culled) => stats.culled += 1,
-            Executed::Face(Outcome::Emitted) => stats.faces += 1,
-            Executed::Face(Outcome::ClippedAway) => stats.clipped_away += 1,
-            Executed::Face(Outcome::Empty) | Executed::State | Executed::Label { .. } => {}
+            Executed::Poly3 { drawn: true } => {
+                stats.poly3 += 1;
+                false
+            }
+            Executed::Poly3 { drawn: false } => {
+                stats.culled += 1;
+                false
+            }
+            Executed::Face(o) => {
+                match o {
+                    Outcome::Culled => stats.culled += 1,
+                    Outcome::Emitted => stats.faces += 1,
+                    Outcome::ClippedAway => stats.clipped_away += 1,
+                    Outcome::Empty => {}
+                }
+                matches!(cmd, Command::MeshFace(_))
+            }
+            Executed::State | Executed::Label { .. } => false,
+        };
+        // The `v`s and `f`s after a `v` or an `f`, in one loop.
+        if mesh {
+            mesh_run(&mut b, &mut cmds, (&st, &mut table), stats)?;
         }
     }
     stats.trapezoids = scene.store().counters().trapezoids;
     Ok(scene)
+}
+
+/// The `v`s and `f`s that come next in `cmds`, into the layer's segment
+/// `b` in one loop ([`Builder::mesh_run`]), counted in `stats`.
+#[inline(never)]
+fn mesh_run(
+    b: &mut Builder<'_, '_, LIST_STACK, LIST_VERTICES>,
+    cmds: &mut Commands<'_>,
+    (st, table): (&ListState, &mut VertexTable<'_>),
+    stats: &mut RenderStats,
+) -> Result<(), RenderError<core::convert::Infallible>> {
+    let mut n = MeshCounts::default();
+    let r = b.mesh_run(cmds, st, table, &mut n);
+    stats.vertices += n.vertices;
+    stats.faces += n.faces;
+    stats.culled += n.culled;
+    stats.clipped_away += n.clipped_away;
+    r.map_err(|(offset, e)| error_at(offset, e))
 }
 
 #[cfg(test)]
