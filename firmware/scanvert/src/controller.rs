@@ -1138,6 +1138,105 @@ mod tests {
         w.finish().len()
     }
 
+    /// A list of three segments through `v`/`f` (`mesh`) or the same
+    /// faces through `face`: segment 0 with faces of both windings, a
+    /// colour change between its `f`s, a point; segment 1
+    /// hidden; segment 2 highlighted.
+    fn mesh_or_faces(bytes: &mut [u8], mesh: bool) -> usize {
+        let p = |x: i16, y: i16| crate::geometry::Point3::from_int(x, y, -10);
+        let segments: [(&[_], &[&[u16]]); 3] = [
+            (
+                &[p(-3, -3), p(3, -3), p(3, 3), p(-3, 3)],
+                &[&[0, 1, 2], &[0, 2, 1], &[], &[0, 2, 3], &[1]],
+            ),
+            (&[p(-2, -2), p(2, -2), p(0, 2)], &[&[0, 1, 2]]),
+            (&[p(-1, -4), p(1, -4), p(0, -2)], &[&[0, 1, 2]]),
+        ];
+        list(bytes, |w| {
+            w.hide(1).unwrap();
+            w.highlight(2, Some(Rgb888::BLUE)).unwrap();
+            w.color(Rgb888::RED).unwrap();
+            for (id, (points, faces)) in segments.iter().enumerate() {
+                w.segment(id as u16).unwrap();
+                if mesh {
+                    points.iter().for_each(|&q| w.mesh_vertex(q).unwrap());
+                }
+                for f in faces.iter() {
+                    match (f.is_empty(), mesh) {
+                        (true, _) => w.color(Rgb888::GREEN).unwrap(),
+                        (false, true) => w.mesh_face(f.iter().copied()).unwrap(),
+                        (false, false) => {
+                            w.face(f.iter().map(|&i| points[usize::from(i)])).unwrap()
+                        }
+                    }
+                }
+            }
+        })
+    }
+
+    #[test]
+    fn a_mesh_run_draws_and_counts_what_its_faces_do() {
+        let render = |mesh: bool| {
+            let mut bytes = [0u8; 1024];
+            let n = mesh_or_faces(&mut bytes, mesh);
+            let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+            let mut slots = [ViewPoint::EMPTY; 4];
+            let mut m = Mem::new();
+            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let r = Controller::new(Rasterizer::new(&mut m.edges))
+                .with_3d(m.three.as_memory())
+                .with_vertices(&mut slots)
+                .render(&l, &mut fb)
+                .unwrap();
+            (r, px)
+        };
+        let (mesh, mesh_px) = render(true);
+        let (faces, faces_px) = render(false);
+        assert_eq!(mesh_px, faces_px);
+        assert!(mesh_px.contains(&Rgb888::RED) && mesh_px.contains(&Rgb888::GREEN));
+        assert!(mesh_px.contains(&Rgb888::BLUE), "the highlight");
+        assert_eq!(mesh.vertices, 10);
+        assert_eq!(
+            (mesh.faces, mesh.culled, mesh.clipped_away),
+            (faces.faces, faces.culled, faces.clipped_away)
+        );
+        assert_eq!((mesh.faces, mesh.culled), (4, 1), "the hidden face skipped");
+    }
+
+    #[test]
+    fn a_full_vertex_table_inside_a_mesh_run_names_its_v() {
+        let mut bytes = [0u8; 1024];
+        let n = mesh_or_faces(&mut bytes, true);
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        for capacity in 0..4 {
+            // The `v` past the table, inside the run its first `v` starts
+            // (the first itself when the table has no slot).
+            let offset = l
+                .commands()
+                .filter(|(_, c)| matches!(c, Command::MeshVertex(_)))
+                .nth(capacity)
+                .unwrap()
+                .0;
+            let mut slots = [ViewPoint::EMPTY; 4];
+            let mut m = Mem::new();
+            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let r = Controller::new(Rasterizer::new(&mut m.edges))
+                .with_3d(m.three.as_memory())
+                .with_vertices(&mut slots[..capacity])
+                .render(&l, &mut fb);
+            assert_eq!(
+                r,
+                Err(RenderError::Capacity3d {
+                    offset,
+                    resource: Resource::Vertices,
+                    capacity,
+                })
+            );
+        }
+    }
+
     #[test]
     fn poly3_needs_3d_storage() {
         let mut bytes = [0u8; 256];
