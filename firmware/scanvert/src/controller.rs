@@ -78,7 +78,7 @@
 //! [`Builder::command`]: crate::scene::Builder::command
 
 use crate::color::ListColor;
-use crate::display_list::{Command, DisplayList, Summary};
+use crate::display_list::{Command, Commands, DisplayList, Summary};
 use crate::geometry::project::WINDOW_MAX;
 use crate::geometry::{Outcome, Pipeline, ViewPoint};
 use crate::port::SpanTarget;
@@ -87,10 +87,10 @@ use crate::raster::draw::Draw;
 use crate::raster::line;
 use crate::raster::scan::{FillError, Rasterizer};
 use crate::scene::label::{self, LabelError};
-use crate::scene::list::{execute, Out};
+use crate::scene::list::{execute, MeshCounts, Out};
 use crate::scene::VertexTable;
 use crate::scene::{
-    list_pipeline, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
+    list_pipeline, Builder, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
 };
 use crate::visible::store::StoreError;
 use crate::visible::trapezoid::{EdgeSlot, Polygon};
@@ -996,27 +996,66 @@ fn build_layer<'s, 't>(
     let mut st = ListState::new(list.width(), list.height());
     let mut b = scene.open(0).map_err(|e| error_at(first, e))?;
     let mut table = VertexTable::new(vertices);
-    for (offset, cmd) in list.commands() {
+    let mut cmds = list.commands();
+    while let Some((offset, cmd)) = cmds.next() {
         if let (Some(e), true) = (window, is_scene_command(&cmd)) {
             return Err(error_at(offset, e));
         }
         if let Command::Segment(id) = cmd {
             st.enter_segment(crate::scene::list::attributes(list, id));
         }
-        match b
+        let executed = b
             .command_in(cmd, &mut st, &mut table)
-            .map_err(|e| error_at(offset, e))?
-        {
-            Executed::Vertex => stats.vertices += 1,
-            Executed::Poly3 { drawn: true } => stats.poly3 += 1,
-            Executed::Poly3 { drawn: false } | Executed::Face(Outcome::Culled) => stats.culled += 1,
-            Executed::Face(Outcome::Emitted) => stats.faces += 1,
-            Executed::Face(Outcome::ClippedAway) => stats.clipped_away += 1,
-            Executed::Face(Outcome::Empty) | Executed::State | Executed::Label { .. } => {}
+            .map_err(|e| error_at(offset, e))?;
+        let mesh = match executed {
+            Executed::Vertex => {
+                stats.vertices += 1;
+                true
+            }
+            Executed::Poly3 { drawn: true } => {
+                stats.poly3 += 1;
+                false
+            }
+            Executed::Poly3 { drawn: false } => {
+                stats.culled += 1;
+                false
+            }
+            Executed::Face(o) => {
+                match o {
+                    Outcome::Culled => stats.culled += 1,
+                    Outcome::Emitted => stats.faces += 1,
+                    Outcome::ClippedAway => stats.clipped_away += 1,
+                    Outcome::Empty => {}
+                }
+                matches!(cmd, Command::MeshFace(_))
+            }
+            Executed::State | Executed::Label { .. } => false,
+        };
+        // The `v`s and `f`s after a `v` or an `f`, in one loop.
+        if mesh {
+            mesh_run(&mut b, &mut cmds, (&st, &mut table), stats)?;
         }
     }
     stats.trapezoids = scene.store().counters().trapezoids;
     Ok(scene)
+}
+
+/// The `v`s and `f`s that come next in `cmds`, into the layer's segment
+/// `b` in one loop ([`Builder::mesh_run`]), counted in `stats`.
+#[inline(never)]
+fn mesh_run(
+    b: &mut Builder<'_, '_, LIST_STACK, LIST_VERTICES>,
+    cmds: &mut Commands<'_>,
+    (st, table): (&ListState, &mut VertexTable<'_>),
+    stats: &mut RenderStats,
+) -> Result<(), RenderError<core::convert::Infallible>> {
+    let mut n = MeshCounts::default();
+    let r = b.mesh_run(cmds, st, table, &mut n);
+    stats.vertices += n.vertices;
+    stats.faces += n.faces;
+    stats.culled += n.culled;
+    stats.clipped_away += n.clipped_away;
+    r.map_err(|(offset, e)| error_at(offset, e))
 }
 
 #[cfg(test)]
@@ -1097,6 +1136,105 @@ mod tests {
         let mut w = Writer::new(bytes, W, H).unwrap();
         f(&mut w);
         w.finish().len()
+    }
+
+    /// A list of three segments through `v`/`f` (`mesh`) or the same
+    /// faces through `face`: segment 0 with faces of both windings, a
+    /// colour change between its `f`s, a point; segment 1
+    /// hidden; segment 2 highlighted.
+    fn mesh_or_faces(bytes: &mut [u8], mesh: bool) -> usize {
+        let p = |x: i16, y: i16| crate::geometry::Point3::from_int(x, y, -10);
+        let segments: [(&[_], &[&[u16]]); 3] = [
+            (
+                &[p(-3, -3), p(3, -3), p(3, 3), p(-3, 3)],
+                &[&[0, 1, 2], &[0, 2, 1], &[], &[0, 2, 3], &[1]],
+            ),
+            (&[p(-2, -2), p(2, -2), p(0, 2)], &[&[0, 1, 2]]),
+            (&[p(-1, -4), p(1, -4), p(0, -2)], &[&[0, 1, 2]]),
+        ];
+        list(bytes, |w| {
+            w.hide(1).unwrap();
+            w.highlight(2, Some(Rgb888::BLUE)).unwrap();
+            w.color(Rgb888::RED).unwrap();
+            for (id, (points, faces)) in segments.iter().enumerate() {
+                w.segment(id as u16).unwrap();
+                if mesh {
+                    points.iter().for_each(|&q| w.mesh_vertex(q).unwrap());
+                }
+                for f in faces.iter() {
+                    match (f.is_empty(), mesh) {
+                        (true, _) => w.color(Rgb888::GREEN).unwrap(),
+                        (false, true) => w.mesh_face(f.iter().copied()).unwrap(),
+                        (false, false) => {
+                            w.face(f.iter().map(|&i| points[usize::from(i)])).unwrap()
+                        }
+                    }
+                }
+            }
+        })
+    }
+
+    #[test]
+    fn a_mesh_run_draws_and_counts_what_its_faces_do() {
+        let render = |mesh: bool| {
+            let mut bytes = [0u8; 1024];
+            let n = mesh_or_faces(&mut bytes, mesh);
+            let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+            let mut slots = [ViewPoint::EMPTY; 4];
+            let mut m = Mem::new();
+            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let r = Controller::new(Rasterizer::new(&mut m.edges))
+                .with_3d(m.three.as_memory())
+                .with_vertices(&mut slots)
+                .render(&l, &mut fb)
+                .unwrap();
+            (r, px)
+        };
+        let (mesh, mesh_px) = render(true);
+        let (faces, faces_px) = render(false);
+        assert_eq!(mesh_px, faces_px);
+        assert!(mesh_px.contains(&Rgb888::RED) && mesh_px.contains(&Rgb888::GREEN));
+        assert!(mesh_px.contains(&Rgb888::BLUE), "the highlight");
+        assert_eq!(mesh.vertices, 10);
+        assert_eq!(
+            (mesh.faces, mesh.culled, mesh.clipped_away),
+            (faces.faces, faces.culled, faces.clipped_away)
+        );
+        assert_eq!((mesh.faces, mesh.culled), (4, 1), "the hidden face skipped");
+    }
+
+    #[test]
+    fn a_full_vertex_table_inside_a_mesh_run_names_its_v() {
+        let mut bytes = [0u8; 1024];
+        let n = mesh_or_faces(&mut bytes, true);
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        for capacity in 0..4 {
+            // The `v` past the table, inside the run its first `v` starts
+            // (the first itself when the table has no slot).
+            let offset = l
+                .commands()
+                .filter(|(_, c)| matches!(c, Command::MeshVertex(_)))
+                .nth(capacity)
+                .unwrap()
+                .0;
+            let mut slots = [ViewPoint::EMPTY; 4];
+            let mut m = Mem::new();
+            let mut px = [Rgb888::new(7, 7, 7); (W * H) as usize];
+            let mut fb = FrameBuffer::new(&mut px, W, H).unwrap();
+            let r = Controller::new(Rasterizer::new(&mut m.edges))
+                .with_3d(m.three.as_memory())
+                .with_vertices(&mut slots[..capacity])
+                .render(&l, &mut fb);
+            assert_eq!(
+                r,
+                Err(RenderError::Capacity3d {
+                    offset,
+                    resource: Resource::Vertices,
+                    capacity,
+                })
+            );
+        }
     }
 
     #[test]

@@ -630,6 +630,36 @@ impl<'a> Iterator for Commands<'a> {
     }
 }
 
+impl<'a> Commands<'a> {
+    /// The next command when it is a `v` or an `f`, as
+    /// [`next`](Iterator::next) gives it; `None`, with nothing taken,
+    /// when it is another command or the list ends. A mesh's run of
+    /// `v`s and `f`s is read by this in one loop, without the general
+    /// decode's match over every opcode.
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn next_mesh(&mut self) -> Option<(usize, Command<'a>)> {
+        let rest = self.body.get(self.at..)?;
+        let (cmd, len) = match *rest.first()? {
+            b if b == Opcode::MeshFace as u8 => {
+                let count = u16_at(rest.first_chunk::<3>()?, Layout::COUNT);
+                let len = Opcode::MeshFace.layout().size(count as usize);
+                let fixed = Opcode::MeshFace.layout().fixed;
+                (Command::MeshFace(Packed::new(rest.get(fixed..len)?)), len)
+            }
+            b if b == Opcode::MeshVertex as u8 => {
+                use layout::point::{LEN, P};
+                let p = point_at(rest.first_chunk::<LEN>()?, P);
+                (Command::MeshVertex(p), LEN)
+            }
+            _ => return None,
+        };
+        let offset = HEADER_LEN + self.at;
+        self.at += len;
+        Some((offset, cmd))
+    }
+}
+
 /// The command at the start of `rest`, a checked list's body from a
 /// command on, and its size; `None` at the end of the body.
 ///
@@ -885,6 +915,20 @@ impl<'a, V: FromBytes + 'a> Packed<'a, V> {
     /// Iterates the items.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = V> + Clone + 'a {
         self.bytes.chunks_exact(V::SIZE).map(V::from_bytes)
+    }
+}
+
+impl Packed<'_, u16> {
+    /// An `f`'s three indices when it has exactly three (a triangle),
+    /// read from the list's bytes at once.
+    #[inline(always)]
+    pub fn triangle(&self) -> Option<[u16; 3]> {
+        let b: &[u8; 6] = self.bytes.try_into().ok()?;
+        Some([
+            u16::from_le_bytes([b[0], b[1]]),
+            u16::from_le_bytes([b[2], b[3]]),
+            u16::from_le_bytes([b[4], b[5]]),
+        ])
     }
 }
 

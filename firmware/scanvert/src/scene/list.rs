@@ -13,7 +13,7 @@
 //! its clip registers and its frame ([`ListState`]).
 
 use crate::color::DEFAULT_COLOR;
-use crate::display_list::{Axis, Command, DisplayList, Vertices3};
+use crate::display_list::{Axis, Command, Commands, DisplayList, Vertices3};
 use crate::fixed::Vertex3;
 use crate::geometry::{
     Angle, Light, Orthographic, Outcome, Perspective, Pipeline, PipelineError, Point3, PolygonSink,
@@ -103,6 +103,11 @@ impl ListState {
     /// The current colour.
     pub fn color(&self) -> Rgb888 {
         self.color
+    }
+
+    /// `true` when the segment being built is hidden.
+    pub(crate) fn hidden(&self) -> bool {
+        self.attributes.hidden
     }
 
     /// The clip registers, cut to the frame.
@@ -319,6 +324,66 @@ pub(crate) fn execute<const DEPTH: usize, const N: usize, O: Out>(
     Ok(Executed::State)
 }
 
+/// What a run of `v`s and `f`s did ([`mesh_run`]), for the counters of
+/// a render.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[doc(hidden)]
+pub struct MeshCounts {
+    /// `v`s: vertices transformed into the table.
+    pub vertices: u32,
+    /// `f`s emitted ([`Outcome::Emitted`]).
+    pub faces: u32,
+    /// `f`s culled.
+    pub culled: u32,
+    /// `f`s clipped away.
+    pub clipped_away: u32,
+}
+
+/// The `v`s and `f`s that come next in `cmds`, executed as [`execute`]
+/// does, in one loop that reads nothing but them
+/// ([`Commands::next_mesh`]); it stops before any other command, which
+/// the caller takes. `st` is not changed by a `v` or an `f`. The error
+/// names the offset of the command that failed.
+pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
+    pipe: &mut Pipeline<DEPTH, N>,
+    out: &mut O,
+    st: &ListState,
+    table: &mut VertexTable<'_>,
+    cmds: &mut Commands<'_>,
+    counts: &mut MeshCounts,
+) -> Result<(), (usize, SceneError)> {
+    let (color, clip, highlight) = (st.color, st.clip, st.attributes.highlight);
+    while let Some((offset, cmd)) = cmds.next_mesh() {
+        match cmd {
+            Command::MeshVertex(p) => {
+                table.push(pipe.view_point(p)).map_err(|e| (offset, e))?;
+                counts.vertices += 1;
+            }
+            Command::MeshFace(ix) => {
+                let outcome = match ix.triangle() {
+                    Some(t) => {
+                        let corners = t.map(usize::from);
+                        mesh_triangle(pipe, out, table, corners, color, clip, highlight)
+                    }
+                    None => {
+                        let indices = ix.iter().map(usize::from);
+                        mesh_face(pipe, out, table, indices, color, clip, highlight)
+                    }
+                }
+                .map_err(|e| (offset, e))?;
+                match outcome {
+                    Outcome::Emitted => counts.faces += 1,
+                    Outcome::Culled => counts.culled += 1,
+                    Outcome::ClippedAway => counts.clipped_away += 1,
+                    Outcome::Empty => {}
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
 /// A polygon of model points through the geometry stage into `out`. Out
 /// of line, so that a list's `poly3`s are executed without the geometry
 /// stage's buffers in the frame, which makes the cut stage cheaper on the
@@ -359,21 +424,43 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         clip,
         highlight,
     };
-    // A triangle's indices are checked once; its corners' output
-    // vertices are kept in the table for the faces after it.
     if indices.len() == 3 {
         let mut corners = [0; 3];
         for (c, i) in corners.iter_mut().zip(indices) {
-            *c = table.checked(i)?;
+            *c = i;
         }
-        let slots = table.for_pipeline(pipe);
-        return pipe
-            .mesh_triangle(slots, corners, color, &mut sink)
-            .map_err(pipeline_error);
+        return mesh_triangle(pipe, sink.out, table, corners, color, clip, highlight);
     }
     table.check(indices.clone())?;
     let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
     pipe.polygon_view(points, color, &mut sink)
+        .map_err(pipeline_error)
+}
+
+/// A triangle through vertices `corners` (0-based) of `table` into
+/// `out`, as [`mesh_face`] draws it. Its indices are checked once; its
+/// corners' output vertices are kept in the table for the faces after
+/// it. Out of line for the reason `face` is.
+#[inline(never)]
+pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
+    pipe: &mut Pipeline<DEPTH, N>,
+    out: &mut O,
+    table: &mut VertexTable<'_>,
+    corners: [usize; 3],
+    color: Rgb888,
+    clip: ClipRect,
+    highlight: Option<Rgb888>,
+) -> Result<Outcome, SceneError> {
+    let mut sink = Faces {
+        out,
+        clip,
+        highlight,
+    };
+    for &c in &corners {
+        table.checked(c)?;
+    }
+    let slots = table.for_pipeline(pipe);
+    pipe.mesh_triangle(slots, corners, color, &mut sink)
         .map_err(pipeline_error)
 }
 

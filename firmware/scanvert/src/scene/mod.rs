@@ -1156,6 +1156,27 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         Ok(r)
     }
 
+    /// The `v`s and `f`s that come next in `cmds`, executed as
+    /// [`command_in`](Self::command_in) executes them, in one loop
+    /// ([`list::mesh_run`]); stops before any other command. Nothing is
+    /// taken when the segment is hidden or being recorded: its commands
+    /// then go one by one through `command_in`. The error names the
+    /// offset of the command that failed.
+    #[doc(hidden)]
+    pub fn mesh_run(
+        &mut self,
+        cmds: &mut crate::display_list::Commands<'_>,
+        state: &ListState,
+        table: &mut VertexTable<'_>,
+        counts: &mut list::MeshCounts,
+    ) -> Result<(), (usize, SceneError)> {
+        if state.hidden() || self.scene.records.recording() {
+            return Ok(());
+        }
+        let (pipeline, mut out) = self.split();
+        list::mesh_run(pipeline, &mut out, state, table, cmds, counts)
+    }
+
     /// The pipeline, and the segment as the interpreter's output.
     fn split(&mut self) -> (&mut Pipeline<DEPTH, N>, SegmentOut<'_, 'a>) {
         let Scene {
