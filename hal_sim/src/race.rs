@@ -263,9 +263,9 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 8.1 % on
-    /// average and 49.1 % at worst (the 2D lists' rows: 2.2 % to 14.5 %
-    /// on average, the 3D lists' 12.0 % and 10.0 %; the worst are rows of
+    /// Against the 1,992 measured rows the model's error is 8.2 % on
+    /// average and 49.3 % at worst (the 2D lists' rows: 2.2 % to 14.1 %
+    /// on average, the 3D lists' 13.3 % and 10.8 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
     /// of an instruction a pixel); a 2D polygon live on the row costs 92
@@ -276,20 +276,20 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1183,
-        width: 2,
-        span: 3271,
+        row: 1301,
+        width: 1,
+        span: 3266,
         pixel: -3,
-        run: 568,
-        entered: 8274,
-        resolved: 2878,
+        run: 583,
+        entered: 8189,
+        resolved: 2687,
         label: 0,
-        live: 1479,
-        word: 303,
-        moved: 90,
-        frame: 116366,
-        command: 11217,
-        trapezoid: 1260,
+        live: 1476,
+        word: 304,
+        moved: 91,
+        frame: 117713,
+        command: 10892,
+        trapezoid: 670,
     };
 
     /// Instructions of a row of `work`, at least 1.
