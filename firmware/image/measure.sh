@@ -70,16 +70,28 @@ qemu_rv() {
   timeout 60 "${cmd[@]}"
 }
 
+# The images are built from a copy of the working tree at a fixed path,
+# into their usual target directories. Cargo hashes the absolute path of
+# a path dependency outside the building workspace (the library, for the
+# image and the board) into its symbol names, and the order of those
+# names can tip LLVM's inlining, so built in place the instructions
+# counted would depend on where the repository is checked out.
+build_root=/tmp/scanvert-measure
+rm -rf "$build_root"
+mkdir -p "$build_root"
+(cd "$root" && tar --exclude=./.git --exclude=target -cf - .) | tar -C "$build_root" -xf -
+
 # Panic locations put source paths into .rodata; remapped to fixed names
-# so that the sizes do not depend on where the repository or Cargo's home
-# are. (Cargo adds these to the rustflags of .cargo/config.toml.)
+# so that the sizes do not depend on where Cargo's home is. (Cargo adds
+# these to the rustflags of .cargo/config.toml.)
 cargo_home=${CARGO_HOME:-$HOME/.cargo}
 build() { # NAME TARGET [cargo args...]: builds and copies the ELF to $out/NAME.elf
   local name=$1 target=$2
   shift 2
-  cargo build --locked --release --target "$target" \
-    --config "target.$target.rustflags=[\"--remap-path-prefix=$root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" \
-    "$@" >&2
+  (cd "$build_root/firmware/image" && cargo build --locked --release --target "$target" \
+    --target-dir "$image_dir/target" \
+    --config "target.$target.rustflags=[\"--remap-path-prefix=$build_root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" \
+    "$@" >&2)
   cp "target/$target/release/$bin" "$out/$name.elf"
 }
 
@@ -96,8 +108,9 @@ build arm-pico thumbv6m-none-eabi --features pico
 build arm-ui "$arm_target" --features pico
 # The Pico board's firmware itself, for its sections.
 pico_dir=$root/firmware/boards/pico-st7789
-(cd "$pico_dir" && cargo build --locked --release \
-  --config "target.thumbv6m-none-eabi.rustflags=[\"--remap-path-prefix=$root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" >&2)
+(cd "$build_root/firmware/boards/pico-st7789" && cargo build --locked --release \
+  --target-dir "$pico_dir/target" \
+  --config "target.thumbv6m-none-eabi.rustflags=[\"--remap-path-prefix=$build_root=/scanvert\", \"--remap-path-prefix=$cargo_home=/cargo\"]" >&2)
 cp "$pico_dir/target/thumbv6m-none-eabi/release/scanvert-pico-st7789" "$out/pico.elf"
 if [ "$(uname -m)" != riscv32 ]; then
   build riscv "$rv_target"
