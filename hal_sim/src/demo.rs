@@ -45,7 +45,9 @@ use scanvert::geometry::{Angle, Light, Perspective, Pipeline, Point3, View, View
 use scanvert::port::framebuffer::FrameBuffer;
 use scanvert::port::SpanTarget;
 use scanvert::scene::label::DEFAULT_FONT;
-use scanvert::scene::{Builder, Capacities, Placement, Procedure, Scene, SceneError, Update};
+use scanvert::scene::{
+    Builder, Capacities, DirtyRows, Placement, Procedure, Scene, SceneError, Update,
+};
 use scanvert::visible::sweep::Resolve;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -394,8 +396,31 @@ fn advance(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<
     apply(scene, last, step).map_err(|e| error::input(Path::new("demo"), e))
 }
 
+/// [`advance`], marking in `dirty` the rows whose content the update
+/// changed (`Scene::update_marking`, with `scratch` of two words a row).
+fn advance_marking(
+    scene: &mut DemoScene<'_>,
+    last: Option<Step>,
+    step: Step,
+    dirty: &mut DirtyRows<'_>,
+    scratch: &mut [u64],
+) -> Result<Update, CliError> {
+    apply_marking(scene, last, step, Some((dirty, scratch)))
+        .map_err(|e| error::input(Path::new("demo"), e))
+}
+
 /// [`advance`], failing with what the scene says.
 fn apply(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<Update, Shortfall> {
+    apply_marking(scene, last, step, None)
+}
+
+/// [`apply`], marking the rows it changed when given a bit set and scratch.
+fn apply_marking(
+    scene: &mut DemoScene<'_>,
+    last: Option<Step>,
+    step: Step,
+    marks: Option<(&mut DirtyRows<'_>, &mut [u64])>,
+) -> Result<Update, Shortfall> {
     if last.map(|l| l.orbit) != Some(step.orbit) {
         scene.set_view(&view(step.orbit))?;
     }
@@ -406,7 +431,10 @@ fn apply(scene: &mut DemoScene<'_>, last: Option<Step>, step: Step) -> Result<Up
     let mut b = |s: &mut DemoBuilder<'_, '_>| bars(s, step.threshold);
     let mut n = |s: &mut DemoBuilder<'_, '_>| names(s);
     let procs: &mut [&mut dyn Procedure<DEPTH, N>] = &mut [&mut g, &mut b, &mut n];
-    Ok(scene.update(procs)?)
+    Ok(match marks {
+        Some((dirty, scratch)) => scene.update_marking(procs, DEFAULT_FONT, dirty, scratch)?,
+        None => scene.update(procs)?,
+    })
 }
 
 fn draw<T>(scene: &mut DemoScene<'_>, target: &mut T) -> scanvert::scene::Frame
@@ -423,6 +451,31 @@ where
         // The workspace holds every trapezoid the store can.
         Err(e) => panic!("demo workspace too small: {e}"),
     }
+}
+
+/// Rows of `width` pixels where `after` differs from `before`; all of
+/// them when there is no `before`.
+fn rows_changed(before: &[Rgb565], after: &[Rgb565], width: u16) -> u32 {
+    let w = usize::from(width);
+    if before.len() != after.len() {
+        return (after.len() / w) as u32;
+    }
+    before
+        .chunks_exact(w)
+        .zip(after.chunks_exact(w))
+        .filter(|(a, b)| a != b)
+        .count() as u32
+}
+
+/// Median and most of rows marked per row changed, over `frames` of
+/// `(marked, changed)`; a frame where no row changed counts its marks.
+fn marking_ratios(frames: &[(u32, u32)]) -> Option<(f64, f64)> {
+    let mut r: Vec<f64> = frames
+        .iter()
+        .map(|&(m, c)| f64::from(m) / f64::from(c.max(1)))
+        .collect();
+    r.sort_by(f64::total_cmp);
+    Some((*r.get(r.len() / 2)?, *r.last()?))
 }
 
 /// Frames per second of `f`, best of five runs of about 0.1 s each.
@@ -464,6 +517,13 @@ pub struct DemoFrame {
     pub shown: Frame,
     /// Per segment: times it was emptied so far.
     pub rebuilt: [u32; 3],
+    /// Rows the update marked as changed (`Scene::update_marking`): what a
+    /// panel that keeps its pixels would be sent. Every row on the first
+    /// frame, since the panel starts unknown.
+    pub marked: u32,
+    /// Rows whose pixels differ from the last frame shown (every row on
+    /// the first).
+    pub changed: u32,
 }
 
 /// Runs the animation of `frames` frames through the simulator, at the
@@ -502,8 +562,16 @@ pub fn animate_each(
     let mut refresh = RefreshController::new(VideoTiming::for_frame(w, h));
     let mut co = CoSimulation::new(&mut ram, &mut refresh).keeping_last();
     let mut last = None;
+    let mut bits = vec![0u32; DirtyRows::words(h)];
+    let mut dirty = DirtyRows::new(&mut bits, h).expect("a bit for every row");
+    let mut scratch = vec![0u64; 2 * usize::from(h)];
+    let mut before: Vec<Rgb565> = Vec::new();
+    // The panel starts unknown: every row is sent first.
+    dirty.mark_all();
     for step in steps {
-        let update = advance(&mut scene, last, step)?;
+        let update = advance_marking(&mut scene, last, step, &mut dirty, &mut scratch)?;
+        let marked = dirty.count() as u32;
+        dirty.clear();
         last = Some(step);
         let drawn = draw(&mut scene, &mut co);
         co.request_swap();
@@ -514,6 +582,8 @@ pub fn animate_each(
         co.wait_for_frame();
         co.wait_for_frame();
         let shown = co.frames().last().cloned().expect("a frame was read out");
+        let changed = rows_changed(&before, shown.pixels(), w);
+        before = shown.pixels().to_vec();
         let rebuilt =
             std::array::from_fn(|s| scene.store().segment(s).map_or(0, |g| g.counters().clears));
         each(DemoFrame {
@@ -523,6 +593,8 @@ pub fn animate_each(
             drawn,
             shown,
             rebuilt,
+            marked,
+            changed,
         })?;
     }
     Ok(())
@@ -633,6 +705,7 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
         size.height
     );
     let mut prev = [0u32; 3];
+    let mut marks = Vec::new();
     let mut trapezoids = 0;
     let mut i = 0;
     animate_each(size, frames, |f| {
@@ -647,7 +720,7 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
         trapezoids += f.trapezoids;
         let _ = writeln!(
             s,
-            "frame {i}: threshold {:2}, camera at {:3}°: segments regenerated {} ({}): {} polygons, {} visible, cut into {} trapezoids; {} trapezoids drawn, {} runs, {} labels -> {}",
+            "frame {i}: threshold {:2}, camera at {:3}°: segments regenerated {} ({}): {} polygons, {} visible, cut into {} trapezoids; {} trapezoids drawn, {} runs, {} labels; rows marked {} ({} changed) -> {}",
             f.step.threshold,
             f.step.orbit,
             f.update.regenerated,
@@ -658,8 +731,11 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
             f.trapezoids,
             f.drawn.visible.runs,
             f.drawn.labels.drawn,
+            f.marked,
+            f.changed,
             crate::error::shown(&path)
         );
+        marks.push((f.marked, f.changed));
         i += 1;
         Ok(())
     })?;
@@ -667,21 +743,29 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
         let _ = writeln!(s, "trapezoids per frame: {average} on average");
     }
     if let Some(&last) = steps(frames).last() {
-        for (change, update, pixels) in attribute_frames(size, last)? {
+        for (change, update, pixels, marked, changed) in attribute_frames(size, last)? {
             let path: PathBuf = dir.join(format!("frame-{i:02}.png"));
             let png = crate::image::encode_pixels(size.width.into(), size.height.into(), &pixels)
                 .map_err(|e| error::io(&path, e))?;
             crate::output::write_output(&path, &png)?;
             let _ = writeln!(
                 s,
-                "frame {i}: {change}: procedures run {}, segments re-cut {} ({} trapezoids) -> {}",
+                "frame {i}: {change}: procedures run {}, segments re-cut {} ({} trapezoids); rows marked {marked} ({changed} changed) -> {}",
                 update.regenerated,
                 update.recut,
                 update.trapezoids,
                 crate::error::shown(&path)
             );
+            marks.push((marked, changed));
             i += 1;
         }
+    }
+    if let Some((median, most)) = marking_ratios(&marks) {
+        let _ = writeln!(
+            s,
+            "rows marked per row changed: median {median:.2}, most {most:.2} ({} frames)",
+            marks.len()
+        );
     }
     if measure {
         let (camera, threshold, still) = speeds_at(size)?;
@@ -696,8 +780,9 @@ pub fn run_at(size: Size, dir: &Path, frames: usize, measure: bool) -> Result<St
 /// The segment attributes on the scene of `step`: the bars highlighted,
 /// the names hidden, the bars placed 3 units higher, then each undone.
 /// For each change: what it was, what it did (no procedure runs: the
-/// placement re-cuts the bars from their record) and the frame drawn
-/// after it. The last frame is `step`'s own.
+/// placement re-cuts the bars from their record), the frame drawn
+/// after it, the rows `Scene::marking` marked for it and the rows whose
+/// pixels it changed. The last frame is `step`'s own.
 pub fn attribute_frames(size: Size, step: Step) -> Result<Vec<AttributeFrame>, CliError> {
     let fail = |e: &dyn std::fmt::Display| error::input(Path::new("demo"), e);
     // Sized by running the changes: the bars placed higher take other
@@ -716,7 +801,7 @@ pub fn attribute_frames(size: Size, step: Step) -> Result<Vec<AttributeFrame>, C
         scene.keep_records(&mut records);
         apply(&mut scene, None, step)?;
         let mut most = scene.needed()?;
-        for (_, change) in ATTRIBUTE_CHANGES {
+        for (_, _, change) in ATTRIBUTE_CHANGES {
             change(&mut scene)?;
             most = most.max(scene.needed()?);
         }
@@ -733,19 +818,32 @@ pub fn attribute_frames(size: Size, step: Step) -> Result<Vec<AttributeFrame>, C
     advance(&mut scene, None, step)?;
     let (w, h) = (size.width, size.height);
     let mut out = Vec::new();
-    for (what, change) in ATTRIBUTE_CHANGES {
-        let update = change(&mut scene).map_err(|e| fail(&e))?;
+    let mut bits = vec![0u32; DirtyRows::words(h)];
+    let mut dirty = DirtyRows::new(&mut bits, h).expect("a bit for every row");
+    let mut before = vec![Rgb565::BLACK; w as usize * h as usize];
+    draw(
+        &mut scene,
+        &mut FrameBuffer::new(&mut before, w, h).expect("frame"),
+    );
+    for (what, segment, change) in ATTRIBUTE_CHANGES {
+        let update = scene
+            .marking(segment, DEFAULT_FONT, &mut dirty, change)
+            .map_err(|e| fail(&e))?;
+        let marked = dirty.count() as u32;
+        dirty.clear();
         let mut pixels = vec![Rgb565::BLACK; w as usize * h as usize];
         let mut fb = FrameBuffer::new(&mut pixels, w, h).expect("frame");
         draw(&mut scene, &mut fb);
-        out.push((what, update, pixels));
+        let changed = rows_changed(&before, &pixels, w);
+        before.clone_from(&pixels);
+        out.push((what, update, pixels, marked, changed));
     }
     Ok(out)
 }
 
 /// One frame of [`attribute_frames`]: the change, what it did, the
-/// frame drawn after it.
-pub type AttributeFrame = (&'static str, Update, Vec<Rgb565>);
+/// frame drawn after it, the rows marked for it and the rows it changed.
+pub type AttributeFrame = (&'static str, Update, Vec<Rgb565>, u32, u32);
 
 /// Bytes of the demo's segment records: room for all of them (a face of
 /// four points takes 51 bytes, and the demo has 280). A record that did
@@ -758,21 +856,22 @@ type AttributeChange = fn(&mut DemoScene<'_>) -> Result<Update, SceneError>;
 /// Frames [`attribute_frames`] draws, one a change.
 pub const ATTRIBUTE_FRAMES: usize = 6;
 
-/// The changes of [`attribute_frames`], in order.
-const ATTRIBUTE_CHANGES: [(&str, AttributeChange); ATTRIBUTE_FRAMES] = [
-    ("highlight bars #ffd700", |s| {
+/// The changes of [`attribute_frames`], in order, with the segment each
+/// changes.
+const ATTRIBUTE_CHANGES: [(&str, usize, AttributeChange); ATTRIBUTE_FRAMES] = [
+    ("highlight bars #ffd700", 1, |s| {
         s.set_highlight(1, Some(Rgb888::new(255, 215, 0)))
     }),
-    ("hide names", |s| s.set_visible(2, false)),
-    ("place bars 3 units higher", |s| {
+    ("hide names", 2, |s| s.set_visible(2, false)),
+    ("place bars 3 units higher", 1, |s| {
         s.place(
             1,
             Placement::translation(Q16::ZERO, Q16::from_int(3), Q16::ZERO),
         )
     }),
-    ("place bars back", |s| s.place(1, Placement::IDENTITY)),
-    ("show names", |s| s.set_visible(2, true)),
-    ("highlight bars off", |s| s.set_highlight(1, None)),
+    ("place bars back", 1, |s| s.place(1, Placement::IDENTITY)),
+    ("show names", 2, |s| s.set_visible(2, true)),
+    ("highlight bars off", 1, |s| s.set_highlight(1, None)),
 ];
 
 /// The demo's scene at `step`, built from scratch, handed to `f` with the

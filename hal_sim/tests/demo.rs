@@ -44,7 +44,7 @@ fn the_memory_found_by_running_the_frames_is_enough() {
             .unwrap_or_else(|e| panic!("{w}x{h}, {frames} frames: {e}"));
         assert_eq!(
             report.lines().count(),
-            frames + 2 + scanvert_sim::demo::ATTRIBUTE_FRAMES,
+            frames + 3 + scanvert_sim::demo::ATTRIBUTE_FRAMES,
             "{report}"
         );
     }
@@ -61,10 +61,40 @@ fn attributes_change_the_frame_without_running_procedures() {
     let frames = attribute_frames(DEFAULT_SIZE, last).expect("attributes run");
     let want = reference_frame(last).expect("renders");
     assert_eq!(frames.len(), 6);
-    for (i, (what, update, pixels)) in frames.iter().enumerate() {
+    for (i, (what, update, pixels, marked, changed)) in frames.iter().enumerate() {
+        assert!(
+            marked >= changed,
+            "{what}: {marked} rows marked, {changed} changed"
+        );
         assert_eq!(update.regenerated, 0, "{what}");
         let placed = what.starts_with("place");
         assert_eq!(update.recut, placed as u32, "{what}");
         assert_eq!(pixels == &want, i == 5, "{what}");
     }
+}
+
+/// Each frame marks at least the rows it changed (`bands.rs` checks that a
+/// panel sent only the marked rows equals the full render), and the
+/// README quotes the ratio `scanvert demo` prints on its default frames.
+#[test]
+fn the_demo_marks_the_rows_it_changes_and_the_readme_quotes_the_ratio() {
+    use scanvert_sim::demo::{run_at, DEFAULT_SIZE};
+    for f in animate(6).expect("demo runs") {
+        assert!(
+            f.marked >= f.changed,
+            "{:?}: {} of {}",
+            f.step,
+            f.marked,
+            f.changed
+        );
+    }
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("demo_marks");
+    let report = run_at(DEFAULT_SIZE, &dir, 8, false).expect("demo runs");
+    let _ = std::fs::remove_dir_all(&dir);
+    let line = report
+        .lines()
+        .find(|l| l.starts_with("rows marked per row changed"))
+        .expect("the ratio's line");
+    let readme = include_str!("../../README.md");
+    assert!(readme.contains(line), "README.md does not quote `{line}`");
 }
