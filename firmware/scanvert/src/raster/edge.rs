@@ -156,9 +156,9 @@ impl Edge {
         let top = ceil_px(y0 - HALF).max(rows.0);
         let end = ceil_px(y1 - HALF).min(rows.1);
         let (dx, dy) = (x1 - x0, y1 - y0);
-        // A row centre in [y0, y1) makes dy ≥ 1; said so, the divisions
-        // by dy below are made with no test for a zero divisor or an
-        // overflow.
+        // A row centre in [y0, y1) makes dy ≥ 1. Tested all the same, so
+        // that the divisions by dy below need no check for a zero divisor
+        // or an overflow.
         if top >= end || dy <= 0 {
             return None;
         }
