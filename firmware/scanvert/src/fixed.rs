@@ -186,17 +186,18 @@ pub(crate) const fn ceil_div_i64(n: i64, d: i64) -> i64 {
     }
 }
 
-/// `ceil(n / d)` for `d > 0`, exact for every `n`.
-#[inline]
-pub(crate) const fn ceil_div_i32(n: i32, d: i32) -> i32 {
-    // Truncating division: the quotient is already the ceiling for n ≤ 0
-    // or an exact division. |q| ≤ |n| and d ≥ 1, so nothing overflows
-    // (n = i32::MIN with d = 1 divides exactly).
-    let q = n.wrapping_div(d);
-    if n > 0 && q.wrapping_mul(d) != n {
-        q + 1
+/// `(⌈n / d⌉, ⌈n / d⌉·d − n)` for `d > 0`, exact for every `n`: the
+/// ceiling and how far its multiple lies past `n`, in `0..d`.
+#[inline(always)]
+pub(crate) const fn ceil_div_rem_i32(n: i32, d: i32) -> (i32, i32) {
+    // Truncating: n = q·d + r with |r| < d and r of n's sign, so the
+    // ceiling is q + 1 for r > 0, else q, and what it lies past n is
+    // d − r, or −r. With d ≥ 1 nothing overflows (q + 1 ≤ ⌈n/d⌉).
+    let (q, r) = (n / d, n % d);
+    if r > 0 {
+        (q + 1, d - r)
     } else {
-        q
+        (q, -r)
     }
 }
 
@@ -219,7 +220,7 @@ mod tests {
     }
 
     #[test]
-    fn ceil_div_i32_matches_i64() {
+    fn ceil_div_rem_i32_matches_i64() {
         let ns = [
             i32::MIN,
             i32::MIN + 1,
@@ -239,7 +240,9 @@ mod tests {
         for &n in &ns {
             for &d in &ds {
                 let want = ceil_div_i64(n as i64, d as i64);
-                assert_eq!(ceil_div_i32(n, d) as i64, want, "{n} / {d}");
+                let (q, e) = ceil_div_rem_i32(n, d);
+                assert_eq!(q as i64, want, "{n} / {d}");
+                assert_eq!(e as i64, want * d as i64 - n as i64, "{n} / {d}");
             }
         }
     }

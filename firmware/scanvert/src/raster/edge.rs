@@ -20,7 +20,7 @@
 //!
 //! The widths of every quantity are in [`crate::fixed`].
 
-use crate::fixed::{ceil_div_i32, ceil_div_i64, ceil_px, Vertex, HALF, ONE};
+use crate::fixed::{ceil_div_i64, ceil_div_rem_i32, ceil_px, Vertex, HALF, ONE};
 
 /// How the scan converter steps one edge down the rows.
 ///
@@ -155,10 +155,13 @@ impl Edge {
         // Rows whose centre j·16 + 8 lies in [y0, y1).
         let top = ceil_px(y0 - HALF).max(rows.0);
         let end = ceil_px(y1 - HALF).min(rows.1);
-        if top >= end {
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        // A row centre in [y0, y1) makes dy ≥ 1. Tested all the same, so
+        // that the divisions by dy below need no check for a zero divisor
+        // or an overflow.
+        if top >= end || dy <= 0 {
             return None;
         }
-        let (dx, dy) = (x1 - x0, y1 - y0);
         // (x − ½)·dy at the first row's centre, exactly.
         let yc = top * ONE + HALF;
         // |num| < 2³³ (see `fixed`); on a frame of ordinary size it fits
@@ -166,11 +169,7 @@ impl Edge {
         // core where a 64-bit one is a library call.
         let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
         let (x, err) = match i32::try_from(num) {
-            Ok(n) => {
-                let x = ceil_div_i32(n, dy);
-                // 0 ≤ x·dy − n < dy: the product is within dy of n.
-                (x, x.wrapping_mul(dy).wrapping_sub(n))
-            }
+            Ok(n) => ceil_div_rem_i32(n, dy),
             Err(_) => {
                 let x = ceil_div_i64(num, dy as i64);
                 (x as i32, (x * dy as i64 - num) as i32)
@@ -295,7 +294,9 @@ impl Edge {
 
 impl Stepper for Edge {
     const EXACT: bool = true;
-    #[inline]
+    // Out of line: a call an edge, where inlined into the fill and the
+    // band table it would grow the functions whose row loops it shares.
+    #[inline(never)]
     fn new(a: Vertex, b: Vertex, rows: (i32, i32)) -> Option<Self> {
         Edge::new(a, b, rows)
     }
