@@ -374,9 +374,7 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
                 let outcome = match ix.triangle() {
                     Some(t) => {
                         let corners = t.map(usize::from);
-                        mesh_triangle::<DEPTH, N, O, false>(
-                            pipe, out, table, corners, color, clip, highlight,
-                        )
+                        mesh_triangle(pipe, out, table, corners, color, clip, highlight)
                     }
                     None => {
                         let indices = ix.iter().map(usize::from);
@@ -460,9 +458,17 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         for (c, i) in corners.iter_mut().zip(indices) {
             *c = i;
         }
-        return mesh_triangle::<DEPTH, N, O, true>(
-            pipe, sink.out, table, corners, color, clip, highlight,
-        );
+        let r = mesh_triangle(pipe, sink.out, table, corners, color, clip, highlight);
+        if let Ok(o) = r {
+            let is = |k: Outcome| (o == k) as u32;
+            pipe.add_counts(
+                is(Outcome::Emitted),
+                is(Outcome::Culled),
+                is(Outcome::ClippedAway),
+                0,
+            );
+        }
+        return r;
     }
     table.check(indices.clone())?;
     let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
@@ -473,11 +479,11 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
 /// A triangle through vertices `corners` (0-based) of `table` into
 /// `out`, as [`mesh_face`] draws it. Its indices are checked once; its
 /// corners' output vertices are kept in the table for the faces after
-/// it. Out of line for the reason `face` is. Counted in `pipe`'s
-/// counters when `COUNTED`; else only a triangle the pipeline refuses
-/// is, and the caller adds the others ([`mesh_run`]).
+/// it. Out of line for the reason `face` is. Of `pipe`'s counters, only
+/// a triangle the pipeline refuses is counted: the caller adds what
+/// became of the others ([`mesh_run`] once a run).
 #[inline(never)]
-pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out, const COUNTED: bool>(
+pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
     out: &mut O,
     table: &mut VertexTable<'_>,
@@ -495,11 +501,6 @@ pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out, const CO
         table.checked(c)?;
     }
     let slots = table.for_pipeline(pipe);
-    if COUNTED {
-        return pipe
-            .mesh_triangle(slots, corners, color, &mut sink)
-            .map_err(pipeline_error);
-    }
     let r = pipe.mesh_triangle_uncounted(slots, corners, color, &mut sink);
     if r.is_err() {
         pipe.add_counts(0, 0, 0, 1);
