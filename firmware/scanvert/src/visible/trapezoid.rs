@@ -792,7 +792,7 @@ impl Divisor {
 /// The divisors below which [`Divisor`] divides by [`small_div_64_32`].
 /// [`Plane::depth`] divides by `2c`, where `c` is twice the face's screen
 /// area in units of 1/256 px²: below this for faces of less than 2¹¹
-/// px², the faces of a mesh of a few hundred triangles or more.
+/// px².
 const SMALL_DIVISOR: u32 = 1 << 21;
 
 /// `u / d` for `0 < d < 2²¹` and `u < d·2³²` (so the quotient fits in
@@ -808,7 +808,8 @@ fn small_div_64_32(u: u64, d: u32) -> u32 {
     let t = (t - q2 * d) << 11 | (lo >> 10) & 0x7ff;
     let q1 = t / d;
     let t = (t - q1 * d) << 10 | lo & 0x3ff;
-    q2 << 21 | q1 << 10 | t / d
+    let q0 = t / d;
+    q2 << 21 | q1 << 10 | q0
 }
 
 /// `u / v` for `v ≥ 2³¹` (normalised) and `u < v·2³²` (so the quotient
