@@ -1204,6 +1204,44 @@ mod tests {
         assert_eq!((mesh.faces, mesh.culled), (4, 1), "the hidden face skipped");
     }
 
+    /// A mesh run adds what became of its faces to the pipeline's
+    /// counters as the faces one by one would have.
+    #[test]
+    fn a_mesh_run_counts_in_the_pipeline_as_one_by_one() {
+        let mut bytes = [0u8; 1024];
+        let n = mesh_or_faces(&mut bytes, true);
+        let l = DisplayList::new_checked(&bytes[..n]).unwrap();
+        let stats = |run: bool| {
+            let mut m = Mem::new();
+            let mut slots = [ViewPoint::EMPTY; 4];
+            let (pipeline, _) = layer_pipeline(&l, 0).unwrap();
+            let mut slot = None;
+            let scene =
+                slot.insert(Scene::with_frame(m.three.as_memory(), pipeline, W, H).unwrap());
+            let mut st = ListState::new(l.width(), l.height());
+            let mut b = scene.open(0).unwrap();
+            let mut table = VertexTable::new(&mut slots);
+            let mut cmds = l.commands();
+            let mut runs = 0;
+            while let Some((_, cmd)) = cmds.next() {
+                if let Command::Segment(id) = cmd {
+                    st.enter_segment(crate::scene::list::attributes(&l, id));
+                }
+                b.command_in(cmd, &mut st, &mut table).unwrap();
+                if run && matches!(cmd, Command::MeshVertex(_) | Command::MeshFace(_)) {
+                    let mut counts = MeshCounts::default();
+                    b.mesh_run(&mut cmds, &st, &mut table, &mut counts).unwrap();
+                    runs += (counts != MeshCounts::default()) as u32;
+                }
+            }
+            (scene.pipeline().stats(), runs)
+        };
+        let ((run, runs), (one, _)) = (stats(true), stats(false));
+        assert!(runs > 0);
+        assert_eq!(run, one);
+        assert!(one.emitted > 0 && one.culled > 0, "{one:?}");
+    }
+
     #[test]
     fn a_full_vertex_table_inside_a_mesh_run_names_its_v() {
         let mut bytes = [0u8; 1024];

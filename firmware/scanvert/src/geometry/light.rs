@@ -103,7 +103,31 @@ impl core::error::Error for ZeroDirection {}
 /// bits; `None` for the zero vector. Components are `i64` below 2⁶³.
 #[inline]
 pub(super) fn scale15(v: [i64; 3]) -> Option<[i32; 3]> {
-    let m = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+    // The usual case, every component within `i32`: the same shifts in
+    // 32 bits. The bitwise or of the magnitudes has the largest one's
+    // leading bit.
+    if let (Ok(x), Ok(y), Ok(z)) = (
+        i32::try_from(v[0]),
+        i32::try_from(v[1]),
+        i32::try_from(v[2]),
+    ) {
+        let m = x.unsigned_abs() | y.unsigned_abs() | z.unsigned_abs();
+        if m == 0 {
+            return None;
+        }
+        let bits = 32 - m.leading_zeros();
+        // |c| ≤ 2³¹ has at most `bits` bits: shifted right by `bits − 15`
+        // it is within 2¹⁵, and shifted left by `15 − bits` too.
+        let shift = |c: i32| {
+            if bits > 15 {
+                c >> (bits - 15)
+            } else {
+                c << (15 - bits)
+            }
+        };
+        return Some([shift(x), shift(y), shift(z)]);
+    }
+    let m = v.iter().fold(0, |m, c| m | c.unsigned_abs());
     if m == 0 {
         return None;
     }
@@ -181,6 +205,57 @@ mod tests {
         // No directed light: unchanged; all directed, facing away: black.
         assert_eq!(shade(GREY, [0, 0, -1], up, 0), GREY);
         assert_eq!(shade(GREY, [0, 0, -1], up, 100), Rgb888::new(0, 0, 0));
+    }
+
+    /// `scale15`'s 32-bit path gives what the 64-bit shifts give, for
+    /// components within `i32` and past it.
+    #[test]
+    fn scale15_in_32_bits_is_the_64_bit_one() {
+        fn wide(v: [i64; 3]) -> Option<[i32; 3]> {
+            let m = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
+            if m == 0 {
+                return None;
+            }
+            let bits = 64 - m.leading_zeros();
+            Some(v.map(|c| {
+                if bits > 15 {
+                    (c >> (bits - 15)) as i32
+                } else {
+                    (c << (15 - bits)) as i32
+                }
+            }))
+        }
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let edges = [
+            0,
+            1,
+            -1,
+            i32::MAX as i64,
+            i32::MIN as i64,
+            i32::MAX as i64 + 1,
+            i32::MIN as i64 - 1,
+            1 << 14,
+            (1 << 15) - 1,
+            -(1 << 15),
+        ];
+        for _ in 0..200_000 {
+            let mut pick = || {
+                let r = next();
+                match r % 3 {
+                    0 => edges[(r >> 8) as usize % edges.len()],
+                    1 => (r as i64) >> (r >> 58),
+                    _ => (r as i64) >> (32 + (r >> 59) % 32),
+                }
+            };
+            let v = [pick(), pick(), pick()];
+            assert_eq!(scale15(v), wide(v), "{v:?}");
+        }
     }
 
     #[test]

@@ -554,6 +554,39 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         r
     }
 
+    /// [`mesh_triangle`](Self::mesh_triangle) with nothing counted, for a
+    /// caller that counts what became of a run of triangles and adds it
+    /// at once ([`add_counts`](Self::add_counts)).
+    #[doc(hidden)]
+    #[inline(always)]
+    pub fn mesh_triangle_uncounted<S: PolygonSink>(
+        &mut self,
+        slots: &mut [ViewPoint],
+        corners: [usize; 3],
+        color: Rgb888,
+        sink: &mut S,
+    ) -> Result<Outcome, PipelineError<S::Error>> {
+        self.triangle(slots, corners, color, sink)
+    }
+
+    /// Adds to the counters faces given that were emitted, culled,
+    /// clipped away and refused, as [`stats`](Self::stats) counts them
+    /// one by one.
+    #[doc(hidden)]
+    pub fn add_counts(&mut self, emitted: u32, culled: u32, clipped_away: u32, rejected: u32) {
+        let s = &mut self.stats;
+        s.faces_in = s
+            .faces_in
+            .wrapping_add(emitted)
+            .wrapping_add(culled)
+            .wrapping_add(clipped_away)
+            .wrapping_add(rejected);
+        s.emitted = s.emitted.wrapping_add(emitted);
+        s.culled = s.culled.wrapping_add(culled);
+        s.clipped_away = s.clipped_away.wrapping_add(clipped_away);
+        s.rejected = s.rejected.wrapping_add(rejected);
+    }
+
     /// The body of [`mesh_triangle`](Self::mesh_triangle): `run`'s stages
     /// for three points, with no copy of them where no clip is needed.
     #[inline(always)]

@@ -238,11 +238,13 @@ pub const fn isqrt(v: u32) -> u16 {
     if v == 0 {
         return 0;
     }
-    // Newton's method from a power of two at or above the root: the
-    // iterates fall monotonically to ⌊√v⌋ and then stop (x ≤ 2¹⁶ and
-    // v / x ≤ 2¹⁶ + 1, so the sum fits).
-    let bits = 32 - v.leading_zeros();
-    let mut x = 1u32 << bits.div_ceil(2);
+    // Newton's method, its first step taken by shifts from the power of
+    // two 2ᵏ at or below the root (2²ᵏ ≤ v < 2²ᵏ⁺²): any step lands at
+    // or above ⌊√v⌋, here within 5/4 of it. The iterates then fall
+    // monotonically to ⌊√v⌋ and stop (x ≤ 2¹⁶ + 2¹⁴ and v / x ≤ 2¹⁶ + 1,
+    // so the sums fit).
+    let k = (31 - v.leading_zeros()) / 2;
+    let mut x = ((v >> k) + (1 << k)) / 2;
     loop {
         let y = (x + v / x) / 2;
         if y >= x {
@@ -364,6 +366,23 @@ mod tests {
         ] {
             let r = isqrt(v) as u64;
             assert!(r * r <= v as u64 && (r + 1) * (r + 1) > v as u64, "{v}");
+        }
+        // Around every power of two and every square, and at random.
+        let mut seed = 0x2545_f491u32;
+        for i in 0..2_000_000u32 {
+            seed ^= seed << 13;
+            seed ^= seed >> 17;
+            seed ^= seed << 5;
+            let r0 = i % 65536;
+            for v in [
+                seed,
+                seed >> (i % 32),
+                (1u32 << (i % 32)).wrapping_add(i % 3).wrapping_sub(1),
+                (r0 * r0).wrapping_add(i % 3).wrapping_sub(1),
+            ] {
+                let r = isqrt(v) as u64;
+                assert!(r * r <= v as u64 && (r + 1) * (r + 1) > v as u64, "{v}");
+            }
         }
     }
 }

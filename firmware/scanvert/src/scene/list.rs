@@ -353,10 +353,21 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
     counts: &mut MeshCounts,
 ) -> Result<(), (usize, SceneError)> {
     let (color, clip, highlight) = (st.color, st.clip, st.attributes.highlight);
-    while let Some((offset, cmd)) = cmds.next_mesh() {
+    // The run's triangles are counted here only (the pipeline counts
+    // the other faces itself): what became of them is added to the
+    // pipeline's counters once, at the end, as the difference of
+    // `counts` less the other faces'.
+    let before = *counts;
+    let mut general = MeshCounts::default();
+    let r = loop {
+        let Some((offset, cmd)) = cmds.next_mesh() else {
+            break Ok(());
+        };
         match cmd {
             Command::MeshVertex(p) => {
-                table.push(pipe.view_point(p)).map_err(|e| (offset, e))?;
+                if let Err(e) = table.push(pipe.view_point(p)) {
+                    break Err((offset, e));
+                }
                 counts.vertices += 1;
             }
             Command::MeshFace(ix) => {
@@ -367,21 +378,39 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
                     }
                     None => {
                         let indices = ix.iter().map(usize::from);
-                        mesh_face(pipe, out, table, indices, color, clip, highlight)
+                        let r = mesh_face(pipe, out, table, indices, color, clip, highlight);
+                        match r {
+                            Ok(Outcome::Emitted) => general.faces += 1,
+                            Ok(Outcome::Culled) => general.culled += 1,
+                            Ok(Outcome::ClippedAway) => general.clipped_away += 1,
+                            _ => {}
+                        }
+                        r
                     }
-                }
-                .map_err(|e| (offset, e))?;
+                };
                 match outcome {
-                    Outcome::Emitted => counts.faces += 1,
-                    Outcome::Culled => counts.culled += 1,
-                    Outcome::ClippedAway => counts.clipped_away += 1,
-                    Outcome::Empty => {}
+                    Ok(Outcome::Emitted) => counts.faces += 1,
+                    Ok(Outcome::Culled) => counts.culled += 1,
+                    Ok(Outcome::ClippedAway) => counts.clipped_away += 1,
+                    Ok(Outcome::Empty) => {}
+                    Err(e) => break Err((offset, e)),
                 }
             }
             _ => {}
         }
-    }
-    Ok(())
+    };
+    let added = |now: u32, was: u32, other: u32| now.wrapping_sub(was).wrapping_sub(other);
+    pipe.add_counts(
+        added(counts.faces, before.faces, general.faces),
+        added(counts.culled, before.culled, general.culled),
+        added(
+            counts.clipped_away,
+            before.clipped_away,
+            general.clipped_away,
+        ),
+        0,
+    );
+    r
 }
 
 /// A polygon of model points through the geometry stage into `out`. Out
@@ -429,7 +458,17 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         for (c, i) in corners.iter_mut().zip(indices) {
             *c = i;
         }
-        return mesh_triangle(pipe, sink.out, table, corners, color, clip, highlight);
+        let r = mesh_triangle(pipe, sink.out, table, corners, color, clip, highlight);
+        if let Ok(o) = r {
+            let is = |k: Outcome| (o == k) as u32;
+            pipe.add_counts(
+                is(Outcome::Emitted),
+                is(Outcome::Culled),
+                is(Outcome::ClippedAway),
+                0,
+            );
+        }
+        return r;
     }
     table.check(indices.clone())?;
     let points = indices.map(|i| table.get(i).and_then(|v| v.raw()));
@@ -440,7 +479,9 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
 /// A triangle through vertices `corners` (0-based) of `table` into
 /// `out`, as [`mesh_face`] draws it. Its indices are checked once; its
 /// corners' output vertices are kept in the table for the faces after
-/// it. Out of line for the reason `face` is.
+/// it. Out of line for the reason `face` is. Of `pipe`'s counters, only
+/// a triangle the pipeline refuses is counted: the caller adds what
+/// became of the others ([`mesh_run`] once a run).
 #[inline(never)]
 pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
@@ -460,8 +501,11 @@ pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
         table.checked(c)?;
     }
     let slots = table.for_pipeline(pipe);
-    pipe.mesh_triangle(slots, corners, color, &mut sink)
-        .map_err(pipeline_error)
+    let r = pipe.mesh_triangle_uncounted(slots, corners, color, &mut sink);
+    if r.is_err() {
+        pipe.add_counts(0, 0, 0, 1);
+    }
+    r.map_err(pipeline_error)
 }
 
 fn pipeline_error(e: PipelineError<SceneError>) -> SceneError {

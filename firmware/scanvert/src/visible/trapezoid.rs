@@ -698,6 +698,8 @@ fn div_64_32(u: u64, v: u32) -> u32 {
 /// normalised (shifted left by `s` until its top bit is set, `v`), with
 /// its reciprocal `inv = ⌊(2⁶⁴ − 1) / v⌋ − 2³²`, so that each division
 /// is a multiply and at most two corrections ([`Divisor::div_64_32`]).
+/// A divisor below [`SMALL_DIVISOR`] needs no reciprocal: its divisions
+/// are three 32-bit ones ([`small_div_64_32`]).
 #[derive(Clone, Copy, Debug)]
 struct Divisor {
     d: u32,
@@ -710,6 +712,14 @@ impl Divisor {
     #[inline(always)]
     fn new(d: u32) -> Divisor {
         debug_assert!(d > 0);
+        if d < SMALL_DIVISOR {
+            return Divisor {
+                d,
+                s: 0,
+                v: 0,
+                inv: 0,
+            };
+        }
         let s = d.leading_zeros() & 31;
         let v = d << s;
         // 2⁶⁴ − 1 − 2³²·v = (2³² − 1 − v)·2³² + 2³² − 1, whose top word
@@ -755,6 +765,9 @@ impl Divisor {
     #[inline(always)]
     fn div_64_32(&self, u: u64) -> u32 {
         debug_assert!(((u >> 32) as u32) < self.d);
+        if self.d < SMALL_DIVISOR {
+            return small_div_64_32(u, self.d);
+        }
         let (s, v) = (self.s, self.v);
         let (hi, lo) = ((u >> 32) as u32, u as u32);
         // `u << s` word by word: `lo >> 1 >> (31 − s)` is `lo >> (32 − s)`
@@ -774,6 +787,29 @@ impl Divisor {
         }
         q1
     }
+}
+
+/// The divisors below which [`Divisor`] divides by [`small_div_64_32`].
+/// [`Plane::depth`] divides by `2c`, where `c` is twice the face's screen
+/// area in units of 1/256 px²: below this for faces of less than 2¹¹
+/// px².
+const SMALL_DIVISOR: u32 = 1 << 21;
+
+/// `u / d` for `0 < d < 2²¹` and `u < d·2³²` (so the quotient fits in
+/// `u32`), exactly, by long division in digits of 11, 11 and 10 bits:
+/// each partial remainder is below `d`, so with the next digit appended
+/// it is below `d·2¹¹ < 2³²`, one 32-bit division, and each quotient
+/// digit below `2¹¹`.
+#[inline(always)]
+fn small_div_64_32(u: u64, d: u32) -> u32 {
+    let (hi, lo) = ((u >> 32) as u32, u as u32);
+    let t = hi << 11 | lo >> 21;
+    let q2 = t / d;
+    let t = (t - q2 * d) << 11 | (lo >> 10) & 0x7ff;
+    let q1 = t / d;
+    let t = (t - q1 * d) << 10 | lo & 0x3ff;
+    let q0 = t / d;
+    q2 << 21 | q1 << 10 | q0
 }
 
 /// `u / v` for `v ≥ 2³¹` (normalised) and `u < v·2³²` (so the quotient
