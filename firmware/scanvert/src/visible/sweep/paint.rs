@@ -269,6 +269,9 @@ impl Painter {
     /// conflict records or a trapezoid's [`PARTS`] ran out at row `y`:
     /// rows before `y` are drawn, row `y` in part (pixels its trapezoids
     /// cover, none of the background), and the painter cannot go on.
+    /// Out of line, so that the band pass it is called from compiles the
+    /// sweep as it does without it.
+    #[inline(never)]
     pub(super) fn rows<T>(
         &mut self,
         active: &mut [Active],
