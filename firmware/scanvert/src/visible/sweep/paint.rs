@@ -525,16 +525,17 @@ fn enter(
             return false;
         }
     }
-    // The later ones, keys below its own: a greatest depth is at
-    // most the key and the widest range seen.
+    // The later ones, keys below its own, each tested as it moves a
+    // place up to make room: a greatest depth is at most the key and the
+    // widest range seen, so those with keys below `below` need no test.
     // (Saturated: a bound below `i32` stops nothing.)
     let below = (zmin as i64 - DEPTH_TOLERANCE - *spread).max(i32::MIN as i64) as i32;
-    for p in at..k {
-        let u = act[p].cover.p as usize;
-        if act[u].cover.r < below {
-            break;
-        }
-        if apart(act, u) {
+    let mut p = k;
+    while p > at {
+        let u = act[p - 1].cover.p as usize;
+        act[p].cover.p = u as u16;
+        p -= 1;
+        if act[u].cover.r < below || apart(act, u) {
             continue;
         }
         if !pair(act, pool, me, u, false) {
@@ -543,11 +544,6 @@ fn enter(
     }
     let c = &mut act[slot].cover;
     (c.r, c.z, c.zx) = (zmin, lo | hi << 16, zmax);
-    let mut p = k;
-    while p > at {
-        act[p].cover.p = act[p - 1].cover.p;
-        p -= 1;
-    }
     act[at].cover.p = slot as u16;
     true
 }
