@@ -86,6 +86,7 @@ use super::{
 use crate::color::ListColor;
 use crate::fixed::ceil_px;
 use crate::port::SpanTarget;
+use crate::raster::edge::Edge;
 use crate::visible::rle::Run;
 use crate::visible::store::TrapezoidStore;
 use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
@@ -268,6 +269,9 @@ impl Painter {
     /// conflict records or a trapezoid's [`PARTS`] ran out at row `y`:
     /// rows before `y` are drawn, row `y` in part (pixels its trapezoids
     /// cover, none of the background), and the painter cannot go on.
+    /// Out of line, so that the band pass it is called from compiles the
+    /// sweep as it does without it.
+    #[inline(never)]
     pub(super) fn rows<T>(
         &mut self,
         active: &mut [Active],
@@ -521,16 +525,17 @@ fn enter(
             return false;
         }
     }
-    // The later ones, keys below its own: a greatest depth is at
-    // most the key and the widest range seen.
+    // The later ones, keys below its own, each tested as it moves a
+    // place up to make room: a greatest depth is at most the key and the
+    // widest range seen, so those with keys below `below` need no test.
     // (Saturated: a bound below `i32` stops nothing.)
     let below = (zmin as i64 - DEPTH_TOLERANCE - *spread).max(i32::MIN as i64) as i32;
-    for p in at..k {
-        let u = act[p].cover.p as usize;
-        if act[u].cover.r < below {
-            break;
-        }
-        if apart(act, u) {
+    let mut p = k;
+    while p > at {
+        let u = act[p - 1].cover.p as usize;
+        act[p].cover.p = u as u16;
+        p -= 1;
+        if act[u].cover.r < below || apart(act, u) {
             continue;
         }
         if !pair(act, pool, me, u, false) {
@@ -539,11 +544,6 @@ fn enter(
     }
     let c = &mut act[slot].cover;
     (c.r, c.z, c.zx) = (zmin, lo | hi << 16, zmax);
-    let mut p = k;
-    while p > at {
-        act[p].cover.p = act[p - 1].cover.p;
-        p -= 1;
-    }
     act[at].cover.p = slot as u16;
     true
 }
@@ -584,7 +584,9 @@ fn pair(
     if act[u].hot.slot != y as u16 {
         step_one(&mut act[u], y as u16);
     }
-    if in_front(act, later, first, (i0, i1), (y, j1)) || in_front_edges(act, later, first, (y, j1))
+    if in_front(act, later, first, (i0, i1), (y, j1))
+        || in_front_edges(act, later, first, (y, j1))
+        || !may_meet(&act[slot].entry, &act[u].entry, j1 - y)
     {
         return true;
     }
@@ -841,6 +843,48 @@ fn in_front_edges(act: &[Active], x: usize, y: usize, (j0, j1): (i32, i32)) -> b
     bound(x) >= 16 * DEPTH_TOLERANCE || bound(y) >= 16 * DEPTH_TOLERANCE
 }
 
+/// `false` when the trapezoids stepped to `e` and `f`, both on the same
+/// row `y`, share no pixel on rows `y..=y + rows`: a pixel of both is
+/// left of `e`'s right edge and right of `f`'s left edge, and left of
+/// `f`'s right edge and right of `e`'s left edge. On row `y + t` the gap
+/// from a left edge's crossing to the other's right edge's is at most
+/// `d + s·t` (sixteenths; each crossing moves by its whole units a row
+/// or one more), and pixels can meet only where both gaps are positive:
+/// the least of two affine bounds is positive somewhere on `0..=rows`
+/// only at an end or where the two cross. Out of line: it runs only for
+/// the pairs no depth bound settles.
+#[inline(never)]
+fn may_meet(e: &Entry, f: &Entry, rows: i32) -> bool {
+    edges_may_meet((&e.left, &e.right), (&f.left, &f.right), rows)
+}
+
+/// [`may_meet`] of two pairs of edges (left, right), stepped to one row.
+#[inline(always)]
+fn edges_may_meet(e: (&Edge, &Edge), f: (&Edge, &Edge), rows: i32) -> bool {
+    let gap = |l: &Edge, r: &Edge| {
+        (
+            r.units() as i64 - l.units() as i64,
+            r.step_units() as i64 + 1 - l.step_units() as i64,
+        )
+    };
+    let ((d1, s1), (d2, s2)) = (gap(e.0, f.1), gap(f.0, e.1));
+    let t = rows as i64;
+    let both = |t: i64| d1 + s1 * t > 0 && d2 + s2 * t > 0;
+    if both(0) || both(t) {
+        return true;
+    }
+    // The bounds cross at `(d2 − d1) / (s1 − s2)`, where both are
+    // `(s1·d2 − s2·d1) / (s1 − s2)`.
+    let den = s1 - s2;
+    let (at, value) = (d2 - d1, s1 * d2 - s2 * d1);
+    let (at, value, den) = if den < 0 {
+        (-at, -value, -den)
+    } else {
+        (at, value, den)
+    };
+    den != 0 && value > 0 && at >= 0 && at <= t * den
+}
+
 /// The part of `a..b` (common pixels of slots `x` and `u` on row `y`)
 /// where `u` is in front of `x`, when the fixed-point depths at its ends
 /// do not decide both: compared exactly there, and where the planes
@@ -924,6 +968,45 @@ mod tests {
     use std::vec;
     use std::vec::Vec;
     use testkit::rng::Rng;
+
+    /// `edges_may_meet` is `false` only for pairs of edge pairs whose
+    /// pixels (from the crossings' ceilings, as a row's are) never meet
+    /// on the rows it is given.
+    #[test]
+    fn may_meet_is_false_only_where_pixels_never_meet() {
+        use super::edges_may_meet;
+        use crate::fixed::{ceil_px, Coord, Vertex};
+        use crate::raster::edge::Edge;
+        let mut rng = Rng(25);
+        let (r0, r1) = (4, 40);
+        let v =
+            |x: i32, y: i32| Vertex::new(Coord::from_bits(x as i16), Coord::from_bits(y as i16));
+        let edge = |rng: &mut Rng| {
+            let (xa, xb) = (rng.range(0, 2048), rng.range(0, 2048));
+            Edge::new(v(xa, 16 * r0 - 24), v(xb, 16 * r1 + 24), (r0, r1)).unwrap()
+        };
+        let (mut apart, mut meeting) = (0, 0);
+        for _ in 0..20_000 {
+            let mut e = [
+                edge(&mut rng),
+                edge(&mut rng),
+                edge(&mut rng),
+                edge(&mut rng),
+            ];
+            assert_eq!((e[0].top(), e[0].end()), (r0, r1));
+            let may = edges_may_meet((&e[0], &e[1]), (&e[2], &e[3]), r1 - 1 - r0);
+            let mut met = false;
+            for _ in r0..r1 {
+                let px: [i32; 4] = core::array::from_fn(|i| ceil_px(e[i].units()));
+                met |= px[0].max(px[2]) < px[1].min(px[3]);
+                e.iter_mut().for_each(Edge::step);
+            }
+            assert!(may || !met, "{e:?}");
+            apart += !may as u32;
+            meeting += met as u32;
+        }
+        assert!(apart > 1000 && meeting > 1000, "{apart} {meeting}");
+    }
 
     /// The last colour written to each pixel.
     struct Pixels {
