@@ -230,8 +230,8 @@ struct Entry {
 /// A live trapezoid on the current row, in the array sorted by `l`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Hot {
-    /// Pixels `l..r` on the row, cut to the columns; `l` is the frame's
-    /// width when there is none, so that it sorts last and never enters.
+    /// Pixels `l..r` on the row, cut to the columns; `r ≤ l` when there
+    /// is none (then it keeps its place in the order and never enters).
     l: i32,
     r: i32,
     z: i32,
@@ -358,13 +358,15 @@ impl Entry {
     }
 
     /// The row's pixels `l..r`, cut to the columns, and depth. With no
-    /// pixel, `l` is `i32::MAX`: sorted last, never entered (`x1` is the
-    /// width at most).
+    /// pixel, `r ≤ l`: such a trapezoid keeps its place in the order by
+    /// `l` (a mesh's thin faces lose and regain their pixels from row to
+    /// row, and would otherwise move to the end and back) and is never
+    /// entered (the sweeps pass it by).
     #[inline(always)]
     fn pixels(&self) -> (i32, i32, i32) {
         let l = ceil_px(self.left.units()).max(self.x0 as i32);
         let r = ceil_px(self.right.units()).min(self.x1 as i32);
-        (if l < r { l } else { i32::MAX }, r, self.z)
+        (l, r, self.z)
     }
 
     /// The row's element of the sorted array.
@@ -1517,8 +1519,7 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             while p < k {
                 let h = &act[p].hot;
                 if h.l > x {
-                    // Up to the next `l` (the width at most: a trapezoid
-                    // with no pixel sorts last, its `l` past it).
+                    // Up to the next `l`.
                     if x >= width {
                         return;
                     }
@@ -1535,10 +1536,13 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
                     break;
                 }
                 let (r, face, color) = (h.r, h.face, h.color);
-                cx.stats.single += 1;
-                cx.emit(r - x, face, color);
-                x = r;
                 p += 1;
+                // One with no pixel (`r ≤ l = x`) writes nothing.
+                if r > x {
+                    cx.stats.single += 1;
+                    cx.emit(r - x, face, color);
+                    x = r;
+                }
             }
             if p >= k {
                 if x < width {
@@ -1553,7 +1557,10 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         while p < k && act[p].hot.l <= x {
             let c = Covered::of(&act[p].hot, p);
             p += 1;
-            insert(act, &mut nc, c);
+            // One with no pixel (`r ≤ l = x`) never covers.
+            if c.r > x {
+                insert(act, &mut nc, c);
+            }
         }
         let mut next = next_l(act, p);
         let cov = &act[..nc.min(k)];
@@ -1583,6 +1590,9 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             while p < k && act[p].hot.l <= x {
                 let c = Covered::of(&act[p].hot, p);
                 p += 1;
+                if c.r <= x {
+                    continue;
+                }
                 // The front is in front of the new one on all their
                 // common pixels: when those are all of its pixels, it is
                 // hidden (the front is in the cover array, so this holds
@@ -1726,6 +1736,10 @@ fn sweep_many<O: RowOut>(
         while p < k && act[p].hot.l <= x {
             let c = cover_of(act, p);
             p += 1;
+            // One with no pixel (`r ≤ l = x`) never covers.
+            if c.r <= x {
+                continue;
+            }
             if chain {
                 chain = cx.enter_chain(act, lo, &mut nc, c, x, None).chain;
                 continue;
@@ -1804,6 +1818,9 @@ fn sweep_many<O: RowOut>(
             while p < k && act[p].hot.l <= x {
                 let c = cover_of(act, p);
                 p += 1;
+                if c.r <= x {
+                    continue;
+                }
                 if chain {
                     let e = cx.enter_chain(act, lo, &mut nc, c, x, Some(&f));
                     chain = e.chain;
@@ -2755,6 +2772,44 @@ mod tests {
         // Stacked in front of one another: most hidden where they start.
         let stats = run_scene_many_from(&stacked, Resolve::Crossing, (0, 0));
         assert!(stats.hidden >= 59 * H as u32, "{stats:?}");
+    }
+
+    #[test]
+    fn faces_with_no_pixel_on_some_rows_are_passed_by() {
+        // A strip of thin triangles sharing edges, as a mesh's faces near
+        // its silhouette: each has no pixel on some rows (`r ≤ l`) and
+        // keeps its place among the others by `l`. Alone on their rows,
+        // and under or over wide faces, so that the sweep meets them where
+        // nothing covers and where covers are, and enters none of them.
+        let mut rng = Rng(0x7819_5e11);
+        for _ in 0..80 {
+            let (y0, y1) = (rng.below(16 * 8) - 32, 16 * 24 + rng.below(16 * 24));
+            let shift = rng.below(16 * 16) - 16 * 8;
+            let mut top = 16 * 8 + rng.below(64);
+            let mut bottom = top + shift;
+            let mut polys = [[Vertex3::default(); 3]; 24];
+            let mut n = 0;
+            while n + 2 <= 20 {
+                let (t, b) = (top + 1 + rng.below(20), bottom + 1 + rng.below(20));
+                let z = |rng: &mut Rng| 600 + rng.below(200);
+                let (zt, zb, zt1, zb1) = (z(&mut rng), z(&mut rng), z(&mut rng), z(&mut rng));
+                polys[n] = [v(top, y0, zt), v(bottom, y1, zb), v(b, y1, zb1)];
+                polys[n + 1] = [v(top, y0, zt), v(b, y1, zb1), v(t, y0, zt1)];
+                (top, bottom, n) = (t, b, n + 2);
+            }
+            let wide = rng.below(4) as usize;
+            for p in polys[n..n + wide].iter_mut() {
+                let z = if rng.below(2) == 0 {
+                    (0, 500)
+                } else {
+                    (900, 1800)
+                };
+                *p = random_tri(&mut rng, z);
+            }
+            for mode in [Resolve::Bisect, Resolve::Crossing] {
+                run_scene(&polys[..n + wide], mode);
+            }
+        }
     }
 
     #[test]
