@@ -2813,6 +2813,47 @@ mod tests {
     }
 
     #[test]
+    fn entries_set_up_their_edges_as_edge_new_does() {
+        // The record's sides over every run of rows they cross: the set-up
+        // without tests gives `Edge::new`'s stepper, at the extremes of
+        // the clip's range too.
+        use crate::fixed::Vertex;
+        let mut rng = Rng(0x0e0e_5e75);
+        for k in 0..200_000 {
+            let c = |rng: &mut Rng| {
+                if k % 4 == 0 {
+                    rng.below(65_536) - 32_768
+                } else {
+                    rng.below(16 * 600) - 16 * 40
+                }
+            };
+            let (x0, mut y0, x1, mut y1) = (c(&mut rng), c(&mut rng), c(&mut rng), c(&mut rng));
+            if y0 > y1 {
+                core::mem::swap(&mut y0, &mut y1);
+            }
+            let (a, b) = (
+                Vertex::from_bits(x0 as i16, y0 as i16),
+                Vertex::from_bits(x1 as i16, y1 as i16),
+            );
+            if y0 == y1 {
+                assert_eq!(Edge::on_rows(x0, y0, x1, y1, (0, 1)), Edge::EMPTY);
+                continue;
+            }
+            let Some(all) = Edge::new(a, b, (i32::MIN / 32, i32::MAX / 32)) else {
+                continue;
+            };
+            let (t, e) = (all.top(), all.end());
+            let top = t + rng.below((e - t) as u32);
+            let end = top + 1 + rng.below((e - top) as u32);
+            assert_eq!(
+                Some(Edge::on_rows(x0, y0, x1, y1, (top, end))),
+                Edge::new(a, b, (top, end)),
+                "{x0} {y0} {x1} {y1} {top}..{end}"
+            );
+        }
+    }
+
+    #[test]
     fn equal_depths_go_to_the_earlier_polygon() {
         // Two coplanar triangles overlapping, and a third at the same
         // constant depth: the earliest wins everywhere they overlap.
