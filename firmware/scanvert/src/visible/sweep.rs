@@ -1358,9 +1358,9 @@ fn sort_many(act: &mut [Active], stepped: usize, k: usize) {
 
 /// Insertion sort of the live trapezoids by `l`, as [`sort`], but with
 /// a budget for the whole array instead of a reach for each element:
-/// an element may move far (one that gains its pixels comes from the
-/// end, where `l` is `i32::MAX`) as long as the moves stay within
-/// `SORT_REACH · n`; past that, a heap sort.
+/// an element may move far (many entering a row together, listed right
+/// to left) as long as the moves stay within `SORT_REACH · n`; past
+/// that, a heap sort.
 fn sort_budget(live: &mut [Active]) {
     let mut budget = SORT_REACH * live.len();
     for p in 1..live.len() {
