@@ -1518,6 +1518,11 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             // by side, goes all this way).
             while p < k {
                 let h = &act[p].hot;
+                if h.r <= h.l {
+                    // No pixel: passed by.
+                    p += 1;
+                    continue;
+                }
                 if h.l > x {
                     // Up to the next `l`.
                     if x >= width {
@@ -1536,13 +1541,10 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
                     break;
                 }
                 let (r, face, color) = (h.r, h.face, h.color);
+                cx.stats.single += 1;
+                cx.emit(r - x, face, color);
+                x = r;
                 p += 1;
-                // One with no pixel (`r ≤ l = x`) writes nothing.
-                if r > x {
-                    cx.stats.single += 1;
-                    cx.emit(r - x, face, color);
-                    x = r;
-                }
             }
             if p >= k {
                 if x < width {
@@ -1565,13 +1567,14 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         let mut next = next_l(act, p);
         let cov = &act[..nc.min(k)];
         let Some(last) = cov.last() else {
+            let next = next_with_pixels(act, p, k, width);
             cx.stats.empty += 1;
             cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
             x = next;
             continue;
         };
         let Some(f) = cx.establish(act, cov, x) else {
-            let t = next.min(last.cover.r);
+            let t = next_with_pixels(act, p, k, width).min(last.cover.r);
             span(act, cov, x, t, cx);
             x = t;
             continue;
@@ -1622,6 +1625,22 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         }
         cx.emit(x - start, f.face, f.color);
     }
+}
+
+/// The `l` of the first of the live trapezoids `act[p..k]` that has
+/// pixels on the row, the width at most. Where a run of the background
+/// or of several covers is resolved, it ends there and not at a
+/// trapezoid with no pixel (which the sweeps pass by): the runs and their
+/// counts are those of the row without it.
+#[inline(never)]
+fn next_with_pixels(act: &[Active], mut p: usize, k: usize, width: i32) -> i32 {
+    while let Some(a) = act[..k.min(act.len())].get(p) {
+        if a.hot.l < a.hot.r {
+            return a.hot.l.min(width);
+        }
+        p += 1;
+    }
+    width
 }
 
 /// Covers past which those a broken front hid leave the array (see
@@ -1769,6 +1788,7 @@ fn sweep_many<O: RowOut>(
         }
         let mut next = next_l(act, p);
         if lo >= nc {
+            let next = next_with_pixels(act, p, k, width);
             cx.stats.empty += 1;
             cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
             x = next;
@@ -1784,7 +1804,8 @@ fn sweep_many<O: RowOut>(
         } else {
             let cov = &act[lo..nc.min(k)];
             let Some(f) = cx.establish(act, cov, x) else {
-                let t = next.min(cov.first().map_or(width, |a| a.cover.r));
+                let t = next_with_pixels(act, p, k, width)
+                    .min(cov.first().map_or(width, |a| a.cover.r));
                 span(act, cov, x, t, cx);
                 x = t;
                 continue;
