@@ -279,6 +279,54 @@ impl Edge {
             .wrapping_add(carries as i32);
     }
 
+    /// [`Edge::new`] for an edge from `(x0, y0)` to `(x1, y1)` (units,
+    /// `y0 < y1`) over `rows`, rows whose centres it crosses, as a cut
+    /// trapezoid's sides are stored: the same stepper, without the ends'
+    /// order, the rows' bounds or their test, which the record already
+    /// holds. Rows it does not cross give a stepper whose positions are
+    /// the line's, not the edge's; ends with `y0 ≥ y1` give
+    /// [`Edge::EMPTY`]. The ends are `i16` widened (so nothing here
+    /// overflows). Not inlined: inlined into the entries (the sweep's and
+    /// painting's), it cost the 3D demo more than the call (figures in
+    /// `docs/performance-log.md`).
+    #[inline(never)]
+    pub(crate) fn on_rows(x0: i32, y0: i32, x1: i32, y1: i32, (top, end): (i32, i32)) -> Edge {
+        let (dx, dy) = (x1 - x0, y1 - y0);
+        if dy <= 0 {
+            return Edge::EMPTY;
+        }
+        let yc = top * ONE + HALF;
+        let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
+        // ⌈num/dy⌉ from a truncating division (dy > 0), written out as in
+        // `advance`: the `fixed` helper is not inlined here.
+        let (x, err) = match i32::try_from(num) {
+            Ok(n) => {
+                let q = n / dy;
+                let x = if n > 0 && q * dy != n { q + 1 } else { q };
+                (x, x.wrapping_mul(dy).wrapping_sub(n))
+            }
+            Err(_) => {
+                let x = ceil_div_i64(num, dy as i64);
+                (x as i32, (x * dy as i64 - num) as i32)
+            }
+        };
+        let (mut step, mut rem) = ((ONE * dx) / dy, (ONE * dx) % dy);
+        if rem < 0 {
+            step -= 1;
+            rem += dy;
+        }
+        Edge {
+            x,
+            err,
+            step,
+            rem,
+            dy,
+            top,
+            end,
+            px: 0,
+        }
+    }
+
     /// First row sampled.
     #[doc(hidden)]
     pub fn top(&self) -> i32 {

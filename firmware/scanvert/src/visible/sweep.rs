@@ -230,8 +230,8 @@ struct Entry {
 /// A live trapezoid on the current row, in the array sorted by `l`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct Hot {
-    /// Pixels `l..r` on the row, cut to the columns; `l` is the frame's
-    /// width when there is none, so that it sorts last and never enters.
+    /// Pixels `l..r` on the row, cut to the columns; `r ≤ l` when there
+    /// is none (then it keeps its place in the order and never enters).
     l: i32,
     r: i32,
     z: i32,
@@ -358,13 +358,15 @@ impl Entry {
     }
 
     /// The row's pixels `l..r`, cut to the columns, and depth. With no
-    /// pixel, `l` is `i32::MAX`: sorted last, never entered (`x1` is the
-    /// width at most).
+    /// pixel, `r ≤ l`: such a trapezoid keeps its place in the order by
+    /// `l` (a mesh's thin faces lose and regain their pixels from row to
+    /// row, and would otherwise move to the end and back) and is never
+    /// entered (the sweeps pass it by).
     #[inline(always)]
     fn pixels(&self) -> (i32, i32, i32) {
         let l = ceil_px(self.left.units()).max(self.x0 as i32);
         let r = ceil_px(self.right.units()).min(self.x1 as i32);
-        (if l < r { l } else { i32::MAX }, r, self.z)
+        (l, r, self.z)
     }
 
     /// The row's element of the sorted array.
@@ -1356,9 +1358,9 @@ fn sort_many(act: &mut [Active], stepped: usize, k: usize) {
 
 /// Insertion sort of the live trapezoids by `l`, as [`sort`], but with
 /// a budget for the whole array instead of a reach for each element:
-/// an element may move far (one that gains its pixels comes from the
-/// end, where `l` is `i32::MAX`) as long as the moves stay within
-/// `SORT_REACH · n`; past that, a heap sort.
+/// an element may move far (many entering a row together, listed right
+/// to left) as long as the moves stay within `SORT_REACH · n`; past
+/// that, a heap sort.
 fn sort_budget(live: &mut [Active]) {
     let mut budget = SORT_REACH * live.len();
     for p in 1..live.len() {
@@ -1516,9 +1518,13 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             // by side, goes all this way).
             while p < k {
                 let h = &act[p].hot;
+                if h.r <= h.l {
+                    // No pixel: passed by.
+                    p += 1;
+                    continue;
+                }
                 if h.l > x {
-                    // Up to the next `l` (the width at most: a trapezoid
-                    // with no pixel sorts last, its `l` past it).
+                    // Up to the next `l`.
                     if x >= width {
                         return;
                     }
@@ -1553,18 +1559,22 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         while p < k && act[p].hot.l <= x {
             let c = Covered::of(&act[p].hot, p);
             p += 1;
-            insert(act, &mut nc, c);
+            // One with no pixel (`r ≤ l = x`) never covers.
+            if c.r > x {
+                insert(act, &mut nc, c);
+            }
         }
         let mut next = next_l(act, p);
         let cov = &act[..nc.min(k)];
         let Some(last) = cov.last() else {
+            let next = next_with_pixels(act, p, k, width);
             cx.stats.empty += 1;
             cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
             x = next;
             continue;
         };
         let Some(f) = cx.establish(act, cov, x) else {
-            let t = next.min(last.cover.r);
+            let t = next_with_pixels(act, p, k, width).min(last.cover.r);
             span(act, cov, x, t, cx);
             x = t;
             continue;
@@ -1583,6 +1593,9 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
             while p < k && act[p].hot.l <= x {
                 let c = Covered::of(&act[p].hot, p);
                 p += 1;
+                if c.r <= x {
+                    continue;
+                }
                 // The front is in front of the new one on all their
                 // common pixels: when those are all of its pixels, it is
                 // hidden (the front is in the cover array, so this holds
@@ -1612,6 +1625,22 @@ fn sweep<O: RowOut>(act: &mut [Active], k: usize, width: i32, cx: &mut Ctx<'_, O
         }
         cx.emit(x - start, f.face, f.color);
     }
+}
+
+/// The `l` of the first of the live trapezoids `act[p..k]` that has
+/// pixels on the row, the width at most. Where a run of the background
+/// or of several covers is resolved, it ends there and not at a
+/// trapezoid with no pixel (which the sweeps pass by): the runs and their
+/// counts are those of the row without it.
+#[inline(never)]
+fn next_with_pixels(act: &[Active], mut p: usize, k: usize, width: i32) -> i32 {
+    while let Some(a) = act[..k.min(act.len())].get(p) {
+        if a.hot.l < a.hot.r {
+            return a.hot.l.min(width);
+        }
+        p += 1;
+    }
+    width
 }
 
 /// Covers past which those a broken front hid leave the array (see
@@ -1726,6 +1755,10 @@ fn sweep_many<O: RowOut>(
         while p < k && act[p].hot.l <= x {
             let c = cover_of(act, p);
             p += 1;
+            // One with no pixel (`r ≤ l = x`) never covers.
+            if c.r <= x {
+                continue;
+            }
             if chain {
                 chain = cx.enter_chain(act, lo, &mut nc, c, x, None).chain;
                 continue;
@@ -1755,6 +1788,7 @@ fn sweep_many<O: RowOut>(
         }
         let mut next = next_l(act, p);
         if lo >= nc {
+            let next = next_with_pixels(act, p, k, width);
             cx.stats.empty += 1;
             cx.emit(next - x, Run::BACKGROUND, BACKGROUND);
             x = next;
@@ -1770,7 +1804,8 @@ fn sweep_many<O: RowOut>(
         } else {
             let cov = &act[lo..nc.min(k)];
             let Some(f) = cx.establish(act, cov, x) else {
-                let t = next.min(cov.first().map_or(width, |a| a.cover.r));
+                let t = next_with_pixels(act, p, k, width)
+                    .min(cov.first().map_or(width, |a| a.cover.r));
                 span(act, cov, x, t, cx);
                 x = t;
                 continue;
@@ -1804,6 +1839,9 @@ fn sweep_many<O: RowOut>(
             while p < k && act[p].hot.l <= x {
                 let c = cover_of(act, p);
                 p += 1;
+                if c.r <= x {
+                    continue;
+                }
                 if chain {
                     let e = cx.enter_chain(act, lo, &mut nc, c, x, Some(&f));
                     chain = e.chain;
@@ -2755,6 +2793,85 @@ mod tests {
         // Stacked in front of one another: most hidden where they start.
         let stats = run_scene_many_from(&stacked, Resolve::Crossing, (0, 0));
         assert!(stats.hidden >= 59 * H as u32, "{stats:?}");
+    }
+
+    #[test]
+    fn faces_with_no_pixel_on_some_rows_are_passed_by() {
+        // A strip of thin triangles sharing edges, as a mesh's faces near
+        // its silhouette: each has no pixel on some rows (`r ≤ l`) and
+        // keeps its place among the others by `l`. Alone on their rows,
+        // and under or over wide faces, so that the sweep meets them where
+        // nothing covers and where covers are, and enters none of them.
+        let mut rng = Rng(0x7819_5e11);
+        for _ in 0..80 {
+            let (y0, y1) = (rng.below(16 * 8) - 32, 16 * 24 + rng.below(16 * 24));
+            let shift = rng.below(16 * 16) - 16 * 8;
+            let mut top = 16 * 8 + rng.below(64);
+            let mut bottom = top + shift;
+            let mut polys = [[Vertex3::default(); 3]; 24];
+            let mut n = 0;
+            while n + 2 <= 20 {
+                let (t, b) = (top + 1 + rng.below(20), bottom + 1 + rng.below(20));
+                let z = |rng: &mut Rng| 600 + rng.below(200);
+                let (zt, zb, zt1, zb1) = (z(&mut rng), z(&mut rng), z(&mut rng), z(&mut rng));
+                polys[n] = [v(top, y0, zt), v(bottom, y1, zb), v(b, y1, zb1)];
+                polys[n + 1] = [v(top, y0, zt), v(b, y1, zb1), v(t, y0, zt1)];
+                (top, bottom, n) = (t, b, n + 2);
+            }
+            let wide = rng.below(4) as usize;
+            for p in polys[n..n + wide].iter_mut() {
+                let z = if rng.below(2) == 0 {
+                    (0, 500)
+                } else {
+                    (900, 1800)
+                };
+                *p = random_tri(&mut rng, z);
+            }
+            for mode in [Resolve::Bisect, Resolve::Crossing] {
+                run_scene(&polys[..n + wide], mode);
+            }
+        }
+    }
+
+    #[test]
+    fn entries_set_up_their_edges_as_edge_new_does() {
+        // The record's sides over every run of rows they cross: the set-up
+        // without tests gives `Edge::new`'s stepper, at the extremes of
+        // the clip's range too.
+        use crate::fixed::Vertex;
+        let mut rng = Rng(0x0e0e_5e75);
+        for k in 0..200_000 {
+            let c = |rng: &mut Rng| {
+                if k % 4 == 0 {
+                    rng.below(65_536) - 32_768
+                } else {
+                    rng.below(16 * 600) - 16 * 40
+                }
+            };
+            let (x0, mut y0, x1, mut y1) = (c(&mut rng), c(&mut rng), c(&mut rng), c(&mut rng));
+            if y0 > y1 {
+                core::mem::swap(&mut y0, &mut y1);
+            }
+            let (a, b) = (
+                Vertex::from_bits(x0 as i16, y0 as i16),
+                Vertex::from_bits(x1 as i16, y1 as i16),
+            );
+            if y0 == y1 {
+                assert_eq!(Edge::on_rows(x0, y0, x1, y1, (0, 1)), Edge::EMPTY);
+                continue;
+            }
+            let Some(all) = Edge::new(a, b, (i32::MIN / 32, i32::MAX / 32)) else {
+                continue;
+            };
+            let (t, e) = (all.top(), all.end());
+            let top = t + rng.below((e - t) as u32);
+            let end = top + 1 + rng.below((e - top) as u32);
+            assert_eq!(
+                Some(Edge::on_rows(x0, y0, x1, y1, (top, end))),
+                Edge::new(a, b, (top, end)),
+                "{x0} {y0} {x1} {y1} {top}..{end}"
+            );
+        }
     }
 
     #[test]

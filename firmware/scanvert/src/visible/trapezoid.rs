@@ -1130,13 +1130,20 @@ impl Ends {
     fn b(&self) -> Vertex {
         Vertex::from_bits(self.x1, self.y1)
     }
-    /// The exact stepper over `rows`, a run of rows the edge crosses (so
-    /// never `None`; [`Edge::EMPTY`], which crosses none, if it were).
+    /// The exact stepper over `rows`, a run of rows the edge crosses (as
+    /// the cut stores them): [`Edge::new`]'s, set up without its tests
+    /// (a debug build checks the two are equal).
     #[inline]
     fn stepper(&self, rows: (i32, i32)) -> Edge {
-        let e = Edge::new(self.a(), self.b(), rows);
-        debug_assert!(e.is_some_and(|e| (e.top(), e.end()) == rows));
-        e.unwrap_or(Edge::EMPTY)
+        let e = Edge::on_rows(
+            self.x0 as i32,
+            self.y0 as i32,
+            self.x1 as i32,
+            self.y1 as i32,
+            rows,
+        );
+        debug_assert_eq!(Edge::new(self.a(), self.b(), rows), Some(e));
+        e
     }
     /// The crossing with the centre line of row `j` as `num / den`,
     /// `den = dy > 0`: `num = x0·dy + (yc − y0)·dx`, below 2³³ for a row
