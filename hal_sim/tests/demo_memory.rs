@@ -67,7 +67,7 @@ fn peak_of(size: Size, frames: usize) -> usize {
     let peak = PEAK.load(Relaxed) - base;
     assert_eq!(
         report.lines().count(),
-        frames + 2 + scanvert_sim::demo::ATTRIBUTE_FRAMES,
+        frames + 3 + scanvert_sim::demo::ATTRIBUTE_FRAMES,
         "{report}"
     );
     for i in 0..frames {
