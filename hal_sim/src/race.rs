@@ -263,12 +263,12 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 8.2 % on
-    /// average and 49.3 % at worst (the 2D lists' rows: 2.2 % to 14.1 %
-    /// on average, the 3D lists' 13.3 % and 10.8 %; the worst are rows of
+    /// Against the 1,992 measured rows the model's error is 8.3 % on
+    /// average and 48.9 % at worst (the 2D lists' rows: 2.1 % to 14.3 %
+    /// on average, the 3D lists' 13.3 % and 10.9 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
-    /// of an instruction a pixel); a 2D polygon live on the row costs 92
+    /// of an instruction a pixel); a 2D polygon live on the row costs 94
     /// instructions besides its span, the edge table's live set 19 a
     /// word of 32 polygons on every row (W3's 313 words), and a run
     /// moved by an insertion 6. Preparing a list is fitted to
@@ -276,20 +276,20 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1301,
-        width: 1,
-        span: 3266,
+        row: 1103,
+        width: 2,
+        span: 3257,
         pixel: -3,
-        run: 583,
-        entered: 8189,
-        resolved: 2687,
+        run: 568,
+        entered: 7149,
+        resolved: 2784,
         label: 0,
-        live: 1476,
-        word: 304,
-        moved: 91,
-        frame: 117713,
-        command: 10892,
-        trapezoid: 670,
+        live: 1500,
+        word: 302,
+        moved: 90,
+        frame: 117338,
+        command: 10608,
+        trapezoid: 900,
     };
 
     /// Instructions of a row of `work`, at least 1.
