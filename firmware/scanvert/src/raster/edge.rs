@@ -175,13 +175,21 @@ impl Edge {
                 (x as i32, (x * dy as i64 - num) as i32)
             }
         };
-        // ⌊16·dx / dy⌋ and its remainder, from one truncating division.
+        Some(Edge::stepping(x, err, dx, dy, (top, end)))
+    }
+
+    /// The stepper over rows `rows.0..rows.1` of an edge of slope
+    /// `dx / dy` (`dy ≥ 1`) crossing the first row at `x` with error
+    /// `err`: its step is ⌊16·dx / dy⌋ and its remainder, from one
+    /// truncating division.
+    #[inline(always)]
+    fn stepping(x: i32, err: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
         let (mut step, mut rem) = ((ONE * dx) / dy, (ONE * dx) % dy);
         if rem < 0 {
             step -= 1;
             rem += dy;
         }
-        Some(Edge {
+        Edge {
             x,
             err,
             step,
@@ -190,7 +198,7 @@ impl Edge {
             top,
             end,
             px: 0,
-        })
+        }
     }
 
     /// Computes [`Edge::pixel`] for the current row.
@@ -310,21 +318,7 @@ impl Edge {
                 (x as i32, (x * dy as i64 - num) as i32)
             }
         };
-        let (mut step, mut rem) = ((ONE * dx) / dy, (ONE * dx) % dy);
-        if rem < 0 {
-            step -= 1;
-            rem += dy;
-        }
-        Edge {
-            x,
-            err,
-            step,
-            rem,
-            dy,
-            top,
-            end,
-            px: 0,
-        }
+        Edge::stepping(x, err, dx, dy, (top, end))
     }
 
     /// First row sampled.
