@@ -1406,27 +1406,31 @@ impl<'s> Polygon<'s> {
         if a == 0 && b == 0 {
             return plane;
         }
-        if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
-            let (x0, y0, z0) = plane.origin_units();
-            let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
-            if ends_within(slots, (a, b), (x0, y0), (lo, hi)) {
-                return plane;
-            }
-        } else if holds(&plane) {
-            return plane;
-        }
         // The plane scaled by k/2¹⁶ about the first vertex holds at k = 0
-        // (the depth z₀ of a vertex) and not at k = 2¹⁶: bisect for a k
-        // that holds with k + 1 failing, 16 more checks, multiplies only.
-        let (mut lo, mut hi) = (0i64, 1i64 << 16);
-        while hi - lo > 1 {
-            let mid = lo + (hi - lo) / 2;
-            if holds(&plane.flattened(mid)) {
-                lo = mid;
+        // (the depth z₀ of a vertex); when it does not hold at k = 2¹⁶,
+        // bisect for a k that holds with k + 1 failing, 16 more checks,
+        // multiplies only.
+        let lo =
+            if let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c)) {
+                // The usual case: `holds(&plane.flattened(k))` in `i64`, the
+                // same test. The scaled slopes `a·k / 2¹⁶` (|a·k| < 2⁴⁷,
+                // rounded toward zero as `flattened` rounds) are `i32`s again.
+                let (x0, y0, z0) = plane.origin_units();
+                let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
+                let holds_at = |k: i64| {
+                    let scale = |v: i32| (v as i64 * k / (1 << 16)) as i32;
+                    ends_within(slots, (scale(a), scale(b)), (x0, y0), (lo, hi))
+                };
+                if holds_at(1 << 16) {
+                    return plane;
+                }
+                bisect(holds_at)
             } else {
-                hi = mid;
-            }
-        }
+                if holds(&plane) {
+                    return plane;
+                }
+                bisect(|k| holds(&plane.flattened(k)))
+            };
         // Scaled by k, no depth in the range moves by more than
         // (1 − k/2¹⁶)·(z₁ − z₀): kept when that is at most 2 units, as
         // for a face that rounding tilted past its range by a unit or
@@ -1730,6 +1734,23 @@ fn fitted(plane: &Plane, slots: &[EdgeSlot], z: (i32, i32)) -> Plane {
         origin: (x0, y0, z0 + shift as i32),
         ..scaled
     }
+}
+
+/// The `k` in `0..2¹⁶` that [`Polygon::bounded`]'s bisection finds:
+/// `holds(k)` true with `holds(k + 1)` false, on the path of midpoints
+/// from `(0, 2¹⁶)` (`holds(0)` is true, `holds(2¹⁶)` false).
+#[inline(always)]
+fn bisect(holds: impl Fn(i64) -> bool) -> i64 {
+    let (mut lo, mut hi) = (0i64, 1i64 << 16);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if holds(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
 }
 
 /// `true` when `lo ≤ a·(x₀ − x) + b·(y₀ − y) ≤ hi` at both ends `(x, y)`
@@ -2924,6 +2945,70 @@ mod tests {
             }
         }
         assert!(flattened > 100, "{flattened}");
+    }
+
+    /// `Polygon::bounded`'s bisection in `i64` (the scaled slopes as
+    /// `i32`s, `ends_within`) finds the `k` the same bisection finds with
+    /// each scaled plane tested in `i128` (`depth_within`), on quads
+    /// whose rounded depths tilt the plane past their range.
+    #[test]
+    fn the_bisection_in_i64_is_the_one_in_i128() {
+        let mut rng = Rng(0x0b15_ec75);
+        let clip = ClipRect::full(4096, 4096);
+        let mut slots = [EdgeSlot::EMPTY; 4];
+        let mut bisected = 0;
+        for case in 0..20_000 {
+            let (p, q) = (rng.below(401) - 200, rng.below(401) - 200);
+            let z0 = rng.below(8001) - 4000;
+            let (x0, y0) = (rng.below(16 * 200), rng.below(16 * 200));
+            let size = [16 * 4, 16 * 40, 16 * 180][case % 3];
+            let (w, h) = (16 + rng.below(size), 16 + rng.below(size));
+            let (x1, y1) = (x0 + w, y0 + h);
+            let jitter = |r: &mut Rng| r.below(9) - 4;
+            let quad = [
+                (x0, y0, jitter(&mut rng)),
+                (x0 + 5, y1, jitter(&mut rng)),
+                (x1, y1 - 7, jitter(&mut rng)),
+                (x1 - 3, y0 + 2, jitter(&mut rng)),
+            ]
+            .map(|(x, y, j)| {
+                let z = z0 + (p as i64 * x as i64 + q as i64 * y as i64).div_euclid(64) as i32;
+                v3(x, y, (z + j).clamp(-32768, 32767))
+            });
+            let Some(plane) = Plane::of(quad) else {
+                continue;
+            };
+            let zs = quad.map(|v| v.z.units());
+            let z = (*zs.iter().min().unwrap(), *zs.iter().max().unwrap());
+            let Ok(poly) = Polygon::load(&mut slots, quad, &clip) else {
+                continue;
+            };
+            let ends = &poly.slots[..poly.edges];
+            let (a, b, c) = plane.normal();
+            let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c))
+            else {
+                continue;
+            };
+            let holds = |p: &Plane| {
+                ends.iter().all(|e| {
+                    let e = &e.ends;
+                    p.depth_within(e.x0 as i32, e.y0 as i32, z)
+                        && p.depth_within(e.x1 as i32, e.y1 as i32, z)
+                })
+            };
+            if holds(&plane) {
+                continue;
+            }
+            let (ox, oy, oz) = plane.origin_units();
+            let (lo, hi) = ((z.0 - oz) as i64 * c, (z.1 - oz) as i64 * c);
+            let narrow = bisect(|k| {
+                let scale = |v: i32| (v as i64 * k / (1 << 16)) as i32;
+                ends_within(ends, (scale(a), scale(b)), (ox, oy), (lo, hi))
+            });
+            assert_eq!(narrow, bisect(|k| holds(&plane.flattened(k))), "{quad:?}");
+            bisected += 1;
+        }
+        assert!(bisected > 1000, "{bisected}");
     }
 
     /// Large quads on random planes, their vertices' depths rounded to
