@@ -2947,17 +2947,18 @@ mod tests {
         assert!(flattened > 100, "{flattened}");
     }
 
-    /// `Polygon::bounded`'s bisection in `i64` (the scaled slopes as
-    /// `i32`s, `ends_within`) finds the `k` the same bisection finds with
-    /// each scaled plane tested in `i128` (`depth_within`), on quads
-    /// whose rounded depths tilt the plane past their range.
+    /// `Polygon::bounded` gives the plane of its definition: the test of
+    /// each scaled plane in `i128` (`depth_within`), the bisection over
+    /// `0..2¹⁶`, then the tail; its usual case tests in `i64`. On quads
+    /// whose rounded depths tilt the plane past their range, of every
+    /// size.
     #[test]
-    fn the_bisection_in_i64_is_the_one_in_i128() {
+    fn bounded_is_the_bisection_of_its_definition() {
         let mut rng = Rng(0x0b15_ec75);
         let clip = ClipRect::full(4096, 4096);
         let mut slots = [EdgeSlot::EMPTY; 4];
         let mut bisected = 0;
-        for case in 0..20_000 {
+        for case in 0..30_000 {
             let (p, q) = (rng.below(401) - 200, rng.below(401) - 200);
             let z0 = rng.below(8001) - 4000;
             let (x0, y0) = (rng.below(16 * 200), rng.below(16 * 200));
@@ -2984,11 +2985,6 @@ mod tests {
                 continue;
             };
             let ends = &poly.slots[..poly.edges];
-            let (a, b, c) = plane.normal();
-            let (Ok(a), Ok(b), Ok(_)) = (i32::try_from(a), i32::try_from(b), i32::try_from(c))
-            else {
-                continue;
-            };
             let holds = |p: &Plane| {
                 ends.iter().all(|e| {
                     let e = &e.ends;
@@ -2996,19 +2992,20 @@ mod tests {
                         && p.depth_within(e.x1 as i32, e.y1 as i32, z)
                 })
             };
-            if holds(&plane) {
-                continue;
-            }
-            let (ox, oy, oz) = plane.origin_units();
-            let (lo, hi) = ((z.0 - oz) as i64 * c, (z.1 - oz) as i64 * c);
-            let narrow = bisect(|k| {
-                let scale = |v: i32| (v as i64 * k / (1 << 16)) as i32;
-                ends_within(ends, (scale(a), scale(b)), (ox, oy), (lo, hi))
-            });
-            assert_eq!(narrow, bisect(|k| holds(&plane.flattened(k))), "{quad:?}");
-            bisected += 1;
+            let want = if holds(&plane) {
+                plane
+            } else {
+                bisected += 1;
+                let k = bisect(|k| holds(&plane.flattened(k)));
+                if ((1i64 << 16) - k) * (z.1 - z.0) as i64 <= 2 << 16 {
+                    plane.flattened(k)
+                } else {
+                    fitted(&plane, ends, z)
+                }
+            };
+            assert_eq!(poly.bounded(plane, z), want, "{quad:?}");
         }
-        assert!(bisected > 1000, "{bisected}");
+        assert!(bisected > 2000, "{bisected}");
     }
 
     /// Large quads on random planes, their vertices' depths rounded to
