@@ -1417,14 +1417,10 @@ impl<'s> Polygon<'s> {
                 // rounded toward zero as `flattened` rounds) are `i32`s again.
                 let (x0, y0, z0) = plane.origin_units();
                 let (lo, hi) = ((z.0 - z0) as i64 * c, (z.1 - z0) as i64 * c);
-                let holds_at = |k: i64| {
-                    let scale = |v: i32| (v as i64 * k / (1 << 16)) as i32;
-                    ends_within(slots, (scale(a), scale(b)), (x0, y0), (lo, hi))
-                };
-                if holds_at(1 << 16) {
+                if ends_within(slots, (a, b), (x0, y0), (lo, hi)) {
                     return plane;
                 }
-                bisect(holds_at)
+                bisect_ends(slots, (a, b), (x0, y0), (lo, hi))
             } else {
                 if holds(&plane) {
                     return plane;
@@ -1751,6 +1747,45 @@ fn bisect(holds: impl Fn(i64) -> bool) -> i64 {
         }
     }
     lo
+}
+
+/// [`bisect`] over `k` with the test of [`ends_within`] for the slopes
+/// `a·k / 2¹⁶` and `b·k / 2¹⁶` (rounded toward zero, as
+/// [`Plane::flattened`] rounds them): the same steps and the same `k`.
+/// For a polygon of at most four edges set up, each distinct end other
+/// than the first vertex is tested once a step (a quad's corner ends two
+/// edges), its offsets `(x₀ − x, y₀ − y)` taken once.
+#[inline(never)]
+fn bisect_ends(
+    slots: &[EdgeSlot],
+    (a, b): (i32, i32),
+    (x0, y0): (i32, i32),
+    (lo, hi): (i64, i64),
+) -> i64 {
+    let scale = |v: i32, k: i64| (v as i64 * k / (1 << 16)) as i32;
+    if slots.len() > 4 {
+        return bisect(|k| ends_within(slots, (scale(a, k), scale(b, k)), (x0, y0), (lo, hi)));
+    }
+    let mut offsets = [(0i32, 0i32); 8];
+    let mut n = 0;
+    for s in slots {
+        for (x, y) in [(s.ends.x0, s.ends.y0), (s.ends.x1, s.ends.y1)] {
+            let d = (x0 - x as i32, y0 - y as i32);
+            // The first vertex's depth is z₀, inside the range at any k.
+            if d != (0, 0) && !offsets[..n].contains(&d) {
+                offsets[n] = d;
+                n += 1;
+            }
+        }
+    }
+    let offsets = &offsets[..n];
+    bisect(|k| {
+        let (a, b) = (scale(a, k) as i64, scale(b, k) as i64);
+        offsets.iter().all(|&(dx, dy)| {
+            let e = a * dx as i64 + b * dy as i64;
+            lo <= e && e <= hi
+        })
+    })
 }
 
 /// `true` when `lo ≤ a·(x₀ − x) + b·(y₀ − y) ≤ hi` at both ends `(x, y)`
@@ -2956,8 +2991,8 @@ mod tests {
     fn bounded_is_the_bisection_of_its_definition() {
         let mut rng = Rng(0x0b15_ec75);
         let clip = ClipRect::full(4096, 4096);
-        let mut slots = [EdgeSlot::EMPTY; 4];
-        let mut bisected = 0;
+        let mut slots = [EdgeSlot::EMPTY; 5];
+        let (mut bisected, mut pentagons) = (0, 0);
         for case in 0..30_000 {
             let (p, q) = (rng.below(401) - 200, rng.below(401) - 200);
             let z0 = rng.below(8001) - 4000;
@@ -2965,23 +3000,37 @@ mod tests {
             let size = [16 * 4, 16 * 40, 16 * 180][case % 3];
             let (w, h) = (16 + rng.below(size), 16 + rng.below(size));
             let (x1, y1) = (x0 + w, y0 + h);
-            let jitter = |r: &mut Rng| r.below(9) - 4;
-            let quad = [
+            let wide = case % 4 == 3;
+            let jitter = |r: &mut Rng| {
+                if wide {
+                    r.below(33) - 16
+                } else {
+                    r.below(9) - 4
+                }
+            };
+            // Every fourth a pentagon: more than four edges set up.
+            let corners = [
                 (x0, y0, jitter(&mut rng)),
                 (x0 + 5, y1, jitter(&mut rng)),
                 (x1, y1 - 7, jitter(&mut rng)),
+                (x1 + w / 3, (y0 + y1) / 2, jitter(&mut rng)),
                 (x1 - 3, y0 + 2, jitter(&mut rng)),
             ]
             .map(|(x, y, j)| {
                 let z = z0 + (p as i64 * x as i64 + q as i64 * y as i64).div_euclid(64) as i32;
                 v3(x, y, (z + j).clamp(-32768, 32767))
             });
-            let Some(plane) = Plane::of(quad) else {
+            let quad: &[Vertex3] = if wide {
+                &corners
+            } else {
+                &[corners[0], corners[1], corners[2], corners[4]]
+            };
+            let Some(plane) = Plane::of(quad.iter().copied()) else {
                 continue;
             };
-            let zs = quad.map(|v| v.z.units());
-            let z = (*zs.iter().min().unwrap(), *zs.iter().max().unwrap());
-            let Ok(poly) = Polygon::load(&mut slots, quad, &clip) else {
+            let zs = quad.iter().map(|v| v.z.units());
+            let z = (zs.clone().min().unwrap(), zs.max().unwrap());
+            let Ok(poly) = Polygon::load(&mut slots, quad.iter().copied(), &clip) else {
                 continue;
             };
             let ends = &poly.slots[..poly.edges];
@@ -2996,6 +3045,7 @@ mod tests {
                 plane
             } else {
                 bisected += 1;
+                pentagons += (quad.len() == 5) as u32;
                 let k = bisect(|k| holds(&plane.flattened(k)));
                 if ((1i64 << 16) - k) * (z.1 - z.0) as i64 <= 2 << 16 {
                     plane.flattened(k)
@@ -3006,6 +3056,7 @@ mod tests {
             assert_eq!(poly.bounded(plane, z), want, "{quad:?}");
         }
         assert!(bisected > 2000, "{bisected}");
+        assert!(pentagons > 200, "{pentagons}");
     }
 
     /// Large quads on random planes, their vertices' depths rounded to
