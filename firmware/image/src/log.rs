@@ -39,7 +39,7 @@ pub fn calibration(expected: u64, ticks: u64, measured: u64, ok: bool) {
 }
 
 /// The count of one `[u32]::fill` of `words` words (`kind`: on a slice or
-/// an array), the bound that a frame's pixel writes are compared with.
+/// an array), what a frame's pixel writes are compared with.
 #[cfg(not(feature = "halfword"))]
 pub fn fill(kind: &str, words: usize, ticks: u64) {
     let instructions = ticks * crate::platform::INSTRUCTIONS_PER_TICK;

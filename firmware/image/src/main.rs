@@ -436,12 +436,12 @@ fn frame(
 #[cfg(not(feature = "halfword"))]
 const W5_WORDS: usize = 47_634;
 
-/// Counts `[u32]::fill` of W5's words, the bound of what W5's frame can
-/// cost in pixel writes, in two forms, each a call that is not inlined,
-/// counted as a frame is: on a slice, whose length is known only at run
-/// time, as a span's is; and on an array of that length, which LLVM
-/// compiles to a loop of double-word stores. The words are the frame
-/// memory's, cleared again before each frame.
+/// Counts `[u32]::fill` of W5's words, what W5's frame is compared with,
+/// in two forms, each a call that is not inlined, counted as a frame is:
+/// on a slice, whose length is known only at run time, as a span's is;
+/// and on an array of that length, which LLVM compiles to a loop of
+/// double-word stores. The words are the frame memory's, cleared again
+/// before each frame.
 #[cfg(not(feature = "halfword"))]
 fn fill_baselines(cells: &mut [Cell; CELLS], counter: &platform::Counter) {
     #[inline(never)]
