@@ -38,6 +38,23 @@ pub fn calibration(expected: u64, ticks: u64, measured: u64, ok: bool) {
     );
 }
 
+/// The count of one `[u32]::fill` of `words` words (`kind`: on a slice or
+/// an array), what a frame's pixel writes are compared with.
+#[cfg(not(feature = "halfword"))]
+pub fn fill(kind: &str, words: usize, ticks: u64) {
+    let instructions = ticks * crate::platform::INSTRUCTIONS_PER_TICK;
+    #[cfg(not(feature = "defmt"))]
+    println!("fill {kind} words={words} ticks={ticks} instructions={instructions}");
+    #[cfg(feature = "defmt")]
+    defmt::info!(
+        "fill {=str} words={=usize} ticks={=u64} instructions={=u64}",
+        kind,
+        words,
+        ticks,
+        instructions
+    );
+}
+
 /// One frame's statistics and cost.
 pub fn frame(name: &str, w: u16, h: u16, s: &RenderStats, cost: Cost) {
     #[cfg(not(feature = "defmt"))]

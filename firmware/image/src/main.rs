@@ -432,6 +432,40 @@ fn frame(
     }
 }
 
+/// W5's pixels in words, two pixels a word: 95,268 pixels.
+#[cfg(not(feature = "halfword"))]
+const W5_WORDS: usize = 47_634;
+
+/// Counts `[u32]::fill` of W5's words, what W5's frame is compared with,
+/// in two forms, each a call that is not inlined, counted as a frame is:
+/// on a slice, whose length is known only at run time, as a span's is;
+/// and on an array of that length, which LLVM compiles to a loop of
+/// double-word stores. The words are the frame memory's, cleared again
+/// before each frame.
+#[cfg(not(feature = "halfword"))]
+fn fill_baselines(cells: &mut [Cell; CELLS], counter: &platform::Counter) {
+    #[inline(never)]
+    fn slice(words: &mut [u32], v: u32) {
+        words.fill(v);
+    }
+    #[inline(never)]
+    fn array(words: &mut [u32; W5_WORDS], v: u32) {
+        words.fill(v);
+    }
+    let Some(words) = cells.first_chunk_mut::<W5_WORDS>() else {
+        return;
+    };
+    // Opaque to the compiler, so that neither call is folded into a
+    // constant store pattern or dropped.
+    let v = core::hint::black_box(0x1234_5678);
+    let t0 = counter.ticks();
+    slice(core::hint::black_box(&mut words[..]), v);
+    log::fill("u32-slice", W5_WORDS, counter.ticks() - t0);
+    let t0 = counter.ticks();
+    array(core::hint::black_box(words), v);
+    log::fill("u32-array", W5_WORDS, counter.ticks() - t0);
+}
+
 /// Everything the image does; `true` when every frame matched.
 pub fn run() -> bool {
     log::start(
@@ -461,6 +495,8 @@ pub fn run() -> bool {
         log::fault("the 3D memory is taken");
         return false;
     };
+    #[cfg(not(feature = "halfword"))]
+    fill_baselines(pixels, &counter);
     let mut edges = [Edge::EMPTY; scenes::EDGE_SLOTS];
     let mut matched = 0;
     let mut frames = 0;
