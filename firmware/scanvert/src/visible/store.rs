@@ -68,7 +68,8 @@ use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
 use crate::visible::trapezoid::{
-    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, NONE,
+    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, TriangleCut,
+    NONE,
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -693,9 +694,13 @@ impl<'a> TrapezoidStore<'a> {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError> {
-        let it = v.into_iter();
-        let outline = Outline::of(it.clone()).map_err(StoreError::from);
-        self.add_from::<_, true>(s, Source::Outlined(it, outline), color, clip, 0)
+        self.add_from::<core::array::IntoIter<Vertex3, 3>, true>(
+            s,
+            Source::Triangle(v),
+            color,
+            clip,
+            0,
+        )
     }
 
     /// A `poly3`'s vertices into segment `s` as
@@ -785,16 +790,34 @@ impl<'a> TrapezoidStore<'a> {
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let poly = match src {
-            Source::Once(it) => Polygon::load_lifted(self.edges, it, &clip, lift)?,
-            Source::Outlined(it, o) => Polygon::load_edges(self.edges, it, o?, &clip)?,
+        let shape = match src {
+            Source::Once(it) => Shape::Polygon(Polygon::load_lifted(self.edges, it, &clip, lift)?),
+            Source::Outlined(it, o) => {
+                Shape::Polygon(Polygon::load_edges(self.edges, it, o?, &clip)?)
+            }
+            // With fewer than three edge slots the polygon's load reports
+            // what is missing.
+            Source::Triangle(v) => match TriangleCut::of(&v, &clip) {
+                Some(cut) if self.edges.len() >= 3 => Shape::Triangle(cut),
+                _ => {
+                    let outline = Outline::of(v.into_iter())?;
+                    Shape::Polygon(Polygon::load_edges(
+                        self.edges,
+                        v.into_iter(),
+                        outline,
+                        &clip,
+                    )?)
+                }
+            },
         };
-        let Some(plane) = poly.plane().copied() else {
+        let plane = match &shape {
+            Shape::Polygon(poly) if poly.edges() < 2 => return Ok(0),
+            Shape::Polygon(poly) => poly.plane().copied(),
+            Shape::Triangle(cut) => cut.plane().copied(),
+        };
+        let Some(plane) = plane else {
             return Ok(0);
         };
-        if poly.edges() < 2 {
-            return Ok(0);
-        }
         // The face is taken with the first trapezoid, so that a polygon
         // with none needs no face slot, and written there in place, its
         // depth worked out then: built on the stack and copied, it would
@@ -826,9 +849,10 @@ impl<'a> TrapezoidStore<'a> {
             segment: s as u16,
             clip,
         };
-        let n = match TRI {
-            true => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
-            false => poly.cut(|l, r| add.trapezoid(l, r)),
+        let n = match (shape, TRI) {
+            (Shape::Triangle(cut), _) => cut.cut(|l, r| add.trapezoid(l, r)),
+            (Shape::Polygon(poly), true) => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
+            (Shape::Polygon(poly), false) => poly.cut(|l, r| add.trapezoid(l, r)),
         };
         (self.free_trap, self.unused_trap) = (add.free, add.unused);
         (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
@@ -899,6 +923,15 @@ fn link_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
 enum Source<I> {
     Once(I),
     Outlined(I, Result<Outline, StoreError>),
+    /// A triangle, cut from its vertices at once ([`TriangleCut`]) where
+    /// that cut decides alone, else loaded as a polygon.
+    Triangle([Vertex3; 3]),
+}
+
+/// A polygon loaded into the edge slots, or a triangle's cut.
+enum Shape<'s> {
+    Polygon(Polygon<'s>),
+    Triangle(TriangleCut),
 }
 
 /// The pools and a segment's chains while one polygon's trapezoids are
