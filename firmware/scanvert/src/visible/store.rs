@@ -68,8 +68,8 @@ use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
 use crate::visible::trapezoid::{
-    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, TriangleCut,
-    NONE,
+    rgb_bits, Depth, EdgeSlot, Ends, LoadError, Outline, Plane, Polygon, Side, Trapezoid,
+    TriangleCut, NONE,
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -850,7 +850,7 @@ impl<'a> TrapezoidStore<'a> {
             clip,
         };
         let n = match (shape, TRI) {
-            (Shape::Triangle(cut), _) => cut.cut(|l, r| add.trapezoid(l, r)),
+            (Shape::Triangle(cut), _) => cut.cut(|l, r, top, end| add.between(l, r, top, end)),
             (Shape::Polygon(poly), true) => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
             (Shape::Polygon(poly), false) => poly.cut(|l, r| add.trapezoid(l, r)),
         };
@@ -966,6 +966,14 @@ impl Adding<'_> {
     /// first), and indexes it by its top row.
     #[inline(always)]
     fn trapezoid(&mut self, l: Side, r: Side) -> Result<(), StoreError> {
+        let ((l, top, end), (r, _, _)) = (l.parts(), r.parts());
+        self.between(l, r, top, end)
+    }
+
+    /// [`Adding::trapezoid`] from the edges' ends and the rows `top..end`
+    /// (of the clip).
+    #[inline(always)]
+    fn between(&mut self, l: Ends, r: Ends, top: u16, end: u16) -> Result<(), StoreError> {
         let Adding {
             traps,
             rows,
@@ -997,23 +1005,28 @@ impl Adding<'_> {
         let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
             .ok_or(StoreError::Trapezoids { capacity: cap })?;
         // Rows are inside the frame: the edges were cut to the clip.
-        let top = l.rows().0 as usize;
-        let head = rows.get(top).copied().unwrap_or(NONE);
+        let head = rows.get(top as usize).copied().unwrap_or(NONE);
         if let Some(h) = traps.get_mut(head as usize) {
             h.prev_row = t;
         }
-        if let Some(h) = rows.get_mut(top) {
+        if let Some(h) = rows.get_mut(top as usize) {
             *h = t;
         }
         // Written in place, every field at once: built on the stack and
         // copied, it would cost a copy of the trapezoid on the Cortex-M4.
         if let Some(slot) = traps.get_mut(t as usize) {
             *slot = Trapezoid {
+                left: l,
+                right: r,
+                top,
+                end,
+                face: self.face,
                 segment: self.segment,
+                x0: self.clip.x0(),
+                x1: self.clip.x1(),
                 next_row: head,
                 prev_row: NONE,
                 next_seg: self.seg_traps,
-                ..Trapezoid::new(l, r, self.face, &self.clip)
             };
         }
         self.seg_traps = t;

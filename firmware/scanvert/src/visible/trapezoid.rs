@@ -956,6 +956,12 @@ impl Side {
     pub fn edge(&self) -> Edge {
         self.ends.stepper(self.rows())
     }
+
+    /// The ends and the rows as the store keeps them.
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> (Ends, u16, u16) {
+        (self.ends, self.top, self.end)
+    }
 }
 
 #[doc(hidden)]
@@ -2070,38 +2076,37 @@ impl TriangleCut {
         if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
             return Some(cut);
         }
-        let (x, y) = (u.map(|p| p.0), u.map(|p| p.1));
-        // T, M, B: indices sorted by y.
-        let (mut t, mut mi, mut bi) = (0, 1, 2);
-        if y[mi] < y[t] {
-            (t, mi) = (mi, t);
+        // T, M, B: the vertices' (x, y) sorted by y, moved as values.
+        let (mut t, mut mv, mut b) = ((u[0].0, u[0].1), (u[1].0, u[1].1), (u[2].0, u[2].1));
+        if mv.1 < t.1 {
+            (t, mv) = (mv, t);
         }
-        if y[bi] < y[mi] {
-            (mi, bi) = (bi, mi);
-            if y[mi] < y[t] {
-                (t, mi) = (mi, t);
+        if b.1 < mv.1 {
+            (mv, b) = (b, mv);
+            if mv.1 < t.1 {
+                (t, mv) = (mv, t);
             }
         }
         // The rows of `Edge::new` through each vertex, cut to the clip's.
-        let row = |k: usize| ceil_px(y[k] - HALF);
-        let top = row(t).max(clip.y0() as i32);
-        let end = row(bi).min(clip.y1() as i32);
+        let row = |y: i32| ceil_px(y - HALF);
+        let top = row(t.1).max(clip.y0() as i32);
+        let end = row(b.1).min(clip.y1() as i32);
         if top >= end {
             return Some(cut);
         }
-        let split = row(mi).max(top).min(end);
-        let s = m(x[mi] - x[t], y[bi] - y[t]) - m(x[bi] - x[t], y[mi] - y[t]);
-        if s == 0 || (split > top && (split - 1) * ONE + HALF == y[t]) {
+        let split = row(mv.1).max(top).min(end);
+        let s = m(mv.0 - t.0, b.1 - t.1) - m(b.0 - t.0, mv.1 - t.1);
+        if s == 0 || (split > top && (split - 1) * ONE + HALF == t.1) {
             return None;
         }
-        let ends = |p: usize, q: usize| Ends {
-            x0: x[p] as i16,
-            y0: y[p] as i16,
-            x1: x[q] as i16,
-            y1: y[q] as i16,
+        let ends = |p: (i32, i32), q: (i32, i32)| Ends {
+            x0: p.0 as i16,
+            y0: p.1 as i16,
+            x1: q.0 as i16,
+            y1: q.1 as i16,
         };
         // Rows of the clip: within 0..=4096.
-        (cut.long, cut.upper, cut.lower) = (ends(t, bi), ends(t, mi), ends(mi, bi));
+        (cut.long, cut.upper, cut.lower) = (ends(t, b), ends(t, mv), ends(mv, b));
         (cut.top, cut.split, cut.end) = (top as u16, split as u16, end as u16);
         cut.short_left = s < 0;
         Some(cut)
@@ -2113,12 +2118,13 @@ impl TriangleCut {
         self.plane.as_ref()
     }
 
-    /// Hands each trapezoid to `emit`, top to bottom, as
-    /// [`Polygon::cut_triangles`] does; how many.
+    /// Hands each trapezoid to `emit` (its left and right edges' ends,
+    /// its rows `top..end`: the [`Side`]s [`Polygon::cut_triangles`]
+    /// hands over), top to bottom, as `cut_triangles` does; how many.
     #[inline(always)]
     pub(crate) fn cut<E>(
         &self,
-        mut emit: impl FnMut(Side, Side) -> Result<(), E>,
+        mut emit: impl FnMut(Ends, Ends, u16, u16) -> Result<(), E>,
     ) -> Result<u32, E> {
         let first = self.band(self.upper, self.top, self.split, &mut emit)?;
         let second = self.band(self.lower, self.split, self.end, &mut emit)?;
@@ -2135,7 +2141,7 @@ impl TriangleCut {
         short: Ends,
         top: u16,
         end: u16,
-        emit: &mut impl FnMut(Side, Side) -> Result<(), E>,
+        emit: &mut impl FnMut(Ends, Ends, u16, u16) -> Result<(), E>,
     ) -> Result<bool, E> {
         let (l, r) = match self.short_left {
             true => (short, self.long),
@@ -2147,8 +2153,7 @@ impl TriangleCut {
         {
             return Ok(false);
         }
-        let side = |ends: Ends| Side { ends, top, end };
-        emit(side(l), side(r))?;
+        emit(l, r, top, end)?;
         Ok(true)
     }
 }
@@ -2758,8 +2763,8 @@ mod tests {
             let mut ng = 0;
             if plane.is_some() {
                 let n = cut
-                    .cut(|l, r| {
-                        got[ng] = (l, r);
+                    .cut(|l, r, top, end| {
+                        got[ng] = (Side { ends: l, top, end }, Side { ends: r, top, end });
                         ng += 1;
                         Ok::<(), ()>(())
                     })
