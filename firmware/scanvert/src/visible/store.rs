@@ -683,10 +683,11 @@ impl<'a> TrapezoidStore<'a> {
         self.add_from::<_, false>(s, Source::Once(vertices.into_iter()), color, clip, lift)
     }
 
-    /// [`add_polygon`](Self::add_polygon) of a triangle: its outline
-    /// (Newell's sums, depth and column ranges) worked out from its three
-    /// vertices at once ([`Outline::of`]) before its edges are set up,
-    /// with no loop. The same trapezoids as `add_polygon`.
+    /// [`add_polygon`](Self::add_polygon) of a triangle: cut from its
+    /// three vertices at once ([`TriangleCut`]) where that cut decides
+    /// alone, else loaded as a polygon whose outline (Newell's sums,
+    /// depth and column ranges) is worked out at once ([`Outline::of`]).
+    /// The same trapezoids as `add_polygon`.
     pub(crate) fn add_triangle(
         &mut self,
         s: usize,
@@ -694,13 +695,42 @@ impl<'a> TrapezoidStore<'a> {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError> {
-        self.add_from::<core::array::IntoIter<Vertex3, 3>, true>(
-            s,
-            Source::Triangle(v),
-            color,
-            clip,
-            0,
-        )
+        // With fewer than three edge slots the polygon's load reports
+        // what is missing.
+        if self.edges.len() >= 3 {
+            if let Some(cut) = TriangleCut::of(&v, &self.frame_clip(clip)) {
+                return self.add_from::<core::iter::Empty<Vertex3>, true>(
+                    s,
+                    Source::Cut(cut),
+                    color,
+                    clip,
+                    0,
+                );
+            }
+        }
+        let it = v.into_iter();
+        let outline = Outline::of(it.clone()).map_err(StoreError::from);
+        self.add_from::<_, true>(s, Source::Outlined(it, outline), color, clip, 0)
+    }
+
+    /// `clip` cut to the store's frame (a clip is within 0..=4096):
+    /// itself when it lies inside, as a list's clip does.
+    #[inline(always)]
+    fn frame_clip(&self, clip: &ClipRect) -> ClipRect {
+        if clip.x1() <= self.width && clip.y1() <= self.height {
+            *clip
+        } else {
+            ClipRect::from_window(
+                ClipWindow {
+                    x0: clip.x0() as i16,
+                    y0: clip.y0() as i16,
+                    x1: clip.x1() as i16 - 1,
+                    y1: clip.y1() as i16 - 1,
+                },
+                self.width,
+                self.height,
+            )
+        }
     }
 
     /// A `poly3`'s vertices into segment `s` as
@@ -770,23 +800,8 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: Iterator<Item = Vertex3>,
     {
+        let clip = self.frame_clip(clip);
         let seg = segment_at(self.segments, s)?;
-        // The clip cut to the store's frame (a clip is within 0..=4096):
-        // itself when it lies inside, as a list's clip does.
-        let clip = if clip.x1() <= self.width && clip.y1() <= self.height {
-            *clip
-        } else {
-            ClipRect::from_window(
-                ClipWindow {
-                    x0: clip.x0() as i16,
-                    y0: clip.y0() as i16,
-                    x1: clip.x1() as i16 - 1,
-                    y1: clip.y1() as i16 - 1,
-                },
-                self.width,
-                self.height,
-            )
-        };
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
@@ -795,20 +810,7 @@ impl<'a> TrapezoidStore<'a> {
             Source::Outlined(it, o) => {
                 Shape::Polygon(Polygon::load_edges(self.edges, it, o?, &clip)?)
             }
-            // With fewer than three edge slots the polygon's load reports
-            // what is missing.
-            Source::Triangle(v) => match TriangleCut::of(&v, &clip) {
-                Some(cut) if self.edges.len() >= 3 => Shape::Triangle(cut),
-                _ => {
-                    let outline = Outline::of(v.into_iter())?;
-                    Shape::Polygon(Polygon::load_edges(
-                        self.edges,
-                        v.into_iter(),
-                        outline,
-                        &clip,
-                    )?)
-                }
-            },
+            Source::Cut(cut) => Shape::Triangle(cut),
         };
         let plane = match &shape {
             Shape::Polygon(poly) if poly.edges() < 2 => return Ok(0),
@@ -923,9 +925,8 @@ fn link_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
 enum Source<I> {
     Once(I),
     Outlined(I, Result<Outline, StoreError>),
-    /// A triangle, cut from its vertices at once ([`TriangleCut`]) where
-    /// that cut decides alone, else loaded as a polygon.
-    Triangle([Vertex3; 3]),
+    /// A triangle's cut, made from its vertices at once.
+    Cut(TriangleCut),
 }
 
 /// A polygon loaded into the edge slots, or a triangle's cut.
