@@ -2643,7 +2643,7 @@ mod tests {
             _ => {}
         }
         let poly = p.map(|(x, y)| v3(x, y, rng.range(-32768, 32768)));
-        let clip = if case % 3 == 0 {
+        let clip = if case.is_multiple_of(3) {
             let (x0, y0) = (rng.below(fw as u32) as i16, rng.below(fh as u32) as i16);
             ClipRect::from_window(
                 ClipWindow {
