@@ -68,7 +68,8 @@ use crate::display_list::Vertices3;
 use crate::fixed::Vertex3;
 use crate::raster::clip::{ClipRect, ClipWindow};
 use crate::visible::trapezoid::{
-    rgb_bits, Depth, EdgeSlot, LoadError, Outline, Plane, Polygon, Side, Trapezoid, NONE,
+    rgb_bits, Depth, EdgeSlot, Ends, LoadError, Outline, Plane, Polygon, Side, Trapezoid,
+    TriangleCut, NONE,
 };
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -682,10 +683,11 @@ impl<'a> TrapezoidStore<'a> {
         self.add_from::<_, false>(s, Source::Once(vertices.into_iter()), color, clip, lift)
     }
 
-    /// [`add_polygon`](Self::add_polygon) of a triangle: its outline
-    /// (Newell's sums, depth and column ranges) worked out from its three
-    /// vertices at once ([`Outline::of`]) before its edges are set up,
-    /// with no loop. The same trapezoids as `add_polygon`.
+    /// [`add_polygon`](Self::add_polygon) of a triangle: cut from its
+    /// three vertices at once ([`TriangleCut`]) where that cut decides
+    /// alone, else loaded as a polygon whose outline (Newell's sums,
+    /// depth and column ranges) is worked out at once ([`Outline::of`]).
+    /// The same trapezoids as `add_polygon`.
     pub(crate) fn add_triangle(
         &mut self,
         s: usize,
@@ -693,9 +695,42 @@ impl<'a> TrapezoidStore<'a> {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError> {
+        // With fewer than three edge slots the polygon's load reports
+        // what is missing.
+        if self.edges.len() >= 3 {
+            if let Some(cut) = TriangleCut::of(&v, &self.frame_clip(clip)) {
+                return self.add_from::<core::iter::Empty<Vertex3>, true>(
+                    s,
+                    Source::Cut(cut),
+                    color,
+                    clip,
+                    0,
+                );
+            }
+        }
         let it = v.into_iter();
         let outline = Outline::of(it.clone()).map_err(StoreError::from);
         self.add_from::<_, true>(s, Source::Outlined(it, outline), color, clip, 0)
+    }
+
+    /// `clip` cut to the store's frame (a clip is within 0..=4096):
+    /// itself when it lies inside, as a list's clip does.
+    #[inline(always)]
+    fn frame_clip(&self, clip: &ClipRect) -> ClipRect {
+        if clip.x1() <= self.width && clip.y1() <= self.height {
+            *clip
+        } else {
+            ClipRect::from_window(
+                ClipWindow {
+                    x0: clip.x0() as i16,
+                    y0: clip.y0() as i16,
+                    x1: clip.x1() as i16 - 1,
+                    y1: clip.y1() as i16 - 1,
+                },
+                self.width,
+                self.height,
+            )
+        }
     }
 
     /// A `poly3`'s vertices into segment `s` as
@@ -765,36 +800,26 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: Iterator<Item = Vertex3>,
     {
+        let clip = self.frame_clip(clip);
         let seg = segment_at(self.segments, s)?;
-        // The clip cut to the store's frame (a clip is within 0..=4096):
-        // itself when it lies inside, as a list's clip does.
-        let clip = if clip.x1() <= self.width && clip.y1() <= self.height {
-            *clip
-        } else {
-            ClipRect::from_window(
-                ClipWindow {
-                    x0: clip.x0() as i16,
-                    y0: clip.y0() as i16,
-                    x1: clip.x1() as i16 - 1,
-                    y1: clip.y1() as i16 - 1,
-                },
-                self.width,
-                self.height,
-            )
-        };
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let poly = match src {
-            Source::Once(it) => Polygon::load_lifted(self.edges, it, &clip, lift)?,
-            Source::Outlined(it, o) => Polygon::load_edges(self.edges, it, o?, &clip)?,
+        let shape = match src {
+            Source::Once(it) => Shape::Polygon(Polygon::load_lifted(self.edges, it, &clip, lift)?),
+            Source::Outlined(it, o) => {
+                Shape::Polygon(Polygon::load_edges(self.edges, it, o?, &clip)?)
+            }
+            Source::Cut(cut) => Shape::Triangle(cut),
         };
-        let Some(plane) = poly.plane().copied() else {
+        let plane = match &shape {
+            Shape::Polygon(poly) if poly.edges() < 2 => return Ok(0),
+            Shape::Polygon(poly) => poly.plane().copied(),
+            Shape::Triangle(cut) => cut.plane().copied(),
+        };
+        let Some(plane) = plane else {
             return Ok(0);
         };
-        if poly.edges() < 2 {
-            return Ok(0);
-        }
         // The face is taken with the first trapezoid, so that a polygon
         // with none needs no face slot, and written there in place, its
         // depth worked out then: built on the stack and copied, it would
@@ -826,9 +851,10 @@ impl<'a> TrapezoidStore<'a> {
             segment: s as u16,
             clip,
         };
-        let n = match TRI {
-            true => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
-            false => poly.cut(|l, r| add.trapezoid(l, r)),
+        let n = match (shape, TRI) {
+            (Shape::Triangle(cut), _) => cut.cut(|l, r, top, end| add.between(l, r, top, end)),
+            (Shape::Polygon(poly), true) => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
+            (Shape::Polygon(poly), false) => poly.cut(|l, r| add.trapezoid(l, r)),
         };
         (self.free_trap, self.unused_trap) = (add.free, add.unused);
         (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
@@ -899,6 +925,14 @@ fn link_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
 enum Source<I> {
     Once(I),
     Outlined(I, Result<Outline, StoreError>),
+    /// A triangle's cut, made from its vertices at once.
+    Cut(TriangleCut),
+}
+
+/// A polygon loaded into the edge slots, or a triangle's cut.
+enum Shape<'s> {
+    Polygon(Polygon<'s>),
+    Triangle(TriangleCut),
 }
 
 /// The pools and a segment's chains while one polygon's trapezoids are
@@ -933,6 +967,14 @@ impl Adding<'_> {
     /// first), and indexes it by its top row.
     #[inline(always)]
     fn trapezoid(&mut self, l: Side, r: Side) -> Result<(), StoreError> {
+        let ((l, top, end), (r, _, _)) = (l.parts(), r.parts());
+        self.between(l, r, top, end)
+    }
+
+    /// [`Adding::trapezoid`] from the edges' ends and the rows `top..end`
+    /// (of the clip).
+    #[inline(always)]
+    fn between(&mut self, l: Ends, r: Ends, top: u16, end: u16) -> Result<(), StoreError> {
         let Adding {
             traps,
             rows,
@@ -964,23 +1006,28 @@ impl Adding<'_> {
         let t = alloc(free, unused, cap, |i| traps[i as usize].next_seg)
             .ok_or(StoreError::Trapezoids { capacity: cap })?;
         // Rows are inside the frame: the edges were cut to the clip.
-        let top = l.rows().0 as usize;
-        let head = rows.get(top).copied().unwrap_or(NONE);
+        let head = rows.get(top as usize).copied().unwrap_or(NONE);
         if let Some(h) = traps.get_mut(head as usize) {
             h.prev_row = t;
         }
-        if let Some(h) = rows.get_mut(top) {
+        if let Some(h) = rows.get_mut(top as usize) {
             *h = t;
         }
         // Written in place, every field at once: built on the stack and
         // copied, it would cost a copy of the trapezoid on the Cortex-M4.
         if let Some(slot) = traps.get_mut(t as usize) {
             *slot = Trapezoid {
+                left: l,
+                right: r,
+                top,
+                end,
+                face: self.face,
                 segment: self.segment,
+                x0: self.clip.x0(),
+                x1: self.clip.x1(),
                 next_row: head,
                 prev_row: NONE,
                 next_seg: self.seg_traps,
-                ..Trapezoid::new(l, r, self.face, &self.clip)
             };
         }
         self.seg_traps = t;

@@ -956,6 +956,12 @@ impl Side {
     pub fn edge(&self) -> Edge {
         self.ends.stepper(self.rows())
     }
+
+    /// The ends and the rows as the store keeps them.
+    #[inline(always)]
+    pub(crate) fn parts(&self) -> (Ends, u16, u16) {
+        (self.ends, self.top, self.end)
+    }
 }
 
 #[doc(hidden)]
@@ -2047,6 +2053,167 @@ where
     Ok(true)
 }
 
+/// A triangle's plane and trapezoids worked out from its three vertices
+/// at once ([`TriangleCut::of`]): the vertices sorted by `y`, the long
+/// edge from the top one to the bottom one and the two short ones, with
+/// no edge slots, no outline and no walk. What [`Polygon::load`] and
+/// [`Polygon::cut_triangles`] make of the same vertices and clip: the
+/// same plane, the same trapezoids in the same order (the unit test
+/// `direct_triangle_cut_is_the_polygons` compares them).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleCut {
+    plane: Option<Plane>,
+    /// The long edge T → B and the short ones T → M and M → B.
+    long: Ends,
+    upper: Ends,
+    lower: Ends,
+    /// The bands' rows: `top..split` and `split..end`, either possibly
+    /// empty (all zero when the triangle writes nothing).
+    top: u16,
+    split: u16,
+    end: u16,
+    /// The short edges are left of the long one.
+    short_left: bool,
+    /// The clip's columns.
+    cols: (i32, i32),
+}
+
+impl TriangleCut {
+    /// The cut of the triangle `v` (in polygon order) under `clip`, or
+    /// `None` where [`cut_triangle`] would decline (collinear or repeated
+    /// vertices, a first band of one row through the top vertex): the
+    /// polygon's cut is then needed.
+    ///
+    /// The plane is [`Outline::of`]'s: `(v₁ − v₀) × (v₂ − v₀)`, turned
+    /// so that `c > 0`, through `v₀`. Of the edges set up by
+    /// [`Polygon::load`], the long one T → B holds the rows of the two
+    /// others (T → M above the row where M is passed, M → B below), an
+    /// edge set up runs upper end first and one with no row centre takes
+    /// no part: so the first band is T → M beside T → B over the long
+    /// edge's rows before M's, the second M → B beside T → B over the
+    /// rest, either possibly empty, and `S = (M − T) × (B − T)` orders
+    /// both ([`cut_triangle`]). When two vertices share a row the order
+    /// chosen between them swaps both the sign of `S` and which edge is
+    /// called what, so the trapezoids are the same.
+    #[inline(always)]
+    pub(crate) fn of(v: &[Vertex3; 3], clip: &ClipRect) -> Option<TriangleCut> {
+        let u = v.map(|p| (p.x.units(), p.y.units(), p.z.units()));
+        let d = |p: (i32, i32, i32)| (p.0 - u[0].0, p.1 - u[0].1, p.2 - u[0].2);
+        let (p, q) = (d(u[1]), d(u[2]));
+        // Each difference below 2¹⁶, each product below 2³².
+        let m = |a: i32, b: i32| a as i64 * b as i64;
+        let c = m(p.0, q.1) - m(p.1, q.0);
+        let cols = (clip.x0() as i32, clip.x1() as i32);
+        let mut cut = TriangleCut {
+            plane: None,
+            long: Ends::default(),
+            upper: Ends::default(),
+            lower: Ends::default(),
+            top: 0,
+            split: 0,
+            end: 0,
+            short_left: false,
+            cols,
+        };
+        if c == 0 {
+            return Some(cut);
+        }
+        let (a, b) = (m(p.1, q.2) - m(p.2, q.1), m(p.2, q.0) - m(p.0, q.2));
+        let sign = if c < 0 { -1 } else { 1 };
+        cut.plane = Some(Plane {
+            a: sign * a,
+            b: sign * b,
+            c: sign * c,
+            origin: (v[0].x.to_bits(), v[0].y.to_bits(), u[0].2),
+        });
+        // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉ (`Polygon::finish`).
+        let lo = u[0].0.min(u[1].0).min(u[2].0);
+        let hi = u[0].0.max(u[1].0).max(u[2].0);
+        if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
+            return Some(cut);
+        }
+        // T, M, B: the vertices' (x, y) sorted by y, moved as values.
+        let (mut t, mut mv, mut b) = ((u[0].0, u[0].1), (u[1].0, u[1].1), (u[2].0, u[2].1));
+        if mv.1 < t.1 {
+            (t, mv) = (mv, t);
+        }
+        if b.1 < mv.1 {
+            (mv, b) = (b, mv);
+            if mv.1 < t.1 {
+                (t, mv) = (mv, t);
+            }
+        }
+        // The rows of `Edge::new` through each vertex, cut to the clip's.
+        let row = |y: i32| ceil_px(y - HALF);
+        let top = row(t.1).max(clip.y0() as i32);
+        let end = row(b.1).min(clip.y1() as i32);
+        if top >= end {
+            return Some(cut);
+        }
+        let split = row(mv.1).max(top).min(end);
+        let s = m(mv.0 - t.0, b.1 - t.1) - m(b.0 - t.0, mv.1 - t.1);
+        if s == 0 || (split > top && (split - 1) * ONE + HALF == t.1) {
+            return None;
+        }
+        let ends = |p: (i32, i32), q: (i32, i32)| Ends {
+            x0: p.0 as i16,
+            y0: p.1 as i16,
+            x1: q.0 as i16,
+            y1: q.1 as i16,
+        };
+        // Rows of the clip: within 0..=4096.
+        (cut.long, cut.upper, cut.lower) = (ends(t, b), ends(t, mv), ends(mv, b));
+        (cut.top, cut.split, cut.end) = (top as u16, split as u16, end as u16);
+        cut.short_left = s < 0;
+        Some(cut)
+    }
+
+    /// The triangle's plane, `None` when it is edge-on.
+    #[inline(always)]
+    pub(crate) fn plane(&self) -> Option<&Plane> {
+        self.plane.as_ref()
+    }
+
+    /// Hands each trapezoid to `emit` (its left and right edges' ends,
+    /// its rows `top..end`: the [`Side`]s [`Polygon::cut_triangles`]
+    /// hands over), top to bottom, as `cut_triangles` does; how many.
+    #[inline(always)]
+    pub(crate) fn cut<E>(
+        &self,
+        mut emit: impl FnMut(Ends, Ends, u16, u16) -> Result<(), E>,
+    ) -> Result<u32, E> {
+        let first = self.band(self.upper, self.top, self.split, &mut emit)?;
+        let second = self.band(self.lower, self.split, self.end, &mut emit)?;
+        Ok(first as u32 + second as u32)
+    }
+
+    /// The trapezoid between the short edge `short` and the long one over
+    /// `top..end`, handed to `emit` unless it is empty or can write no
+    /// pixel in the clip columns (`Closer::close`'s test); `true` when
+    /// handed.
+    #[inline(always)]
+    fn band<E>(
+        &self,
+        short: Ends,
+        top: u16,
+        end: u16,
+        emit: &mut impl FnMut(Ends, Ends, u16, u16) -> Result<(), E>,
+    ) -> Result<bool, E> {
+        let (l, r) = match self.short_left {
+            true => (short, self.long),
+            false => (self.long, short),
+        };
+        let rmax = r.x0.max(r.x1) as i32;
+        let lmin = l.x0.min(l.x1) as i32;
+        if top >= end || ceil_px(rmax - HALF) <= self.cols.0 || ceil_px(lmin - HALF) >= self.cols.1
+        {
+            return Ok(false);
+        }
+        emit(l, r, top, end)?;
+        Ok(true)
+    }
+}
+
 /// `Some(true)` when `a` is left of `b` on the band of rows `y..=last`
 /// (both cross every row of it) as the sweep orders them: by the exact
 /// crossings on row `y`, ties broken on row `last`; `Some(false)` when
@@ -2483,71 +2650,80 @@ mod tests {
     /// whole `i16` range and near the frame, with vertices on row
     /// centres, two or three on one row, repeated or collinear ones,
     /// both windings, and clips that cut the rows and the columns.
+    /// A triangle and a clip for case `case` of the triangle cut tests:
+    /// the whole `i16` range, frames of 40 × 32 and 4096 × 4096, vertices
+    /// on row centres, two or three on one row, repeated and collinear
+    /// vertices, clips cutting rows and columns.
+    fn random_triangle(rng: &mut Rng, case: u32) -> ([Vertex3; 3], ClipRect) {
+        let big = case % 5 == 1;
+        let (fw, fh) = if big {
+            (4096u16, 4096u16)
+        } else {
+            (W as u16, H as u16)
+        };
+        let mut r = |axis: i32| -> i32 {
+            match case % 5 {
+                // The whole range.
+                0 | 1 => rng.range(-32768, 32768),
+                // Near the frame, any unit.
+                2 => rng.range(-64, axis * 16 + 64),
+                // Near the frame, on a coarse grid: shared rows and
+                // columns, row centres.
+                3 => rng.range(-2, axis + 2) * 16 + [0, 8][rng.below(2) as usize],
+                // Small, around one row centre.
+                _ => 16 * (axis / 2) + 8 + rng.range(-20, 21),
+            }
+        };
+        let mut p = [(0i32, 0i32); 3];
+        for v in p.iter_mut() {
+            *v = (r(W), r(H));
+        }
+        match case % 7 {
+            // Two on one row.
+            0 => p[1].1 = p[0].1,
+            // A vertex repeated.
+            1 => p[2] = p[rng.below(2) as usize],
+            // Collinear: the third on the line through the others.
+            2 => {
+                let (dx, dy) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
+                let k = rng.range(-2, 3);
+                let q = (p[0].0 + k * dx, p[0].1 + k * dy);
+                if (-32768..32768).contains(&q.0) && (-32768..32768).contains(&q.1) {
+                    p[2] = q;
+                }
+            }
+            // The top on a row centre.
+            3 => p[0].1 = p[0].1 - p[0].1.rem_euclid(16) + 8,
+            // All on one row.
+            4 => (p[1].1, p[2].1) = (p[0].1, p[0].1),
+            _ => {}
+        }
+        let poly = p.map(|(x, y)| v3(x, y, rng.range(-32768, 32768)));
+        let clip = if case.is_multiple_of(3) {
+            let (x0, y0) = (rng.below(fw as u32) as i16, rng.below(fh as u32) as i16);
+            ClipRect::from_window(
+                ClipWindow {
+                    x0,
+                    y0,
+                    x1: x0.saturating_add(rng.below(fw as u32) as i16),
+                    y1: y0.saturating_add(rng.below(fh as u32) as i16),
+                },
+                fw,
+                fh,
+            )
+        } else {
+            ClipRect::full(fw, fh)
+        };
+        (poly, clip)
+    }
+
     #[test]
     fn triangle_cut_is_the_walks() {
         let mut rng = Rng(0x7c07_3a11);
         let mut slots = [EdgeSlot::EMPTY; 4];
         let (mut direct, mut declined, mut none) = (0u32, 0u32, 0u32);
         for case in 0..300_000u32 {
-            let big = case % 5 == 1;
-            let (fw, fh) = if big {
-                (4096u16, 4096u16)
-            } else {
-                (W as u16, H as u16)
-            };
-            let mut r = |axis: i32| -> i32 {
-                match case % 5 {
-                    // The whole range.
-                    0 | 1 => rng.range(-32768, 32768),
-                    // Near the frame, any unit.
-                    2 => rng.range(-64, axis * 16 + 64),
-                    // Near the frame, on a coarse grid: shared rows and
-                    // columns, row centres.
-                    3 => rng.range(-2, axis + 2) * 16 + [0, 8][rng.below(2) as usize],
-                    // Small, around one row centre.
-                    _ => 16 * (axis / 2) + 8 + rng.range(-20, 21),
-                }
-            };
-            let mut p = [(0i32, 0i32); 3];
-            for v in p.iter_mut() {
-                *v = (r(W), r(H));
-            }
-            match case % 7 {
-                // Two on one row.
-                0 => p[1].1 = p[0].1,
-                // A vertex repeated.
-                1 => p[2] = p[rng.below(2) as usize],
-                // Collinear: the third on the line through the others.
-                2 => {
-                    let (dx, dy) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
-                    let k = rng.range(-2, 3);
-                    let q = (p[0].0 + k * dx, p[0].1 + k * dy);
-                    if (-32768..32768).contains(&q.0) && (-32768..32768).contains(&q.1) {
-                        p[2] = q;
-                    }
-                }
-                // The top on a row centre.
-                3 => p[0].1 = p[0].1 - p[0].1.rem_euclid(16) + 8,
-                // All on one row.
-                4 => (p[1].1, p[2].1) = (p[0].1, p[0].1),
-                _ => {}
-            }
-            let poly = p.map(|(x, y)| v3(x, y, rng.range(-32768, 32768)));
-            let clip = if case % 3 == 0 {
-                let (x0, y0) = (rng.below(fw as u32) as i16, rng.below(fh as u32) as i16);
-                ClipRect::from_window(
-                    ClipWindow {
-                        x0,
-                        y0,
-                        x1: x0.saturating_add(rng.below(fw as u32) as i16),
-                        y1: y0.saturating_add(rng.below(fh as u32) as i16),
-                    },
-                    fw,
-                    fh,
-                )
-            } else {
-                ClipRect::full(fw, fh)
-            };
+            let (poly, clip) = random_triangle(&mut rng, case);
             let run = |triangle: bool, slots: &mut [EdgeSlot]| {
                 let side = Side {
                     ends: Ends::default(),
@@ -2593,6 +2769,68 @@ mod tests {
         }
         assert!(direct > 100_000, "{direct} {declined} {none}");
         assert!(declined > 5_000, "{direct} {declined} {none}");
+    }
+
+    #[test]
+    fn direct_triangle_cut_is_the_polygons() {
+        let mut rng = Rng(0x51de_7a0e);
+        let mut slots = [EdgeSlot::EMPTY; 4];
+        let (mut direct, mut declined) = (0u32, 0u32);
+        let side = Side {
+            ends: Ends::default(),
+            top: 0,
+            end: 0,
+        };
+        for case in 0..300_000u32 {
+            let (poly, clip) = random_triangle(&mut rng, case);
+            let mut want = [(side, side); 8];
+            let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+            let plane = p.plane().copied();
+            let mut nw = 0;
+            if plane.is_some() && p.edges() >= 2 {
+                p.cut_triangles(|l, r| {
+                    want[nw] = (l, r);
+                    nw += 1;
+                    Ok::<(), ()>(())
+                })
+                .unwrap();
+            }
+            let Some(cut) = TriangleCut::of(&poly, &clip) else {
+                declined += 1;
+                // Declined only where the triangle's cut declines too.
+                let p = Polygon::load(&mut slots, poly.iter().copied(), &clip).unwrap();
+                let mut c = Closer {
+                    emit: |_: Side, _: Side| Ok::<(), ()>(()),
+                    cols: p.cols,
+                    count: 0,
+                    skip: 0,
+                };
+                let done = cut_triangle(&p.slots[..p.edges], &mut c).unwrap();
+                assert!(!done || p.plane.is_none(), "case {case}: {poly:?} {clip:?}");
+                continue;
+            };
+            direct += 1;
+            assert_eq!(
+                cut.plane().copied(),
+                plane,
+                "case {case}: {poly:?} {clip:?}"
+            );
+            let mut got = [(side, side); 8];
+            let mut ng = 0;
+            if plane.is_some() {
+                let n = cut
+                    .cut(|l, r, top, end| {
+                        got[ng] = (Side { ends: l, top, end }, Side { ends: r, top, end });
+                        ng += 1;
+                        Ok::<(), ()>(())
+                    })
+                    .unwrap();
+                assert_eq!(n as usize, ng);
+            }
+            assert_eq!(&got[..ng], &want[..nw], "case {case}: {poly:?} {clip:?}");
+        }
+        assert!(direct > 200_000, "{direct} {declined}");
+        assert!(declined > 2_000, "{direct} {declined}");
     }
 
     /// `(1024·cos, 1024·sin)` of `a` tenths of a degree, near enough for
