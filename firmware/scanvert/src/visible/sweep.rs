@@ -225,6 +225,9 @@ struct Entry {
     face: u16,
     x0: u16,
     x1: u16,
+    /// Its index in the store, for [`continuation`] (`NONE` from
+    /// [`Entry::from`] until the sweep sets it).
+    trap: u16,
 }
 
 /// A live trapezoid on the current row, in the array sorted by `l`.
@@ -333,6 +336,7 @@ impl Entry {
         face: NONE,
         x0: 0,
         x1: 0,
+        trap: NONE,
     };
 
     /// Trapezoid `t` of `store` on its top row: its edges' steppers
@@ -354,6 +358,7 @@ impl Entry {
             face: t.face,
             x0: t.x0,
             x1: t.x1,
+            trap: NONE,
         }
     }
 
@@ -843,8 +848,9 @@ impl Sweep {
 
     /// Steps over the next `rows` rows of `store` (cut at its height)
     /// without resolving them, at once: the active list left as stepping
-    /// it row by row leaves it (the same trapezoids in the same order,
-    /// edges moved by [`Edge::advance`]), at the cost of one jump per
+    /// it row by row leaves it (the same trapezoids, in an order the next
+    /// row's sort takes as it takes the stepped one's, edges moved by
+    /// [`Edge::advance`]), at the cost of one jump per
     /// trapezoid live after the rows, not of a step per row.
     ///
     /// Not inlined, as [`draw`](Self::draw) is not: inlined into
@@ -924,11 +930,18 @@ impl Sweep {
             cx.y = yi;
             // Step the live trapezoids to this row, dropping those that
             // ended, and reload their pixels (in place, keeping the order).
-            (k, nf) = step_live(act, k, nf, yi);
-            // Enter the trapezoids whose top is this row.
+            // A trapezoid that continues one that ended on the row above
+            // ([`continues`]) has taken its place there.
+            (k, nf) = step_live(act, k, nf, yi, store);
+            // Enter the other trapezoids whose top is this row.
             let stepped = k;
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
+                if continues(store, t, tr) {
+                    cx.stats.trapezoids += 1;
+                    t = tr.next_row;
+                    continue;
+                }
                 if nf == 0 {
                     return Err(VisibleError::Active { capacity: cap });
                 }
@@ -936,6 +949,7 @@ impl Sweep {
                 let slot = act[nf].free;
                 let e = &mut act[slot as usize].entry;
                 *e = Entry::from(tr, store);
+                e.trap = t;
                 let h = e.hot(slot);
                 act[k].hot = h;
                 k += 1;
@@ -971,9 +985,10 @@ impl Sweep {
 /// Moves the active list over rows `y0..y1` (`y0 < y1`) at once, from
 /// the live trapezoids `act[..k]` of row `y0 − 1` and the free slots
 /// `act[..nf]` to those of row `y1 − 1`, as [`step_live`] and entering
-/// row by row would leave them, with the elements in the same order: the
-/// live trapezoids that last past the rows, then those that start in the
-/// rows and last past them, in the order they would have entered. Each
+/// row by row would leave them, the elements in this order: the live
+/// trapezoids that last past the rows, then those that start in the rows
+/// and last past them, in the order they would have entered (row by row,
+/// one that continues another would have taken its place). Each
 /// is moved down by [`Edge::advance`] (a division per edge, exact), its
 /// depth by a product; a trapezoid that starts and ends within the rows
 /// is never entered. The new `k` and `nf`; `None` when the free slots run
@@ -1004,6 +1019,7 @@ fn jump(
     for y in y0..y1 {
         let mut t = store.row_head(y as usize);
         while let Some(tr) = store.trapezoid(t) {
+            let index = t;
             t = tr.next_row;
             if tr.end() <= last {
                 continue;
@@ -1012,6 +1028,7 @@ fn jump(
             let slot = act[nf].free;
             let e = &mut act[slot as usize].entry;
             *e = Entry::from(tr, store);
+            e.trap = index;
             if e.left.end() <= last {
                 // Not so in a store as built (its edges span its rows).
                 nf += 1;
@@ -1030,11 +1047,21 @@ fn jump(
 
 /// Steps the live trapezoids `act[..k]` to row `y`, dropping those that
 /// ended onto the free stack `act[..nf]`, and reloads their pixels (in
-/// place, keeping the order); the new `k` and `nf`. Not inlined: kept out
-/// of the row loop's registers, it costs fewer instructions on the
-/// Cortex-M4 (figures in `docs/performance-log.md`).
+/// place, keeping the order); the new `k` and `nf`. Where a trapezoid
+/// ended, the one of `store` that [`continues`] it (the other half of a
+/// triangle, below its middle corner) takes its slot and its place in
+/// the order ([`continuation`]), where its left pixel usually is,
+/// instead of entering at the end and being moved there by the sort.
+/// Not inlined: kept out of the row loop's registers, it costs fewer
+/// instructions on the Cortex-M4 (figures in `docs/performance-log.md`).
 #[inline(never)]
-fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usize) {
+fn step_live(
+    act: &mut [Active],
+    k: usize,
+    mut nf: usize,
+    y: i32,
+    store: &TrapezoidStore<'_>,
+) -> (usize, usize) {
     let k = k.min(act.len());
     let first = step_in_place(act, k, y);
     let mut w = first;
@@ -1042,6 +1069,11 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
         let slot = act[p].hot.slot;
         let e = &mut act[slot as usize].entry;
         if e.left.end() <= y {
+            if continuation(e, store, y) {
+                act[w].hot = e.hot(slot);
+                w += 1;
+                continue;
+            }
             act[nf].free = slot;
             nf += 1;
             continue;
@@ -1054,6 +1086,45 @@ fn step_live(act: &mut [Active], k: usize, mut nf: usize, y: i32) -> (usize, usi
         w += 1;
     }
     (w, nf)
+}
+
+/// `true` when trapezoid `t` of `store`, `tr`, continues the one before
+/// it in the store's pool: of the same face, that one ends on the row
+/// where `tr` starts. The cut stores a triangle's two trapezoids (above
+/// and below its middle corner) so. A face belongs to one segment, so
+/// that one is stored and in the row index as `tr` is: it was live on
+/// the row above, and [`step_live`] has entered `tr` in its place.
+#[inline(always)]
+fn continues(store: &TrapezoidStore<'_>, t: u16, tr: &Trapezoid) -> bool {
+    let Some(before) = t.checked_sub(1).and_then(|u| store.trapezoid(u)) else {
+        return false;
+    };
+    before.face == tr.face && before.end == tr.top && before.top < before.end
+}
+
+/// Where the trapezoid `e` ended above row `y`: if the next trapezoid
+/// of `store`'s pool [`continues`] it (so starts on row `y`), that one
+/// is entered into `e` and `true` returned. Out of line: it runs once a
+/// trapezoid that ends, and inlined it would take registers from the
+/// stepping loop.
+#[inline(never)]
+fn continuation(e: &mut Entry, store: &TrapezoidStore<'_>, y: i32) -> bool {
+    // Below the pool's never-used mark, a slot holds a stored trapezoid
+    // or an empty one (no rows): never one left from before the store.
+    let t = e.trap as usize + 1;
+    if t >= store.peak().0 {
+        return false;
+    }
+    let t = t as u16;
+    let Some(tr) = store.trapezoid(t) else {
+        return false;
+    };
+    if tr.top as i32 != y || !continues(store, t, tr) {
+        return false;
+    }
+    *e = Entry::from(tr, store);
+    e.trap = t;
+    true
 }
 
 /// The in-place part of [`step_live`]: steps the live trapezoids
@@ -3033,25 +3104,30 @@ mod tests {
         let (mut k, mut nf) = (sweep.k, sweep.nf);
         let end = sweep.y.saturating_add(n).min(store.height());
         for y in sweep.y..end {
-            (k, nf) = step_live(act, k, nf, y as i32);
+            (k, nf) = step_live(act, k, nf, y as i32, store);
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
-                nf -= 1;
-                let slot = act[nf].free;
-                act[slot as usize].entry = Entry::from(tr, store);
-                act[k].hot = act[slot as usize].entry.hot(slot);
-                k += 1;
+                if !continues(store, t, tr) {
+                    nf -= 1;
+                    let slot = act[nf].free;
+                    act[slot as usize].entry = Entry::from(tr, store);
+                    act[slot as usize].entry.trap = t;
+                    act[k].hot = act[slot as usize].entry.hot(slot);
+                    k += 1;
+                }
                 t = tr.next_row;
             }
         }
         (sweep.y, sweep.k, sweep.nf) = (end.max(sweep.y), k, nf);
     }
 
-    /// Jumping over rows leaves the same live trapezoids, in the same
-    /// order, with the same edges, depth and pixels, as stepping over
-    /// them row by row: skips of every length from every row, over scenes
-    /// whose triangles reach past the frame on every side; then the rows
-    /// drawn after a long skip are the exact picture's.
+    /// Jumping over rows leaves the same live trapezoids, with the same
+    /// edges, depth and pixels, as stepping over them row by row (the
+    /// order may differ where a trapezoid took the place of the one it
+    /// continues: the next row's sort orders both): skips of every length
+    /// from every row, over scenes whose triangles reach past the frame
+    /// on every side; then the rows drawn after a long skip are the exact
+    /// picture's.
     #[test]
     fn jump_equals_stepping() {
         let mut rng = Rng(0x5eed_0bad);
@@ -3080,13 +3156,23 @@ mod tests {
                     (stepped.y, stepped.k, stepped.nf),
                     "round {round}, rows {from}..+{len}"
                 );
-                for p in 0..jumped.k {
-                    let (h, g) = (ws.active[p].hot, ws_ref.active[p].hot);
-                    assert_eq!(
-                        ws.active[h.slot as usize].entry, ws_ref.active[g.slot as usize].entry,
-                        "round {round}, rows {from}..+{len}, element {p}"
-                    );
-                    assert_eq!(Hot { slot: 0, ..h }, Hot { slot: 0, ..g });
+                // Each list by its trapezoids' indices in the store.
+                let by_trap = |act: &[Active], k: usize| {
+                    let mut v: std::vec::Vec<(Entry, Hot)> = (0..k)
+                        .map(|p| {
+                            let h = act[p].hot;
+                            (act[h.slot as usize].entry, Hot { slot: 0, ..h })
+                        })
+                        .collect();
+                    v.sort_by_key(|(e, _)| e.trap);
+                    v
+                };
+                let (got, want) = (
+                    by_trap(ws.active, jumped.k),
+                    by_trap(ws_ref.active, stepped.k),
+                );
+                for (p, (g, w)) in got.iter().zip(&want).enumerate() {
+                    assert_eq!(g, w, "round {round}, rows {from}..+{len}, element {p}");
                 }
             }
             // Rows drawn after skipping from row 0 to any row are the
