@@ -924,6 +924,7 @@ impl Sweep {
         // act[..k].hot: the live trapezoids, sorted by l as of the last
         // row; act[..nf].free: the free slots.
         let (mut k, mut nf) = (self.k, self.nf);
+        let mut fresh = Fresh::EMPTY;
         let end = self.y.saturating_add(rows).min(store.height());
         for y in self.y..end {
             let yi = y as i32;
@@ -931,13 +932,24 @@ impl Sweep {
             // Step the live trapezoids to this row, dropping those that
             // ended, and reload their pixels (in place, keeping the order).
             // A trapezoid that continues one that ended on the row above
-            // ([`continues`]) has taken its place there.
-            (k, nf) = step_live(act, k, nf, yi, store);
-            // Enter the other trapezoids whose top is this row.
+            // ([`continues`]) has taken its place there, and so has one
+            // of the others where one without a continuation ended at
+            // its upper corner ([`Fresh`]).
+            fresh.reset();
+            (k, nf) = step_live(act, k, nf, yi, store, &mut fresh);
+            let mut placed = fresh.placed;
+            // Enter the rest of the trapezoids whose top is this row.
             let stepped = k;
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
                 if continues(store, t, tr) {
+                    cx.stats.trapezoids += 1;
+                    t = tr.next_row;
+                    continue;
+                }
+                let here = placed & 1 != 0;
+                placed >>= 1;
+                if here {
                     cx.stats.trapezoids += 1;
                     t = tr.next_row;
                     continue;
@@ -1061,15 +1073,28 @@ fn step_live(
     mut nf: usize,
     y: i32,
     store: &TrapezoidStore<'_>,
+    fresh: &mut Fresh,
 ) -> (usize, usize) {
     let k = k.min(act.len());
-    let first = step_in_place(act, k, y);
+    // In place up to the first that ends with nothing to take its place.
+    let mut first = step_in_place(act, 0, k, y);
+    while first < k {
+        let slot = act[first].hot.slot;
+        let e = &mut act[slot as usize].entry;
+        if !(continuation(e, store, y) || fresh.join(e, store, y)) {
+            act[nf].free = slot;
+            nf += 1;
+            break;
+        }
+        act[first].hot = e.hot(slot);
+        first = step_in_place(act, first + 1, k, y);
+    }
     let mut w = first;
-    for p in first..k {
+    for p in (first + 1).min(k)..k {
         let slot = act[p].hot.slot;
         let e = &mut act[slot as usize].entry;
         if e.left.end() <= y {
-            if continuation(e, store, y) {
+            if continuation(e, store, y) || fresh.join(e, store, y) {
                 act[w].hot = e.hot(slot);
                 w += 1;
                 continue;
@@ -1127,17 +1152,112 @@ fn continuation(e: &mut Entry, store: &TrapezoidStore<'_>, y: i32) -> bool {
     true
 }
 
+/// The trapezoids of a row's index that continue none ([`continues`]),
+/// for those of the row above that end with no continuation: a mesh's
+/// triangles that end at a corner are followed by those that start at
+/// it, and one that starts where one ended takes its slot and its place
+/// in the order ([`Fresh::join`]). The first [`FRESH`] of them are
+/// listed, by the upper end of their left edge, when a trapezoid first
+/// asks on the row.
+struct Fresh {
+    /// The row's list has been made.
+    made: bool,
+    /// Listed.
+    n: usize,
+    /// The upper end of each one's left edge ([`corner`]), and its index
+    /// in the store.
+    corners: [u32; FRESH],
+    traps: [u16; FRESH],
+    /// Bit `i`: the `i`th trapezoid of the row's index that continues
+    /// none has been entered.
+    placed: u32,
+}
+
+/// The most trapezoids [`Fresh`] lists on a row (at most 32, the bits
+/// of `placed`): a mesh's corner starts a few.
+const FRESH: usize = 8;
+
+/// A corner of a stored edge as one word, for equality.
+#[inline(always)]
+fn corner(v: crate::fixed::Vertex) -> u32 {
+    (v.x.units() as u16 as u32) << 16 | v.y.units() as u16 as u32
+}
+
+impl Fresh {
+    const EMPTY: Fresh = Fresh {
+        made: false,
+        n: 0,
+        corners: [0; FRESH],
+        traps: [0; FRESH],
+        placed: 0,
+    };
+
+    /// For a new row.
+    #[inline(always)]
+    fn reset(&mut self) {
+        (self.made, self.n, self.placed) = (false, 0, 0);
+    }
+
+    /// Lists the trapezoids of `store`'s row `y` that continue none.
+    fn make(&mut self, store: &TrapezoidStore<'_>, y: i32) {
+        self.made = true;
+        let mut n = 0;
+        let mut t = store.row_head(y as usize);
+        while let Some(tr) = store.trapezoid(t) {
+            if n == FRESH {
+                break;
+            }
+            if !continues(store, t, tr) {
+                self.corners[n] = corner(tr.left_side().ends().0);
+                self.traps[n] = t;
+                n += 1;
+            }
+            t = tr.next_row;
+        }
+        self.n = n;
+    }
+
+    /// Where the trapezoid `e` ended above row `y` with no continuation:
+    /// the first listed trapezoid not yet entered whose left edge starts
+    /// at the lower end of `e`'s left edge is entered into `e`, and
+    /// `true` returned. Out of line, as [`continuation`] is.
+    #[inline(never)]
+    fn join(&mut self, e: &mut Entry, store: &TrapezoidStore<'_>, y: i32) -> bool {
+        let Some(ended) = store.trapezoid(e.trap) else {
+            return false;
+        };
+        if !self.made {
+            self.make(store, y);
+        }
+        let at = corner(ended.left_side().ends().1);
+        for i in 0..self.n.min(FRESH) {
+            if self.corners[i] != at || self.placed & 1 << i != 0 {
+                continue;
+            }
+            let t = self.traps[i];
+            let Some(tr) = store.trapezoid(t) else {
+                return false;
+            };
+            *e = Entry::from(tr, store);
+            e.trap = t;
+            self.placed |= 1 << i;
+            return true;
+        }
+        false
+    }
+}
+
 /// The in-place part of [`step_live`]: steps the live trapezoids
-/// `act[..k]` (`k ≤ act.len()`) to row `y` up to the first that ended,
-/// each element staying where it is with only its `l`, `r` and `z`
-/// changed; the position of that first (`k` if none). Not inlined: with
-/// registers of its own, its loop needs no moves between them on the
-/// Cortex-M4 (figures in `docs/performance-log.md`).
+/// `act[from..k]` (`k ≤ act.len()`) to row `y` up to the first that
+/// ended, each element staying where it is with only its `l`, `r` and
+/// `z` changed; the position of that first (`k` if none). Not inlined:
+/// with registers of its own, its loop needs no moves between them on
+/// the Cortex-M4 (figures in `docs/performance-log.md`).
 #[inline(never)]
-fn step_in_place(act: &mut [Active], k: usize, y: i32) -> usize {
+fn step_in_place(act: &mut [Active], from: usize, k: usize, y: i32) -> usize {
     // `k` bounded by the slice: no bound check on `act[w]` in the loop.
     let k = k.min(act.len());
-    let mut w = 0;
+    let mut w = from;
     while w < k {
         let slot = act[w].hot.slot;
         let e = &mut act[slot as usize].entry;
@@ -3104,10 +3224,17 @@ mod tests {
         let (mut k, mut nf) = (sweep.k, sweep.nf);
         let end = sweep.y.saturating_add(n).min(store.height());
         for y in sweep.y..end {
-            (k, nf) = step_live(act, k, nf, y as i32, store);
+            let mut fresh = Fresh::EMPTY;
+            (k, nf) = step_live(act, k, nf, y as i32, store, &mut fresh);
+            let mut placed = fresh.placed;
             let mut t = store.row_head(y as usize);
             while let Some(tr) = store.trapezoid(t) {
-                if !continues(store, t, tr) {
+                let mut here = continues(store, t, tr);
+                if !here {
+                    here = placed & 1 != 0;
+                    placed >>= 1;
+                }
+                if !here {
                     nf -= 1;
                     let slot = act[nf].free;
                     act[slot as usize].entry = Entry::from(tr, store);
@@ -3119,6 +3246,77 @@ mod tests {
             }
         }
         (sweep.y, sweep.k, sweep.nf) = (end.max(sweep.y), k, nf);
+    }
+
+    /// A triangle's lower trapezoid takes its upper one's slot and place
+    /// ([`continuation`]), and a triangle that starts at the corner where
+    /// another ended takes that one's ([`Fresh::join`]): of two triangles
+    /// meeting at a corner, four trapezoids, only the first enters at the
+    /// end of the live array; the list holds one trapezoid on every row,
+    /// in the same slot, and the rows drawn are the exact picture's.
+    #[test]
+    fn continuing_trapezoids_take_the_ended_ones_places() {
+        let polys = [
+            [v(160, 32, 40), v(32, 160, 40), v(320, 320, 40)],
+            [v(320, 320, 60), v(560, 500, 60), v(160, 560, 60)],
+        ];
+        let mut mem = Pools::new(64, H);
+        let store = mem.store(&polys, W, H);
+        assert_eq!(store.len(), 4);
+        let mut active = [Active::EMPTY; 8];
+        let mut runs = [Run::EMPTY; W as usize];
+        let mut ws = Workspace::new(&mut active, &mut runs);
+        let mut sweep = Sweep::new(&mut ws, Resolve::Crossing);
+        let act = &mut ws.active[..sweep.cap];
+        let (mut k, mut nf) = (sweep.k, sweep.nf);
+        let (mut entered, mut placed_in) = (0, 0);
+        let mut slots = std::vec::Vec::new();
+        for y in 0..H {
+            let mut fresh = Fresh::EMPTY;
+            (k, nf) = step_live(act, k, nf, y as i32, &store, &mut fresh);
+            let mut placed = fresh.placed;
+            let mut t = store.row_head(y as usize);
+            while let Some(tr) = store.trapezoid(t) {
+                let mut here = continues(&store, t, tr);
+                if !here {
+                    here = placed & 1 != 0;
+                    placed >>= 1;
+                }
+                if here {
+                    placed_in += 1;
+                } else {
+                    entered += 1;
+                    nf -= 1;
+                    let slot = act[nf].free;
+                    act[slot as usize].entry = Entry::from(tr, &store);
+                    act[slot as usize].entry.trap = t;
+                    act[k].hot = act[slot as usize].entry.hot(slot);
+                    k += 1;
+                }
+                t = tr.next_row;
+            }
+            if (2..35).contains(&y) {
+                assert_eq!(k, 1, "row {y}");
+                slots.push(act[0].hot.slot);
+            }
+        }
+        assert_eq!((entered, placed_in), (1, 3));
+        assert!(slots.iter().all(|&s| s == slots[0]));
+        sweep = Sweep::new(&mut ws, Resolve::Crossing);
+        let want = brute(&polys, &store);
+        let poly_of = |f: u16| store.face(f).unwrap().key() as u16;
+        let check = |y: u16, runs: &[Run]| {
+            assert_row(y, runs, &want, poly_of, &"two triangles at a corner");
+            Ok::<(), ()>(())
+        };
+        let mut row_runs = [Run::EMPTY; W as usize];
+        let sink = ToSink {
+            out: RunWriter::new(&mut row_runs),
+            y: 0,
+            sink: &check,
+        };
+        sweep.rows(ws.active, &store, H, sink).unwrap();
+        assert_eq!(sweep.stats().trapezoids, 4);
     }
 
     /// Jumping over rows leaves the same live trapezoids, with the same
