@@ -4,7 +4,11 @@
 //! # Per row
 //!
 //! 1. The trapezoids whose top is this row (the scan-line index) enter the
-//!    active list, a caller-owned array of [`Active`] slots.
+//!    active list, a caller-owned array of [`Active`] slots. One that
+//!    continues a trapezoid that ended on the row above (a triangle's
+//!    lower half), or that starts at the corner where one ended with no
+//!    continuation (a mesh's next triangle), takes that one's slot and
+//!    its place in the order; the others go to the end.
 //! 2. Every active trapezoid knows its pixels `l..r` on the row: its edges'
 //!    pixels, stepped down a row with no division, cut to its columns
 //!    (`step_live`: up to the first that ends, only `l`, `r` and the
