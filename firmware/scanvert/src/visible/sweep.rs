@@ -1133,7 +1133,8 @@ fn continues(store: &TrapezoidStore<'_>, t: u16, tr: &Trapezoid) -> bool {
 
 /// Where the trapezoid `e` ended above row `y`: if the next trapezoid
 /// of `store`'s pool [`continues`] it (so starts on row `y`), that one
-/// is entered into `e` and `true` returned. Out of line: it runs once a
+/// is entered into `e` (its edges and columns; the rest is its face's,
+/// as `e` has it) and `true` returned. Out of line: it runs once a
 /// trapezoid that ends, and inlined it would take registers from the
 /// stepping loop.
 #[inline(never)]
@@ -1151,8 +1152,20 @@ fn continuation(e: &mut Entry, store: &TrapezoidStore<'_>, y: i32) -> bool {
     if tr.top as i32 != y || !continues(store, t, tr) {
         return false;
     }
-    *e = Entry::from(tr, store);
-    e.trap = t;
+    // Of the same face: its depth, colour and face are `e`'s, and its
+    // depth at column 0 on row `y` is `e`'s stepped a row (as `Depth::at`
+    // computes it, wrapping).
+    e.left = tr.left();
+    e.right = tr.right();
+    e.z = e.z.wrapping_add(e.zy);
+    (e.x0, e.x1, e.trap) = (tr.x0, tr.x1, t);
+    debug_assert_eq!(
+        *e,
+        Entry {
+            trap: t,
+            ..Entry::from(tr, store)
+        }
+    );
     true
 }
 
