@@ -239,11 +239,21 @@ impl Edge {
             q -= 1;
             r += dy;
         }
-        // S = q·2²⁸ + ⌈r·2²⁸/dy⌉; r < dy keeps the ceiling below 2²⁸.
-        let (f, exact) = frac28(r as u32, dy as u32);
-        let slope = ((q as i64) << 28) + (f + !exact as u32) as i64;
-        // W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸/dy⌋, with e₀ + 1 ≤ dy.
-        let (g, _) = frac28(err as u32 + 1, dy as u32);
+        // S = q·2²⁸ + ⌈r·2²⁸/dy⌉ (r < dy keeps the ceiling below 2²⁸)
+        // and W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸/dy⌋ (e₀ + 1 ≤ dy).
+        let (d, e) = (dy as u32, err as u32 + 1);
+        let (f, g) = if dy <= 1016 {
+            // One 16-bit digit each, rounded the same ways: each errs by
+            // less than 2¹², and an edge this short crosses at most 64
+            // rows, so (k + 1)·2¹² ≤ 2²⁸/dy still holds on every row.
+            let (n, m) = ((r as u32) << 16, e << 16);
+            let s = n / d;
+            ((s + (s * d != n) as u32) << 12, (m / d) << 12)
+        } else {
+            let (f, exact) = frac28(r as u32, d);
+            (f + !exact as u32, frac28(e, d).0)
+        };
+        let slope = ((q as i64) << 28) + f as i64;
         let acc = (((x + 16) as i64) << 28) - g as i64;
         Edge {
             acc,
@@ -562,6 +572,23 @@ mod tests {
                     for by in ay + 1..ay + 41 {
                         check(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
                     }
+                }
+            }
+        }
+    }
+
+    /// Heights on both sides of 1,016 units, where the set-up changes
+    /// from one digit to two: every subpixel start, slopes of both signs
+    /// with many remainders, on every row and under a window that starts
+    /// at the edge's last rows.
+    #[test]
+    fn heights_around_the_one_digit_bound_are_exact() {
+        for dy in 1000..=1032i16 {
+            for y0 in -16..16i16 {
+                for dx in (-2100..2100i16).step_by(37) {
+                    let (a, b) = (Vertex::from_bits(5, y0), Vertex::from_bits(5 + dx, y0 + dy));
+                    check(a, b);
+                    check_rows(a, b, (60, 70));
                 }
             }
         }
