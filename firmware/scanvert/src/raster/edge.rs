@@ -166,6 +166,9 @@ pub struct Edge {
     pub(super) px: i32,
 }
 
+// The record's size as the docs give it (edge storage, the band table).
+const _: () = assert!(core::mem::size_of::<Edge>() == 24);
+
 /// `(⌊n·2²⁸ / d⌋, whether the division is exact)` for `0 ≤ n ≤ d` and
 /// `1 ≤ d < 2¹⁶`, by long division in two 16-bit digits, each a 32-bit
 /// division: `n·2¹²` ≤ 2²⁸ and the first remainder times 2¹⁶ < 2³² fit
