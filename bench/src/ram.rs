@@ -32,12 +32,12 @@ mod slot {
     pub const INDEX_ROW: usize = 2;
     pub const EDGE_SLOT: usize = 32;
     /// An active slot.
-    pub const ACTIVE: usize = 132;
+    pub const ACTIVE: usize = 120;
     pub const RUN: usize = 4;
     pub const LABEL: usize = 20;
     /// A table entry and its two `u32` index entries.
     pub const TABLE_POLYGON: usize = 24 + 2 * 4;
-    pub const TABLE_EDGE: usize = 32;
+    pub const TABLE_EDGE: usize = 24;
     pub const TABLE_LINE: usize = 48;
     /// An RGB565 pixel.
     pub const PIXEL: usize = 2;
@@ -156,14 +156,14 @@ fn the_arithmetic_of_the_parts() {
     assert_eq!(r.segments, 64);
     assert_eq!(r.index, 480);
     assert_eq!(r.edge_slots, 512);
-    assert_eq!(r.active, 660);
+    assert_eq!(r.active, 600);
     assert_eq!(r.runs, 1280);
     assert_eq!(r.labels, 89);
-    assert_eq!(r.table, 64 + 224 + 48);
+    assert_eq!(r.table, 64 + 168 + 48);
     assert_eq!(r.band, 10_240);
     assert_eq!(
         r.total(),
-        340 + 168 + 64 + 480 + 512 + 660 + 1280 + 89 + 336 + 10_240
+        340 + 168 + 64 + 480 + 512 + 600 + 1280 + 89 + 280 + 10_240
     );
     assert_eq!(frame_buffer(320, 240), 153_600);
     assert_eq!(z_buffer(320, 240, 2), 307_200);
@@ -171,8 +171,8 @@ fn the_arithmetic_of_the_parts() {
     assert_eq!(Ram::of(&Counts::default()).total(), 0);
     let p = Ram::projected(&c, 48, 72, 8);
     assert_eq!((p.trapezoids, p.active, p.band), (480, 360, 5120));
-    assert_eq!(p.total(), r.total() - 340 + 480 - 660 + 360 - 10_240 + 5120);
-    assert_eq!(Ram::projected(&c, 34, 132, 16), r);
+    assert_eq!(p.total(), r.total() - 340 + 480 - 600 + 360 - 10_240 + 5120);
+    assert_eq!(Ram::projected(&c, 34, 120, 16), r);
     assert_eq!(
         (sep(0), sep(999), sep(1000), sep(94_911)),
         ("0".into(), "999".into(), "1,000".into(), "94,911".into())

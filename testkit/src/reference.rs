@@ -251,6 +251,27 @@ pub fn covers(poly: &[(i32, i32)], i: i32, j: i32) -> bool {
     crossings_at_or_left % 2 == 1
 }
 
+/// The first pixel whose centre is at or right of the crossing of the
+/// edge `a`–`b` (units of 1/16 px, either order) with the centre line of
+/// row `j`, `⌈x − ½⌉`, or `None` when the edge does not cross it (by the
+/// half-open rule of [`covers`]). The crossing is the rational
+/// `x = x0 + (yc − y0)·(x1 − x0)/(y1 − y0)`; the answer is the least `i`
+/// with `x ≤ 16·i + 8`, found in `i128` from the floor of a quotient.
+pub fn crossing(a: (i32, i32), b: (i32, i32), j: i32) -> Option<i32> {
+    let ((x0, y0), (x1, y1)) = if a.1 <= b.1 { (a, b) } else { (b, a) };
+    let (x0, y0, x1, y1) = (x0 as i128, y0 as i128, x1 as i128, y1 as i128);
+    let yc = 16 * j as i128 + 8;
+    if !(y0 <= yc && yc < y1) {
+        return None;
+    }
+    let dy = y1 - y0;
+    // x·dy = n; want the least i with n ≤ (16·i + 8)·dy, that is
+    // i ≥ (n − 8·dy)/(16·dy): minus the floor of minus that.
+    let n = x0 * dy + (yc - y0) * (x1 - x0);
+    let i = -((8 * dy - n).div_euclid(16 * dy));
+    Some(i as i32)
+}
+
 /// Pixels that may be covered (by the rule, or by a contender that is
 /// off by up to `margin` pixels): the polygon's box in whole pixels,
 /// widened by `margin` and cut to the `w × h` frame, as `(x0, y0, x1, y1)`

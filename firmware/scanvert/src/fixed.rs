@@ -17,13 +17,15 @@
 //! | a coordinate | \[−2¹⁵, 2¹⁵) | 16 |
 //! | `dx`, `dy` of an edge | \|·\| < 2¹⁶ | 17 |
 //! | `16·dx` (the step numerator) | \|·\| < 2²⁰ | 21 |
-//! | the stepped x (units) | within the edge's x range | 16 |
-//! | the error counter | \[0, dy) | 16 |
 //! | the set-up numerator `x·dy + t·dx` | \|·\| < 2³³ | `i64` |
+//! | the edge's first-row error `e₀` | \[0, dy) | 16 |
+//! | the edge's accumulator (px, 32 fraction bits) | \|·\| < 2⁴⁴ on the edge's rows | `i64` |
+//! | the edge's slope (px a row, 32 fraction bits) | \|·\| < 2⁴⁸ | `i64` |
 //!
-//! Only the set-up of an edge (once per edge) needs `i64`; the per-row
-//! step is three `i32` additions and a compare. The corners of the range are
-//! exercised by tests built with overflow checks on.
+//! The set-up of an edge needs `i64` for its numerator and builds the
+//! accumulator and slope from 32-bit divisions; the per-row step is one
+//! `i64` addition (see [`raster::edge`](crate::raster::edge)). The corners
+//! of the range are exercised by tests built with overflow checks on.
 
 /// Number of fraction bits of a [`Coord`].
 pub const FRAC_BITS: u32 = 4;

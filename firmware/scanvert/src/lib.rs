@@ -7,7 +7,7 @@
 //! | stage | module | what happens |
 //! |---|---|---|
 //! | 1. read | [`display_list`] | validate the bytes once, then read commands infallibly |
-//! | 2D: 2. raster | [`raster`] | edge set-up, an exact error-counter step per row, even-odd spans, the clip registers |
+//! | 2D: 2. raster | [`raster`] | edge set-up, an exact integer step per row, even-odd spans, the clip registers |
 //! | 3D: 2. geometry | [`geometry`] | transform stack, cull, light, near clip, projection, points and lines, window clip, into screen-space polygons |
 //! | 3D: 3. visible | [`visible`] | polygons cut into trapezoids, kept by segment, resolved row by row into run-length rows with no z-buffer |
 //! | 3D: scene | [`scene`] | segments built by the application's procedures, rebuilt only when stale; labels drawn last |

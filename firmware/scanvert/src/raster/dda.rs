@@ -1,12 +1,12 @@
 //! Faster, approximate alternatives to the exact edge stepper: the classic
 //! DDA, and vertices snapped to a coarser grid.
 //!
-//! The exact [`Edge`](crate::raster::edge::Edge) keeps an error counter so that
-//! every crossing is rounded exactly as the pixel rule asks. The classic
-//! *digital differential analyser* drops the counter: it holds `x` in fixed
-//! point and adds a rounded slope `dx/dy` once per row. That saves a
-//! compare and a conditional add per edge and row, and costs accuracy:
-//! each row adds the slope's rounding error to `x`.
+//! The exact [`Edge`](crate::raster::edge::Edge) is a DDA too, with 32
+//! fraction bits and both roundings upwards, which is enough for every
+//! crossing to be rounded exactly as the pixel rule asks. The steppers
+//! here hold `x` in fewer fraction bits and add a slope `dx/dy` rounded to
+//! the nearest once per row, in 32-bit words: each row adds the slope's
+//! rounding error to `x`, which costs accuracy.
 //!
 //! Both steppers here select rows exactly as the pixel rule does (a row's
 //! centre in `[y₀, y₁)`, with the same clipping to the window's rows), so
@@ -14,7 +14,7 @@
 //!
 //! | stepper | `x` held in | error after `k` rows, in px | per row |
 //! |---|---|---|---|
-//! | [`Edge`](crate::raster::edge::Edge) | 1/16 px and an error counter | 0 | 3 adds, 1 compare |
+//! | [`Edge`](crate::raster::edge::Edge) | 2⁻³² px, `i64`, rounded up | 0 | 1 `i64` add |
 //! | [`Dda7`] | 1/128 px (7 fraction bits) | `≤ (k + 1)/256` | 1 add |
 //! | [`Dda16`] | 1/65536 px (16.16) | `≤ (k + 1)/131072` | 1 add |
 //!

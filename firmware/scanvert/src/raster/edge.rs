@@ -9,14 +9,50 @@
 //! c = ⌈x − ½⌉      (the first pixel whose centre is at or right of x)
 //! ```
 //!
-//! and a span of the even-odd rule is `c_left..c_right`. The stepper keeps,
-//! in units of 1/16 px, `X = ⌈x − ½⌉₁₆` (the position rounded up to a
-//! unit) and an error counter `e = X·dy − (x − ½)·dy ∈ [0, dy)`, so that the
-//! exact position is `X − e/dy`. One row down, the exact position moves by
-//! `16·dx/dy = q + r/dy`; the step is `X += q; e −= r; if e < 0 { X += 1;
-//! e += dy }`, with no division. Since `⌈⌈v⌉/16⌉ = ⌈v/16⌉`, the pixel is
-//! `c = ⌈X/16⌉`, a shift. The first row inside the clip window is computed
-//! directly (one `i64` division), so rows above the window cost nothing.
+//! and a span of the even-odd rule is `c_left..c_right`.
+//!
+//! # A wide DDA, exact
+//!
+//! The stepper is one `i64` accumulator `A` in pixels with 32 fraction
+//! bits, stepped by an `i64` slope `S`: a row is `A += S` (two
+//! instructions on a 32-bit core, `adds` and `adc`), and the pixel is the
+//! high word, `A >> 32`, with no shift or rounding.
+//!
+//! *Why the high word is `c`.* Coordinates are units of 1/16 px and the
+//! edge is `dy ≥ 1` units high, so at a row centre `v = x − ½` is a
+//! multiple of `1/(16·dy)`. Then `c = ⌈v⌉ = ⌊w⌋` with
+//! `w = v + 1 − 1/(16·dy)`, and `w`, a multiple of `1/(16·dy)` too, lies
+//! at least `1/(16·dy)` below `⌊w⌋ + 1`. The first row's `W₀ = ⌈w₀·2³²⌉`
+//! and `S = ⌈(dx/dy)·2³²⌉` are both rounded up, each by less than one, so
+//! after `k` steps `0 ≤ A_k − w_k·2³² < k + 1`, and `⌊A_k / 2³²⌋ = ⌊w_k⌋`
+//! whenever `k + 1 ≤ 2³²/(16·dy) = 2²⁸/dy`. An edge crosses at most
+//! `⌈dy/16⌉` rows, so `k + 1 ≤ ⌈dy/16⌉`; the ends are `i16` units, so
+//! `dy ≤ 65,535` and `⌈dy/16⌉ ≤ 4,096`, and `⌈dy/16⌉·dy ≤ 4,096·65,535 <
+//! 2²⁸`. The condition holds on every row of every edge in range: there
+//! is no fallback. The tests check the bound's corners (`dy` = 65,535 over
+//! 4,096 rows, both slopes, vertical edges at the extreme columns).
+//!
+//! *The units.* `⌊16·w⌋ = ⌈16·v⌉ + 15` by the same argument in units (the
+//! error condition is again `(k + 1)·dy ≤ 2²⁸`), so `⌈x − ½⌉` in 1/16 px
+//! is `(A >> 28) − 15`; the whole units a row, `⌊16·dx/dy⌋`, are
+//! `S >> 28`.
+//!
+//! *The set-up, with 32-bit divisions only.* The first row inside the clip
+//! window is found directly, as `X₀ = ⌈16·v₀⌉` units and its error
+//! `e₀ = X₀·dy − 16·v₀·dy ∈ [0, dy)` (one division, `i64` only when the
+//! numerator leaves `i32`), so rows above the window cost nothing. With
+//! `16·dx = q·dy + r`, `0 ≤ r < dy < 2¹⁶`:
+//!
+//! ```text
+//! S  = q·2²⁸ + ⌈r·2²⁸ / dy⌉                 the ceiling < 2²⁸, as r < dy
+//! W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸ / dy⌋  as 16·w₀ = X₀ + 16 − (e₀ + 1)/dy;
+//!                                           the quotient ≤ 2²⁸ (= when e₀ + 1 = dy)
+//! ```
+//!
+//! each quotient by long division in two 16-bit digits (`n·2¹²` and the
+//! first remainder times 2¹⁶ fit `u32`). [`Edge::advance`] is `A += n·S`,
+//! one multiplication, exact while the rows stay inside the edge; the
+//! bounds of the pixels over a run of rows are those at its two ends.
 //!
 //! The widths of every quantity are in [`crate::fixed`].
 
@@ -98,44 +134,59 @@ pub trait Stepper: Copy {
     }
 }
 
-/// One polygon edge being stepped down the rows, in the form of the
-/// classic Bresenham error counter.
+/// One polygon edge being stepped down the rows, as a wide DDA: one
+/// 64-bit accumulator in pixels with 32 fraction bits, whose high word is
+/// the pixel (the module docs prove it exact over the whole range).
+///
+/// # Limits
+/// The ends are [`Vertex`]es (`i16` units), so an edge is at most 65,535
+/// units high and crosses at most 4,096 rows, all in −2048..2048 (so its
+/// rows are kept as `i16`, and the record is 24 bytes): the accumulator is
+/// exact on every row of every such edge, with no fallback. Stepped past
+/// its last row it follows the line, no longer exactly.
 ///
 /// Storage for edges is owned by the caller (see
 /// [`Rasterizer`](crate::raster::scan::Rasterizer)); [`Edge::EMPTY`] fills it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Edge {
-    /// `⌈x − ½⌉` at the current row, in units of 1/16 px.
-    x: i32,
-    /// Error counter, `0 ≤ err < dy`.
-    err: i32,
-    /// Whole units per row, `⌊16·dx / dy⌋`.
-    step: i32,
-    /// Remainder per row, `16·dx mod dy`.
-    rem: i32,
-    /// Height in units, `> 0`.
-    dy: i32,
-    /// First row sampled (inside the clip rows).
-    pub(super) top: i32,
-    /// One past the last row sampled.
-    pub(super) end: i32,
-    /// Pixel of the crossing on the current row, `⌈x/16⌉`; set by
-    /// [`Edge::load_pixel`]. Or, in a walk by the non-zero rule, that
-    /// pixel times two plus the edge's direction ([`Stepper::load_wound`]),
-    /// and from [`Stepper::new_wound`] until the first load the direction
-    /// alone: the slot stays 32 bytes, and the even-odd walk reads and
-    /// writes nothing more.
+    /// `⌈w·2³²⌉ + k·(S − (dx/dy)·2³²)` on the `k`-th row stepped, where
+    /// `w = x − ½ + 1 − 1/(16·dy)` px: its high word is `⌈x − ½⌉`.
+    acc: i64,
+    /// `⌈(dx/dy)·2³²⌉`: the accumulator's step a row.
+    slope: i64,
+    /// First row sampled (inside the clip rows), in −2048..2048.
+    top: i16,
+    /// One past the last row sampled, in −2047..=2048.
+    end: i16,
+    /// Pixel of the crossing on the current row, the accumulator's high
+    /// word; set by [`Edge::load_pixel`]. Or, in a walk by the non-zero
+    /// rule, that pixel times two plus the edge's direction
+    /// ([`Stepper::load_wound`]), and from [`Stepper::new_wound`] until the
+    /// first load the direction alone.
     pub(super) px: i32,
+}
+
+// The record's size as the docs give it (edge storage, the band table).
+const _: () = assert!(core::mem::size_of::<Edge>() == 24);
+
+/// `(⌊n·2²⁸ / d⌋, whether the division is exact)` for `0 ≤ n ≤ d` and
+/// `1 ≤ d < 2¹⁶`, by long division in two 16-bit digits, each a 32-bit
+/// division: `n·2¹²` ≤ 2²⁸ and the first remainder times 2¹⁶ < 2³² fit
+/// `u32`. The quotient is at most 2²⁸ (when `n = d`).
+#[inline(always)]
+fn frac28(n: u32, d: u32) -> (u32, bool) {
+    let hi = n << 12;
+    let (h, r) = (hi / d, hi % d);
+    let lo = r << 16;
+    let (l, r) = (lo / d, lo % d);
+    ((h << 16) + l, r == 0)
 }
 
 impl Edge {
     /// An unused slot.
     pub const EMPTY: Edge = Edge {
-        x: 0,
-        err: 0,
-        step: 0,
-        rem: 0,
-        dy: 1,
+        acc: 0,
+        slope: 0,
         top: 0,
         end: 0,
         px: 0,
@@ -179,33 +230,55 @@ impl Edge {
     }
 
     /// The stepper over rows `rows.0..rows.1` of an edge of slope
-    /// `dx / dy` (`dy ≥ 1`) crossing the first row at `x` with error
-    /// `err`: its step is ⌊16·dx / dy⌋ and its remainder, from one
-    /// truncating division.
+    /// `dx / dy` (`1 ≤ dy < 2¹⁶`) crossing the first row at `x − err/dy`
+    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`): the accumulator and its step,
+    /// both rounded up (see the module docs), from `16·dx = q·dy + r`.
     #[inline(always)]
     fn stepping(x: i32, err: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
-        let (mut step, mut rem) = ((ONE * dx) / dy, (ONE * dx) % dy);
-        if rem < 0 {
-            step -= 1;
-            rem += dy;
+        // Rows of a `Vertex` edge (see the type's limits).
+        let (top, end) = (top as i16, end as i16);
+        let (mut q, mut r) = ((ONE * dx) / dy, (ONE * dx) % dy);
+        if r < 0 {
+            q -= 1;
+            r += dy;
         }
+        // S = q·2²⁸ + ⌈r·2²⁸/dy⌉ (r < dy keeps the ceiling below 2²⁸)
+        // and W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸/dy⌋ (e₀ + 1 ≤ dy).
+        let (d, e) = (dy as u32, err as u32 + 1);
+        let (f, g) = if dy <= 1016 {
+            // One 16-bit digit each, rounded the same ways: each errs by
+            // less than 2¹², and an edge this short crosses at most 64
+            // rows, so (k + 1)·2¹² ≤ 2²⁸/dy still holds on every row.
+            let (n, m) = ((r as u32) << 16, e << 16);
+            let s = n / d;
+            ((s + (s * d != n) as u32) << 12, (m / d) << 12)
+        } else {
+            let (f, exact) = frac28(r as u32, d);
+            (f + !exact as u32, frac28(e, d).0)
+        };
+        let slope = ((q as i64) << 28) + f as i64;
+        let acc = (((x + 16) as i64) << 28) - g as i64;
         Edge {
-            x,
-            err,
-            step,
-            rem,
-            dy,
+            acc,
+            slope,
             top,
             end,
             px: 0,
         }
     }
 
+    /// The pixel of the crossing on the current row: the accumulator's
+    /// high word.
+    #[inline(always)]
+    fn now(&self) -> i32 {
+        (self.acc >> 32) as i32
+    }
+
     /// Computes [`Edge::pixel`] for the current row.
     #[inline(always)]
     #[doc(hidden)]
     pub fn load_pixel(&mut self) {
-        self.px = ceil_px(self.x);
+        self.px = self.now();
     }
 
     /// The first pixel whose centre is at or right of the crossing on the
@@ -216,75 +289,52 @@ impl Edge {
         self.px
     }
 
-    /// The crossing on the current row: `⌈x − ½⌉` in units of 1/16 px.
+    /// The first pixel whose centre is at or right of the crossing on the
+    /// current row, `⌈x − ½⌉`, read from the accumulator (no load needed).
+    #[inline(always)]
+    #[doc(hidden)]
+    pub fn pixel_now(&self) -> i32 {
+        self.now()
+    }
+
+    /// The crossing on the current row: `⌈x − ½⌉` in units of 1/16 px,
+    /// `⌊16·w⌋ − 15` (module docs).
     #[inline(always)]
     #[doc(hidden)]
     pub fn units(&self) -> i32 {
-        self.x
+        (self.acc >> 28) as i32 - 15
     }
 
-    /// Whole units the crossing moves down a row: each [`Edge::step`]
-    /// moves it by this or one more.
+    /// Whole units the crossing moves down a row, `⌊16·dx / dy⌋`: each
+    /// [`Edge::step`] moves [`Edge::units`] by this or one more.
     #[inline(always)]
     #[doc(hidden)]
     pub fn step_units(&self) -> i32 {
-        self.step
+        (self.slope >> 28) as i32
     }
 
-    /// Moves to the next row.
+    /// Moves to the next row: one 64-bit addition.
     #[inline(always)]
     #[doc(hidden)]
     pub fn step(&mut self) {
-        self.x += self.step;
-        self.err -= self.rem;
-        if self.err < 0 {
-            self.x += 1;
-            self.err += self.dy;
-        }
+        self.acc = self.acc.wrapping_add(self.slope);
     }
 
-    /// [`Edge::step`] with the carry taken by a mask instead of a branch:
-    /// the same state after, for loops over many edges whose carries
-    /// follow no pattern a branch predictor could learn.
+    /// [`Edge::step`]: it has no carry to branch on, so the loops that
+    /// step many unrelated edges take this same addition.
     #[inline(always)]
     #[doc(hidden)]
     pub fn step_masked(&mut self) {
-        // −dy < err − rem < dy: no overflow; `m` is −1 on a carry, else 0.
-        self.err -= self.rem;
-        let m = self.err >> 31;
-        self.x += self.step - m;
-        self.err += self.dy & m;
+        self.step();
     }
 
     /// Moves `n` rows down at once: the same state as `n` calls of
-    /// [`Edge::step`] (or [`Edge::step_masked`]), with one division
-    /// instead of `n` steps. The carries over the `n` rows are
-    /// `⌈(n·rem − err) / dy⌉` when positive, else none. Meant for rows
-    /// inside the edge (`n` below its height); beyond them the position
-    /// wraps as the steps would.
+    /// [`Edge::step`], one multiplication. Exact for rows inside the edge;
+    /// beyond them it follows the steps.
     #[inline]
     #[doc(hidden)]
     pub fn advance(&mut self, n: u32) {
-        // n < 2³² and 0 ≤ err, rem < dy < 2³¹: |drop| < 2⁶³, and
-        // carries·dy ≤ drop + dy. On a frame of ordinary size it fits in
-        // `i32`, and a 32-bit division is one instruction on a 32-bit
-        // core where a 64-bit one is a library call.
-        let drop = n as i64 * self.rem as i64 - self.err as i64;
-        // ⌈drop/dy⌉ = (drop − 1)/dy + 1 for drop > 0, written out here:
-        // the `fixed` helpers have callers enough that the Cortex-M4
-        // build does not inline them into `Edge::new`.
-        let carries = if drop <= 0 {
-            0
-        } else if let Ok(d) = i32::try_from(drop) {
-            ((d - 1) / self.dy + 1) as i64
-        } else {
-            (drop - 1) / self.dy as i64 + 1
-        };
-        self.err = (carries * self.dy as i64 - drop) as i32;
-        self.x = self
-            .x
-            .wrapping_add((n as i32).wrapping_mul(self.step))
-            .wrapping_add(carries as i32);
+        self.acc = self.acc.wrapping_add((n as i64).wrapping_mul(self.slope));
     }
 
     /// [`Edge::new`] for an edge from `(x0, y0)` to `(x1, y1)` (units,
@@ -294,9 +344,10 @@ impl Edge {
     /// holds. Rows it does not cross give a stepper whose positions are
     /// the line's, not the edge's; ends with `y0 ≥ y1` give
     /// [`Edge::EMPTY`]. The ends are `i16` widened (so nothing here
-    /// overflows). Not inlined: inlined into the entries (the sweep's and
-    /// painting's), it cost the 3D demo more than the call (figures in
-    /// `docs/performance-log.md`).
+    /// overflows, and `dy < 2¹⁶`), and `rows` inside the rows of such an
+    /// edge, −2048..=2048. Not inlined: inlined into the entries
+    /// (the sweep's and painting's), it cost the 3D demo more than the
+    /// call (figures in `docs/performance-log.md`).
     #[inline(never)]
     pub(crate) fn on_rows(x0: i32, y0: i32, x1: i32, y1: i32, (top, end): (i32, i32)) -> Edge {
         let (dx, dy) = (x1 - x0, y1 - y0);
@@ -305,8 +356,8 @@ impl Edge {
         }
         let yc = top * ONE + HALF;
         let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
-        // ⌈num/dy⌉ from a truncating division (dy > 0), written out as in
-        // `advance`: the `fixed` helper is not inlined here.
+        // ⌈num/dy⌉ from a truncating division (dy > 0), written out: the
+        // `fixed` helper is not inlined here.
         let (x, err) = match i32::try_from(num) {
             Ok(n) => {
                 let q = n / dy;
@@ -323,14 +374,16 @@ impl Edge {
 
     /// First row sampled.
     #[doc(hidden)]
+    #[inline(always)]
     pub fn top(&self) -> i32 {
-        self.top
+        self.top as i32
     }
 
     /// One past the last row sampled.
     #[doc(hidden)]
+    #[inline(always)]
     pub fn end(&self) -> i32 {
-        self.end
+        self.end as i32
     }
 }
 
@@ -344,11 +397,11 @@ impl Stepper for Edge {
     }
     #[inline(always)]
     fn top(&self) -> i32 {
-        self.top
+        self.top as i32
     }
     #[inline(always)]
     fn end(&self) -> i32 {
-        self.end
+        self.end as i32
     }
     #[inline(always)]
     fn load_pixel(&mut self) {
@@ -370,39 +423,40 @@ impl Stepper for Edge {
     }
     #[inline(always)]
     fn load_wound(&mut self) {
-        self.px = ceil_px(self.x) << 1 | (self.px & 1);
+        self.px = self.now() << 1 | (self.px & 1);
     }
     #[inline(always)]
     fn columns(&self, rows: i32) -> Option<(i32, i32)> {
-        // k rows down, x moves by k·step plus 0..=k carries: over the
-        // rows it stays between x, x + (rows − 1)·step and x + (rows −
-        // 1)·(step + 1) (saturated, still bounds), and ⌈·/16⌉ keeps the
-        // order.
-        let k = rows - 1;
-        let a = self.x.saturating_add(k.saturating_mul(self.step));
-        let b = a.saturating_add(k);
-        Some((ceil_px(a.min(self.x)), ceil_px(b.max(self.x))))
+        // The pixel is monotone down the rows, so the first and last rows'
+        // bound it. Past 4,096 rows (more than an edge has) no bound is
+        // given, which keeps (rows − 1)·S below 2⁶¹.
+        if rows > 4096 {
+            return None;
+        }
+        let last = self
+            .acc
+            .wrapping_add((rows - 1) as i64 * self.slope)
+            .wrapping_shr(32) as i32;
+        let first = self.now();
+        Some((first.min(last), first.max(last)))
     }
     #[inline(always)]
     fn is_vertical(&self) -> bool {
-        // x += 0 and err −= 0 every row.
-        self.step == 0 && self.rem == 0
+        // The accumulator does not move.
+        self.slope == 0
     }
     #[inline(always)]
     fn copy_from(&mut self, other: &Self) {
         // Field by field: loads and stores, never `memmove` or `memcpy`.
         let Edge {
-            x,
-            err,
-            step,
-            rem,
-            dy,
+            acc,
+            slope,
             top,
             end,
             px,
         } = *other;
-        (self.x, self.err, self.step, self.rem) = (x, err, step, rem);
-        (self.dy, self.top, self.end, self.px) = (dy, top, end, px);
+        (self.acc, self.slope) = (acc, slope);
+        (self.top, self.end, self.px) = (top, end, px);
     }
 }
 
@@ -439,18 +493,141 @@ mod tests {
         ceil_div_i64(n, 16 * (y1 - y0)) as i32
     }
 
-    fn check(a: Vertex, b: Vertex) {
-        let Some(mut e) = Edge::new(a, b, (i32::MIN, i32::MAX)) else {
+    /// The error-counter stepper this one replaced, kept as a second
+    /// reference: `X = ⌈x − ½⌉` in units and `e ∈ [0, dy)` with the exact
+    /// position `X − e/dy`, a row `X += q; e −= r; if e < 0 { X += 1;
+    /// e += dy }`, the pixel `⌈X/16⌉`.
+    struct Counter {
+        x: i64,
+        e: i64,
+        q: i64,
+        r: i64,
+        dy: i64,
+    }
+
+    impl Counter {
+        fn new(a: Vertex, b: Vertex, top: i32) -> Counter {
+            let (mut p, mut q) = (a, b);
+            if p.y > q.y {
+                core::mem::swap(&mut p, &mut q);
+            }
+            let (x0, y0) = (p.x.units() as i64, p.y.units() as i64);
+            let (dx, dy) = (q.x.units() as i64 - x0, q.y.units() as i64 - y0);
+            let num = (x0 - 8) * dy + (top as i64 * 16 + 8 - y0) * dx;
+            let x = ceil_div_i64(num, dy);
+            Counter {
+                x,
+                e: x * dy - num,
+                q: (16 * dx).div_euclid(dy),
+                r: (16 * dx).rem_euclid(dy),
+                dy,
+            }
+        }
+        fn pixel(&self) -> i32 {
+            ceil_div_i64(self.x, 16) as i32
+        }
+        fn step(&mut self) {
+            self.x += self.q;
+            self.e -= self.r;
+            if self.e < 0 {
+                self.x += 1;
+                self.e += self.dy;
+            }
+        }
+    }
+
+    /// Every row of the edge `a`–`b` under the rows `rows`: the pixel and
+    /// the units are the error counter's and the definition's, and
+    /// [`Edge::step_masked`] keeps the same state as [`Edge::step`].
+    fn check_rows(a: Vertex, b: Vertex, rows: (i32, i32)) {
+        let Some(mut e) = Edge::new(a, b, rows) else {
             return;
         };
+        let mut counter = Counter::new(a, b, e.top());
         let mut masked = e;
         for j in e.top()..e.end() {
             e.load_pixel();
             assert_eq!(e.pixel(), direct(a, b, j), "{a:?} {b:?} row {j}");
+            assert_eq!(e.pixel(), counter.pixel(), "{a:?} {b:?} row {j}");
+            assert_eq!(e.pixel_now(), e.pixel());
+            assert_eq!(e.units() as i64, counter.x, "{a:?} {b:?} row {j}");
+            assert_eq!(e.step_units() as i64, counter.q);
             e.step();
+            counter.step();
             masked.load_pixel();
             masked.step_masked();
             assert_eq!(masked, e, "step_masked, {a:?} {b:?} row {j}");
+        }
+    }
+
+    fn check(a: Vertex, b: Vertex) {
+        check_rows(a, b, (i32::MIN, i32::MAX));
+    }
+
+    /// Every edge between two points of a small grid of units (both
+    /// slopes, vertical, horizontal, every remainder of small heights),
+    /// on all its rows.
+    #[test]
+    fn every_small_edge_matches_the_counter() {
+        for ax in -24..24i16 {
+            for ay in -20..20i16 {
+                for bx in -24..24i16 {
+                    for by in ay + 1..ay + 41 {
+                        check(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
+                    }
+                }
+            }
+        }
+    }
+
+    /// Heights on both sides of 1,016 units, where the set-up changes
+    /// from one digit to two: every subpixel start, slopes of both signs
+    /// with many remainders, on every row and under a window that starts
+    /// at the edge's last rows.
+    #[test]
+    fn heights_around_the_one_digit_bound_are_exact() {
+        for dy in 1000..=1032i16 {
+            for y0 in -16..16i16 {
+                for dx in (-2100..2100i16).step_by(37) {
+                    let (a, b) = (Vertex::from_bits(5, y0), Vertex::from_bits(5 + dx, y0 + dy));
+                    check(a, b);
+                    check_rows(a, b, (60, 70));
+                }
+            }
+        }
+    }
+
+    /// The bound of the proof at its limit: the tallest edges (`dy` =
+    /// 65,535 units, 4,096 rows), at the steepest and the flattest
+    /// slopes, both signs, vertical at the extreme columns, and the
+    /// heights just around 65,528 where `dy·(dy + 15)` crosses 2³²; on
+    /// every row, and clipped to rows near the bottom (the largest `k`
+    /// from the first row is then small, so the top rows are covered too).
+    #[test]
+    fn tallest_edges_are_exact_on_every_row() {
+        let (lo, hi) = (i16::MIN, i16::MAX);
+        let xs = [lo, lo + 1, lo + 7, -9, -1, 0, 1, 8, 9, hi - 7, hi - 1, hi];
+        for &ax in &xs {
+            for &bx in &xs {
+                let (a, b) = (Vertex::from_bits(ax, lo), Vertex::from_bits(bx, hi));
+                let e = Edge::new(a, b, (i32::MIN, i32::MAX)).unwrap();
+                assert_eq!(e.end() - e.top(), 4096);
+                check(a, b);
+                check(b, a);
+                check_rows(a, b, (2000, 2048));
+                for dy in [65_520, 65_527, 65_528, 65_529, 65_534] {
+                    let b = Vertex::from_bits(bx, (lo as i32 + dy) as i16);
+                    check(a, b);
+                    let a = Vertex::from_bits(ax, (hi as i32 - dy) as i16);
+                    check(a, Vertex::from_bits(bx, hi));
+                }
+            }
+        }
+        // Slopes whose remainder is the largest (16·dx ≡ −1 mod dy) and
+        // the smallest non-zero (≡ 1), where the step's rounding is the
+        // most and the least.
+        for (ax, bx) in [(lo, 28671), (hi, -28672), (0, 4095), (0, -4095)] {
+            check(Vertex::from_bits(ax, lo), Vertex::from_bits(bx, hi));
         }
     }
 
@@ -498,17 +675,14 @@ mod tests {
                 }
             }
         }
-        // Inside the range n·rem stays below 2²⁸; past the edge's rows it
-        // can leave the 32-bit path: 16·dx ≡ −1 (mod dy), the largest
-        // remainder.
+        // Far past the edge's rows (600,000 steps of about 2³² each)
+        // the jump still equals the steps.
         let (a, b) = (
             Vertex::from_bits(i16::MIN, i16::MIN),
             Vertex::from_bits(28671, i16::MAX),
         );
         let e = Edge::new(a, b, (i32::MIN, i32::MAX)).unwrap();
-        assert_eq!(e.rem, e.dy - 1);
         let n = 600_000;
-        assert!(e.rem as i64 * n as i64 > i32::MAX as i64);
         let (mut stepped, mut jumped) = (e, e);
         for _ in 0..n {
             stepped.step();

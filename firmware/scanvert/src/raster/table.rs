@@ -43,7 +43,7 @@
 //! All of it is the caller's ([`TableMemory`]): a [`TablePolygon`] (24
 //! bytes on 32-bit targets) and two `u32`s per entry (the order by first
 //! row, and the live set, which takes one bit an entry of its half;
-//! `build` counts the entries by first row there first), an [`Edge`] (32
+//! `build` counts the entries by first row there first), an [`Edge`] (24
 //! bytes) per edge of the polygons and an `Option<`[`Line`]`>` (48 bytes)
 //! per line; [`DisplayList::table_needs`](crate::display_list::DisplayList::table_needs)
 //! counts them for a list, as an upper bound

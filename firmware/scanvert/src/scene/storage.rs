@@ -67,7 +67,7 @@ use crate::visible::trapezoid::{EdgeSlot, Trapezoid};
 /// | `SEGMENTS` | segments | 32 bytes | at most 65535 used; a display list uses one |
 /// | `ROWS` | the scan-line index | 2 bytes | at least the frame's height (at most 4096) |
 /// | `EDGES` | edge slots | 32 bytes | scratch for one polygon: as many as its vertices (at most 65535) |
-/// | `ACTIVE` | active list | 132 bytes | at most 65535 used; the most trapezoids overlapping one row |
+/// | `ACTIVE` | active list | 120 bytes | at most 65535 used; the most trapezoids overlapping one row |
 /// | `RUNS` | runs of one row | 4 bytes | at least the frame's width (at most 4096) |
 /// | `LABELS` | label slots | 20 bytes | one per label placed |
 /// | `TEXT` | label text | 1 byte | the bytes of every label's text |
@@ -340,7 +340,7 @@ const _: () = {
     assert!(size_of::<Face>() == 56);
     assert!(size_of::<Segment>() == 32);
     assert!(size_of::<EdgeSlot>() == 32);
-    assert!(size_of::<Active>() == 132);
+    assert!(size_of::<Active>() == 120);
     assert!(size_of::<Run>() == 4);
     assert!(size_of::<Label>() == 20);
 };

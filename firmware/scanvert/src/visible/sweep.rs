@@ -126,7 +126,7 @@
 //!
 //! # Memory
 //!
-//! An [`Active`] slot is 132 bytes: one trapezoid's stepping state (two
+//! An [`Active`] slot is 120 bytes: one trapezoid's stepping state (two
 //! edges, depth) and one element each of the sorted, cover and free
 //! arrays (a cover is 16 bytes: its `r` and depth, and the position of
 //! its trapezoid in the sorted array, where its face and colour are
@@ -155,7 +155,6 @@
 //! [`Face::key`]: crate::visible::store::Face::key
 
 use crate::color::ListColor;
-use crate::fixed::ceil_px;
 use crate::port::Counts;
 use crate::port::Span;
 use crate::port::SpanTarget;
@@ -196,7 +195,7 @@ pub enum Resolve {
     Paint,
 }
 
-/// One slot of the workspace's active list (132 bytes on 32-bit
+/// One slot of the workspace's active list (120 bytes on 32-bit
 /// targets): the caller provides as many as trapezoids may overlap one
 /// row, filled with [`Active::EMPTY`], and nothing else but the runs.
 ///
@@ -373,8 +372,8 @@ impl Entry {
     /// entered (the sweeps pass it by).
     #[inline(always)]
     fn pixels(&self) -> (i32, i32, i32) {
-        let l = ceil_px(self.left.units()).max(self.x0 as i32);
-        let r = ceil_px(self.right.units()).min(self.x1 as i32);
+        let l = self.left.pixel_now().max(self.x0 as i32);
+        let r = self.right.pixel_now().min(self.x1 as i32);
         (l, r, self.z)
     }
 

@@ -23,7 +23,7 @@
 extern crate std;
 
 use super::*;
-use crate::fixed::{Coord, Vertex3};
+use crate::fixed::{ceil_px, Coord, Vertex3};
 use crate::raster::clip::ClipRect;
 use crate::visible::store::{Face, Segment, StoreMemory};
 use crate::visible::trapezoid::EdgeSlot;

@@ -84,7 +84,6 @@ use super::{
     ToTarget, VisibleError, VisibleStats, Workspace,
 };
 use crate::color::ListColor;
-use crate::fixed::ceil_px;
 use crate::port::SpanTarget;
 use crate::raster::edge::Edge;
 use crate::visible::rle::Run;
@@ -706,8 +705,8 @@ fn step_one(a: &mut Active, y: u16) {
 #[inline(always)]
 fn row_pixels(e: &Entry) -> (i32, i32) {
     (
-        ceil_px(e.left.units()).max(e.x0 as i32),
-        ceil_px(e.right.units()).min(e.x1 as i32),
+        e.left.pixel_now().max(e.x0 as i32),
+        e.right.pixel_now().min(e.x1 as i32),
     )
 }
 
