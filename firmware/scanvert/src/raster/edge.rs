@@ -372,6 +372,19 @@ impl Edge {
         Edge::stepping(x, err, dx, dy, (top, end))
     }
 
+    /// Moves the stepper on to the rows `top..end` of the same edge that
+    /// follow those it was made for (`top` one past its last row, where
+    /// it stands): one step, and the rows. Its pixels are those of
+    /// [`Edge::on_rows`] over `top..end` while the rows stay inside the
+    /// edge's own: the accumulator errs by less than a step's rounding a
+    /// row from the edge's first row sampled, as the bound in the
+    /// [module](self) docs allows over all its rows.
+    #[inline(always)]
+    pub(crate) fn resume(&mut self, (top, end): (i32, i32)) {
+        self.step();
+        (self.top, self.end) = (top as i16, end as i16);
+    }
+
     /// First row sampled.
     #[doc(hidden)]
     #[inline(always)]

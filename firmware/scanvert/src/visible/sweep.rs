@@ -1153,18 +1153,49 @@ fn continuation(e: &mut Entry, store: &TrapezoidStore<'_>, y: i32) -> bool {
     }
     // Of the same face: its depth, colour and face are `e`'s, and its
     // depth at column 0 on row `y` is `e`'s stepped a row (as `Depth::at`
-    // computes it, wrapping).
-    e.left = tr.left();
-    e.right = tr.right();
+    // computes it, wrapping). The side it shares with `e` (a triangle's
+    // long edge, stored with the same ends) is `e`'s stepper moved on a
+    // row; the other is set up from its ends.
+    let rows = (tr.top as i32, tr.end as i32);
+    let ended = store.trapezoid(t - 1).map(|b| (b.left, b.right));
+    match ended {
+        Some((l, _)) if l == tr.left => {
+            e.left.resume(rows);
+            e.right = tr.right();
+        }
+        Some((_, r)) if r == tr.right => {
+            e.left = tr.left();
+            e.right.resume(rows);
+        }
+        _ => {
+            e.left = tr.left();
+            e.right = tr.right();
+        }
+    }
     e.z = e.z.wrapping_add(e.zy);
     (e.x0, e.x1, e.trap) = (tr.x0, tr.x1, t);
-    debug_assert_eq!(
-        *e,
-        Entry {
+    #[cfg(debug_assertions)]
+    {
+        // A side moved on keeps the rounding of its first row, not that
+        // of `y`: the same pixels, row by row.
+        let want = Entry {
             trap: t,
             ..Entry::from(tr, store)
+        };
+        let mut got = *e;
+        for (g, w) in [(&mut got.left, &want.left), (&mut got.right, &want.right)] {
+            let (mut a, mut b) = (*g, *w);
+            for _ in rows.0..rows.1 {
+                debug_assert_eq!(a.pixel_now(), b.pixel_now());
+                debug_assert_eq!(a.units(), b.units());
+                a.step();
+                b.step();
+            }
+            debug_assert_eq!((g.top(), g.end()), (w.top(), w.end()));
+            *g = *w;
         }
-    );
+        debug_assert_eq!(got, want);
+    }
     true
 }
 
@@ -3385,8 +3416,34 @@ mod tests {
                     by_trap(ws.active, jumped.k),
                     by_trap(ws_ref.active, stepped.k),
                 );
+                // A side moved on from the trapezoid it continues keeps the
+                // rounding of its first row: its pixels are compared, row
+                // by row to its end, not its bits.
+                let canon = |(e, h): &(Entry, Hot)| {
+                    let side = |s: &Edge| {
+                        let mut s = *s;
+                        let pixels: std::vec::Vec<_> = (s.top()..s.end())
+                            .map(|_| {
+                                let p = (s.pixel_now(), s.units());
+                                s.step();
+                                p
+                            })
+                            .collect();
+                        (s.top(), s.end(), s.step_units(), pixels)
+                    };
+                    let bare = Entry {
+                        left: Edge::EMPTY,
+                        right: Edge::EMPTY,
+                        ..*e
+                    };
+                    (bare, *h, side(&e.left), side(&e.right))
+                };
                 for (p, (g, w)) in got.iter().zip(&want).enumerate() {
-                    assert_eq!(g, w, "round {round}, rows {from}..+{len}, element {p}");
+                    assert_eq!(
+                        canon(g),
+                        canon(w),
+                        "round {round}, rows {from}..+{len}, element {p}"
+                    );
                 }
             }
             // Rows drawn after skipping from row 0 to any row are the
