@@ -263,33 +263,33 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 8.3 % on
-    /// average and 48.9 % at worst (the 2D lists' rows: 2.1 % to 14.3 %
-    /// on average, the 3D lists' 13.3 % and 10.9 %; the worst are rows of
+    /// Against the 1,992 measured rows the model's error is 8.2 % on
+    /// average and 49.8 % at worst (the 2D lists' rows: 2.0 % to 14.0 %
+    /// on average, the 3D lists' 12.9 % and 10.5 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
-    /// of an instruction a pixel); a 2D polygon live on the row costs 94
-    /// instructions besides its span, the edge table's live set 19 a
+    /// of an instruction a pixel); a 2D polygon live on the row costs 82
+    /// instructions besides its span, the edge table's live set 21 a
     /// word of 32 polygons on every row (W3's 313 words), and a run
-    /// moved by an insertion 6. Preparing a list is fitted to
+    /// moved by an insertion 5. Preparing a list is fitted to
     /// the eight lists' counts. Labels are in none of the measured lists,
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1103,
+        row: 1171,
         width: 2,
-        span: 3257,
+        span: 3314,
         pixel: -3,
-        run: 568,
-        entered: 7149,
-        resolved: 2784,
+        run: 561,
+        entered: 7562,
+        resolved: 2611,
         label: 0,
-        live: 1500,
-        word: 302,
-        moved: 90,
-        frame: 117338,
-        command: 10608,
-        trapezoid: 900,
+        live: 1311,
+        word: 343,
+        moved: 79,
+        frame: 117210,
+        command: 11865,
+        trapezoid: -592,
     };
 
     /// Instructions of a row of `work`, at least 1.
