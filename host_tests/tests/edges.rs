@@ -156,3 +156,85 @@ fn range_corners_are_exact_on_every_row() {
         }
     }
 }
+
+/// [`check`] for an edge given as two `Vertex`es, on every row it crosses:
+/// under a window of the rows its height spans and one more each side
+/// (every row it can cross), so that an edge between two row centres is
+/// checked on those rows, not on all 4,098.
+fn vcheck(a: Vertex, b: Vertex) {
+    let (y0, y1) = (a.y.units().min(b.y.units()), a.y.units().max(b.y.units()));
+    vcheck_rows(a, b, (y0.div_euclid(16) - 1, y1.div_euclid(16) + 2));
+}
+
+/// [`check`] for an edge given as two `Vertex`es, under `rows`.
+fn vcheck_rows(a: Vertex, b: Vertex, rows: (i32, i32)) {
+    let p = |v: Vertex| (v.x.units(), v.y.units());
+    check(p(a), p(b), rows);
+}
+
+/// Every edge between two points of a small grid of units (both
+/// slopes, vertical, horizontal, every remainder of small heights),
+/// on all its rows.
+#[test]
+fn every_small_edge_matches_the_counter() {
+    for ax in -24..24i16 {
+        for ay in -20..20i16 {
+            for bx in -24..24i16 {
+                for by in ay + 1..ay + 41 {
+                    vcheck(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
+                }
+            }
+        }
+    }
+}
+
+/// Heights on both sides of 1,016 units, where the set-up changes
+/// from one digit to two: every subpixel start, slopes of both signs
+/// with many remainders, on every row and under a window that starts
+/// at the edge's last rows.
+#[test]
+fn heights_around_the_one_digit_bound_are_exact() {
+    for dy in 1000..=1032i16 {
+        for y0 in -16..16i16 {
+            for dx in (-2100..2100i16).step_by(37) {
+                let (a, b) = (Vertex::from_bits(5, y0), Vertex::from_bits(5 + dx, y0 + dy));
+                vcheck(a, b);
+                vcheck_rows(a, b, (60, 70));
+            }
+        }
+    }
+}
+
+/// The bound of the proof at its limit: the tallest edges (`dy` =
+/// 65,535 units, 4,096 rows), at the steepest and the flattest
+/// slopes, both signs, vertical at the extreme columns, and the
+/// heights just around 65,528 where `dy·(dy + 15)` crosses 2³²; on
+/// every row, and clipped to rows near the bottom (the largest `k`
+/// from the first row is then small, so the top rows are covered too).
+#[test]
+fn tallest_edges_are_exact_on_every_row() {
+    let (lo, hi) = (i16::MIN, i16::MAX);
+    let xs = [lo, lo + 1, lo + 7, -9, -1, 0, 1, 8, 9, hi - 7, hi - 1, hi];
+    for &ax in &xs {
+        for &bx in &xs {
+            let (a, b) = (Vertex::from_bits(ax, lo), Vertex::from_bits(bx, hi));
+            let e = Edge::new(a, b, (i32::MIN, i32::MAX)).unwrap();
+            assert_eq!(e.end() - e.top(), 4096);
+            vcheck(a, b);
+            vcheck(b, a);
+            vcheck_rows(a, b, (2000, 2048));
+            for dy in [65_520, 65_527, 65_528, 65_529, 65_534] {
+                let b = Vertex::from_bits(bx, (lo as i32 + dy) as i16);
+                vcheck(a, b);
+                let a = Vertex::from_bits(ax, (hi as i32 - dy) as i16);
+                vcheck(a, Vertex::from_bits(bx, hi));
+            }
+        }
+    }
+    // Slopes whose remainder is the largest (16·dx ≡ −1 mod dy) and
+    // the smallest non-zero (≡ 1), where the step's rounding is the
+    // most and the least.
+    for (ax, bx) in [(lo, 28671), (hi, -28672), (0, 4095), (0, -4095)] {
+        vcheck(Vertex::from_bits(ax, lo), Vertex::from_bits(bx, hi));
+    }
+}

@@ -506,67 +506,21 @@ mod tests {
         ceil_div_i64(n, 16 * (y1 - y0)) as i32
     }
 
-    /// The error-counter stepper this one replaced, kept as a second
-    /// reference: `X = ⌈x − ½⌉` in units and `e ∈ [0, dy)` with the exact
-    /// position `X − e/dy`, a row `X += q; e −= r; if e < 0 { X += 1;
-    /// e += dy }`, the pixel `⌈X/16⌉`.
-    struct Counter {
-        x: i64,
-        e: i64,
-        q: i64,
-        r: i64,
-        dy: i64,
-    }
-
-    impl Counter {
-        fn new(a: Vertex, b: Vertex, top: i32) -> Counter {
-            let (mut p, mut q) = (a, b);
-            if p.y > q.y {
-                core::mem::swap(&mut p, &mut q);
-            }
-            let (x0, y0) = (p.x.units() as i64, p.y.units() as i64);
-            let (dx, dy) = (q.x.units() as i64 - x0, q.y.units() as i64 - y0);
-            let num = (x0 - 8) * dy + (top as i64 * 16 + 8 - y0) * dx;
-            let x = ceil_div_i64(num, dy);
-            Counter {
-                x,
-                e: x * dy - num,
-                q: (16 * dx).div_euclid(dy),
-                r: (16 * dx).rem_euclid(dy),
-                dy,
-            }
-        }
-        fn pixel(&self) -> i32 {
-            ceil_div_i64(self.x, 16) as i32
-        }
-        fn step(&mut self) {
-            self.x += self.q;
-            self.e -= self.r;
-            if self.e < 0 {
-                self.x += 1;
-                self.e += self.dy;
-            }
-        }
-    }
-
-    /// Every row of the edge `a`–`b` under the rows `rows`: the pixel and
-    /// the units are the error counter's and the definition's, and
-    /// [`Edge::step_masked`] keeps the same state as [`Edge::step`].
+    /// Every row of the edge `a`–`b` under the rows `rows`: the pixel is
+    /// the definition's, [`Edge::pixel_now`] reads it without a load, and
+    /// [`Edge::step_masked`] keeps the same state as [`Edge::step`]. The
+    /// error-counter stepper this one replaced and `testkit`'s crossing
+    /// check it too, in `host_tests/tests/edges.rs`.
     fn check_rows(a: Vertex, b: Vertex, rows: (i32, i32)) {
         let Some(mut e) = Edge::new(a, b, rows) else {
             return;
         };
-        let mut counter = Counter::new(a, b, e.top());
         let mut masked = e;
         for j in e.top()..e.end() {
             e.load_pixel();
             assert_eq!(e.pixel(), direct(a, b, j), "{a:?} {b:?} row {j}");
-            assert_eq!(e.pixel(), counter.pixel(), "{a:?} {b:?} row {j}");
             assert_eq!(e.pixel_now(), e.pixel());
-            assert_eq!(e.units() as i64, counter.x, "{a:?} {b:?} row {j}");
-            assert_eq!(e.step_units() as i64, counter.q);
             e.step();
-            counter.step();
             masked.load_pixel();
             masked.step_masked();
             assert_eq!(masked, e, "step_masked, {a:?} {b:?} row {j}");
@@ -575,73 +529,6 @@ mod tests {
 
     fn check(a: Vertex, b: Vertex) {
         check_rows(a, b, (i32::MIN, i32::MAX));
-    }
-
-    /// Every edge between two points of a small grid of units (both
-    /// slopes, vertical, horizontal, every remainder of small heights),
-    /// on all its rows.
-    #[test]
-    fn every_small_edge_matches_the_counter() {
-        for ax in -24..24i16 {
-            for ay in -20..20i16 {
-                for bx in -24..24i16 {
-                    for by in ay + 1..ay + 41 {
-                        check(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
-                    }
-                }
-            }
-        }
-    }
-
-    /// Heights on both sides of 1,016 units, where the set-up changes
-    /// from one digit to two: every subpixel start, slopes of both signs
-    /// with many remainders, on every row and under a window that starts
-    /// at the edge's last rows.
-    #[test]
-    fn heights_around_the_one_digit_bound_are_exact() {
-        for dy in 1000..=1032i16 {
-            for y0 in -16..16i16 {
-                for dx in (-2100..2100i16).step_by(37) {
-                    let (a, b) = (Vertex::from_bits(5, y0), Vertex::from_bits(5 + dx, y0 + dy));
-                    check(a, b);
-                    check_rows(a, b, (60, 70));
-                }
-            }
-        }
-    }
-
-    /// The bound of the proof at its limit: the tallest edges (`dy` =
-    /// 65,535 units, 4,096 rows), at the steepest and the flattest
-    /// slopes, both signs, vertical at the extreme columns, and the
-    /// heights just around 65,528 where `dy·(dy + 15)` crosses 2³²; on
-    /// every row, and clipped to rows near the bottom (the largest `k`
-    /// from the first row is then small, so the top rows are covered too).
-    #[test]
-    fn tallest_edges_are_exact_on_every_row() {
-        let (lo, hi) = (i16::MIN, i16::MAX);
-        let xs = [lo, lo + 1, lo + 7, -9, -1, 0, 1, 8, 9, hi - 7, hi - 1, hi];
-        for &ax in &xs {
-            for &bx in &xs {
-                let (a, b) = (Vertex::from_bits(ax, lo), Vertex::from_bits(bx, hi));
-                let e = Edge::new(a, b, (i32::MIN, i32::MAX)).unwrap();
-                assert_eq!(e.end() - e.top(), 4096);
-                check(a, b);
-                check(b, a);
-                check_rows(a, b, (2000, 2048));
-                for dy in [65_520, 65_527, 65_528, 65_529, 65_534] {
-                    let b = Vertex::from_bits(bx, (lo as i32 + dy) as i16);
-                    check(a, b);
-                    let a = Vertex::from_bits(ax, (hi as i32 - dy) as i16);
-                    check(a, Vertex::from_bits(bx, hi));
-                }
-            }
-        }
-        // Slopes whose remainder is the largest (16·dx ≡ −1 mod dy) and
-        // the smallest non-zero (≡ 1), where the step's rounding is the
-        // most and the least.
-        for (ax, bx) in [(lo, 28671), (hi, -28672), (0, 4095), (0, -4095)] {
-            check(Vertex::from_bits(ax, lo), Vertex::from_bits(bx, hi));
-        }
     }
 
     /// [`Edge::advance`] by every `n` up to the edge's last row, from its
