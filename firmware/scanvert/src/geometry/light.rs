@@ -167,15 +167,16 @@ pub(super) fn shade(color: Rgb888, n: [i64; 3], toward: [i32; 3], percent: u8) -
     let Some(s) = scale15(n) else {
         return color;
     };
-    let len = length15(s);
     // The light's direction in Q14: each product is below 2²⁹, and a
     // positive n · l is at most |n| · 2¹⁴ < 2²⁹·⁶, so four times it fits
-    // u32 and one 32-bit division gives the cosine.
+    // u32 and one 32-bit division gives the cosine. A face turned away
+    // from the light takes none of it, whatever its length: the length
+    // and its square root are worked out only for the others.
     let dot: i32 = s.iter().zip(&toward).map(|(&a, &b)| a * (b >> 2)).sum();
     let cos = if dot <= 0 {
         0
     } else {
-        ((dot as u32 * 4) / len).min(65536)
+        ((dot as u32 * 4) / length15(s)).min(65536)
     };
     let p = percent as u32;
     // ≤ 100 · 2¹⁶ before the division.

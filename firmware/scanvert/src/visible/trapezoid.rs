@@ -742,7 +742,11 @@ impl Divisor {
         } else {
             n as u64
         };
-        let q = if ((m >> 32) as u32) < d {
+        // A numerator within 32 bits (a small face's slopes, an anchor
+        // near the first vertex) is one 32-bit division.
+        let q = if m >> 32 == 0 {
+            (m as u32 / d) as u64
+        } else if ((m >> 32) as u32) < d {
             self.div_64_32(m) as u64
         } else {
             m / d as u64
@@ -3035,6 +3039,25 @@ mod tests {
                     round_div64(n, c, &Divisor::new(2 * c)) as i128,
                     round_div(n as i128, c as i64)
                 );
+            }
+        }
+        // Numerators about 2³², where the one 32-bit division ends, and
+        // about −2³², where `|n| + d − 1` crosses it, for divisors of both
+        // kinds (below and above `SMALL_DIVISOR`).
+        for d in [
+            1u32,
+            2,
+            3,
+            0x7ff,
+            SMALL_DIVISOR - 1,
+            SMALL_DIVISOR,
+            u32::MAX,
+        ] {
+            for base in [1i64 << 32, -(1i64 << 32) + d as i64 - 1] {
+                for k in -3..=3 {
+                    let m = base + k;
+                    assert_eq!(floor_div(m, d), m.div_euclid(d as i64), "{m} / {d}");
+                }
             }
         }
     }
