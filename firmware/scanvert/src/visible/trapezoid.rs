@@ -2080,6 +2080,9 @@ pub(crate) struct TriangleCut {
     short_left: bool,
     /// The clip's columns.
     cols: (i32, i32),
+    /// The columns the triangle may cover lie strictly inside `cols`, so
+    /// that no band of it can miss them ([`TriangleCut::band`]).
+    inside: bool,
 }
 
 impl TriangleCut {
@@ -2118,24 +2121,29 @@ impl TriangleCut {
             end: 0,
             short_left: false,
             cols,
+            inside: false,
         };
         if c == 0 {
             return Some(cut);
         }
         let (a, b) = (m(p.1, q.2) - m(p.2, q.1), m(p.2, q.0) - m(p.0, q.2));
-        let sign = if c < 0 { -1 } else { 1 };
+        // Turned so that c > 0: negated, not multiplied by a sign, which
+        // in `i64` is a wide product on a 32-bit core.
+        let (a, b, c) = if c < 0 { (-a, -b, -c) } else { (a, b, c) };
         cut.plane = Some(Plane {
-            a: sign * a,
-            b: sign * b,
-            c: sign * c,
+            a,
+            b,
+            c,
             origin: (v[0].x.to_bits(), v[0].y.to_bits(), u[0].2),
         });
         // Columns covered lie in ⌈lo − ½⌉..⌈hi − ½⌉ (`Polygon::finish`).
         let lo = u[0].0.min(u[1].0).min(u[2].0);
         let hi = u[0].0.max(u[1].0).max(u[2].0);
-        if clip.is_empty() || ceil_px(hi - HALF) <= cols.0 || ceil_px(lo - HALF) >= cols.1 {
+        let (first, last) = (ceil_px(lo - HALF), ceil_px(hi - HALF));
+        if clip.is_empty() || last <= cols.0 || first >= cols.1 {
             return Some(cut);
         }
+        cut.inside = first > cols.0 && last < cols.1;
         // T, M, B: the vertices' (x, y) sorted by y, moved as values.
         let (mut t, mut mv, mut b) = ((u[0].0, u[0].1), (u[1].0, u[1].1), (u[2].0, u[2].1));
         if mv.1 < t.1 {
@@ -2207,11 +2215,18 @@ impl TriangleCut {
             true => (short, self.long),
             false => (self.long, short),
         };
-        let rmax = r.x0.max(r.x1) as i32;
-        let lmin = l.x0.min(l.x1) as i32;
-        if top >= end || ceil_px(rmax - HALF) <= self.cols.0 || ceil_px(lmin - HALF) >= self.cols.1
-        {
+        if top >= end {
             return Ok(false);
+        }
+        // The test of the columns, where the triangle's own do not settle
+        // it: each edge's ends are vertices, so a band's columns lie
+        // within the triangle's.
+        if !self.inside {
+            let rmax = r.x0.max(r.x1) as i32;
+            let lmin = l.x0.min(l.x1) as i32;
+            if ceil_px(rmax - HALF) <= self.cols.0 || ceil_px(lmin - HALF) >= self.cols.1 {
+                return Ok(false);
+            }
         }
         emit(l, r, top, end)?;
         Ok(true)
