@@ -96,10 +96,13 @@ pub(crate) fn is_front(projection: &Projection, v0: [i64; 3], n: [i128; 3]) -> b
 /// [`is_front`] for a triangle, whose Newell normal is its one corner
 /// `n = (v₁ − v₀) × (v₂ − v₀)` (each component below 2⁶³, module docs),
 /// in 32 × 32-bit products: each component is split as `n = h · 2³² + l`
-/// (`l` unsigned), so `v₀ · n = (Σ v₀ h) · 2³² + Σ v₀ l`, where each
-/// `v₀ l` is split the same way. The high sum is below `3 · 2⁶¹ + 3 · 2³⁰`
-/// and the low one below `3 · 2³²`: exact in `i64`, and the sign of
-/// `v₀ · n` is that of the high sum after the low one's carry.
+/// with `l` its low word taken as signed (`−2³¹ ≤ l < 2³¹`, so `h =
+/// ⌊(n + 2³¹) / 2³²⌋`, within `i32`: `|n| ≤ 2⁶³ − 2³⁴ + 8`). Then `v₀ · n
+/// = H · 2³² + L` with `H = Σ v₀ h` and `L = Σ v₀ l`, each product below
+/// 2⁶¹ and each sum below `3 · 2⁶¹`: exact in `i64`, one multiply and
+/// add a term. `H · 2³² + L = (H + ⌊L / 2³²⌋) · 2³² + (L mod 2³²)`, whose
+/// last term lies in `0..2³²`: the sign of `v₀ · n` is that of `H +
+/// ⌊L / 2³²⌋` (negative exactly when it is).
 #[inline]
 pub(crate) fn is_front_triangle(projection: &Projection, v0: [i64; 3], n: [i64; 3]) -> bool {
     match projection {
@@ -109,10 +112,11 @@ pub(crate) fn is_front_triangle(projection: &Projection, v0: [i64; 3], n: [i64; 
             for k in 0..3 {
                 // View-space coordinates are below 2³⁰ (module docs).
                 let v = v0[k] as i32 as i64;
-                let (h, l) = (n[k] >> 32, n[k] as u32 as i64);
-                let vl = v * l;
-                high += v * h + (vl >> 32);
-                low += vl & 0xffff_ffff;
+                let l = n[k] as i32 as i64;
+                // ⌊(n + 2³¹) / 2³²⌋ without the sum's overflow.
+                let h = (((n[k] >> 31) + 1) >> 1) as i32 as i64;
+                high += v * h;
+                low += v * l;
             }
             high + (low >> 32) < 0
         }
@@ -217,6 +221,41 @@ mod tests {
                     assert_eq!(light_normal(n, n.map(i128::from)), n);
                 }
             }
+        }
+    }
+
+    /// The triangle's split test against `i128` where the low words
+    /// matter: corners of every size below 2³⁰, nearly edge-on faces (a
+    /// third corner on the line of two others, moved by a unit), and
+    /// normals whose components sit about multiples of 2³¹.
+    #[test]
+    fn split_facing_test_is_the_wide_one() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let p = persp();
+        for _ in 0..200_000 {
+            let r = next();
+            let bits = 1 + (r % 30) as u32;
+            let mut pick = || {
+                let r = next();
+                ((r >> 2) as i64 % (1 << bits)) * if r & 1 == 0 { 1 } else { -1 }
+            };
+            let a = [pick(), pick(), pick()];
+            let b = [pick(), pick(), pick()];
+            let mut c = [pick(), pick(), pick()];
+            if r & 0x100 != 0 {
+                // On the line through a and b (inside the range), nudged.
+                let t = [a, b].map(|w| w.map(|x| x / 2));
+                c = [0, 1, 2].map(|k| t[0][k] + t[1][k] + (next() % 3) as i64 - 1);
+            }
+            let t = [a, b, c];
+            let n = normal(a, b, c);
+            assert_eq!(is_front_triangle(&p, a, n), front(&p, &t), "{t:?}");
         }
     }
 
