@@ -676,6 +676,30 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         self.run(points.into_iter(), color, sink)
     }
 
+    /// A triangle of view-space points culled and lit as `run` does it:
+    /// its Newell normal is its one corner, which also lights it (it
+    /// points the way of itself). `None` when culled. Out of line, so
+    /// that `run`'s polygons of more vertices keep their registers.
+    #[inline(never)]
+    fn lit_triangle(
+        &self,
+        v0: [i64; 3],
+        v1: [i64; 3],
+        v2: [i64; 3],
+        color: Rgb888,
+    ) -> Option<Rgb888> {
+        let n = cull::normal(v0, v1, v2);
+        if !cull::is_front_triangle(&self.projection, v0, n) {
+            return None;
+        }
+        Some(light::shade(
+            color,
+            n,
+            self.light_view,
+            self.light.percent(),
+        ))
+    }
+
     fn run<I: ExactSizeIterator<Item = Option<[i32; 3]>>, S: PolygonSink>(
         &self,
         points: I,
@@ -700,13 +724,10 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
 
         let mut color = color;
         if let [v0, v1, v2] = *work.current().as_slice() {
-            // A triangle's Newell normal is its one corner, which also
-            // lights it (it points the way of itself).
-            let n = cull::normal(v0, v1, v2);
-            if !cull::is_front_triangle(&self.projection, v0, n) {
-                return Ok(Outcome::Culled);
+            match self.lit_triangle(v0, v1, v2, color) {
+                Some(c) => color = c,
+                None => return Ok(Outcome::Culled),
             }
-            color = light::shade(color, n, self.light_view, self.light.percent());
         } else if let [v0, v1, v2, ..] = *work.current().as_slice() {
             let n = cull::newell(work.current());
             if !cull::is_front(&self.projection, v0, n) {
