@@ -353,6 +353,13 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
     counts: &mut MeshCounts,
 ) -> Result<(), (usize, SceneError)> {
     let (color, clip, highlight) = (st.color, st.clip, st.attributes.highlight);
+    // One sink for the run's triangles, made once: each call hands it on
+    // by one pointer.
+    let mut sink = Faces {
+        out,
+        clip,
+        highlight,
+    };
     // The run's triangles are counted here only (the pipeline counts
     // the other faces itself): what became of them is added to the
     // pipeline's counters once, at the end, as the difference of
@@ -374,11 +381,11 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
                 let outcome = match ix.triangle() {
                     Some(t) => {
                         let corners = t.map(usize::from);
-                        mesh_triangle(pipe, out, table, corners, color, clip, highlight)
+                        mesh_triangle(pipe, &mut sink, table, corners, color)
                     }
                     None => {
                         let indices = ix.iter().map(usize::from);
-                        let r = mesh_face(pipe, out, table, indices, color, clip, highlight);
+                        let r = mesh_face(pipe, sink.out, table, indices, color, clip, highlight);
                         match r {
                             Ok(Outcome::Emitted) => general.faces += 1,
                             Ok(Outcome::Culled) => general.culled += 1,
@@ -458,7 +465,7 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         for (c, i) in corners.iter_mut().zip(indices) {
             *c = i;
         }
-        let r = mesh_triangle(pipe, sink.out, table, corners, color, clip, highlight);
+        let r = mesh_triangle(pipe, &mut sink, table, corners, color);
         if let Ok(o) = r {
             let is = |k: Outcome| (o == k) as u32;
             pipe.add_counts(
@@ -477,31 +484,24 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
 }
 
 /// A triangle through vertices `corners` (0-based) of `table` into
-/// `out`, as [`mesh_face`] draws it. Its indices are checked once; its
+/// `sink`, as [`mesh_face`] draws it. Its indices are checked once; its
 /// corners' output vertices are kept in the table for the faces after
 /// it. Out of line for the reason `face` is. Of `pipe`'s counters, only
 /// a triangle the pipeline refuses is counted: the caller adds what
 /// became of the others ([`mesh_run`] once a run).
 #[inline(never)]
-pub(crate) fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
+fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
-    out: &mut O,
+    sink: &mut Faces<'_, O>,
     table: &mut VertexTable<'_>,
     corners: [usize; 3],
     color: Rgb888,
-    clip: ClipRect,
-    highlight: Option<Rgb888>,
 ) -> Result<Outcome, SceneError> {
-    let mut sink = Faces {
-        out,
-        clip,
-        highlight,
-    };
     for &c in &corners {
         table.checked(c)?;
     }
     let slots = table.for_pipeline(pipe);
-    let r = pipe.mesh_triangle_uncounted(slots, corners, color, &mut sink);
+    let r = pipe.mesh_triangle_uncounted(slots, corners, color, sink);
     if r.is_err() {
         pipe.add_counts(0, 0, 0, 1);
     }
