@@ -17,7 +17,11 @@
 //! two active edges (every row of a convex polygon, most rows of others)
 //! both edges are stepped in locals, and the pair needs one compare and no
 //! sort. A triangle is that from the start: its long edge beside one short
-//! edge, then beside the other, with no edge slots, sort or walk.
+//! edge, then beside the other, with no edge slots, sort or walk. So is a
+//! display list's quadrilateral that is monotone in `y` (the controller
+//! calls `Rasterizer::fill_quad` for a 4-vertex `poly`): the edges of
+//! its two sides, from its top vertex down to its bottom one, are taken
+//! in pairs as each one's rows end.
 //!
 //! Sorting the integer pixels instead of the exact crossings gives the same
 //! pixels: a pixel is covered when an odd number of crossings lie at or
