@@ -4,7 +4,10 @@
 //! edges: pixel for pixel against the exact reference, through every port
 //! (`FrameBuffer`, `PackedFrameBuffer` of even and odd widths, a counting
 //! target on the trait's default, the simulator's write port), under random
-//! clip registers.
+//! clip registers. And quadrilaterals of every kind, which the controller
+//! fills without the walk of their edges (a rectangle from its corners, a
+//! quad monotone in `y` as two chains): the same spans, counts and errors
+//! as the walk, and the reference's pixels.
 
 use embedded_graphics_core::pixelcolor::{BinaryColor, Rgb565, RgbColor};
 use host_tests::harness::{
@@ -250,9 +253,10 @@ fn hard_cases() {
 }
 
 /// A quad through the controller, which fills an axis-aligned rectangle
-/// from its corners, and straight through `Rasterizer::fill`, which sets
-/// up every polygon's edges: the same spans in the same order and the
-/// same counts, with many edge slots and with only as many as the quad's
+/// from its corners and a quad monotone in `y` as two chains of edges
+/// with no walk, and straight through `Rasterizer::fill`, which sets up
+/// every polygon's edges: the same spans in the same order and the same
+/// counts, with many edge slots and with only as many as the quad's
 /// vertices (the controller's own limit).
 fn same_as_the_edges(poly: &[(i32, i32)], window: Window, w: u16, h: u16, slots: usize) {
     let what = (poly, window, w, h, slots);
@@ -307,11 +311,37 @@ fn quad(w: u16, h: u16) -> impl Strategy<Value = Poly> {
         });
     let flat = (near(w), near(h), near(w))
         .prop_map(|(x0, y, x1)| vec![(x0, y), (x1, y), (x1, y), (x0, y)]);
+    // Squares turned by any angle about any centre (W4's kind), either
+    // winding, any first corner.
+    let turned = (
+        near(w),
+        near(h),
+        1..16 * 20i32,
+        0..64i32,
+        0..4usize,
+        any::<bool>(),
+    )
+        .prop_map(|(cx, cy, r, a, start, rev)| {
+            let t = a as f64 * std::f64::consts::TAU / 64.0;
+            let (dx, dy) = ((r as f64 * t.cos()) as i32, (r as f64 * t.sin()) as i32);
+            let mut p = vec![
+                (cx + dx, cy + dy),
+                (cx - dy, cy + dx),
+                (cx - dx, cy - dy),
+                (cx + dy, cy - dx),
+            ];
+            p.rotate_left(start);
+            if rev {
+                p.reverse();
+            }
+            p
+        });
     prop_oneof![
         rectangle(w, h),
         nudged,
         flat,
         vertical_sided(w, h),
+        turned,
         prop::collection::vec((near(w), near(h)), 4),
     ]
 }
@@ -325,5 +355,6 @@ proptest! {
             .prop_flat_map(|(w, h)| (quad(w, h), window(w, h), Just(w), Just(h), prop_oneof![Just(64usize), Just(4)]))
     ) {
         same_as_the_edges(&poly, window, w, h, slots);
+        check(&poly, window, w, h);
     }
 }

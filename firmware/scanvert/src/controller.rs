@@ -842,7 +842,7 @@ impl<'e> Controller<'e> {
                     // An axis-aligned rectangle without edges, else the scan
                     // converter.
                     let rectangle = match vertices.len() {
-                        4 => raster.fill_rectangle(vertices, 4, &clip, color, target),
+                        4 => raster.fill_quad(vertices, 4, &clip, color, target),
                         _ => None,
                     };
                     let counts = rectangle

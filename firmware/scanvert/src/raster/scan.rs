@@ -17,7 +17,11 @@
 //! two active edges (every row of a convex polygon, most rows of others)
 //! both edges are stepped in locals, and the pair needs one compare and no
 //! sort. A triangle is that from the start: its long edge beside one short
-//! edge, then beside the other, with no edge slots, sort or walk.
+//! edge, then beside the other, with no edge slots, sort or walk. So is a
+//! display list's quadrilateral that is monotone in `y` (the controller
+//! calls `Rasterizer::fill_quad` for a 4-vertex `poly`): the edges of
+//! its two sides, from its top vertex down to its bottom one, are taken
+//! in pairs as each one's rows end.
 //!
 //! Sorting the integer pixels instead of the exact crossings gives the same
 //! pixels: a pixel is covered when an odd number of crossings lie at or
@@ -245,16 +249,21 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         Ok(counts)
     }
 
-    /// [`fill`](Self::fill) for a polygon of `len` vertices that is an
-    /// axis-aligned rectangle (sides alternately horizontal and vertical),
-    /// from its corners, with no edge set up: the same pixels, counts and
-    /// calls of the target. `None`, with nothing done, for any other
-    /// polygon, and with an inexact stepper or fewer than 2 edge slots
-    /// (where `fill` could differ); the caller then calls `fill`. Not
-    /// inlined: a call a 4-vertex polygon keeps the caller's loop as it
-    /// is for the others.
+    /// [`fill_with`](Self::fill_with) for a polygon of `len` vertices
+    /// that is a quadrilateral drawn without the walk of its edges: the
+    /// same pixels, counts and outcome, by either fill rule (both are one
+    /// here). An axis-aligned rectangle (sides alternately horizontal and
+    /// vertical) is filled from its corners, with no edge set up (with an
+    /// exact stepper only); a quadrilateral that is monotone in `y`
+    /// ([`monotone`]) as two chains of edges from its top vertex down to
+    /// its bottom one, stepped in pairs as a triangle's are
+    /// ([`fill_chains`]), with no edge slots, sort or walk (with at least
+    /// 4 edge slots, so that the walk could not have failed for want of
+    /// them). `None`, with nothing done, for any other polygon; the caller
+    /// then calls `fill_with`. Not inlined: its own registers, and a call
+    /// a 4-vertex polygon, keep the caller's loop as it is for the others.
     #[inline(never)]
-    pub(crate) fn fill_rectangle<I, T>(
+    pub(crate) fn fill_quad<I, T>(
         &mut self,
         vertices: I,
         len: usize,
@@ -266,7 +275,7 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         I: IntoIterator<Item = Vertex>,
         T: SpanTarget + ?Sized,
     {
-        if !S::EXACT || len != 4 || self.edges.len() < 2 {
+        if len != 4 || self.edges.len() < 2 {
             return None;
         }
         let mut corners = [Vertex::default(); 4];
@@ -274,7 +283,12 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         for c in corners.iter_mut() {
             *c = it.next()?;
         }
-        let r = rectangle(&corners)?;
+        let rect = if S::EXACT { rectangle(&corners) } else { None };
+        let chains = match rect {
+            Some(_) => None,
+            None if self.edges.len() >= 4 => Some(monotone(&corners)?),
+            None => return None,
+        };
         let mut counts = Counts::default();
         target.begin_polygon();
         let (w, h) = target.size();
@@ -282,16 +296,148 @@ impl<'e, S: Stepper> Rasterizer<'e, S> {
         if clip.is_empty() {
             return Some(Ok(counts));
         }
-        let top = ceil_px(r.1 - HALF).max(clip.y0() as i32);
-        let stop = ceil_px(r.3 - HALF).min(clip.y1() as i32);
-        let (l, right) = (ceil_px(r.0 - HALF), ceil_px(r.2 - HALF));
         let cx = (clip.x0() as i32, clip.x1() as i32);
-        Some(
-            emit_rows(top, stop, l, right, cx, color, target, &mut counts)
-                .map(|()| counts)
-                .map_err(FillError::Target),
-        )
+        let done = match (rect, chains) {
+            (Some(r), _) => {
+                let top = ceil_px(r.1 - HALF).max(clip.y0() as i32);
+                let stop = ceil_px(r.3 - HALF).min(clip.y1() as i32);
+                let (l, right) = (ceil_px(r.0 - HALF), ceil_px(r.2 - HALF));
+                emit_rows(top, stop, l, right, cx, color, target, &mut counts)
+            }
+            (None, Some(chains)) => {
+                fill_chains::<S, T>(&corners, chains, &clip, color, target, &mut counts)
+            }
+            (None, None) => Ok(()),
+        };
+        Some(done.map(|()| counts).map_err(FillError::Target))
     }
+}
+
+/// The top vertex `t` of the polygon `v` (`3 ≤ v.len()`; least `y`, the
+/// first of equals) and the number `k` of its edges from `t` forward (in
+/// vertex order) down to its bottom vertex, when the polygon is monotone
+/// in `y`: `y` never decreases over those `k` edges and never increases
+/// over the other `n − k`, from the bottom vertex forward back to `t`.
+/// Then the two chains' edges, as half-open `y` ranges, each tile
+/// `[y_t, y_b)`, so every row centre crosses exactly one edge of each:
+/// the walk of the edges would pair those two on every row. `None` for
+/// any other polygon, and for a flat one (every `y` equal).
+#[inline(always)]
+fn monotone(v: &[Vertex]) -> Option<(usize, usize)> {
+    let n = v.len();
+    let y = |i: usize| v.get(i).map_or(0, |p| p.y.units());
+    let next = |i: usize| if i + 1 >= n { 0 } else { i + 1 };
+    let mut t = 0;
+    for i in 1..n {
+        if y(i) < y(t) {
+            t = i;
+        }
+    }
+    let (mut i, mut k) = (t, 0);
+    while k < n && y(next(i)) >= y(i) {
+        i = next(i);
+        k += 1;
+    }
+    if k == n {
+        return None;
+    }
+    for _ in k..n {
+        if y(next(i)) > y(i) {
+            return None;
+        }
+        i = next(i);
+    }
+    Some((t, k))
+}
+
+/// The polygon `v`, monotone in `y` with top vertex `t` and `k` edges in
+/// its forward chain ([`monotone`]), under the clip `clip` (cut to the
+/// target): the same pixels and counts as the walk of its edges. Its
+/// forward chain's edges and its backward chain's are taken in order as
+/// each one's rows end, and stepped in pairs as a triangle's are: the
+/// rows of each pair are one run of two edges.
+#[inline(always)]
+fn fill_chains<S: Stepper, T: SpanTarget + ?Sized>(
+    v: &[Vertex],
+    (t, k): (usize, usize),
+    clip: &ClipRect,
+    color: T::Color,
+    target: &mut T,
+    counts: &mut Counts,
+) -> Result<(), T::Error> {
+    let n = v.len();
+    let rows = (clip.y0() as i32, clip.y1() as i32);
+    let at = |i: usize| v.get(i).copied().unwrap_or_default();
+    // The next edge down a chain that crosses a row centre in the clip
+    // rows: `(vertex, edges left)`, forward or backward in vertex order.
+    let down = |(i, left): &mut (usize, usize), forward: bool| -> Option<S> {
+        while *left > 0 {
+            let j = match (forward, *i) {
+                (true, i) if i + 1 >= n => 0,
+                (true, i) => i + 1,
+                (false, 0) => n - 1,
+                (false, i) => i - 1,
+            };
+            let e = S::new(at(*i), at(j), rows);
+            *i = j;
+            *left -= 1;
+            if e.is_some() {
+                return e;
+            }
+        }
+        None
+    };
+    let (mut fw, mut bw) = ((t, k), (t, n - k));
+    let (Some(mut ef), Some(mut eb)) = (down(&mut fw, true), down(&mut bw, false)) else {
+        return Ok(());
+    };
+    let cx = (clip.x0() as i32, clip.x1() as i32);
+    // Every exact crossing lies between the leftmost and rightmost
+    // vertices: inside the clip columns there, no run needs the clip.
+    let (lo, hi) = v.iter().fold((i32::MAX, i32::MIN), |(lo, hi), p| {
+        (lo.min(p.x.units()), hi.max(p.x.units()))
+    });
+    let inside = S::EXACT && ceil_px(lo - HALF) >= cx.0 && ceil_px(hi - HALF) <= cx.1;
+    let top = ef.top();
+    let mut y = top;
+    let (mut empty, mut pixels) = (0u32, 0u32);
+    loop {
+        let (end_f, end_b) = (ef.end(), eb.end());
+        let stop = end_f.min(end_b);
+        let c = (&mut empty, &mut pixels);
+        let (ea, eb2) = (&mut ef, &mut eb);
+        if inside {
+            two_edge_rows::<false, false, S, T>((ea, eb2), (y, stop), cx, color, target, c)?;
+        } else {
+            two_edge_rows::<false, true, S, T>((ea, eb2), (y, stop), cx, color, target, c)?;
+        }
+        y = stop;
+        // The pair may come back swapped: each chain's edge is the one
+        // with its end (when both end here, both are replaced).
+        if ef.end() != end_f || eb.end() != end_b {
+            core::mem::swap(&mut ef, &mut eb);
+        }
+        if end_f == y {
+            match down(&mut fw, true) {
+                Some(e) => ef = e,
+                None => break,
+            }
+        } else {
+            ef.step();
+        }
+        if end_b == y {
+            match down(&mut bw, false) {
+                Some(e) => eb = e,
+                None => break,
+            }
+        } else {
+            eb.step();
+        }
+    }
+    let spans = (y - top) as u32 - empty;
+    counts.spans = counts.spans.saturating_add(spans);
+    counts.pixels = counts.pixels.saturating_add(pixels);
+    Ok(())
 }
 
 /// The corners `(x_min, y_min, x_max, y_max)`, in units, of the
