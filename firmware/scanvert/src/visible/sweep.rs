@@ -3239,6 +3239,78 @@ mod tests {
         (got.into_inner(), stats)
     }
 
+    /// A target that keeps every span it is handed, with its colour.
+    struct Spans {
+        size: (u16, u16),
+        got: std::vec::Vec<(u16, u16, u16, Rgb888)>,
+    }
+
+    impl SpanTarget for Spans {
+        type Color = Rgb888;
+        type Error = core::convert::Infallible;
+
+        fn size(&self) -> (u16, u16) {
+            self.size
+        }
+
+        fn fill_span(&mut self, span: Span, color: Rgb888) -> Result<(), Self::Error> {
+            self.got.push((span.y, span.x0, span.x1, color));
+            Ok(())
+        }
+    }
+
+    /// The spans, counts and runs of one row of `live` (sorted by `l` for
+    /// the sweep) written into a target of `width` columns with
+    /// `background`, by the side-by-side writer or the sweep.
+    #[allow(clippy::type_complexity)]
+    fn row_into(
+        live: &[Hot],
+        side: bool,
+        width: u16,
+        background: Option<Rgb888>,
+    ) -> (
+        std::vec::Vec<(u16, u16, u16, Rgb888)>,
+        Counts,
+        u32,
+        VisibleStats,
+    ) {
+        let mut mem = Pools::new(1, H);
+        let no_faces: [[Vertex3; 3]; 0] = [];
+        let store = mem.store(&no_faces, W, H);
+        let mut act = [Active::EMPTY; 64];
+        for (a, h) in act.iter_mut().zip(live) {
+            a.hot = *h;
+        }
+        let k = live.len();
+        if !side {
+            sort(&mut act[..k]);
+        }
+        let mut target = Spans {
+            size: (width, H),
+            got: std::vec::Vec::new(),
+        };
+        let mut cx = Ctx {
+            store: &store,
+            out: ToTarget::new(&mut target, background),
+            ink: Run::BACKGROUND,
+            len: 0,
+            color: BACKGROUND,
+            mode: Resolve::Crossing,
+            y: 0,
+            stats: VisibleStats::default(),
+        };
+        cx.out.start(1);
+        if side {
+            write_side_by_side(&act[..k], W as i32, &mut cx);
+        } else {
+            sweep(&mut act, k, W as i32, &mut cx);
+        }
+        cx.flush();
+        let runs = cx.out.finish().unwrap();
+        let (counts, stats) = (cx.out.counts, cx.stats);
+        (target.got, counts, runs, stats)
+    }
+
     #[test]
     fn side_by_side_rows_are_written_as_the_sweep_writes_them() {
         // Rows of trapezoids side by side with gaps, some with no pixel
@@ -3314,6 +3386,26 @@ mod tests {
                         (want_stats.empty, want_stats.single, want_stats.multiple),
                         "{live:?}"
                     );
+                    // Into a target as wide as the row or narrower, the
+                    // background filled or left: the same spans, colours
+                    // and counts.
+                    for width in [W, W - 5] {
+                        for background in [None, Some(Rgb888::new(1, 2, 3))] {
+                            let side = row_into(&live, true, width, background);
+                            let want = row_into(&live, false, width, background);
+                            assert_eq!(side.0, want.0, "{live:?} {width} {background:?}");
+                            assert_eq!(
+                                (side.1.spans, side.1.pixels, side.2),
+                                (want.1.spans, want.1.pixels, want.2),
+                                "{live:?} {width} {background:?}"
+                            );
+                            assert_eq!(
+                                (side.3.empty, side.3.single),
+                                (want.3.empty, want.3.single),
+                                "{live:?}"
+                            );
+                        }
+                    }
                 }
                 Row::Unsorted => assert!(!sorted, "{live:?}"),
                 Row::Overlapping => {
