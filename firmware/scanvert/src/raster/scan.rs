@@ -405,7 +405,11 @@ fn fill_chains<S: Stepper, T: SpanTarget + ?Sized>(
         let (end_f, end_b) = (ef.end(), eb.end());
         let stop = end_f.min(end_b);
         let c = (&mut empty, &mut pixels);
-        let (ea, eb2) = (&mut ef, &mut eb);
+        // The backward chain first: it is the left one when the polygon
+        // turns clockwise on the screen (`y` down), and a pair that comes
+        // in left edge first is not swapped at the run's first row (one
+        // of the other turn is, and swapped back below).
+        let (ea, eb2) = (&mut eb, &mut ef);
         if inside {
             two_edge_rows::<false, false, S, T>((ea, eb2), (y, stop), cx, color, target, c)?;
         } else {
