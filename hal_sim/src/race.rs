@@ -263,9 +263,9 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 8.2 % on
-    /// average and 49.8 % at worst (the 2D lists' rows: 2.0 % to 14.0 %
-    /// on average, the 3D lists' 12.9 % and 10.5 %; the worst are rows of
+    /// Against the 1,992 measured rows the model's error is 7.9 % on
+    /// average and 49.0 % at worst (the 2D lists' rows: 2.0 % to 12.4 %
+    /// on average, the 3D lists' 12.7 % and 10.5 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
     /// of an instruction a pixel); a 2D polygon live on the row costs 82
@@ -276,20 +276,20 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1171,
+        row: 1060,
         width: 2,
-        span: 3314,
+        span: 3259,
         pixel: -3,
-        run: 561,
-        entered: 7562,
-        resolved: 2611,
+        run: 542,
+        entered: 7746,
+        resolved: 2664,
         label: 0,
-        live: 1311,
-        word: 343,
+        live: 1321,
+        word: 342,
         moved: 79,
-        frame: 117210,
-        command: 11865,
-        trapezoid: -592,
+        frame: 117044,
+        command: 11867,
+        trapezoid: -600,
     };
 
     /// Instructions of a row of `work`, at least 1.
