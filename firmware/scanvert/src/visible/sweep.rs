@@ -3192,34 +3192,24 @@ mod tests {
         }
     }
 
-    /// The runs and counts of one row of `live` (sorted by `l` for the
-    /// sweep), written by `side` (the side-by-side writer) or the sweep.
-    fn row_of(live: &[Hot], side: bool) -> (std::vec::Vec<(u16, u16)>, VisibleStats) {
-        let mut mem = Pools::new(1, H);
-        let no_faces: [[Vertex3; 3]; 0] = [];
-        let store = mem.store(&no_faces, W, H);
+    /// One row of `live` (sorted by `l` for the sweep) resolved into
+    /// `out`, started at `row`, by `side` (the side-by-side writer) or
+    /// the sweep; the context is returned with its pending run flushed.
+    fn resolve_row<'s, O: RowOut>(
+        store: &'s TrapezoidStore<'s>,
+        live: &[Hot],
+        side: bool,
+        out: O,
+        row: u16,
+    ) -> Ctx<'s, O> {
         let mut act = [Active::EMPTY; 64];
         for (a, h) in act.iter_mut().zip(live) {
             a.hot = *h;
         }
         let k = live.len();
-        if !side {
-            sort(&mut act[..k]);
-        }
-        let got = core::cell::RefCell::new(std::vec::Vec::new());
-        let keep = |_: u16, runs: &[Run]| {
-            got.borrow_mut()
-                .extend(runs.iter().map(|r| (r.len(), r.ink())));
-            Ok::<(), ()>(())
-        };
-        let mut runs = [Run::EMPTY; W as usize];
         let mut cx = Ctx {
-            store: &store,
-            out: ToSink {
-                out: RunWriter::new(&mut runs),
-                sink: &keep,
-                y: 0,
-            },
+            store,
+            out,
             ink: Run::BACKGROUND,
             len: 0,
             color: BACKGROUND,
@@ -3227,13 +3217,36 @@ mod tests {
             y: 0,
             stats: VisibleStats::default(),
         };
-        cx.out.start(0);
+        cx.out.start(row);
         if side {
             write_side_by_side(&act[..k], W as i32, &mut cx);
         } else {
+            sort(&mut act[..k]);
             sweep(&mut act, k, W as i32, &mut cx);
         }
         cx.flush();
+        cx
+    }
+
+    /// The runs and counts of one row of `live`, written by `side` (the
+    /// side-by-side writer) or the sweep.
+    fn row_of(live: &[Hot], side: bool) -> (std::vec::Vec<(u16, u16)>, VisibleStats) {
+        let mut mem = Pools::new(1, H);
+        let no_faces: [[Vertex3; 3]; 0] = [];
+        let store = mem.store(&no_faces, W, H);
+        let got = core::cell::RefCell::new(std::vec::Vec::new());
+        let keep = |_: u16, runs: &[Run]| {
+            got.borrow_mut()
+                .extend(runs.iter().map(|r| (r.len(), r.ink())));
+            Ok::<(), ()>(())
+        };
+        let mut runs = [Run::EMPTY; W as usize];
+        let out = ToSink {
+            out: RunWriter::new(&mut runs),
+            sink: &keep,
+            y: 0,
+        };
+        let mut cx = resolve_row(&store, live, side, out, 0);
         cx.out.finish().unwrap();
         let stats = cx.stats;
         (got.into_inner(), stats)
@@ -3277,35 +3290,17 @@ mod tests {
         let mut mem = Pools::new(1, H);
         let no_faces: [[Vertex3; 3]; 0] = [];
         let store = mem.store(&no_faces, W, H);
-        let mut act = [Active::EMPTY; 64];
-        for (a, h) in act.iter_mut().zip(live) {
-            a.hot = *h;
-        }
-        let k = live.len();
-        if !side {
-            sort(&mut act[..k]);
-        }
         let mut target = Spans {
             size: (width, H),
             got: std::vec::Vec::new(),
         };
-        let mut cx = Ctx {
-            store: &store,
-            out: ToTarget::new(&mut target, background),
-            ink: Run::BACKGROUND,
-            len: 0,
-            color: BACKGROUND,
-            mode: Resolve::Crossing,
-            y: 0,
-            stats: VisibleStats::default(),
-        };
-        cx.out.start(1);
-        if side {
-            write_side_by_side(&act[..k], W as i32, &mut cx);
-        } else {
-            sweep(&mut act, k, W as i32, &mut cx);
-        }
-        cx.flush();
+        let mut cx = resolve_row(
+            &store,
+            live,
+            side,
+            ToTarget::new(&mut target, background),
+            1,
+        );
         let runs = cx.out.finish().unwrap();
         let (counts, stats) = (cx.out.counts, cx.stats);
         (target.got, counts, runs, stats)
