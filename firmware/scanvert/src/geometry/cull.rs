@@ -192,13 +192,7 @@ mod tests {
             M - 1,
             M,
         ];
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::geometry::xorshift64(0x2545_f491_4f6c_dd1d);
         for p in [persp(), ortho()] {
             for _ in 0..20_000 {
                 let mut pick = || {
@@ -230,13 +224,7 @@ mod tests {
     /// normals whose components sit about multiples of 2³¹.
     #[test]
     fn split_facing_test_is_the_wide_one() {
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::geometry::xorshift64(0x9e37_79b9_7f4a_7c15);
         let p = persp();
         for _ in 0..200_000 {
             let r = next();

@@ -226,13 +226,7 @@ mod tests {
                 }
             }))
         }
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = crate::geometry::xorshift64(0x9e37_79b9_7f4a_7c15);
         let edges = [
             0,
             1,
