@@ -1333,14 +1333,28 @@ fn step_in_place(act: &mut [Active], from: usize, k: usize, y: i32) -> usize {
     let mut w = from;
     while w < k {
         let slot = act[w].hot.slot;
-        let e = &mut act[slot as usize].entry;
+        let Some(a) = act.get_mut(slot as usize) else {
+            break;
+        };
+        let e = &mut a.entry;
         if e.left.end() <= y {
             break;
         }
+        // The row's pixels as `Entry::pixels` takes them, one side at a
+        // time: the fence keeps the right side's loads after the left
+        // side's store, so that the two sides' accumulators and steps
+        // (eight words) are not live at once; on the Cortex-M4 the loop
+        // then reloads three spilled values an element, not seven
+        // (figures in `docs/performance-log.md`). It orders this
+        // thread's memory accesses for the compiler alone and emits no
+        // instruction.
         step_edge(&mut e.left);
+        let l = e.left.pixel_now().max(e.x0 as i32);
+        core::sync::atomic::compiler_fence(core::sync::atomic::Ordering::SeqCst);
         step_edge(&mut e.right);
+        let r = e.right.pixel_now().min(e.x1 as i32);
         e.z = e.z.wrapping_add(e.zy);
-        let (l, r, z) = e.pixels();
+        let z = e.z;
         let h = &mut act[w].hot;
         (h.l, h.r, h.z) = (l, r, z);
         w += 1;
