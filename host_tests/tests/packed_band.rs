@@ -18,7 +18,7 @@ use embedded_graphics_core::pixelcolor::{Rgb565, RgbColor};
 use proptest::prelude::*;
 use scanvert::port::band::{Band, BandError, BandTarget, BandsError};
 use scanvert::port::packed_band::{PackedBand, PackedBandTarget};
-use scanvert::port::{Span, SpanTarget};
+use scanvert::port::{PackedFrameBuffer, RowRun, Span, SpanTarget};
 use scanvert::scene::DEFAULT_FONT;
 use scanvert::visible::sweep::Resolve;
 use scanvert_sim::cli::Scene;
@@ -636,5 +636,98 @@ fn a_frame_pass_of_layers_is_the_same_in_bands_of_words() {
             dot_a.set(dot(20 + 9 * k as i32));
             dot_b.set(dot(20 + 9 * k as i32));
         }
+    }
+}
+
+/// A row's runs as `(length, colour)` from a start column, cut at the
+/// width: the `RowRun`s handed in one call.
+fn runs_of(x0: u16, width: u16, parts: &[(u16, u16)]) -> Vec<RowRun<Rgb565>> {
+    let (mut runs, mut x) = (Vec::new(), x0);
+    for &(len, c) in parts {
+        let x1 = (x + len).min(width);
+        if x1 <= x {
+            break;
+        }
+        runs.push(RowRun { x1, color: px(c) });
+        x = x1;
+    }
+    runs
+}
+
+/// The spans that `runs` from `x0` stand for.
+fn spans_of(x0: u16, runs: &[RowRun<Rgb565>]) -> Vec<(u16, u16, Rgb565)> {
+    let mut x = x0;
+    runs.iter()
+        .map(|r| {
+            let s = (x, r.x1, r.color);
+            x = r.x1;
+            s
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 500, failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// `fill_runs_inside` of the packed band and the packed frame: the
+    /// words of one call are those of a `fill_span_inside` a run, on odd
+    /// and even widths, band starts and columns, over words as they were
+    /// (the half-words next to the row's ends kept).
+    #[test]
+    fn a_rows_runs_in_one_call_write_what_a_span_each_writes(
+        width in 1u16..48,
+        (y0, rows, row) in (0u16..3, 1u16..4).prop_flat_map(|(y0, rows)| (Just(y0), Just(rows), y0..y0 + rows)),
+        start in 0u16..48,
+        parts in prop::collection::vec((1u16..12, any::<u16>()), 1..20),
+        seed in any::<u32>(),
+    ) {
+        let x0 = start % width;
+        let runs = runs_of(x0, width, &parts);
+        let spans = spans_of(x0, &runs);
+        let height = y0 + rows;
+        let n = PackedBand::<Rgb565>::words_len(width, rows);
+        let words: Vec<u32> = (0..n as u32).map(|i| seed.rotate_left(i).wrapping_mul(0x9e37_79b9)).collect();
+        let (mut one, mut each) = (words.clone(), words.clone());
+        PackedBand::<Rgb565>::new(&mut one, (width, height), y0, rows)
+            .unwrap()
+            .fill_runs_inside(row, x0, &runs)
+            .unwrap();
+        let mut band = PackedBand::<Rgb565>::new(&mut each, (width, height), y0, rows).unwrap();
+        for &(a, b, c) in &spans {
+            band.fill_span_inside(Span { y: row, x0: a, x1: b }, c).unwrap();
+        }
+        prop_assert_eq!(one, each);
+
+        let n = PackedFrameBuffer::<Rgb565>::words_len(width, height);
+        let words: Vec<u32> = (0..n as u32).map(|i| seed.rotate_right(i).wrapping_mul(0x85eb_ca6b)).collect();
+        let (mut one, mut each) = (words.clone(), words.clone());
+        PackedFrameBuffer::<Rgb565>::new(&mut one, width, height)
+            .unwrap()
+            .fill_runs_inside(row, x0, &runs)
+            .unwrap();
+        let mut frame = PackedFrameBuffer::<Rgb565>::new(&mut each, width, height).unwrap();
+        for &(a, b, c) in &spans {
+            frame.fill_span_inside(Span { y: row, x0: a, x1: b }, c).unwrap();
+        }
+        prop_assert_eq!(one, each);
+    }
+
+    /// Runs that break `fill_runs_inside`'s conditions (ends going back,
+    /// past the width, empty, rows off the band or the frame) write
+    /// inside the words and never panic.
+    #[test]
+    fn wrong_runs_never_panic(
+        width in 1u16..20,
+        y in 0u16..12,
+        x0 in 0u16..40,
+        ends in prop::collection::vec(0u16..60, 0..12),
+    ) {
+        let runs: Vec<RowRun<Rgb565>> = ends.iter().map(|&x1| RowRun { x1, color: Rgb565::RED }).collect();
+        let mut words = vec![0u32; PackedBand::<Rgb565>::words_len(width, 3)];
+        let mut band = PackedBand::<Rgb565>::new(&mut words, (width, 8), 2, 3).unwrap();
+        band.fill_runs_inside(y, x0, &runs).unwrap();
+        let mut words = vec![0u32; PackedFrameBuffer::<Rgb565>::words_len(width, 4)];
+        let mut frame = PackedFrameBuffer::<Rgb565>::new(&mut words, width, 4).unwrap();
+        frame.fill_runs_inside(y, x0, &runs).unwrap();
     }
 }

@@ -56,6 +56,17 @@ impl Span {
     }
 }
 
+/// One run of a row handed to [`SpanTarget::fill_runs_inside`]: the
+/// pixels from the end of the run before it (or the batch's first
+/// column) up to `x1`, exclusive, in `color`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RowRun<C> {
+    /// One past the run's last pixel.
+    pub x1: u16,
+    /// Its colour.
+    pub color: C,
+}
+
 /// What a stage wrote into a [`SpanTarget`]: spans, and the pixels in
 /// them. The rasteriser's fills, the run decoder and the labels all count
 /// with it.
@@ -176,6 +187,31 @@ pub trait SpanTarget {
         self.fill_span_inside(span, color)
     }
 
+    /// Writes the runs `runs` of row `y` one after the other from column
+    /// `x0`: run `i` covers `runs[i - 1].x1..runs[i].x1` (`x0..runs[0].x1`
+    /// for the first), as [`fill_span_inside`](Self::fill_span_inside)
+    /// of each, with the same conditions: `y < height`, every run
+    /// non-empty, the last ending by the width. The 3D sweep hands the
+    /// runs of a row of faces side by side over in batches of this form.
+    /// The default writes each
+    /// run by `fill_span_inside`, stopping at the first error; a packed
+    /// target overrides it to work out the row's address once and store
+    /// the half-word between two runs' words once.
+    #[inline]
+    fn fill_runs_inside(
+        &mut self,
+        y: u16,
+        x0: u16,
+        runs: &[RowRun<Self::Color>],
+    ) -> Result<(), Self::Error> {
+        let mut x = x0;
+        for r in runs {
+            self.fill_span_inside(Span { y, x0: x, x1: r.x1 }, r.color)?;
+            x = r.x1;
+        }
+        Ok(())
+    }
+
     /// Writes `color` to every pixel. The default fills the rows one span
     /// each; memory-mapped targets override it with one fill.
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {
@@ -245,6 +281,15 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
         color: Self::Color,
     ) -> Result<(), Self::Error> {
         (**self).fill_row_inside(row, x0, x1, color)
+    }
+    #[inline]
+    fn fill_runs_inside(
+        &mut self,
+        y: u16,
+        x0: u16,
+        runs: &[RowRun<Self::Color>],
+    ) -> Result<(), Self::Error> {
+        (**self).fill_runs_inside(y, x0, runs)
     }
     #[inline]
     fn clear(&mut self, color: Self::Color) -> Result<(), Self::Error> {

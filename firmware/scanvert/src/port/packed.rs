@@ -23,7 +23,7 @@
 
 use crate::port::checksum::Checksum;
 use crate::port::framebuffer::MAX_SIDE;
-use crate::port::{Span, SpanTarget};
+use crate::port::{RowRun, Span, SpanTarget};
 use core::convert::Infallible;
 use embedded_graphics_core::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics_core::pixelcolor::{PixelColor, Rgb565};
@@ -250,6 +250,25 @@ where
             row + span.x0 as usize,
             row + span.x1 as usize,
             c | c << 16,
+        );
+        Ok(())
+    }
+
+    /// The row's address worked out once, and the runs stored as one
+    /// sequence of words ([`fill_runs`](crate::port::packed_band::fill_runs)).
+    /// A row past the frame writes other pixels of the words, never past
+    /// the slice, as in `fill_span_inside`. Out of line: called once a
+    /// row, its loop keeps its own registers.
+    #[inline(never)]
+    fn fill_runs_inside(&mut self, y: u16, x0: u16, runs: &[RowRun<C>]) -> Result<(), Infallible> {
+        let base = y as usize * self.width as usize;
+        crate::port::packed_band::fill_runs(
+            self.words,
+            base + x0 as usize,
+            runs.iter().map(|r| {
+                let c = bits(r.color);
+                (base + r.x1 as usize, c | c << 16)
+            }),
         );
         Ok(())
     }

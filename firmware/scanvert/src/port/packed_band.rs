@@ -45,7 +45,7 @@ use crate::port::band::BandError;
 use crate::port::draw_target::{self, Window};
 use crate::port::packed::{fill_pixels, PackedFrameBuffer};
 use crate::port::runs::Rows;
-use crate::port::{Span, SpanTarget};
+use crate::port::{RowRun, Span, SpanTarget};
 use core::convert::Infallible;
 use core::marker::PhantomData;
 use embedded_graphics_core::draw_target::DrawTarget;
@@ -103,6 +103,43 @@ fn wire_pair<C: Into<RawU16>>(c: C) -> u32 {
 #[inline]
 fn from_wire<C: From<RawU16>>(h: u16) -> C {
     C::from(RawU16::new(h.swap_bytes()))
+}
+
+/// Writes runs of packed pixels one after the other from pixel `a` of
+/// `words`: each `(b, v)` of `runs` covers the pixels from the end of the
+/// one before it (`a` for the first) up to `b`, exclusive, with the pixel
+/// pair `v` (`c | c << 16`). Where a run ends in the middle of a word,
+/// the word is stored once, with the next run's first pixel (or, after
+/// the last run, merged with the pixel in memory). Pixels past the slice
+/// are not written: wrong runs (one that does not end past the one
+/// before it) may write other pixels of the slice, and never panic.
+#[inline(always)]
+pub(crate) fn fill_runs(words: &mut [u32], mut a: usize, runs: impl Iterator<Item = (usize, u32)>) {
+    // The low half of word `a / 2` while `a` is odd: the pixel before
+    // `a`, as memory holds it or as the run before left it.
+    let mut low = match words.get(a / 2) {
+        Some(w) if a % 2 == 1 => *w & 0x0000_ffff,
+        _ => 0,
+    };
+    for (b, v) in runs {
+        if a % 2 == 1 {
+            if let Some(w) = words.get_mut(a / 2) {
+                *w = low | (v & 0xffff_0000);
+            }
+            a += 1;
+        }
+        let whole = b & !1;
+        if a < whole {
+            fill_pixels(words, a, whole, v);
+        }
+        low = v & 0x0000_ffff;
+        a = b;
+    }
+    if a % 2 == 1 {
+        if let Some(w) = words.get_mut(a / 2) {
+            *w = (*w & 0xffff_0000) | low;
+        }
+    }
 }
 
 /// Rows `y0..y0 + rows` of a `width × height` frame over the caller's
@@ -298,6 +335,23 @@ where
         if a < b {
             fill_pixels(self.words, a, b, wire_pair(color));
         }
+        Ok(())
+    }
+
+    /// The row's address worked out once, and the runs stored as one
+    /// sequence of words ([`fill_runs`]). The row is checked by the slice
+    /// alone, as in [`fill_span_inside`](Self::fill_span_inside). Out of
+    /// line: called once a row, its loop keeps its own registers.
+    #[inline(never)]
+    fn fill_runs_inside(&mut self, y: u16, x0: u16, runs: &[RowRun<C>]) -> Result<(), Infallible> {
+        let row = y.wrapping_sub(self.y0);
+        let base = (row as usize).wrapping_mul(self.width as usize);
+        fill_runs(
+            self.words,
+            base.wrapping_add(x0 as usize),
+            runs.iter()
+                .map(|r| (base.wrapping_add(r.x1 as usize), wire_pair(r.color))),
+        );
         Ok(())
     }
 

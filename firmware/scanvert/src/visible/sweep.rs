@@ -164,8 +164,8 @@
 
 use crate::color::ListColor;
 use crate::port::Counts;
-use crate::port::Span;
 use crate::port::SpanTarget;
+use crate::port::{RowRun, Span};
 use crate::raster::edge::Edge;
 use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
@@ -1333,14 +1333,28 @@ fn step_in_place(act: &mut [Active], from: usize, k: usize, y: i32) -> usize {
     let mut w = from;
     while w < k {
         let slot = act[w].hot.slot;
-        let e = &mut act[slot as usize].entry;
+        let Some(a) = act.get_mut(slot as usize) else {
+            break;
+        };
+        let e = &mut a.entry;
         if e.left.end() <= y {
             break;
         }
+        // The row's pixels as `Entry::pixels` takes them, one side at a
+        // time: the fence keeps the right side's loads after the left
+        // side's store, so that the two sides' accumulators and steps
+        // (eight words) are not live at once; on the Cortex-M4 the loop
+        // then reloads three spilled values an element, not seven
+        // (figures in `docs/performance-log.md`). It orders this
+        // thread's memory accesses for the compiler alone and emits no
+        // instruction.
         step_edge(&mut e.left);
+        let l = e.left.pixel_now().max(e.x0 as i32);
+        core::sync::atomic::compiler_fence(core::sync::atomic::Ordering::SeqCst);
         step_edge(&mut e.right);
+        let r = e.right.pixel_now().min(e.x1 as i32);
         e.z = e.z.wrapping_add(e.zy);
-        let (l, r, z) = e.pixels();
+        let z = e.z;
         let h = &mut act[w].hot;
         (h.l, h.r, h.z) = (l, r, z);
         w += 1;
@@ -1373,6 +1387,15 @@ trait RowOut {
     fn run(&mut self, len: i32, ink: u16, color: u32);
     /// Ends the row; the runs it had.
     fn finish(&mut self) -> Result<u32, Self::Error>;
+    /// Writes the whole row started, whose live trapezoids `live` are
+    /// side by side ([`side_by_side`]) with nothing pending, as
+    /// [`write_side_by_side`] writes it through [`run`](Self::run): the
+    /// same runs, and its `empty` and `single` added to `stats`. `false`,
+    /// with nothing done, where it does not; the default never does.
+    #[inline(always)]
+    fn side_by_side(&mut self, _live: &[Active], _width: i32, _stats: &mut VisibleStats) -> bool {
+        false
+    }
 }
 
 /// Rows of runs in the workspace's buffer, each handed to the caller.
@@ -1429,6 +1452,19 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     limit: u32,
 }
 
+/// A side-by-side row's runs in [`ToTarget::side_by_side`]: `runs[..n]`,
+/// one after the other from column `from`, handed to the target in one
+/// call ([`SpanTarget::fill_runs_inside`]) when full and at the row's end.
+struct Batch<C> {
+    runs: [RowRun<C>; BATCH],
+    n: usize,
+    from: u16,
+}
+
+/// The runs a [`Batch`] holds (4 bytes each for a 16-bit pixel, on the
+/// stack): a row of a mesh's faces at 240 columns is one or two batches.
+const BATCH: usize = 16;
+
 impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
     /// Rows into `target` from its first, the background filled with
     /// `background` or left as it is.
@@ -1455,6 +1491,51 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
+    /// Stores the run that ends at `x1` in `color` in the batch, handed
+    /// to the target first when it is full.
+    #[inline(always)]
+    fn put(&mut self, at: &mut Batch<T::Color>, x1: i32, color: T::Color) {
+        if at.n >= BATCH {
+            self.hand_over(at);
+            at.from = at.runs[BATCH - 1].x1;
+            at.n = 0;
+            self.runs += BATCH as u32;
+        }
+        // `n < BATCH` here: the remainder only spares the bound test.
+        at.runs[at.n % BATCH] = RowRun {
+            x1: x1 as u16,
+            color,
+        };
+        at.n += 1;
+    }
+
+    /// Ends a row written by [`RowOut::side_by_side`] at `width`: the
+    /// batch handed to the target, the runs and the background's runs
+    /// counted.
+    #[inline(always)]
+    fn close(&mut self, at: &Batch<T::Color>, width: i32, empty: u32, stats: &mut VisibleStats) {
+        if at.n > 0 {
+            self.hand_over(at);
+        }
+        self.runs += at.n as u32;
+        self.x = width as u32;
+        stats.empty += empty;
+    }
+
+    /// Hands the batch's runs to the target, unless a write has failed
+    /// on the row.
+    #[inline(always)]
+    fn hand_over(&mut self, at: &Batch<T::Color>) {
+        if self.error.is_some() {
+            return;
+        }
+        let runs = &at.runs[..at.n.min(BATCH)];
+        if let Err(e) = self.target.fill_runs_inside(self.y, at.from, runs) {
+            self.error = Some(e);
+            self.limit = 0;
+        }
+    }
+
     /// Starts row `y`, painted ([`Resolve::Paint`]) or as runs: the row
     /// and the target's state are checked here once, not span by span.
     #[inline(always)]
@@ -1558,6 +1639,68 @@ where
             T::Color::from_list_word(color)
         };
         self.write(x0, x1, c);
+    }
+
+    /// Where the background is filled and the target holds the row's
+    /// columns: the runs merged by colour as [`Ctx::emit`] merges them,
+    /// stored in the batch and handed to the target a batch at a time,
+    /// not run by run. Out of line: once a row, with registers of its
+    /// own.
+    #[inline(never)]
+    fn side_by_side(&mut self, live: &[Active], width: i32, stats: &mut VisibleStats) -> bool {
+        let Some(bg) = self.background else {
+            return false;
+        };
+        if self.limit < width as u32 {
+            return false;
+        }
+        // The row is side by side and ends by the width, inside the
+        // target: every run is written. A face's run is stored where the
+        // next run starts (it merges with a next face of its colour):
+        // the pending run ends at `x` in `pend`. The background's runs,
+        // between two faces, are stored as soon as they are found.
+        let mut at = Batch {
+            runs: [RowRun { x1: 0, color: bg }; BATCH],
+            n: 0,
+            from: 0,
+        };
+        let mut live = live.iter().map(|a| &a.hot).filter(|h| h.l < h.r);
+        let Some(first) = live.next() else {
+            // The background alone (as the sweep, none for no columns).
+            let any = width > 0;
+            if any {
+                self.put(&mut at, width, bg);
+            }
+            self.close(&at, width, any as u32, stats);
+            return true;
+        };
+        let mut empty = 0;
+        if first.l > 0 {
+            empty += 1;
+            self.put(&mut at, first.l, bg);
+        }
+        let (mut x, mut pend, mut single) = (first.r, first.color, 1);
+        for h in live {
+            single += 1;
+            if h.l > x {
+                empty += 1;
+                self.put(&mut at, x, T::Color::from_list_word(pend));
+                self.put(&mut at, h.l, bg);
+                pend = h.color;
+            } else if h.color != pend {
+                self.put(&mut at, x, T::Color::from_list_word(pend));
+                pend = h.color;
+            }
+            x = h.r;
+        }
+        self.put(&mut at, x, T::Color::from_list_word(pend));
+        if x < width {
+            empty += 1;
+            self.put(&mut at, width, bg);
+        }
+        self.close(&at, width, empty, stats);
+        stats.single += single;
+        true
     }
 
     /// Counts the row's spans and pixels: every run that was not skipped
@@ -1963,9 +2106,14 @@ fn side_by_side(live: &[Active], width: i32) -> Row {
 /// Writes a row that [`side_by_side`] accepts, as [`sweep`] writes it:
 /// the background up to each trapezoid with pixels, its span, and the
 /// background to `width`; the same runs and counts (`empty`, `single`).
-/// Those with no pixel are passed by wherever they are in the order.
+/// Those with no pixel are passed by wherever they are in the order. An
+/// output that takes such a row whole ([`RowOut::side_by_side`]) writes
+/// it itself.
 #[inline(always)]
 fn write_side_by_side<O: RowOut>(live: &[Active], width: i32, cx: &mut Ctx<'_, O>) {
+    if cx.out.side_by_side(live, width, &mut cx.stats) {
+        return;
+    }
     let mut x = 0;
     for a in live {
         let h = &a.hot;
