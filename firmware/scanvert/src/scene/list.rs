@@ -366,6 +366,8 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
     // `counts` less the other faces'.
     let before = *counts;
     let mut general = MeshCounts::default();
+    // Nothing in a run changes the projection or the window.
+    table.sync(pipe);
     let r = loop {
         let Some((offset, cmd)) = cmds.next_mesh() else {
             break Ok(());
@@ -381,7 +383,7 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
                 let outcome = match ix.triangle() {
                     Some(t) => {
                         let corners = t.map(usize::from);
-                        mesh_triangle(pipe, &mut sink, table, corners, color)
+                        run_triangle(pipe, &mut sink, table, corners, color)
                     }
                     None => {
                         let indices = ix.iter().map(usize::from);
@@ -501,6 +503,33 @@ fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
         table.checked(c)?;
     }
     let slots = table.for_pipeline(pipe);
+    let r = pipe.mesh_triangle_uncounted(slots, corners, color, sink);
+    if r.is_err() {
+        pipe.add_counts(0, 0, 0, 1);
+    }
+    r.map_err(pipeline_error)
+}
+
+/// [`mesh_triangle`] in a run ([`mesh_run`]), whose table was synced
+/// with the pipeline once ([`VertexTable::sync`]): the corners checked
+/// at once by their largest, and one by one only when it is bad, so
+/// that the error names the first bad one. Out of line for the reason
+/// `face` is.
+#[inline(never)]
+fn run_triangle<const DEPTH: usize, const N: usize, O: Out>(
+    pipe: &mut Pipeline<DEPTH, N>,
+    sink: &mut Faces<'_, O>,
+    table: &mut VertexTable<'_>,
+    corners: [usize; 3],
+    color: Rgb888,
+) -> Result<Outcome, SceneError> {
+    let slots = table.synced();
+    if corners[0].max(corners[1]).max(corners[2]) >= slots.len() {
+        for &c in &corners {
+            table.checked(c)?;
+        }
+    }
+    let slots = table.synced();
     let r = pipe.mesh_triangle_uncounted(slots, corners, color, sink);
     if r.is_err() {
         pipe.add_counts(0, 0, 0, 1);

@@ -117,6 +117,25 @@ impl<'v> VertexTable<'v> {
         slots
     }
 
+    /// Forgets the kept output vertices when `pipe`'s projection or
+    /// window changed since they were made, as
+    /// [`for_pipeline`](Self::for_pipeline) does: a run of `v`s and `f`s
+    /// changes neither, so it asks once and then reads its slots with
+    /// [`synced`](Self::synced). Out of line: inlined, its walk over the
+    /// slots costs the run's loop registers on the Cortex-M4.
+    #[inline(never)]
+    pub(crate) fn sync<const DEPTH: usize, const N: usize>(&mut self, pipe: &Pipeline<DEPTH, N>) {
+        let _ = self.for_pipeline(pipe);
+    }
+
+    /// The table's vertices, for [`Pipeline::mesh_triangle`], with no
+    /// look at the pipeline: only after [`sync`](Self::sync) under the
+    /// same projection and window.
+    #[inline]
+    pub(crate) fn synced(&mut self) -> &mut [ViewPoint] {
+        &mut self.slots[..self.len]
+    }
+
     /// The vertices at `indices`, for the pipeline; the first index the
     /// table does not have is [`SceneError::Index`].
     pub(crate) fn check(&self, indices: impl Iterator<Item = usize>) -> Result<(), SceneError> {
