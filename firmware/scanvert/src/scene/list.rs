@@ -383,7 +383,7 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
                 let outcome = match ix.triangle() {
                     Some(t) => {
                         let corners = t.map(usize::from);
-                        run_triangle(pipe, &mut sink, table, corners, color)
+                        mesh_triangle(pipe, &mut sink, table, corners, color)
                     }
                     None => {
                         let indices = ix.iter().map(usize::from);
@@ -467,6 +467,7 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         for (c, i) in corners.iter_mut().zip(indices) {
             *c = i;
         }
+        table.sync(pipe);
         let r = mesh_triangle(pipe, &mut sink, table, corners, color);
         if let Ok(o) = r {
             let is = |k: Outcome| (o == k) as u32;
@@ -486,37 +487,17 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
 }
 
 /// A triangle through vertices `corners` (0-based) of `table` into
-/// `sink`, as [`mesh_face`] draws it. Its indices are checked once; its
-/// corners' output vertices are kept in the table for the faces after
-/// it. Out of line for the reason `face` is. Of `pipe`'s counters, only
-/// a triangle the pipeline refuses is counted: the caller adds what
-/// became of the others ([`mesh_run`] once a run).
+/// `sink`, as [`mesh_face`] draws it; the table synced with the
+/// pipeline's projection and window before ([`VertexTable::sync`]: once
+/// a run of them, [`mesh_run`]). Its indices are checked at once by
+/// their largest, and one by one only when that is bad, so that the
+/// error names the first bad one; its corners' output vertices are kept
+/// in the table for the faces after it. Out of line for the reason
+/// `face` is. Of `pipe`'s counters, only a triangle the pipeline refuses
+/// is counted: the caller adds what became of the others ([`mesh_run`]
+/// once a run).
 #[inline(never)]
 fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
-    pipe: &mut Pipeline<DEPTH, N>,
-    sink: &mut Faces<'_, O>,
-    table: &mut VertexTable<'_>,
-    corners: [usize; 3],
-    color: Rgb888,
-) -> Result<Outcome, SceneError> {
-    for &c in &corners {
-        table.checked(c)?;
-    }
-    let slots = table.for_pipeline(pipe);
-    let r = pipe.mesh_triangle_uncounted(slots, corners, color, sink);
-    if r.is_err() {
-        pipe.add_counts(0, 0, 0, 1);
-    }
-    r.map_err(pipeline_error)
-}
-
-/// [`mesh_triangle`] in a run ([`mesh_run`]), whose table was synced
-/// with the pipeline once ([`VertexTable::sync`]): the corners checked
-/// at once by their largest, and one by one only when it is bad, so
-/// that the error names the first bad one. Out of line for the reason
-/// `face` is.
-#[inline(never)]
-fn run_triangle<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
     sink: &mut Faces<'_, O>,
     table: &mut VertexTable<'_>,
