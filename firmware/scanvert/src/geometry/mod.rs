@@ -614,29 +614,32 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             self.projection.far_raw() as i64,
         );
         // Inside the depth range and the window, the clips change nothing
-        // and the polygon is the corners' output vertices.
+        // and the polygon is the corners' output vertices. A corner that
+        // kept its output vertex lies inside both; another is tested.
         let mut out = [Vertex3::default(); 3];
-        let mut inside = v.iter().all(|w| near <= w[2] && w[2] <= far);
-        if inside {
-            for k in 0..3 {
-                out[k] = match slots.get(corners[k]).and_then(ViewPoint::screen) {
-                    Some(o) => o,
-                    None => {
-                        let q = self.projection.project(v[k], &self.viewport);
-                        let mut codes = Outcodes::EMPTY;
-                        codes.add(&q, &self.viewport);
-                        if !codes.is_inside() {
-                            inside = false;
-                            break;
-                        }
-                        let o = project::to_vertex3(q);
-                        if let Some(slot) = slots.get_mut(corners[k]) {
-                            slot.keep_screen(o);
-                        }
-                        o
+        let mut inside = true;
+        for k in 0..3 {
+            out[k] = match slots.get(corners[k]).and_then(ViewPoint::screen) {
+                Some(o) => o,
+                None => {
+                    if !(near <= v[k][2] && v[k][2] <= far) {
+                        inside = false;
+                        break;
                     }
-                };
-            }
+                    let q = self.projection.project(v[k], &self.viewport);
+                    let mut codes = Outcodes::EMPTY;
+                    codes.add(&q, &self.viewport);
+                    if !codes.is_inside() {
+                        inside = false;
+                        break;
+                    }
+                    let o = project::to_vertex3(q);
+                    if let Some(slot) = slots.get_mut(corners[k]) {
+                        slot.keep_screen(o);
+                    }
+                    o
+                }
+            };
         }
         if !inside {
             // A clip is needed: the general stages from the points (the

@@ -366,6 +366,8 @@ pub(crate) fn mesh_run<const DEPTH: usize, const N: usize, O: Out>(
     // `counts` less the other faces'.
     let before = *counts;
     let mut general = MeshCounts::default();
+    // Nothing in a run changes the projection or the window.
+    table.sync(pipe);
     let r = loop {
         let Some((offset, cmd)) = cmds.next_mesh() else {
             break Ok(());
@@ -465,6 +467,7 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
         for (c, i) in corners.iter_mut().zip(indices) {
             *c = i;
         }
+        table.sync(pipe);
         let r = mesh_triangle(pipe, &mut sink, table, corners, color);
         if let Ok(o) = r {
             let is = |k: Outcome| (o == k) as u32;
@@ -484,11 +487,15 @@ pub(crate) fn mesh_face<const DEPTH: usize, const N: usize, O: Out>(
 }
 
 /// A triangle through vertices `corners` (0-based) of `table` into
-/// `sink`, as [`mesh_face`] draws it. Its indices are checked once; its
-/// corners' output vertices are kept in the table for the faces after
-/// it. Out of line for the reason `face` is. Of `pipe`'s counters, only
-/// a triangle the pipeline refuses is counted: the caller adds what
-/// became of the others ([`mesh_run`] once a run).
+/// `sink`, as [`mesh_face`] draws it; the table synced with the
+/// pipeline's projection and window before ([`VertexTable::sync`]: once
+/// a run of them, [`mesh_run`]). Its indices are checked at once by
+/// their largest, and one by one only when that is bad, so that the
+/// error names the first bad one; its corners' output vertices are kept
+/// in the table for the faces after it. Out of line for the reason
+/// `face` is. Of `pipe`'s counters, only a triangle the pipeline refuses
+/// is counted: the caller adds what became of the others ([`mesh_run`]
+/// once a run).
 #[inline(never)]
 fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
     pipe: &mut Pipeline<DEPTH, N>,
@@ -497,10 +504,13 @@ fn mesh_triangle<const DEPTH: usize, const N: usize, O: Out>(
     corners: [usize; 3],
     color: Rgb888,
 ) -> Result<Outcome, SceneError> {
-    for &c in &corners {
-        table.checked(c)?;
+    let slots = table.synced();
+    if corners[0].max(corners[1]).max(corners[2]) >= slots.len() {
+        for &c in &corners {
+            table.checked(c)?;
+        }
     }
-    let slots = table.for_pipeline(pipe);
+    let slots = table.synced();
     let r = pipe.mesh_triangle_uncounted(slots, corners, color, sink);
     if r.is_err() {
         pipe.add_counts(0, 0, 0, 1);

@@ -101,20 +101,27 @@ impl<'v> VertexTable<'v> {
         }
     }
 
-    /// The table's vertices, for [`Pipeline::mesh_triangle`]: their kept
-    /// output vertices forgotten first when `pipe`'s projection or window
-    /// changed since they were made.
-    #[inline]
-    pub(crate) fn for_pipeline<const DEPTH: usize, const N: usize>(
-        &mut self,
-        pipe: &Pipeline<DEPTH, N>,
-    ) -> &mut [ViewPoint] {
-        let slots = &mut self.slots[..self.len];
+    /// Forgets the kept output vertices when `pipe`'s projection or
+    /// window changed since they were made. A run of `v`s and `f`s
+    /// changes neither, so it asks once and then reads its slots with
+    /// [`synced`](Self::synced). Out of line: inlined, its walk over the
+    /// slots costs the run's loop registers on the Cortex-M4.
+    #[inline(never)]
+    pub(crate) fn sync<const DEPTH: usize, const N: usize>(&mut self, pipe: &Pipeline<DEPTH, N>) {
         if self.epoch != pipe.screen_epoch() {
             self.epoch = pipe.screen_epoch();
-            slots.iter_mut().for_each(ViewPoint::forget_screen);
+            self.slots[..self.len]
+                .iter_mut()
+                .for_each(ViewPoint::forget_screen);
         }
-        slots
+    }
+
+    /// The table's vertices, for [`Pipeline::mesh_triangle`], with no
+    /// look at the pipeline: only after [`sync`](Self::sync) under the
+    /// same projection and window.
+    #[inline]
+    pub(crate) fn synced(&mut self) -> &mut [ViewPoint] {
+        &mut self.slots[..self.len]
     }
 
     /// The vertices at `indices`, for the pipeline; the first index the

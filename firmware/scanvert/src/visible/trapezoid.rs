@@ -746,6 +746,11 @@ impl Divisor {
         // near the first vertex) is one 32-bit division.
         let q = if m >> 32 == 0 {
             (m as u32 / d) as u64
+        } else if m >> 43 == 0 && d.wrapping_sub(1 << 11) < SMALL_DIVISOR - (1 << 11) {
+            // Within 43 bits (a small face's slopes, mostly) and a
+            // divisor of 2¹¹ or more, so that the quotient fits `u32`:
+            // two digits of the long division.
+            small_div_43_32(m, d) as u64
         } else if ((m >> 32) as u32) < d {
             self.div_64_32(m) as u64
         } else {
@@ -814,6 +819,21 @@ fn small_div_64_32(u: u64, d: u32) -> u32 {
     let t = (t - q1 * d) << 10 | lo & 0x3ff;
     let q0 = t / d;
     q2 << 21 | q1 << 10 | q0
+}
+
+/// `u / d` for `0 < d < 2²¹`, `u < 2⁴³` and `u < d·2³²` (so the quotient
+/// fits in `u32`), exactly, by long division in two digits of 32 and 11
+/// bits: the first is `u`'s top 32 bits, whose quotient is below 2²¹
+/// (that of `u` is below 2³²); the remainder, below `d`, with the last 11
+/// bits appended is below `d·2¹¹ < 2³²`, and its quotient below 2¹¹. One
+/// 32-bit division each.
+#[inline(always)]
+fn small_div_43_32(u: u64, d: u32) -> u32 {
+    let t = (u >> 11) as u32;
+    let q1 = t / d;
+    let t = (t - q1 * d) << 11 | u as u32 & 0x7ff;
+    let q0 = t / d;
+    q1 << 11 | q0
 }
 
 /// `u / v` for `v ≥ 2³¹` (normalised) and `u < v·2³²` (so the quotient
@@ -3073,6 +3093,57 @@ mod tests {
                     let m = base + k;
                     assert_eq!(floor_div(m, d), m.div_euclid(d as i64), "{m} / {d}");
                 }
+            }
+        }
+    }
+
+    /// The two-digit long division (`small_div_43_32`) where `floor_div`
+    /// takes it, and about its edges: magnitudes about 2³² and 2⁴³ (both
+    /// signs), divisors about 2¹¹ and `SMALL_DIVISOR`, where it starts and
+    /// ends, and at random between.
+    #[test]
+    fn two_digit_divisions_are_exact() {
+        let mut rng = Rng(0x2d16_4375);
+        let divisors = [
+            1u32,
+            0x7fe,
+            0x7ff,
+            0x800,
+            0x801,
+            0xfff,
+            0x1000,
+            SMALL_DIVISOR - 2,
+            SMALL_DIVISOR - 1,
+            SMALL_DIVISOR,
+        ];
+        for d in divisors {
+            for base in [1i64 << 32, 1 << 43, (1 << 43) - (1 << 11), 1 << 42] {
+                for k in -3..=3 {
+                    for m in [base + k, -(base + k), -(base + k) + d as i64 - 1] {
+                        assert_eq!(floor_div(m, d), m.div_euclid(d as i64), "{m} / {d}");
+                    }
+                }
+            }
+            assert_eq!(
+                small_div_43_32((1 << 43) - 1, d.max(0x800)) as u64,
+                ((1u64 << 43) - 1) / d.max(0x800) as u64
+            );
+        }
+        for _ in 0..500_000 {
+            let d = 0x800 + rng.below(SMALL_DIVISOR - 0x800) as u32;
+            let d = if rng.below(4) == 0 {
+                d >> rng.below(12)
+            } else {
+                d
+            }
+            .max(1);
+            let m = (rng.next_u64() >> (20 + rng.below(13))) as i64;
+            for m in [m, -m] {
+                assert_eq!(floor_div(m, d), m.div_euclid(d as i64), "{m} / {d}");
+            }
+            let u = rng.next_u64() >> 21;
+            if d >= 0x800 {
+                assert_eq!(small_div_43_32(u, d) as u64, u / d as u64, "{u} / {d}");
             }
         }
     }
