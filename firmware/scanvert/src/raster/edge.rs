@@ -213,18 +213,23 @@ impl Edge {
         if top >= end || dy <= 0 {
             return None;
         }
-        // (x − ½)·dy at the first row's centre, exactly.
+        // The first row's centre, `m ≥ 0` units below the upper end (as
+        // `top ≥ ⌈(y0 − ½)/16⌉`; `m < 16` unless the clip cut the edge).
         let yc = top * ONE + HALF;
-        // |num| < 2³³ (see `fixed`); on a frame of ordinary size it fits
-        // in `i32`, and a 32-bit division is one instruction on a 32-bit
-        // core where a 64-bit one is a library call.
-        let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
-        let (x, err) = match i32::try_from(num) {
-            Ok(n) => ceil_div_rem_i32(n, dy),
-            Err(_) => {
-                let x = ceil_div_i64(num, dy as i64);
-                (x as i32, (x * dy as i64 - num) as i32)
-            }
+        let m = yc - y0;
+        // (x − ½)·dy there is `num = (x0 − ½)·dy + m·dx`, exactly, and
+        // `⌈num/dy⌉ = x0 − ½ + ⌈m·dx/dy⌉` with the same remainder. With
+        // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
+        // division, where a 64-bit one is a library call on a 32-bit
+        // core.
+        let (x, err) = if m < 1 << 15 {
+            let (c, err) = ceil_div_rem_i32(m * dx, dy);
+            (x0 - HALF + c, err)
+        } else {
+            // |num| < 2³³ (see `fixed`).
+            let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
+            let x = ceil_div_i64(num, dy as i64);
+            (x as i32, (x * dy as i64 - num) as i32)
         };
         Some(Edge::stepping(x, err, dx, dy, (top, end)))
     }
@@ -667,6 +672,22 @@ mod tests {
                         check(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn clipped_first_rows_match_the_definition() {
+        // Edges the full height of the range, cut by clip rows on both
+        // sides of `yc − y0 = 2¹⁵` (row −1: 32,760; row 0: 32,776): the
+        // first row's crossing from the 32-bit division and from the
+        // 64-bit one, at the steepest slopes either way.
+        for (ax, bx) in [(-32768, 32767), (32767, -32768), (0, 1), (-5, 3000)] {
+            let a = Vertex::from_bits(ax, -32768);
+            let b = Vertex::from_bits(bx, 32767);
+            for top in -4..4 {
+                check_rows(a, b, (top, top + 40));
+                check_rows(b, a, (top, top + 40));
             }
         }
     }
