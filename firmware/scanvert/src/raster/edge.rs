@@ -261,8 +261,13 @@ impl Edge {
             let (f, exact) = frac28(r as u32, d);
             (f + !exact as u32, frac28(e, d).0)
         };
-        let slope = ((q as i64) << 28) + f as i64;
-        let acc = (((x + 16) as i64) << 28) - g as i64;
+        // Each sum by its 32-bit words: `v·2²⁸` is `v >> 4` high and
+        // `v << 28` low, and the low words' carry or borrow moves the high
+        // word by one.
+        let (lo, carry) = ((q as u32) << 28).overflowing_add(f);
+        let slope = (((q >> 4) + carry as i32) as i64) << 32 | lo as i64;
+        let (lo, borrow) = (((x + 16) as u32) << 28).overflowing_sub(g);
+        let acc = ((((x + 16) >> 4) - borrow as i32) as i64) << 32 | lo as i64;
         Edge {
             acc,
             slope,
