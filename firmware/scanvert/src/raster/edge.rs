@@ -159,7 +159,9 @@ pub struct Edge {
     /// One past the last row sampled, in −2047..=2048.
     end: i16,
     /// Pixel of the crossing on the current row, the accumulator's high
-    /// word; set by [`Edge::load_pixel`]. Or, in a walk by the non-zero
+    /// word; set by [`Edge::load_pixel`] (and by the set-up, to the first
+    /// row's: the word is in a register there, where a zero is one more
+    /// instruction). Or, in a walk by the non-zero
     /// rule, that pixel times two plus the edge's direction
     /// ([`Stepper::load_wound`]), and from [`Stepper::new_wound`] until the
     /// first load the direction alone.
@@ -273,7 +275,7 @@ impl Edge {
             slope,
             top,
             end,
-            px: 0,
+            px: (acc >> 32) as i32,
         }
     }
 
