@@ -159,9 +159,9 @@ pub struct Edge {
     /// One past the last row sampled, in −2047..=2048.
     end: i16,
     /// Pixel of the crossing on the current row, the accumulator's high
-    /// word; set by [`Edge::load_pixel`] (and by the set-up, to the first
-    /// row's: the word is in a register there, where a zero is one more
-    /// instruction). Or, in a walk by the non-zero
+    /// word; set by [`Edge::load_pixel`], and by the set-up to the first
+    /// row's (the word is at hand there, where a zero takes an instruction
+    /// more). Or, in a walk by the non-zero
     /// rule, that pixel times two plus the edge's direction
     /// ([`Stepper::load_wound`]), and from [`Stepper::new_wound`] until the
     /// first load the direction alone.
