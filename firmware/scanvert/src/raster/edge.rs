@@ -256,9 +256,12 @@ impl Edge {
             // One 16-bit digit each, rounded the same ways: each errs by
             // less than 2¹², and an edge this short crosses at most 64
             // rows, so (k + 1)·2¹² ≤ 2²⁸/dy still holds on every row.
-            // (n + d − 1 < 2²⁷: no overflow in the ceiling's sum.)
             let (n, m) = ((r as u32) << 16, e << 16);
-            (((n + d - 1) / d) << 12, (m / d) << 12)
+            // The ceiling as `(n + d − 1)/d` (`n + d − 1 < 2²⁷`), not
+            // `div_ceil`: one division, with no remainder or its test.
+            #[allow(clippy::manual_div_ceil)]
+            let f = (n + d - 1) / d;
+            (f << 12, (m / d) << 12)
         } else {
             let (f, exact) = frac28(r as u32, d);
             (f + !exact as u32, frac28(e, d).0)
