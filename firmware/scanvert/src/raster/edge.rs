@@ -159,7 +159,9 @@ pub struct Edge {
     /// One past the last row sampled, in −2047..=2048.
     end: i16,
     /// Pixel of the crossing on the current row, the accumulator's high
-    /// word; set by [`Edge::load_pixel`]. Or, in a walk by the non-zero
+    /// word; set by [`Edge::load_pixel`], and by the set-up to the first
+    /// row's (the word is at hand there, where a zero takes an instruction
+    /// more). Or, in a walk by the non-zero
     /// rule, that pixel times two plus the edge's direction
     /// ([`Stepper::load_wound`]), and from [`Stepper::new_wound`] until the
     /// first load the direction alone.
@@ -213,18 +215,23 @@ impl Edge {
         if top >= end || dy <= 0 {
             return None;
         }
-        // (x − ½)·dy at the first row's centre, exactly.
+        // The first row's centre, `m ≥ 0` units below the upper end (as
+        // `top ≥ ⌈(y0 − ½)/16⌉`; `m < 16` unless the clip cut the edge).
         let yc = top * ONE + HALF;
-        // |num| < 2³³ (see `fixed`); on a frame of ordinary size it fits
-        // in `i32`, and a 32-bit division is one instruction on a 32-bit
-        // core where a 64-bit one is a library call.
-        let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
-        let (x, err) = match i32::try_from(num) {
-            Ok(n) => ceil_div_rem_i32(n, dy),
-            Err(_) => {
-                let x = ceil_div_i64(num, dy as i64);
-                (x as i32, (x * dy as i64 - num) as i32)
-            }
+        let m = yc - y0;
+        // (x − ½)·dy there is `num = (x0 − ½)·dy + m·dx`, exactly, and
+        // `⌈num/dy⌉ = x0 − ½ + ⌈m·dx/dy⌉` with the same remainder. With
+        // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
+        // division, where a 64-bit one is a library call on a 32-bit
+        // core.
+        let (x, err) = if m < 1 << 15 {
+            let (c, err) = ceil_div_rem_i32(m * dx, dy);
+            (x0 - HALF + c, err)
+        } else {
+            // |num| < 2³³ (see `fixed`).
+            let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
+            let x = ceil_div_i64(num, dy as i64);
+            (x as i32, (x * dy as i64 - num) as i32)
         };
         Some(Edge::stepping(x, err, dx, dy, (top, end)))
     }
@@ -250,20 +257,28 @@ impl Edge {
             // less than 2¹², and an edge this short crosses at most 64
             // rows, so (k + 1)·2¹² ≤ 2²⁸/dy still holds on every row.
             let (n, m) = ((r as u32) << 16, e << 16);
-            let s = n / d;
-            ((s + (s * d != n) as u32) << 12, (m / d) << 12)
+            // The ceiling as `(n + d − 1)/d` (`n + d − 1 < 2²⁷`), not
+            // `div_ceil`: one division, with no remainder or its test.
+            #[allow(clippy::manual_div_ceil)]
+            let f = (n + d - 1) / d;
+            (f << 12, (m / d) << 12)
         } else {
             let (f, exact) = frac28(r as u32, d);
             (f + !exact as u32, frac28(e, d).0)
         };
-        let slope = ((q as i64) << 28) + f as i64;
-        let acc = (((x + 16) as i64) << 28) - g as i64;
+        // Each sum by its 32-bit words: `v·2²⁸` is `v >> 4` high and
+        // `v << 28` low, and the low words' carry or borrow moves the high
+        // word by one.
+        let (lo, carry) = ((q as u32) << 28).overflowing_add(f);
+        let slope = (((q >> 4) + carry as i32) as i64) << 32 | lo as i64;
+        let (lo, borrow) = (((x + 16) as u32) << 28).overflowing_sub(g);
+        let acc = ((((x + 16) >> 4) - borrow as i32) as i64) << 32 | lo as i64;
         Edge {
             acc,
             slope,
             top,
             end,
-            px: 0,
+            px: (acc >> 32) as i32,
         }
     }
 
@@ -667,6 +682,22 @@ mod tests {
                         check(Vertex::from_bits(ax, ay), Vertex::from_bits(bx, by));
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn clipped_first_rows_match_the_definition() {
+        // Edges the full height of the range, cut by clip rows on both
+        // sides of `yc − y0 = 2¹⁵` (row −1: 32,760; row 0: 32,776): the
+        // first row's crossing from the 32-bit division and from the
+        // 64-bit one, at the steepest slopes either way.
+        for (ax, bx) in [(-32768, 32767), (32767, -32768), (0, 1), (-5, 3000)] {
+            let a = Vertex::from_bits(ax, -32768);
+            let b = Vertex::from_bits(bx, 32767);
+            for top in -4..4 {
+                check_rows(a, b, (top, top + 40));
+                check_rows(b, a, (top, top + 40));
             }
         }
     }

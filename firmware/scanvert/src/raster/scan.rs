@@ -394,10 +394,10 @@ fn fill_chains<S: Stepper, T: SpanTarget + ?Sized>(
     let cx = (clip.x0() as i32, clip.x1() as i32);
     // Every exact crossing lies between the leftmost and rightmost
     // vertices: inside the clip columns there, no run needs the clip.
-    let (lo, hi) = v.iter().fold((i32::MAX, i32::MIN), |(lo, hi), p| {
-        (lo.min(p.x.units()), hi.max(p.x.units()))
-    });
-    let inside = S::EXACT && ceil_px(lo - HALF) >= cx.0 && ceil_px(hi - HALF) <= cx.1;
+    // `⌈(x − ½)/16⌉` lies in `cx.0..=cx.1` exactly when `x` lies in
+    // `16·cx.0 − 7 ..= 16·cx.1 + 8`: one unsigned compare a vertex.
+    let (base, span) = (cx.0 * 16 - 7, ((cx.1 - cx.0) * 16 + 15) as u32);
+    let inside = S::EXACT && v.iter().all(|p| ((p.x.units() - base) as u32) <= span);
     let top = ef.top();
     let mut y = top;
     let (mut empty, mut pixels) = (0u32, 0u32);
