@@ -224,24 +224,25 @@ impl Edge {
         // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
         // division, where a 64-bit one is a library call on a 32-bit
         // core.
-        let (x, err) = if m < 1 << 15 {
+        let (x16, err) = if m < 1 << 15 {
             let (c, err) = ceil_div_rem_i32(m * dx, dy);
-            (x0 - HALF + c, err)
+            (x0 + (16 - HALF) + c, err)
         } else {
             // |num| < 2³³ (see `fixed`).
             let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
             let x = ceil_div_i64(num, dy as i64);
-            (x as i32, (x * dy as i64 - num) as i32)
+            (x as i32 + 16, (x * dy as i64 - num) as i32)
         };
-        Some(Edge::stepping(x, err, dx, dy, (top, end)))
+        Some(Edge::stepping(x16, err, dx, dy, (top, end)))
     }
 
     /// The stepper over rows `rows.0..rows.1` of an edge of slope
     /// `dx / dy` (`1 ≤ dy < 2¹⁶`) crossing the first row at `x − err/dy`
-    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`): the accumulator and its step,
-    /// both rounded up (see the module docs), from `16·dx = q·dy + r`.
+    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`), given `x16 = x + 16`: the
+    /// accumulator and its step, both rounded up (see the module docs),
+    /// from `16·dx = q·dy + r`.
     #[inline(always)]
-    fn stepping(x: i32, err: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
+    fn stepping(x16: i32, err: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
         // Rows of a `Vertex` edge (see the type's limits).
         let (top, end) = (top as i16, end as i16);
         let (mut q, mut r) = ((ONE * dx) / dy, (ONE * dx) % dy);
@@ -266,13 +267,12 @@ impl Edge {
             let (f, exact) = frac28(r as u32, d);
             (f + !exact as u32, frac28(e, d).0)
         };
-        // Each sum by its 32-bit words: `v·2²⁸` is `v >> 4` high and
-        // `v << 28` low, and the low words' carry or borrow moves the high
-        // word by one.
+        // `v·2²⁸` by its 32-bit words: `v >> 4` high and `v << 28` low.
+        // The step's low words' carry moves its high word by one; the
+        // accumulator is a 64-bit difference, a subtraction with borrow.
         let (lo, carry) = ((q as u32) << 28).overflowing_add(f);
         let slope = (((q >> 4) + carry as i32) as i64) << 32 | lo as i64;
-        let (lo, borrow) = (((x + 16) as u32) << 28).overflowing_sub(g);
-        let acc = ((((x + 16) >> 4) - borrow as i32) as i64) << 32 | lo as i64;
+        let acc = (((x16 >> 4) as i64) << 32 | ((x16 as u32) << 28) as i64) - g as i64;
         Edge {
             acc,
             slope,
@@ -384,7 +384,7 @@ impl Edge {
                 (x as i32, (x * dy as i64 - num) as i32)
             }
         };
-        Edge::stepping(x, err, dx, dy, (top, end))
+        Edge::stepping(x + 16, err, dx, dy, (top, end))
     }
 
     /// Moves the stepper on to the rows `top..end` of the same edge that
