@@ -56,7 +56,7 @@
 //!
 //! The widths of every quantity are in [`crate::fixed`].
 
-use crate::fixed::{ceil_div_i64, ceil_div_rem_i32, ceil_px, Vertex, HALF, ONE};
+use crate::fixed::{ceil_div_i64, ceil_div_rem1_i32, ceil_px, Vertex, HALF, ONE};
 
 /// How the scan converter steps one edge down the rows.
 ///
@@ -224,25 +224,25 @@ impl Edge {
         // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
         // division, where a 64-bit one is a library call on a 32-bit
         // core.
-        let (x16, err) = if m < 1 << 15 {
-            let (c, err) = ceil_div_rem_i32(m * dx, dy);
-            (x0 + (16 - HALF) + c, err)
+        let (x16, e) = if m < 1 << 15 {
+            let (c, e) = ceil_div_rem1_i32(m * dx, dy);
+            (x0 + (16 - HALF) + c, e)
         } else {
             // |num| < 2³³ (see `fixed`).
             let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
             let x = ceil_div_i64(num, dy as i64);
-            (x as i32 + 16, (x * dy as i64 - num) as i32)
+            (x as i32 + 16, (x * dy as i64 - num) as i32 + 1)
         };
-        Some(Edge::stepping(x16, err, dx, dy, (top, end)))
+        Some(Edge::stepping(x16, e, dx, dy, (top, end)))
     }
 
     /// The stepper over rows `rows.0..rows.1` of an edge of slope
     /// `dx / dy` (`1 ≤ dy < 2¹⁶`) crossing the first row at `x − err/dy`
-    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`), given `x16 = x + 16`: the
-    /// accumulator and its step, both rounded up (see the module docs),
-    /// from `16·dx = q·dy + r`.
+    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`), given `x16 = x + 16` and
+    /// `e = err + 1`: the accumulator and its step, both rounded up (see
+    /// the module docs), from `16·dx = q·dy + r`.
     #[inline(always)]
-    fn stepping(x16: i32, err: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
+    fn stepping(x16: i32, e: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
         // Rows of a `Vertex` edge (see the type's limits).
         let (top, end) = (top as i16, end as i16);
         let (mut q, mut r) = ((ONE * dx) / dy, (ONE * dx) % dy);
@@ -252,7 +252,7 @@ impl Edge {
         }
         // S = q·2²⁸ + ⌈r·2²⁸/dy⌉ (r < dy keeps the ceiling below 2²⁸)
         // and W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸/dy⌋ (e₀ + 1 ≤ dy).
-        let (d, e) = (dy as u32, err as u32 + 1);
+        let (d, e) = (dy as u32, e as u32);
         let (f, g) = if dy <= 1016 {
             // One 16-bit digit each, rounded the same ways: each errs by
             // less than 2¹², and an edge this short crosses at most 64
@@ -384,7 +384,7 @@ impl Edge {
                 (x as i32, (x * dy as i64 - num) as i32)
             }
         };
-        Edge::stepping(x + 16, err, dx, dy, (top, end))
+        Edge::stepping(x + 16, err + 1, dx, dy, (top, end))
     }
 
     /// Moves the stepper on to the rows `top..end` of the same edge that
