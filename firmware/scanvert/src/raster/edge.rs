@@ -245,11 +245,13 @@ impl Edge {
     fn stepping(x16: i32, e: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
         // Rows of a `Vertex` edge (see the type's limits).
         let (top, end) = (top as i16, end as i16);
-        let (mut q, mut r) = ((ONE * dx) / dy, (ONE * dx) % dy);
-        if r < 0 {
-            q -= 1;
-            r += dy;
-        }
+        // The floor: the truncated quotient less one when the truncated
+        // remainder is negative (`>> 31` is that −1 or 0), and the
+        // remainder again from it, a multiply-subtract, with no select.
+        let n = ONE * dx;
+        let (q, r) = (n / dy, n % dy);
+        let q = q + (r >> 31);
+        let r = n - q * dy;
         // S = q·2²⁸ + ⌈r·2²⁸/dy⌉ (r < dy keeps the ceiling below 2²⁸)
         // and W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸/dy⌋ (e₀ + 1 ≤ dy).
         let (d, e) = (dy as u32, e as u32);
