@@ -223,8 +223,10 @@ impl Edge {
         // `⌈num/dy⌉ = x0 − ½ + ⌈m·dx/dy⌉` with the same remainder. With
         // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
         // division, where a 64-bit one is a library call on a 32-bit
-        // core.
-        let (x16, e) = if m < 1 << 15 {
+        // core. The bound is taken a little lower, `m − ½ < 0x7F00`: the
+        // compiler tests `m − ½`, and 0x7F00 is an immediate of a Thumb-2
+        // compare, where 2¹⁵ − ½ takes a register.
+        let (x16, e) = if m - HALF < 0x7F00 {
             let (c, e) = ceil_div_rem1_i32(m * dx, dy);
             (x0 + (16 - HALF) + c, e)
         } else {
