@@ -230,12 +230,22 @@ impl Edge {
             let (c, e) = ceil_div_rem1_i32(m * dx, dy);
             (x0 + (16 - HALF) + c, e)
         } else {
-            // |num| < 2³³ (see `fixed`).
-            let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
-            let x = ceil_div_i64(num, dy as i64);
-            (x as i32 + 16, (x * dy as i64 - num) as i32 + 1)
+            Edge::first_row_wide(x0, m, dx, dy)
         };
         Some(Edge::stepping(x16, e, dx, dy, (top, end)))
+    }
+
+    /// `(x + 16, err + 1)` of [`Edge::new`]'s first row, `m ≥ 2¹⁵ − ½`
+    /// units below the upper end, in 64 bits (|num| < 2³³, see `fixed`).
+    /// Out of line: only an edge the clip cut by more than 2,000 rows
+    /// takes it, and its library division kept in [`Edge::new`] takes
+    /// registers and a stack slot there from every edge.
+    #[cold]
+    #[inline(never)]
+    fn first_row_wide(x0: i32, m: i32, dx: i32, dy: i32) -> (i32, i32) {
+        let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
+        let x = ceil_div_i64(num, dy as i64);
+        (x as i32 + 16, (x * dy as i64 - num) as i32 + 1)
     }
 
     /// The stepper over rows `rows.0..rows.1` of an edge of slope
