@@ -703,13 +703,15 @@ mod tests {
     #[test]
     fn clipped_first_rows_match_the_definition() {
         // Edges the full height of the range, cut by clip rows on both
-        // sides of `yc − y0 = 2¹⁵` (row −1: 32,760; row 0: 32,776): the
-        // first row's crossing from the 32-bit division and from the
-        // 64-bit one, at the steepest slopes either way.
+        // sides of the 32-bit path's bound, `yc − y0 − ½ < 0x7F00` (row
+        // −17: 32,504; row −16: 32,520), and of `yc − y0 = 2¹⁵` (row −1:
+        // 32,760; row 0: 32,776): the first row's crossing from the
+        // 32-bit division and from the 64-bit one, at the steepest slopes
+        // either way.
         for (ax, bx) in [(-32768, 32767), (32767, -32768), (0, 1), (-5, 3000)] {
             let a = Vertex::from_bits(ax, -32768);
             let b = Vertex::from_bits(bx, 32767);
-            for top in -4..4 {
+            for top in (-20..-12).chain(-4..4) {
                 check_rows(a, b, (top, top + 40));
                 check_rows(b, a, (top, top + 40));
             }
