@@ -221,7 +221,8 @@ impl Edge {
         let m = yc - y0;
         // (x − ½)·dy there is `num = (x0 − ½)·dy + m·dx`, exactly, and
         // `⌈num/dy⌉ = x0 − ½ + ⌈m·dx/dy⌉` with the same remainder. With
-        // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
+        // `m < 2¹⁵` and `|dx|, dy < 2¹⁶`, `m·dx` and `m·dx − dy` (as
+        // `ceil_div_rem1_i32` needs) fit `i32`: one 32-bit
         // division, where a 64-bit one is a library call on a 32-bit
         // core. The bound is taken a little lower, `m − ½ < 0x7F00`: the
         // compiler tests `m − ½`, and 0x7F00 is an immediate of a Thumb-2
@@ -235,11 +236,12 @@ impl Edge {
         Some(Edge::stepping(x16, e, dx, dy, (top, end)))
     }
 
-    /// `(x + 16, err + 1)` of [`Edge::new`]'s first row, `m ≥ 2¹⁵ − ½`
+    /// `(x + 16, err + 1)` of [`Edge::new`]'s first row, `m ≥ 0x7F00 + ½`
     /// units below the upper end, in 64 bits (|num| < 2³³, see `fixed`).
-    /// Out of line: only an edge the clip cut by more than 2,000 rows
-    /// takes it, and its library division kept in [`Edge::new`] takes
-    /// registers and a stack slot there from every edge.
+    /// Out of line: only an edge the clip cut more than 2,032 rows below
+    /// its top takes it, and its library division, inlined into
+    /// [`Edge::new`], takes registers and a stack slot there from every
+    /// edge.
     #[cold]
     #[inline(never)]
     fn first_row_wide(x0: i32, m: i32, dx: i32, dy: i32) -> (i32, i32) {
