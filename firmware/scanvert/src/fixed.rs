@@ -188,19 +188,20 @@ pub(crate) const fn ceil_div_i64(n: i64, d: i64) -> i64 {
     }
 }
 
-/// `(⌈n / d⌉, ⌈n / d⌉·d − n)` for `d > 0`, exact for every `n`: the
-/// ceiling and how far its multiple lies past `n`, in `0..d`.
+/// `(⌈n / d⌉, ⌈n / d⌉·d − n + 1)` for `d > 0` and `n > i32::MIN + d`:
+/// the ceiling, and one more than how far its multiple lies past `n`, in
+/// `1..=d`.
 #[inline(always)]
-pub(crate) const fn ceil_div_rem_i32(n: i32, d: i32) -> (i32, i32) {
-    // Truncating: n = q·d + r with |r| < d and r of n's sign, so the
-    // ceiling is q + 1 for r > 0, else q, and what it lies past n is
-    // d − r, or −r. With d ≥ 1 nothing overflows (q + 1 ≤ ⌈n/d⌉).
-    let (q, r) = (n / d, n % d);
-    if r > 0 {
-        (q + 1, d - r)
-    } else {
-        (q, -r)
-    }
+pub(crate) const fn ceil_div_rem1_i32(n: i32, d: i32) -> (i32, i32) {
+    // ⌈n/d⌉ = f + 1 for the floor f = ⌊(n − 1)/d⌋, and the distance plus
+    // one is (f + 1)·d − (n − 1). Truncating, n − 1 = q·d + r with r of
+    // n − 1's sign, so f = q − 1 when r < 0, else q: `r >> 31` is that −1
+    // or 0, with no branch or select. `f·d − (n − 1)` is in −d..=0, and
+    // f·d ≥ n − d > i32::MIN, so nothing overflows.
+    let n1 = n - 1;
+    let (q, r) = (n1 / d, n1 % d);
+    let f = q + (r >> 31);
+    (f + 1, f * d - n1 + d)
 }
 
 /// `ceil(units / 16)`: the whole pixel index at or above a unit position.
@@ -222,10 +223,12 @@ mod tests {
     }
 
     #[test]
-    fn ceil_div_rem_i32_matches_i64() {
+    fn ceil_div_rem1_i32_matches_i64() {
         let ns = [
-            i32::MIN,
             i32::MIN + 1,
+            i32::MIN + 2,
+            i32::MIN + 65_537,
+            i32::MIN + 100_000,
             -65536,
             -17,
             -16,
@@ -241,10 +244,13 @@ mod tests {
         let ds = [1, 2, 3, 7, 16, 65535, 65536, i32::MAX];
         for &n in &ns {
             for &d in &ds {
+                if n as i64 <= i32::MIN as i64 + d as i64 {
+                    continue;
+                }
                 let want = ceil_div_i64(n as i64, d as i64);
-                let (q, e) = ceil_div_rem_i32(n, d);
+                let (q, e) = ceil_div_rem1_i32(n, d);
                 assert_eq!(q as i64, want, "{n} / {d}");
-                assert_eq!(e as i64, want * d as i64 - n as i64, "{n} / {d}");
+                assert_eq!(e as i64, want * d as i64 - n as i64 + 1, "{n} / {d}");
             }
         }
     }

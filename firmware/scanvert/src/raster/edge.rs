@@ -56,7 +56,7 @@
 //!
 //! The widths of every quantity are in [`crate::fixed`].
 
-use crate::fixed::{ceil_div_i64, ceil_div_rem_i32, ceil_px, Vertex, HALF, ONE};
+use crate::fixed::{ceil_div_i64, ceil_div_rem1_i32, ceil_px, Vertex, HALF, ONE};
 
 /// How the scan converter steps one edge down the rows.
 ///
@@ -221,37 +221,54 @@ impl Edge {
         let m = yc - y0;
         // (x − ½)·dy there is `num = (x0 − ½)·dy + m·dx`, exactly, and
         // `⌈num/dy⌉ = x0 − ½ + ⌈m·dx/dy⌉` with the same remainder. With
-        // `m < 2¹⁵` and `|dx| < 2¹⁶`, `m·dx` fits `i32`: one 32-bit
+        // `m < 2¹⁵` and `|dx|, dy < 2¹⁶`, `m·dx` and `m·dx − dy` (as
+        // `ceil_div_rem1_i32` needs) fit `i32`: one 32-bit
         // division, where a 64-bit one is a library call on a 32-bit
-        // core.
-        let (x, err) = if m < 1 << 15 {
-            let (c, err) = ceil_div_rem_i32(m * dx, dy);
-            (x0 - HALF + c, err)
+        // core. The bound is taken a little lower, `m − ½ < 0x7F00`: the
+        // compiler tests `m − ½`, and 0x7F00 is an immediate of a Thumb-2
+        // compare, where 2¹⁵ − ½ takes a register.
+        let (x16, e) = if m - HALF < 0x7F00 {
+            let (c, e) = ceil_div_rem1_i32(m * dx, dy);
+            (x0 + (16 - HALF) + c, e)
         } else {
-            // |num| < 2³³ (see `fixed`).
-            let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
-            let x = ceil_div_i64(num, dy as i64);
-            (x as i32, (x * dy as i64 - num) as i32)
+            Edge::first_row_wide(x0, m, dx, dy)
         };
-        Some(Edge::stepping(x, err, dx, dy, (top, end)))
+        Some(Edge::stepping(x16, e, dx, dy, (top, end)))
+    }
+
+    /// `(x + 16, err + 1)` of [`Edge::new`]'s first row, `m ≥ 0x7F00 + ½`
+    /// units below the upper end, in 64 bits (|num| < 2³³, see `fixed`).
+    /// Out of line: only an edge the clip cut more than 2,032 rows below
+    /// its top takes it, and its library division, inlined into
+    /// [`Edge::new`], takes registers and a stack slot there from every
+    /// edge.
+    #[cold]
+    #[inline(never)]
+    fn first_row_wide(x0: i32, m: i32, dx: i32, dy: i32) -> (i32, i32) {
+        let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
+        let x = ceil_div_i64(num, dy as i64);
+        (x as i32 + 16, (x * dy as i64 - num) as i32 + 1)
     }
 
     /// The stepper over rows `rows.0..rows.1` of an edge of slope
     /// `dx / dy` (`1 ≤ dy < 2¹⁶`) crossing the first row at `x − err/dy`
-    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`): the accumulator and its step,
-    /// both rounded up (see the module docs), from `16·dx = q·dy + r`.
+    /// units (`x = ⌈·⌉`, `0 ≤ err < dy`), given `x16 = x + 16` and
+    /// `e = err + 1`: the accumulator and its step, both rounded up (see
+    /// the module docs), from `16·dx = q·dy + r`.
     #[inline(always)]
-    fn stepping(x: i32, err: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
+    fn stepping(x16: i32, e: i32, dx: i32, dy: i32, (top, end): (i32, i32)) -> Edge {
         // Rows of a `Vertex` edge (see the type's limits).
         let (top, end) = (top as i16, end as i16);
-        let (mut q, mut r) = ((ONE * dx) / dy, (ONE * dx) % dy);
-        if r < 0 {
-            q -= 1;
-            r += dy;
-        }
+        // The floor: the truncated quotient less one when the truncated
+        // remainder is negative (`>> 31` is that −1 or 0), and the
+        // remainder again from it, a multiply-subtract, with no select.
+        let n = ONE * dx;
+        let (q, r) = (n / dy, n % dy);
+        let q = q + (r >> 31);
+        let r = n - q * dy;
         // S = q·2²⁸ + ⌈r·2²⁸/dy⌉ (r < dy keeps the ceiling below 2²⁸)
         // and W₀ = (X₀ + 16)·2²⁸ − ⌊(e₀ + 1)·2²⁸/dy⌋ (e₀ + 1 ≤ dy).
-        let (d, e) = (dy as u32, err as u32 + 1);
+        let (d, e) = (dy as u32, e as u32);
         let (f, g) = if dy <= 1016 {
             // One 16-bit digit each, rounded the same ways: each errs by
             // less than 2¹², and an edge this short crosses at most 64
@@ -266,13 +283,12 @@ impl Edge {
             let (f, exact) = frac28(r as u32, d);
             (f + !exact as u32, frac28(e, d).0)
         };
-        // Each sum by its 32-bit words: `v·2²⁸` is `v >> 4` high and
-        // `v << 28` low, and the low words' carry or borrow moves the high
-        // word by one.
+        // `v·2²⁸` by its 32-bit words: `v >> 4` high and `v << 28` low.
+        // The step's low words' carry moves its high word by one; the
+        // accumulator is a 64-bit difference, a subtraction with borrow.
         let (lo, carry) = ((q as u32) << 28).overflowing_add(f);
         let slope = (((q >> 4) + carry as i32) as i64) << 32 | lo as i64;
-        let (lo, borrow) = (((x + 16) as u32) << 28).overflowing_sub(g);
-        let acc = ((((x + 16) >> 4) - borrow as i32) as i64) << 32 | lo as i64;
+        let acc = (((x16 >> 4) as i64) << 32 | ((x16 as u32) << 28) as i64) - g as i64;
         Edge {
             acc,
             slope,
@@ -384,7 +400,7 @@ impl Edge {
                 (x as i32, (x * dy as i64 - num) as i32)
             }
         };
-        Edge::stepping(x, err, dx, dy, (top, end))
+        Edge::stepping(x + 16, err + 1, dx, dy, (top, end))
     }
 
     /// Moves the stepper on to the rows `top..end` of the same edge that
@@ -689,13 +705,15 @@ mod tests {
     #[test]
     fn clipped_first_rows_match_the_definition() {
         // Edges the full height of the range, cut by clip rows on both
-        // sides of `yc − y0 = 2¹⁵` (row −1: 32,760; row 0: 32,776): the
-        // first row's crossing from the 32-bit division and from the
-        // 64-bit one, at the steepest slopes either way.
+        // sides of the 32-bit path's bound, `yc − y0 − ½ < 0x7F00` (row
+        // −17: 32,504; row −16: 32,520), and of `yc − y0 = 2¹⁵` (row −1:
+        // 32,760; row 0: 32,776): the first row's crossing from the
+        // 32-bit division and from the 64-bit one, at the steepest slopes
+        // either way.
         for (ax, bx) in [(-32768, 32767), (32767, -32768), (0, 1), (-5, 3000)] {
             let a = Vertex::from_bits(ax, -32768);
             let b = Vertex::from_bits(bx, 32767);
-            for top in -4..4 {
+            for top in (-20..-12).chain(-4..4) {
                 check_rows(a, b, (top, top + 40));
                 check_rows(b, a, (top, top + 40));
             }
