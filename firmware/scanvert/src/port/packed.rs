@@ -255,7 +255,7 @@ where
     }
 
     /// The row's address worked out once, and the runs stored as one
-    /// sequence of words ([`fill_runs`](crate::port::packed_band::fill_runs)).
+    /// sequence of words (`packed_band::fill_runs`).
     /// A row past the frame writes other pixels of the words, never past
     /// the slice, as in `fill_span_inside`. Out of line: called once a
     /// row, its loop keeps its own registers.

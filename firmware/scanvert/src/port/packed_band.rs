@@ -339,7 +339,7 @@ where
     }
 
     /// The row's address worked out once, and the runs stored as one
-    /// sequence of words ([`fill_runs`]). The row is checked by the slice
+    /// sequence of words (`fill_runs`). The row is checked by the slice
     /// alone, as in [`fill_span_inside`](Self::fill_span_inside). Out of
     /// line: called once a row, its loop keeps its own registers.
     #[inline(never)]
