@@ -242,6 +242,37 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
     }
 
     /// Puts `color` over the pixels `x0..x1` (`x0 < x1 ≤ width`, and the
+    /// row holds a run), when they start in the row's last run: the span
+    /// replaces its end, no run moves and none is looked for. The 3D
+    /// layer's runs, which come left to right, all do.
+    #[inline(always)]
+    fn append(&mut self, x0: u16, x1: u16, color: C) {
+        let last = self.len - 1;
+        let after = self.runs[last];
+        // Run `last` stays when it starts left of the span (it is cut at
+        // x0); the span's runs go from `n` on: the span's own unless it
+        // merges with the run before, then the rest of `after`'s.
+        let n = if after.x < x0 { last + 1 } else { last };
+        let own = n == 0 || self.runs[n - 1].color != color;
+        let rest = x1 < self.width && after.color != color;
+        let total = n + own as usize + rest as usize;
+        self.peak = self.peak.max(total);
+        if total > self.runs.len() {
+            self.overflowed = true;
+            return;
+        }
+        let mut at = n;
+        if own {
+            self.runs[at] = ColorRun::new(x0, color);
+            at += 1;
+        }
+        if rest {
+            self.runs[at] = ColorRun::new(x1, after.color);
+        }
+        self.len = total;
+    }
+
+    /// Puts `color` over the pixels `x0..x1` (`x0 < x1 ≤ width`, and the
     /// row holds a run).
     fn insert(&mut self, x0: u16, x1: u16, color: C) {
         let len = self.len;
@@ -333,6 +364,37 @@ impl<C: PixelColor> SpanTarget for RowRuns<'_, C> {
             self.insert(span.x0, x1, color);
         }
         Ok(())
+    }
+
+    /// As [`fill_span`](SpanTarget::fill_span), with the same checks (a
+    /// span outside the row is dropped); a span that starts in the row's
+    /// last run, as the 3D layer's runs do, is put at the row's end
+    /// without a search.
+    #[inline]
+    fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Infallible> {
+        let x1 = span.x1.min(self.width);
+        if span.y == self.y && span.x0 < x1 {
+            match self.runs[..self.len].last() {
+                Some(r) if r.x <= span.x0 => self.append(span.x0, x1, color),
+                Some(_) => self.insert(span.x0, x1, color),
+                None => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// As [`fill_span`](SpanTarget::fill_span) (the 2D spans, in
+    /// painter's order, in any place).
+    #[inline]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: C,
+    ) -> Result<(), Infallible> {
+        let y = u16::try_from(row).unwrap_or(u16::MAX);
+        self.fill_span(Span { y, x0, x1 }, color)
     }
 
     /// The row is `color`: one run.
@@ -458,7 +520,7 @@ mod tests {
         for base in 0..3u32.pow(5) {
             let start: Vec<Gray8> = (0..5).map(|i| g((base / 3u32.pow(i) % 3) as u8)).collect();
             for &(a, b) in &spans {
-                for c in 0..3u8 {
+                for (c, how) in (0..3u8).flat_map(|c| (0..3).map(move |h| (c, h))) {
                     // A capacity of the width is enough.
                     let mut buf = [ColorRun::new(0, g(0)); 5];
                     let mut row = RowRuns::new(&mut buf);
@@ -476,11 +538,64 @@ mod tests {
                         .unwrap();
                     }
                     check(&row, &px);
-                    row.fill_span(Span { y: 0, x0: a, x1: b }, g(c)).unwrap();
+                    // The three ways in: a span anywhere, a span inside
+                    // (put at the end without a search when it starts in
+                    // the last run), a 2D row.
+                    let span = Span { y: 0, x0: a, x1: b };
+                    match how {
+                        0 => row.fill_span(span, g(c)),
+                        1 => row.fill_span_inside(span, g(c)),
+                        _ => row.fill_row_inside(0, a, b, g(c)),
+                    }
+                    .unwrap();
                     px[usize::from(a)..usize::from(b)].fill(g(c));
                     check(&row, &px);
                     assert!(!row.overflowed());
                     assert!(row.peak() <= 5);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_span_at_the_end_is_put_as_one_anywhere() {
+        // Rows of 0 to 3 runs of width 8, each span starting in the last
+        // run, at every capacity: inside (no search) and anywhere (the
+        // search) leave the same runs, peak and overflow, and a span that
+        // does not fit leaves the row as it was.
+        let w = 8u16;
+        for cuts in 0..3u16 {
+            for x0 in 0..w {
+                for x1 in x0 + 1..=w {
+                    for c in 0..3u8 {
+                        for cap in 1..=5usize {
+                            let mut rows = [[ColorRun::new(0, g(0)); 5]; 2];
+                            let [a, b] = &mut rows;
+                            let mut out: [(Vec<ColorRun<Gray8>>, usize, bool); 2] =
+                                Default::default();
+                            for (k, buf) in [a, b].into_iter().enumerate() {
+                                let mut row = RowRuns::new(&mut buf[..cap]);
+                                row.start(0, (w, 1), g(0));
+                                for i in 1..=cuts.min(x0) {
+                                    let s = Span { y: 0, x0: i, x1: w };
+                                    row.fill_span(s, g((i % 3) as u8)).unwrap();
+                                }
+                                let before = row.as_slice().to_vec();
+                                let full = row.overflowed();
+                                let span = Span { y: 0, x0, x1 };
+                                match k {
+                                    0 => row.fill_span(span, g(c)),
+                                    _ => row.fill_span_inside(span, g(c)),
+                                }
+                                .unwrap();
+                                if row.overflowed() && !full {
+                                    assert_eq!(row.as_slice(), before);
+                                }
+                                out[k] = (row.as_slice().to_vec(), row.peak(), row.overflowed());
+                            }
+                            assert_eq!(out[0], out[1], "{cuts} {x0}..{x1} {c} {cap}");
+                        }
+                    }
                 }
             }
         }
