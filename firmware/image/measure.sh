@@ -16,7 +16,10 @@
 # `<!-- headline-target:begin -->` and `<!-- headline-target:end -->`
 # (each marker on a line of its own); and in README.md, CHANGELOG.md,
 # docs/*.md and firmware/boards/*/README.md every figure written as `<!-- measure:NAME -->VALUE<!-- /measure -->`
-# on one line, NAME one of those `figures` below prints.
+# on one line, NAME one of those `figures` below prints; and
+# firmware/image/rows-m4.txt, the racing path's instructions row by row
+# (the image built with `--features rows`), to which the race's cost model
+# is fitted.
 #
 # Every frame's checksum must equal the host's (`scanvert checksum` of the
 # same lists) and the image must exit with status 0, or this fails.
@@ -100,6 +103,8 @@ build arm-defmt "$arm_target" --features defmt
 build arm-discard "$arm_target" --features discard
 build arm-halfword "$arm_target" --features halfword
 build arm-bands "$arm_target" --features bands
+# The racing path's rows, each counted: rows-m4.txt (below).
+build arm-rows "$arm_target" --features rows
 build arm-budget "$arm_target" --features budget
 build arm-budget-poly3 "$arm_target" --features budget-poly3
 # The Pico board's rendering core, in the RP2040's instruction set.
@@ -122,6 +127,7 @@ run() { # NAME QEMU-FUNCTION: runs $out/NAME.elf, output in $out/NAME.log
   "$q" "$out/$name.elf" </dev/null >"$out/$name.log" || status=$?
   case "$name" in
     *defmt*) echo "$name: $(wc -c <"$out/$name.log") bytes of defmt frames (decode with defmt-print -e $out/$name.elf)" >&2 ;;
+    *rows*) echo "$name: $(grep -c '^row ' "$out/$name.log") rows counted one by one (rows-m4.txt)" >&2 ;;
     *) cat "$out/$name.log" >&2 ;;
   esac
   if [ "$status" != 0 ]; then
@@ -143,6 +149,8 @@ run arm-halfword qemu_arm
 # Every list again band by band (1, 8, 16 and 64 rows), each band's
 # checksum the frame's: the image exits non-zero on a mismatch.
 run arm-bands qemu_arm
+# Each list again a row at a time as colour runs, every row counted.
+run arm-rows qemu_arm
 # Band by band with no frame buffer, in statics sized for the lists.
 run arm-budget qemu_arm
 run arm-budget-poly3 qemu_arm
@@ -832,6 +840,25 @@ for page in README.md CHANGELOG.md $(cd "$root" && printf '%s\n' docs/*.md firmw
     fi
   fi
 done
+# The racing path's counts, row by row (`--features rows`), to which
+# `cargo run --release -p scanvert-bench -- --only race` fits the race's
+# cost model (its tests fail when the fit is not this file's): the
+# file's header kept, its counts this run's.
+rows_file=$image_dir/rows-m4.txt
+{
+  grep '^#' "$rows_file"
+  grep -E '^(prepare|row|tokens|empty|insert) ' "$out/arm-rows.log"
+} >"$out/rows-m4.txt"
+if ! cmp -s "$out/rows-m4.txt" "$rows_file"; then
+  if [ "$mode" = write ]; then
+    cp "$out/rows-m4.txt" "$rows_file"
+    echo "wrote firmware/image/rows-m4.txt" >&2
+  else
+    diff -u "$rows_file" "$out/rows-m4.txt" | head -n 30 >&2 || true
+    echo "firmware/image/rows-m4.txt: differs from the rows this run counted; rerun firmware/image/measure.sh, then fit the race model again (cargo run --release -p scanvert-bench -- --only race)" >&2
+    stale=1
+  fi
+fi
 if [ "$mode" = check ]; then
   if [ "$stale" = 1 ]; then
     exit 1

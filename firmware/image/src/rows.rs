@@ -16,9 +16,10 @@
 //! The counter is SysTick, one tick per 40 instructions under
 //! `-icount shift=0`, so each count is a multiple of 40, within 40 of the
 //! row's instructions. With the feature `rows` (which implies `bands`):
-//! `cargo run --release --features rows`; the counts are kept in
-//! `rows-m4.txt`, to which `cargo run --release -p scanvert-bench --
-//! --only race` fits the cost model.
+//! `cargo run --release --features rows`. `measure.sh` builds and runs
+//! it and keeps the counts in `rows-m4.txt` (its `--check`, in CI, fails
+//! when they differ from the run's), to which `cargo run --release -p
+//! scanvert-bench -- --only race` fits the cost model.
 
 use crate::bands::{Table, TABLE_EDGES, TABLE_LINES, TABLE_POLYGONS};
 use crate::{platform, Memory3d, Scene};
