@@ -386,7 +386,16 @@ impl Edge {
             return Edge::EMPTY;
         }
         let yc = top * ONE + HALF;
-        let num = (x0 - HALF) as i64 * dy as i64 + (yc - y0) as i64 * dx as i64;
+        let m = yc - y0;
+        // As in [`Edge::new`]: a first row `0 ≤ m < 0x7F00` units below
+        // the upper end (every row of a trapezoid but those the clip
+        // moved far down) takes one 32-bit division of `m·dx`, which
+        // `|dx| < 2¹⁶` keeps within `i32` (`m·dx − dy` too).
+        if (m as u32) < 0x7F00 {
+            let (c, e) = ceil_div_rem1_i32(m * dx, dy);
+            return Edge::stepping(x0 + (16 - HALF) + c, e, dx, dy, (top, end));
+        }
+        let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
         // ⌈num/dy⌉ from a truncating division (dy > 0), written out: the
         // `fixed` helper is not inlined here.
         let (x, err) = match i32::try_from(num) {
