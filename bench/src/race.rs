@@ -255,7 +255,8 @@ const KS: [u16; 4] = [2, 4, 16, 64];
 fn race_table() -> String {
     use scanvert_sim::race::CpuClock;
     use scanvert_sim::race::{
-        demo_costs, lowest_clock, lowest_clock_cores, lowest_clock_spread, schedule,
+        demo_costs, lowest_clock, lowest_clock_cores, lowest_clock_spread,
+        lowest_clock_spread_cores, schedule,
     };
     use scanvert_sim::timing::VideoTiming;
     let (_, measured_rows) = measured();
@@ -321,8 +322,8 @@ fn race_table() -> String {
         ("VGA", VideoTiming::VGA_640X480_60),
     ];
     let mut s = String::new();
-    s.push_str("| scene | lowest MHz, reference, K = 2 / 4 / 16 / 64 | two producers, reference, K = 2 / 4 / 16 / 64 | preparing in the frame before's spare time, reference, K = 2 / 4 / 16 / 64 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 / 64 | misses at 168 MHz, reference, K = 2 / 4 / 16 / 64 | ring's RAM, K = 2 / 4 / 16 / 64 (bytes; most runs a row) | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |\n");
-    s.push_str("|---|---|---|---|---|---|---|---|---|---|\n");
+    s.push_str("| scene | lowest MHz, reference, K = 2 / 4 / 16 / 64 | two producers, reference, K = 2 / 4 / 16 / 64 | preparing in the frame before's spare time, reference, K = 2 / 4 / 16 / 64 | two producers, preparing in the frame before's spare time, reference, K = 2 / 4 / 16 / 64 | lowest MHz, VGA 60 Hz, K = 2 / 4 / 16 / 64 | misses at 168 MHz, reference, K = 2 / 4 / 16 / 64 | ring's RAM, K = 2 / 4 / 16 / 64 (bytes; most runs a row) | worst row (instructions) | 99th-percentile row | of 5,376 a line at 168 MHz |\n");
+    s.push_str("|---|---|---|---|---|---|---|---|---|---|---|\n");
     let cpu = CpuClock::from_mhz(168).expect("168 MHz");
     for (name, prep, rows, m4rows, most) in &scenes {
         let mut cells = Vec::new();
@@ -343,6 +344,11 @@ fn race_table() -> String {
                     .map(|&k| mhz(lowest_clock_spread(*prep, rows, t, k)))
                     .collect();
                 cells.push(spread.join(" / "));
+                let both: Vec<String> = KS
+                    .iter()
+                    .map(|&k| mhz(lowest_clock_spread_cores(*prep, rows, t, k, 2)))
+                    .collect();
+                cells.push(both.join(" / "));
             }
         }
         let shown = rows.len().min(480);
@@ -426,9 +432,10 @@ pub fn section() -> String {
          with 1, 4, 16 and 64 spans on the row (`insert` in `rows-m4.txt`, with\n\
          the pseudo-random spans' own arithmetic).\n\n\
          The lowest clock with no missed line (one producer, and two taking the\n\
-         rows in turn, the first preparing the frame; and one producer that\n\
-         prepares each frame in the spare time of the frame before, with two sets\n\
-         of the frame's memory, `race::schedule_spread`), the lines missed at 168 MHz, the\n\
+         rows in turn, the first preparing the frame; and one producer, then two,\n\
+         that prepare each frame in the spare time of the frame before, with two\n\
+         sets of the frame's memory, `race::schedule_spread` and\n\
+         `race::schedule_spread_cores`), the lines missed at 168 MHz, the\n\
          ring's RAM (K rows of the most runs a row needs, 4 bytes a run), and\n\
          the worst and 99th-percentile row (*M4*: measured; *model*: predicted)\n\
          against the 5,376 instructions of a 32 µs line at 168 MHz. Both tables are\n\

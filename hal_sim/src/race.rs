@@ -485,21 +485,45 @@ pub fn schedule_spread(
     cpu: CpuClock,
     k: u16,
 ) -> (Vec<bool>, bool) {
+    schedule_spread_cores(prepare, rows, timing, cpu, k, 1)
+}
+
+/// [`schedule_spread`] with `cores` producers (at least 1) taking the
+/// rows in turn, as in [`schedule_cores`]: the rows' misses, every core
+/// starting the frame at its retrace with the frame prepared, and `true`
+/// when the `prepare` instructions fit in the spare time of one of the
+/// cores (the preparation is one core's work, done in the gaps its own
+/// rows leave). With one core this is [`schedule_spread`].
+pub fn schedule_spread_cores(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    cpu: CpuClock,
+    k: u16,
+    cores: usize,
+) -> (Vec<bool>, bool) {
     let c = Clocks::new(timing, cpu, k);
-    let (mut finish, mut spare) = (0u128, 0u128);
+    let n = cores.max(1);
+    let (mut finish, mut spare) = (vec![0u128; n], vec![0u128; n]);
     let mut missed = Vec::with_capacity(rows.len());
     for (y, &cost) in rows.iter().enumerate() {
+        let (f, s) = (&mut finish[y % n], &mut spare[y % n]);
         let y = y as u32;
         let free = c.free(y);
-        if free > finish {
-            spare += free - finish;
-            finish = free;
+        if free > *f {
+            *s += free - *f;
+            *f = free;
         }
-        finish += c.cost(cost);
-        missed.push(finish > c.line_start(y));
+        *f += c.cost(cost);
+        missed.push(*f > c.line_start(y));
     }
-    spare += (c.period * c.pixel).saturating_sub(finish);
-    (missed, c.cost(prepare) <= spare)
+    let most = finish
+        .iter()
+        .zip(&spare)
+        .map(|(&f, &s)| s + (c.period * c.pixel).saturating_sub(f))
+        .max()
+        .unwrap_or(0);
+    (missed, c.cost(prepare) <= most)
 }
 
 /// The lowest CPU clock, in whole kilohertz, at which no row misses its
@@ -513,6 +537,21 @@ pub fn lowest_clock_spread(
 ) -> Option<CpuClock> {
     lowest_by(|c| {
         let (missed, fits) = schedule_spread(prepare, rows, timing, c, k);
+        fits && !missed.contains(&true)
+    })
+}
+
+/// [`lowest_clock_spread`] with `cores` producers taking the rows in turn
+/// ([`schedule_spread_cores`]).
+pub fn lowest_clock_spread_cores(
+    prepare: u64,
+    rows: &[u64],
+    timing: &VideoTiming,
+    k: u16,
+    cores: usize,
+) -> Option<CpuClock> {
+    lowest_by(|c| {
+        let (missed, fits) = schedule_spread_cores(prepare, rows, timing, c, k, cores);
         fits && !missed.contains(&true)
     })
 }
@@ -1245,6 +1284,29 @@ mod tests {
             // A preparation that fits before row 0 with no row missed
             // fits in the spare time too.
             if !before.contains(&true) {
+                prop_assert!(fits);
+            }
+        }
+
+        #[test]
+        fn two_producers_spread_their_rows_as_two_cores_with_the_frame_prepared(
+            costs in proptest::collection::vec(1u64..80, 1..12),
+            prepare in 0u64..400,
+            k in 1u16..5,
+            mhz in 1u64..4,
+        ) {
+            let t = timing(5, costs.len() as u16);
+            let cpu = CpuClock::from_mhz(mhz).unwrap();
+            prop_assert_eq!(
+                schedule_spread_cores(prepare, &costs, &t, cpu, k, 1),
+                schedule_spread(prepare, &costs, &t, cpu, k)
+            );
+            let (two, fits) = schedule_spread_cores(prepare, &costs, &t, cpu, k, 2);
+            prop_assert_eq!(&two, &schedule_cores(0, &costs, &t, cpu, k, 2));
+            // The core with more spare time than one producer has (its
+            // rows are half the rows) takes a preparation one producer
+            // fits.
+            if schedule_spread(prepare, &costs, &t, cpu, k).1 {
                 prop_assert!(fits);
             }
         }
