@@ -126,7 +126,7 @@ use crate::geometry::{
 use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::visible::rle::Run;
-use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore, LINE_BIAS};
+use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore, TriangleRun, LINE_BIAS};
 use crate::visible::{self, Active, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
@@ -963,6 +963,47 @@ impl list::Out for SegmentOut<'_, '_> {
     }
 }
 
+/// A segment of a scene as the interpreter's [`Out`](list::Out) while a
+/// run of `v`s and `f`s adds to it ([`TrapezoidStore::triangle_run`]).
+struct RunOut<'s, 'r, 'a> {
+    run: &'s mut TriangleRun<'r>,
+    labels: &'s mut LabelStore<'a>,
+    segment: usize,
+}
+
+impl list::Out for RunOut<'_, '_, '_> {
+    fn polygon<I: IntoIterator<Item = Vertex3>>(
+        &mut self,
+        vertices: I,
+        color: Rgb888,
+        _: &ClipRect,
+        point_or_line: bool,
+    ) -> Result<(), SceneError> {
+        let lift = if point_or_line { LINE_BIAS } else { 0 };
+        self.run
+            .polygon(vertices, color, lift)
+            .map(|_| ())
+            .map_err(SceneError::Store)
+    }
+
+    fn triangle(&mut self, v: [Vertex3; 3], color: Rgb888, _: &ClipRect) -> Result<(), SceneError> {
+        self.run
+            .triangle(v, color)
+            .map(|_| ())
+            .map_err(SceneError::Store)
+    }
+
+    fn label(&mut self, at: (i32, i32), color: Rgb888, text: &str) -> Result<bool, SceneError> {
+        self.labels
+            .add(self.segment as u16, at, color, text)
+            .map_err(SceneError::Labels)
+    }
+
+    fn changed(&mut self) {
+        self.run.others_stale();
+    }
+}
+
 /// One segment being described: modelling transforms, polygons and
 /// labels, each through the scene's pipeline into the segment.
 #[derive(Debug)]
@@ -1173,8 +1214,23 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         if state.hidden() || self.scene.records.recording() {
             return Ok(());
         }
-        let (pipeline, mut out) = self.split();
-        list::mesh_run(pipeline, &mut out, state, table, cmds, counts)
+        let Scene {
+            store,
+            labels,
+            pipeline,
+            ..
+        } = &mut *self.scene;
+        let segment = self.segment;
+        // The run's triangles go to the segment through one adder, set up
+        // once (`TriangleRun`), not one for each.
+        store.triangle_run(segment, state.clip(), |run| {
+            let mut out = RunOut {
+                run,
+                labels,
+                segment,
+            };
+            list::mesh_run(pipeline, &mut out, state, table, cmds, counts)
+        })
     }
 
     /// The pipeline, and the segment as the interpreter's output.
