@@ -1163,7 +1163,7 @@ impl TriangleRun<'_> {
         // what is missing.
         if self.edges.len() >= 3 {
             if let Some(cut) = TriangleCut::of(&v, &self.add.clip) {
-                return self.add(Source::<core::iter::Empty<Vertex3>>::Cut(cut), color, 0);
+                return self.cut(&cut, color);
             }
         }
         let it = v.into_iter();
@@ -1197,6 +1197,46 @@ impl TriangleRun<'_> {
         }
     }
 
+    /// [`add`](Self::add) of a triangle's cut, read where it lies: its
+    /// plane copied once, into the adder.
+    #[inline(always)]
+    fn cut(&mut self, cut: &TriangleCut, color: Rgb888) -> Result<u32, StoreError> {
+        if !self.valid {
+            return Err(StoreError::Segment {
+                segment: self.s,
+                capacity: self.capacity,
+            });
+        }
+        let key = self.begin();
+        let Some(plane) = cut.plane() else {
+            return Ok(0);
+        };
+        let add = &mut self.add;
+        add.plane = *plane;
+        add.face = NONE;
+        add.color = match self.highlight {
+            0 => rgb_bits(color),
+            h => h & 0x00ff_ffff,
+        };
+        add.own = rgb_bits(color);
+        add.key = key;
+        let n = cut.cut(|l, r, top, end| add.between(l, r, top, end));
+        self.faces += (add.face != NONE) as u32;
+        if n.is_err() {
+            self.failed = true;
+        }
+        n
+    }
+
+    /// A polygon of the run counted; its face's key.
+    #[inline(always)]
+    fn begin(&mut self) -> u32 {
+        self.polygons = self.polygons.wrapping_add(1);
+        let key = self.key | self.ordinal as u32;
+        self.ordinal = self.ordinal.saturating_add(1);
+        key
+    }
+
     /// `add_inner`'s work for one polygon of the run, the segment's
     /// counters kept in the run; an error marks the run failed.
     #[inline(always)]
@@ -1222,9 +1262,7 @@ impl TriangleRun<'_> {
     where
         I: Iterator<Item = Vertex3>,
     {
-        self.polygons = self.polygons.wrapping_add(1);
-        let key = self.key | self.ordinal as u32;
-        self.ordinal = self.ordinal.saturating_add(1);
+        let key = self.begin();
         let clip = self.add.clip;
         let (tri, shape) = match src {
             Source::Once(it) => (
