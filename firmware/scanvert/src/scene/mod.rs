@@ -965,6 +965,7 @@ impl list::Out for SegmentOut<'_, '_> {
 
 /// A segment of a scene as the interpreter's [`Out`](list::Out) while a
 /// run of `v`s and `f`s adds to it ([`TrapezoidStore::triangle_run`]).
+/// A polygon's clip is the run's: a run does not change the list's clip.
 struct RunOut<'s, 'r, 'a> {
     run: &'s mut TriangleRun<'r>,
     labels: &'s mut LabelStore<'a>,
