@@ -680,14 +680,91 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        self.add_from::<_, false>(s, Source::Once(vertices.into_iter()), color, clip, lift)
+        match self.add_once(s, vertices.into_iter(), color, clip, lift) {
+            Ok(n) => Ok(n),
+            Err(e) => {
+                if !matches!(e, StoreError::Segment { .. }) {
+                    let _ = self.clear_segment(s);
+                }
+                Err(e)
+            }
+        }
+    }
+
+    /// `add_lifted`'s work: the adder set up for the one polygon, its
+    /// trapezoids added through [`Adding::polygon`] (the body a run's
+    /// polygon goes through too), the chains and counters written back
+    /// (on an error too).
+    #[inline(always)]
+    fn add_once<I>(
+        &mut self,
+        s: usize,
+        it: I,
+        color: Rgb888,
+        clip: &ClipRect,
+        lift: u16,
+    ) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        let clip = self.frame_clip(clip);
+        let seg = segment_at(self.segments, s)?;
+        seg.work.polygons = seg.work.polygons.wrapping_add(1);
+        let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
+        seg.ordinal = seg.ordinal.saturating_add(1);
+        let mut add = Adding {
+            traps: &mut *self.traps,
+            rows: &mut *self.rows,
+            faces: &mut *self.faces,
+            free: self.free_trap,
+            unused: self.unused_trap,
+            free_face: self.free_face,
+            unused_face: self.unused_face,
+            seg_traps: seg.traps,
+            seg_faces: seg.faces,
+            added: 0,
+            face: NONE,
+            plane: Plane::FLAT,
+            color: match seg.highlight {
+                0 => rgb_bits(color),
+                h => h & 0x00ff_ffff,
+            },
+            own: rgb_bits(color),
+            key,
+            segment: s as u16,
+            clip,
+        };
+        let n = add.polygon(self.edges, it, lift);
+        (self.free_trap, self.unused_trap) = (add.free, add.unused);
+        (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
+        (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
+        let (added, face) = (add.added, add.face);
+        seg.trapezoids += added;
+        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(added);
+        self.live += added;
+        if face != NONE {
+            seg.face_count += 1;
+            self.live_faces += 1;
+        }
+        if seg.hidden {
+            // The newest trapezoids head the segment's chain.
+            let mut t = seg.traps;
+            for _ in 0..added {
+                let next = self.traps.get(t as usize).map_or(NONE, |tr| tr.next_seg);
+                unlink_row(self.traps, self.rows, t);
+                t = next;
+            }
+        }
+        n
     }
 
     /// [`add_polygon`](Self::add_polygon) of a triangle: cut from its
     /// three vertices at once ([`TriangleCut`]) where that cut decides
     /// alone, else loaded as a polygon whose outline (Newell's sums,
     /// depth and column ranges) is worked out at once ([`Outline::of`]).
-    /// The same trapezoids as `add_polygon`.
+    /// The same trapezoids as `add_polygon`. A run of one
+    /// ([`triangle_run`](Self::triangle_run)): the run's adder is the
+    /// only triangle adder.
     pub(crate) fn add_triangle(
         &mut self,
         s: usize,
@@ -695,22 +772,7 @@ impl<'a> TrapezoidStore<'a> {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError> {
-        // With fewer than three edge slots the polygon's load reports
-        // what is missing.
-        if self.edges.len() >= 3 {
-            if let Some(cut) = TriangleCut::of(&v, &self.frame_clip(clip)) {
-                return self.add_from::<core::iter::Empty<Vertex3>, true>(
-                    s,
-                    Source::Cut(cut),
-                    color,
-                    clip,
-                    0,
-                );
-            }
-        }
-        let it = v.into_iter();
-        let outline = Outline::of(it.clone()).map_err(StoreError::from);
-        self.add_from::<_, true>(s, Source::Outlined(it, outline), color, clip, 0)
+        self.triangle_run(s, clip, |r| r.triangle(v, color))
     }
 
     /// `clip` cut to the store's frame (a clip is within 0..=4096):
@@ -747,37 +809,34 @@ impl<'a> TrapezoidStore<'a> {
         let it = vertices.iter();
         match Outline::of(it.clone()) {
             Ok(o) if !o.front() => Ok(false),
-            Ok(o) => self
-                .add_from::<_, true>(s, Source::Outlined(it, Ok(o)), color, clip, 0)
-                .map(|_| true),
+            Ok(o) => self.add_from(s, it, Ok(o), color, clip).map(|_| true),
             // Too many vertices: an error only for a drawn one.
             Err(e) => match front_facing(vertices) {
                 true => self
-                    .add_from::<_, true>(s, Source::Outlined(it, Err(e.into())), color, clip, 0)
+                    .add_from(s, it, Err(e.into()), color, clip)
                     .map(|_| true),
                 false => Ok(false),
             },
         }
     }
 
-    /// [`add_polygon`](Self::add_polygon) of the vertices of `src`, the
-    /// plane moved `lift` units toward the eye; a triangle cut without the
-    /// chains' walk when `TRI` ([`Polygon::cut_triangles`]: the adders of
-    /// `poly3`s and mesh triangles; the general adder's code is left
-    /// without it).
+    /// [`add_polygon`](Self::add_polygon) of the vertices of `it`, read a
+    /// second time after a first found their `outline` (or too many); a
+    /// triangle cut without the chains' walk ([`Polygon::cut_triangles`]:
+    /// the adder of `poly3`s).
     #[inline(always)]
-    fn add_from<I, const TRI: bool>(
+    fn add_from<I>(
         &mut self,
         s: usize,
-        src: Source<I>,
+        it: I,
+        outline: Result<Outline, StoreError>,
         color: Rgb888,
         clip: &ClipRect,
-        lift: u16,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
     {
-        match self.add_inner::<I, TRI>(s, src, color, clip, lift) {
+        match self.add_inner(s, it, outline, color, clip) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -789,13 +848,13 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     #[inline(always)]
-    fn add_inner<I, const TRI: bool>(
+    fn add_inner<I>(
         &mut self,
         s: usize,
-        src: Source<I>,
+        it: I,
+        outline: Result<Outline, StoreError>,
         color: Rgb888,
         clip: &ClipRect,
-        lift: u16,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
@@ -805,19 +864,11 @@ impl<'a> TrapezoidStore<'a> {
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let shape = match src {
-            Source::Once(it) => Shape::Polygon(Polygon::load_lifted(self.edges, it, &clip, lift)?),
-            Source::Outlined(it, o) => {
-                Shape::Polygon(Polygon::load_edges(self.edges, it, o?, &clip)?)
-            }
-            Source::Cut(cut) => Shape::Triangle(cut),
-        };
-        let plane = match &shape {
-            Shape::Polygon(poly) if poly.edges() < 2 => return Ok(0),
-            Shape::Polygon(poly) => poly.plane().copied(),
-            Shape::Triangle(cut) => cut.plane().copied(),
-        };
-        let Some(plane) = plane else {
+        let poly = Polygon::load_edges(self.edges, it, outline?, &clip)?;
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        let Some(plane) = poly.plane().copied() else {
             return Ok(0);
         };
         // The face is taken with the first trapezoid, so that a polygon
@@ -851,11 +902,7 @@ impl<'a> TrapezoidStore<'a> {
             segment: s as u16,
             clip,
         };
-        let n = match (shape, TRI) {
-            (Shape::Triangle(cut), _) => cut.cut(|l, r, top, end| add.between(l, r, top, end)),
-            (Shape::Polygon(poly), true) => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
-            (Shape::Polygon(poly), false) => poly.cut(|l, r| add.trapezoid(l, r)),
-        };
+        let n = poly.cut_triangles(|l, r| add.trapezoid(l, r));
         (self.free_trap, self.unused_trap) = (add.free, add.unused);
         (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
         (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
@@ -882,7 +929,7 @@ impl<'a> TrapezoidStore<'a> {
 
 impl<'a> TrapezoidStore<'a> {
     /// A run of triangles added to segment `s` under `clip`, as
-    /// [`add_triangle`](Self::add_triangle) adds each: `f` adds them
+    /// [`add_triangle`](Self::add_triangle) (a run of one) adds each: `f` adds them
     /// through the [`TriangleRun`] it is given. The segment, the clip cut
     /// to the frame and the pools are taken once for the run, and the
     /// segment's chains and counters go back to the store once, after
@@ -1012,21 +1059,6 @@ fn link_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
     }
 }
 
-/// A polygon's vertices as the store reads them: in one pass, or in a
-/// second after a first that found their [`Outline`] (or too many).
-enum Source<I> {
-    Once(I),
-    Outlined(I, Result<Outline, StoreError>),
-    /// A triangle's cut, made from its vertices at once.
-    Cut(TriangleCut),
-}
-
-/// A polygon loaded into the edge slots, or a triangle's cut.
-enum Shape<'s> {
-    Polygon(Polygon<'s>),
-    Triangle(TriangleCut),
-}
-
 /// The pools and a segment's chains while one polygon's trapezoids are
 /// added ([`TrapezoidStore::add_polygon`]).
 struct Adding<'p, P = &'p Plane> {
@@ -1128,6 +1160,33 @@ impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
     }
 }
 
+impl Adding<'_, Plane> {
+    /// The trapezoids of the polygon through `it` (loaded into `edges`
+    /// in one pass, its plane moved `lift` units toward the eye), the
+    /// face's colour and key set: the one body of a single polygon's
+    /// adder ([`TrapezoidStore::add_lifted`]) and a run's
+    /// ([`TriangleRun::polygon`]).
+    #[inline(never)]
+    fn polygon<I>(&mut self, edges: &mut [EdgeSlot], it: I, lift: u16) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        // No face yet, whatever comes of the polygon: a run's last
+        // polygon's is not this one's.
+        self.face = NONE;
+        let clip = self.clip;
+        let poly = Polygon::load_lifted(edges, it, &clip, lift)?;
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        let Some(plane) = poly.plane().copied() else {
+            return Ok(0);
+        };
+        self.plane = plane;
+        poly.cut(|l, r| self.trapezoid(l, r))
+    }
+}
+
 /// A run of triangles being added to one segment of a store
 /// ([`TrapezoidStore::triangle_run`]): the pools, the segment's chains
 /// and the clip (cut to the frame) kept across its triangles, and what
@@ -1166,9 +1225,18 @@ impl TriangleRun<'_> {
                 return self.cut(&cut, color);
             }
         }
+        self.triangle_polygon(v, color)
+    }
+
+    /// [`triangle`](Self::triangle) of a triangle its cut does not decide
+    /// alone: loaded as a polygon whose outline is worked out at once
+    /// ([`Outline::of`]). Out of line, so that the cut's code is left
+    /// without it.
+    #[inline(never)]
+    fn triangle_polygon(&mut self, v: [Vertex3; 3], color: Rgb888) -> Result<u32, StoreError> {
         let it = v.into_iter();
         let outline = Outline::of(it.clone()).map_err(StoreError::from);
-        self.add(Source::Outlined(it, outline), color, 0)
+        self.add(it, outline, color)
     }
 
     /// [`TrapezoidStore::add_lifted`] into the run's segment, under its
@@ -1183,7 +1251,26 @@ impl TriangleRun<'_> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        self.add(Source::Once(vertices.into_iter()), color, lift)
+        if !self.valid {
+            return Err(StoreError::Segment {
+                segment: self.s,
+                capacity: self.capacity,
+            });
+        }
+        let key = self.begin();
+        let add = &mut self.add;
+        add.color = match self.highlight {
+            0 => rgb_bits(color),
+            h => h & 0x00ff_ffff,
+        };
+        add.own = rgb_bits(color);
+        add.key = key;
+        let n = add.polygon(self.edges, vertices.into_iter(), lift);
+        self.faces += (add.face != NONE) as u32;
+        if n.is_err() {
+            self.failed = true;
+        }
+        n
     }
 
     /// Marks every segment but the run's as stale
@@ -1240,7 +1327,12 @@ impl TriangleRun<'_> {
     /// `add_inner`'s work for one polygon of the run, the segment's
     /// counters kept in the run; an error marks the run failed.
     #[inline(always)]
-    fn add<I>(&mut self, src: Source<I>, color: Rgb888, lift: u16) -> Result<u32, StoreError>
+    fn add<I>(
+        &mut self,
+        it: I,
+        outline: Result<Outline, StoreError>,
+        color: Rgb888,
+    ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
     {
@@ -1250,7 +1342,7 @@ impl TriangleRun<'_> {
                 capacity: self.capacity,
             });
         }
-        let r = self.add_valid(src, color, lift);
+        let r = self.add_valid(it, outline, color);
         if r.is_err() {
             self.failed = true;
         }
@@ -1258,29 +1350,22 @@ impl TriangleRun<'_> {
     }
 
     #[inline(always)]
-    fn add_valid<I>(&mut self, src: Source<I>, color: Rgb888, lift: u16) -> Result<u32, StoreError>
+    fn add_valid<I>(
+        &mut self,
+        it: I,
+        outline: Result<Outline, StoreError>,
+        color: Rgb888,
+    ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
     {
         let key = self.begin();
         let clip = self.add.clip;
-        let (tri, shape) = match src {
-            Source::Once(it) => (
-                false,
-                Shape::Polygon(Polygon::load_lifted(self.edges, it, &clip, lift)?),
-            ),
-            Source::Outlined(it, o) => (
-                true,
-                Shape::Polygon(Polygon::load_edges(self.edges, it, o?, &clip)?),
-            ),
-            Source::Cut(cut) => (true, Shape::Triangle(cut)),
-        };
-        let plane = match &shape {
-            Shape::Polygon(poly) if poly.edges() < 2 => return Ok(0),
-            Shape::Polygon(poly) => poly.plane().copied(),
-            Shape::Triangle(cut) => cut.plane().copied(),
-        };
-        let Some(plane) = plane else {
+        let poly = Polygon::load_edges(self.edges, it, outline?, &clip)?;
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        let Some(plane) = poly.plane().copied() else {
             return Ok(0);
         };
         let add = &mut self.add;
@@ -1292,11 +1377,7 @@ impl TriangleRun<'_> {
         };
         add.own = rgb_bits(color);
         add.key = key;
-        let n = match (shape, tri) {
-            (Shape::Triangle(cut), _) => cut.cut(|l, r, top, end| add.between(l, r, top, end)),
-            (Shape::Polygon(poly), true) => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
-            (Shape::Polygon(poly), false) => poly.cut(|l, r| add.trapezoid(l, r)),
-        };
+        let n = poly.cut_triangles(|l, r| add.trapezoid(l, r));
         self.faces += (add.face != NONE) as u32;
         n
     }
@@ -1630,9 +1711,10 @@ mod tests {
     }
 
     /// A run of triangles (`triangle_run`) leaves the store exactly as
-    /// `add_triangle` one by one does: pools, chains, rows, faces, keys
-    /// and counters; a hidden segment, a clip inside the frame, a pool
-    /// that runs out part way and a bad segment too.
+    /// `add_triangle` (a run of one) one by one does, and a run's polygon
+    /// as `add_polygon` does: pools, chains, rows, faces, keys and
+    /// counters; a hidden segment, a clip inside the frame, a pool that
+    /// runs out part way and a bad segment too.
     #[test]
     fn a_triangle_run_is_its_triangles_one_by_one() {
         let mut rng = testkit::rng::Rng(0x51ce_7a11);
@@ -1672,15 +1754,24 @@ mod tests {
                 st.set_highlight(3, Some(Rgb888::GREEN)).unwrap();
             }
             let mut want = Ok(());
+            // Every third one a polygon of the run.
+            let poly = |k: usize| k % 3 == 2;
             for (k, t) in tris.iter().enumerate() {
-                if let Err(e) = a.add_triangle(s, *t, color(k), &clip) {
+                let r = match poly(k) {
+                    true => a.add_polygon(s, *t, color(k), &clip),
+                    false => a.add_triangle(s, *t, color(k), &clip),
+                };
+                if let Err(e) = r {
                     want = Err(e);
                     break;
                 }
             }
             let got = b.triangle_run(s, &clip, |r| {
                 for (k, t) in tris.iter().enumerate() {
-                    r.triangle(*t, color(k))?;
+                    match poly(k) {
+                        true => r.polygon(*t, color(k), 0)?,
+                        false => r.triangle(*t, color(k))?,
+                    };
                 }
                 Ok(())
             });
