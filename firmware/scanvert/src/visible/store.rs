@@ -680,14 +680,91 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        self.add_from::<_, false>(s, Source::Once(vertices.into_iter()), color, clip, lift)
+        match self.add_once(s, vertices.into_iter(), color, clip, lift) {
+            Ok(n) => Ok(n),
+            Err(e) => {
+                if !matches!(e, StoreError::Segment { .. }) {
+                    let _ = self.clear_segment(s);
+                }
+                Err(e)
+            }
+        }
+    }
+
+    /// `add_lifted`'s work: the adder set up for the one polygon, its
+    /// trapezoids added through [`Adding::polygon`] (the body a run's
+    /// polygon goes through too), the chains and counters written back
+    /// (on an error too).
+    #[inline(always)]
+    fn add_once<I>(
+        &mut self,
+        s: usize,
+        it: I,
+        color: Rgb888,
+        clip: &ClipRect,
+        lift: u16,
+    ) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        let clip = self.frame_clip(clip);
+        let seg = segment_at(self.segments, s)?;
+        seg.work.polygons = seg.work.polygons.wrapping_add(1);
+        let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
+        seg.ordinal = seg.ordinal.saturating_add(1);
+        let mut add = Adding {
+            traps: &mut *self.traps,
+            rows: &mut *self.rows,
+            faces: &mut *self.faces,
+            free: self.free_trap,
+            unused: self.unused_trap,
+            free_face: self.free_face,
+            unused_face: self.unused_face,
+            seg_traps: seg.traps,
+            seg_faces: seg.faces,
+            added: 0,
+            face: NONE,
+            plane: Plane::FLAT,
+            color: match seg.highlight {
+                0 => rgb_bits(color),
+                h => h & 0x00ff_ffff,
+            },
+            own: rgb_bits(color),
+            key,
+            segment: s as u16,
+            clip,
+        };
+        let n = add.polygon(self.edges, it, lift);
+        (self.free_trap, self.unused_trap) = (add.free, add.unused);
+        (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
+        (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
+        let (added, face) = (add.added, add.face);
+        seg.trapezoids += added;
+        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(added);
+        self.live += added;
+        if face != NONE {
+            seg.face_count += 1;
+            self.live_faces += 1;
+        }
+        if seg.hidden {
+            // The newest trapezoids head the segment's chain.
+            let mut t = seg.traps;
+            for _ in 0..added {
+                let next = self.traps.get(t as usize).map_or(NONE, |tr| tr.next_seg);
+                unlink_row(self.traps, self.rows, t);
+                t = next;
+            }
+        }
+        n
     }
 
     /// [`add_polygon`](Self::add_polygon) of a triangle: cut from its
     /// three vertices at once ([`TriangleCut`]) where that cut decides
     /// alone, else loaded as a polygon whose outline (Newell's sums,
     /// depth and column ranges) is worked out at once ([`Outline::of`]).
-    /// The same trapezoids as `add_polygon`.
+    /// The same trapezoids as `add_polygon`. A run of one
+    /// ([`triangle_run`](Self::triangle_run)): the run's adder is the
+    /// only triangle adder.
     pub(crate) fn add_triangle(
         &mut self,
         s: usize,
@@ -695,22 +772,7 @@ impl<'a> TrapezoidStore<'a> {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError> {
-        // With fewer than three edge slots the polygon's load reports
-        // what is missing.
-        if self.edges.len() >= 3 {
-            if let Some(cut) = TriangleCut::of(&v, &self.frame_clip(clip)) {
-                return self.add_from::<core::iter::Empty<Vertex3>, true>(
-                    s,
-                    Source::Cut(cut),
-                    color,
-                    clip,
-                    0,
-                );
-            }
-        }
-        let it = v.into_iter();
-        let outline = Outline::of(it.clone()).map_err(StoreError::from);
-        self.add_from::<_, true>(s, Source::Outlined(it, outline), color, clip, 0)
+        self.triangle_run(s, clip, |r| r.triangle(v, color))
     }
 
     /// `clip` cut to the store's frame (a clip is within 0..=4096):
@@ -747,37 +809,34 @@ impl<'a> TrapezoidStore<'a> {
         let it = vertices.iter();
         match Outline::of(it.clone()) {
             Ok(o) if !o.front() => Ok(false),
-            Ok(o) => self
-                .add_from::<_, true>(s, Source::Outlined(it, Ok(o)), color, clip, 0)
-                .map(|_| true),
+            Ok(o) => self.add_from(s, it, Ok(o), color, clip).map(|_| true),
             // Too many vertices: an error only for a drawn one.
             Err(e) => match front_facing(vertices) {
                 true => self
-                    .add_from::<_, true>(s, Source::Outlined(it, Err(e.into())), color, clip, 0)
+                    .add_from(s, it, Err(e.into()), color, clip)
                     .map(|_| true),
                 false => Ok(false),
             },
         }
     }
 
-    /// [`add_polygon`](Self::add_polygon) of the vertices of `src`, the
-    /// plane moved `lift` units toward the eye; a triangle cut without the
-    /// chains' walk when `TRI` ([`Polygon::cut_triangles`]: the adders of
-    /// `poly3`s and mesh triangles; the general adder's code is left
-    /// without it).
+    /// [`add_polygon`](Self::add_polygon) of the vertices of `it`, read a
+    /// second time after a first found their `outline` (or too many); a
+    /// triangle cut without the chains' walk ([`Polygon::cut_triangles`]:
+    /// the adder of `poly3`s).
     #[inline(always)]
-    fn add_from<I, const TRI: bool>(
+    fn add_from<I>(
         &mut self,
         s: usize,
-        src: Source<I>,
+        it: I,
+        outline: Result<Outline, StoreError>,
         color: Rgb888,
         clip: &ClipRect,
-        lift: u16,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
     {
-        match self.add_inner::<I, TRI>(s, src, color, clip, lift) {
+        match self.add_inner(s, it, outline, color, clip) {
             Ok(n) => Ok(n),
             Err(e) => {
                 if !matches!(e, StoreError::Segment { .. }) {
@@ -789,13 +848,13 @@ impl<'a> TrapezoidStore<'a> {
     }
 
     #[inline(always)]
-    fn add_inner<I, const TRI: bool>(
+    fn add_inner<I>(
         &mut self,
         s: usize,
-        src: Source<I>,
+        it: I,
+        outline: Result<Outline, StoreError>,
         color: Rgb888,
         clip: &ClipRect,
-        lift: u16,
     ) -> Result<u32, StoreError>
     where
         I: Iterator<Item = Vertex3>,
@@ -805,19 +864,11 @@ impl<'a> TrapezoidStore<'a> {
         seg.work.polygons = seg.work.polygons.wrapping_add(1);
         let key = (s.min(0xffff) as u32) << 16 | seg.ordinal as u32;
         seg.ordinal = seg.ordinal.saturating_add(1);
-        let shape = match src {
-            Source::Once(it) => Shape::Polygon(Polygon::load_lifted(self.edges, it, &clip, lift)?),
-            Source::Outlined(it, o) => {
-                Shape::Polygon(Polygon::load_edges(self.edges, it, o?, &clip)?)
-            }
-            Source::Cut(cut) => Shape::Triangle(cut),
-        };
-        let plane = match &shape {
-            Shape::Polygon(poly) if poly.edges() < 2 => return Ok(0),
-            Shape::Polygon(poly) => poly.plane().copied(),
-            Shape::Triangle(cut) => cut.plane().copied(),
-        };
-        let Some(plane) = plane else {
+        let poly = Polygon::load_edges(self.edges, it, outline?, &clip)?;
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        let Some(plane) = poly.plane().copied() else {
             return Ok(0);
         };
         // The face is taken with the first trapezoid, so that a polygon
@@ -851,11 +902,7 @@ impl<'a> TrapezoidStore<'a> {
             segment: s as u16,
             clip,
         };
-        let n = match (shape, TRI) {
-            (Shape::Triangle(cut), _) => cut.cut(|l, r, top, end| add.between(l, r, top, end)),
-            (Shape::Polygon(poly), true) => poly.cut_triangles(|l, r| add.trapezoid(l, r)),
-            (Shape::Polygon(poly), false) => poly.cut(|l, r| add.trapezoid(l, r)),
-        };
+        let n = poly.cut_triangles(|l, r| add.trapezoid(l, r));
         (self.free_trap, self.unused_trap) = (add.free, add.unused);
         (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
         (seg.traps, seg.faces) = (add.seg_traps, add.seg_faces);
@@ -877,6 +924,98 @@ impl<'a> TrapezoidStore<'a> {
             }
         }
         n
+    }
+}
+
+impl<'a> TrapezoidStore<'a> {
+    /// A run of triangles added to segment `s` under `clip`, as
+    /// [`add_triangle`](Self::add_triangle) (a run of one) adds each: `f` adds them
+    /// through the [`TriangleRun`] it is given. The segment, the clip cut
+    /// to the frame and the pools are taken once for the run, and the
+    /// segment's chains and counters go back to the store once, after
+    /// `f`; the same trapezoids, faces, keys and counters as one
+    /// `add_triangle` a triangle. After a triangle's error (other than
+    /// [`StoreError::Segment`]) the segment is emptied, as `add_triangle`
+    /// empties it; `f` is expected to add nothing after one.
+    pub(crate) fn triangle_run<R>(
+        &mut self,
+        s: usize,
+        clip: &ClipRect,
+        f: impl FnOnce(&mut TriangleRun<'_>) -> R,
+    ) -> R {
+        let clip = self.frame_clip(clip);
+        let capacity = self.segments.len();
+        let seg = self.segments.get(s).copied();
+        let valid = seg.is_some();
+        let seg = seg.unwrap_or(Segment::EMPTY);
+        let mut run = TriangleRun {
+            add: Adding {
+                traps: &mut *self.traps,
+                rows: &mut *self.rows,
+                faces: &mut *self.faces,
+                free: self.free_trap,
+                unused: self.unused_trap,
+                free_face: self.free_face,
+                unused_face: self.unused_face,
+                seg_traps: seg.traps,
+                seg_faces: seg.faces,
+                added: 0,
+                face: NONE,
+                plane: Plane::FLAT,
+                color: 0,
+                own: 0,
+                key: 0,
+                segment: s as u16,
+                clip,
+            },
+            edges: &mut *self.edges,
+            segments: &mut *self.segments,
+            s,
+            capacity,
+            valid,
+            highlight: seg.highlight,
+            key: (s.min(0xffff) as u32) << 16,
+            ordinal: seg.ordinal,
+            polygons: 0,
+            faces: 0,
+            failed: false,
+        };
+        let r = f(&mut run);
+        let TriangleRun {
+            add,
+            ordinal,
+            polygons,
+            faces,
+            failed,
+            ..
+        } = run;
+        let (added, chains) = (add.added, (add.seg_traps, add.seg_faces));
+        (self.free_trap, self.unused_trap) = (add.free, add.unused);
+        (self.free_face, self.unused_face) = (add.free_face, add.unused_face);
+        let Some(seg) = self.segments.get_mut(s) else {
+            return r;
+        };
+        (seg.traps, seg.faces) = chains;
+        seg.ordinal = ordinal;
+        seg.work.polygons = seg.work.polygons.wrapping_add(polygons);
+        seg.trapezoids += added;
+        seg.work.trapezoids = seg.work.trapezoids.wrapping_add(added);
+        self.live += added;
+        seg.face_count += faces;
+        self.live_faces += faces;
+        if seg.hidden {
+            // The newest trapezoids head the segment's chain.
+            let mut t = seg.traps;
+            for _ in 0..added {
+                let next = self.traps.get(t as usize).map_or(NONE, |tr| tr.next_seg);
+                unlink_row(self.traps, self.rows, t);
+                t = next;
+            }
+        }
+        if failed {
+            let _ = self.clear_segment(s);
+        }
+        r
     }
 }
 
@@ -920,24 +1059,9 @@ fn link_row(traps: &mut [Trapezoid], rows: &mut [u16], t: u16) {
     }
 }
 
-/// A polygon's vertices as the store reads them: in one pass, or in a
-/// second after a first that found their [`Outline`] (or too many).
-enum Source<I> {
-    Once(I),
-    Outlined(I, Result<Outline, StoreError>),
-    /// A triangle's cut, made from its vertices at once.
-    Cut(TriangleCut),
-}
-
-/// A polygon loaded into the edge slots, or a triangle's cut.
-enum Shape<'s> {
-    Polygon(Polygon<'s>),
-    Triangle(TriangleCut),
-}
-
 /// The pools and a segment's chains while one polygon's trapezoids are
 /// added ([`TrapezoidStore::add_polygon`]).
-struct Adding<'p> {
+struct Adding<'p, P = &'p Plane> {
     traps: &'p mut [Trapezoid],
     rows: &'p mut [u16],
     faces: &'p mut [Face],
@@ -952,7 +1076,7 @@ struct Adding<'p> {
     /// The polygon's face, `NONE` until its first trapezoid.
     face: u16,
     /// The face's plane, colour, key and segment.
-    plane: &'p Plane,
+    plane: P,
     color: u32,
     /// The polygon's own colour (`color` is its segment's highlight, if
     /// any).
@@ -962,7 +1086,7 @@ struct Adding<'p> {
     clip: ClipRect,
 }
 
-impl Adding<'_> {
+impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
     /// Stores the trapezoid between `l` and `r` (and the face with the
     /// first), and indexes it by its top row.
     #[inline(always)]
@@ -991,8 +1115,8 @@ impl Adding<'_> {
                 .ok_or(StoreError::Faces { capacity: cap })?;
             if let Some(slot) = faces.get_mut(f as usize) {
                 *slot = Face {
-                    plane: *self.plane,
-                    depth: self.plane.depth(),
+                    plane: *self.plane.borrow(),
+                    depth: self.plane.borrow().depth(),
                     color: self.color | (self.own >> 16) << 24,
                     key: self.key,
                     own: self.own as u16,
@@ -1033,6 +1157,229 @@ impl Adding<'_> {
         self.seg_traps = t;
         self.added += 1;
         Ok(())
+    }
+}
+
+impl Adding<'_, Plane> {
+    /// The trapezoids of the polygon through `it` (loaded into `edges`
+    /// in one pass, its plane moved `lift` units toward the eye), the
+    /// face's colour and key set: the one body of a single polygon's
+    /// adder ([`TrapezoidStore::add_lifted`]) and a run's
+    /// ([`TriangleRun::polygon`]).
+    #[inline(never)]
+    fn polygon<I>(&mut self, edges: &mut [EdgeSlot], it: I, lift: u16) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        // No face yet, whatever comes of the polygon: a run's last
+        // polygon's is not this one's.
+        self.face = NONE;
+        let clip = self.clip;
+        let poly = Polygon::load_lifted(edges, it, &clip, lift)?;
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        let Some(plane) = poly.plane().copied() else {
+            return Ok(0);
+        };
+        self.plane = plane;
+        poly.cut(|l, r| self.trapezoid(l, r))
+    }
+}
+
+/// A run of triangles being added to one segment of a store
+/// ([`TrapezoidStore::triangle_run`]): the pools, the segment's chains
+/// and the clip (cut to the frame) kept across its triangles, and what
+/// the segment's counters gain, added to them once at the end.
+pub(crate) struct TriangleRun<'r> {
+    add: Adding<'r, Plane>,
+    edges: &'r mut [EdgeSlot],
+    segments: &'r mut [Segment],
+    s: usize,
+    /// Segments of the store, for the error of a bad `s`.
+    capacity: usize,
+    /// `s` names a segment.
+    valid: bool,
+    /// The segment's highlight (`Segment::highlight`).
+    highlight: u32,
+    /// The segment's part of a face's key.
+    key: u32,
+    ordinal: u16,
+    /// Polygons added, for the segment's work counters.
+    polygons: u32,
+    /// Faces taken.
+    faces: u32,
+    /// A triangle failed: the segment is emptied at the end.
+    failed: bool,
+}
+
+impl TriangleRun<'_> {
+    /// [`TrapezoidStore::add_triangle`] into the run's segment, under its
+    /// clip; the trapezoids added.
+    #[inline(never)]
+    pub(crate) fn triangle(&mut self, v: [Vertex3; 3], color: Rgb888) -> Result<u32, StoreError> {
+        // With fewer than three edge slots the polygon's load reports
+        // what is missing.
+        if self.edges.len() >= 3 {
+            if let Some(cut) = TriangleCut::of(&v, &self.add.clip) {
+                return self.cut(&cut, color);
+            }
+        }
+        self.triangle_polygon(v, color)
+    }
+
+    /// [`triangle`](Self::triangle) of a triangle its cut does not decide
+    /// alone: loaded as a polygon whose outline is worked out at once
+    /// ([`Outline::of`]). Out of line, so that the cut's code is left
+    /// without it.
+    #[inline(never)]
+    fn triangle_polygon(&mut self, v: [Vertex3; 3], color: Rgb888) -> Result<u32, StoreError> {
+        let it = v.into_iter();
+        let outline = Outline::of(it.clone()).map_err(StoreError::from);
+        self.add(it, outline, color)
+    }
+
+    /// [`TrapezoidStore::add_lifted`] into the run's segment, under its
+    /// clip.
+    #[inline(never)]
+    pub(crate) fn polygon<I>(
+        &mut self,
+        vertices: I,
+        color: Rgb888,
+        lift: u16,
+    ) -> Result<u32, StoreError>
+    where
+        I: IntoIterator<Item = Vertex3>,
+    {
+        if !self.valid {
+            return Err(StoreError::Segment {
+                segment: self.s,
+                capacity: self.capacity,
+            });
+        }
+        let key = self.begin();
+        let add = &mut self.add;
+        add.color = match self.highlight {
+            0 => rgb_bits(color),
+            h => h & 0x00ff_ffff,
+        };
+        add.own = rgb_bits(color);
+        add.key = key;
+        let n = add.polygon(self.edges, vertices.into_iter(), lift);
+        self.faces += (add.face != NONE) as u32;
+        if n.is_err() {
+            self.failed = true;
+        }
+        n
+    }
+
+    /// Marks every segment but the run's as stale
+    /// ([`TrapezoidStore::set_stale`]).
+    pub(crate) fn others_stale(&mut self) {
+        let s = self.s;
+        for (i, seg) in self.segments.iter_mut().enumerate() {
+            if i != s {
+                seg.stale = true;
+            }
+        }
+    }
+
+    /// [`add`](Self::add) of a triangle's cut, read where it lies: its
+    /// plane copied once, into the adder.
+    #[inline(always)]
+    fn cut(&mut self, cut: &TriangleCut, color: Rgb888) -> Result<u32, StoreError> {
+        if !self.valid {
+            return Err(StoreError::Segment {
+                segment: self.s,
+                capacity: self.capacity,
+            });
+        }
+        let key = self.begin();
+        let Some(plane) = cut.plane() else {
+            return Ok(0);
+        };
+        let add = &mut self.add;
+        add.plane = *plane;
+        add.face = NONE;
+        add.color = match self.highlight {
+            0 => rgb_bits(color),
+            h => h & 0x00ff_ffff,
+        };
+        add.own = rgb_bits(color);
+        add.key = key;
+        let n = cut.cut(|l, r, top, end| add.between(l, r, top, end));
+        self.faces += (add.face != NONE) as u32;
+        if n.is_err() {
+            self.failed = true;
+        }
+        n
+    }
+
+    /// A polygon of the run counted; its face's key.
+    #[inline(always)]
+    fn begin(&mut self) -> u32 {
+        self.polygons = self.polygons.wrapping_add(1);
+        let key = self.key | self.ordinal as u32;
+        self.ordinal = self.ordinal.saturating_add(1);
+        key
+    }
+
+    /// `add_inner`'s work for one polygon of the run, the segment's
+    /// counters kept in the run; an error marks the run failed.
+    #[inline(always)]
+    fn add<I>(
+        &mut self,
+        it: I,
+        outline: Result<Outline, StoreError>,
+        color: Rgb888,
+    ) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        if !self.valid {
+            return Err(StoreError::Segment {
+                segment: self.s,
+                capacity: self.capacity,
+            });
+        }
+        let r = self.add_valid(it, outline, color);
+        if r.is_err() {
+            self.failed = true;
+        }
+        r
+    }
+
+    #[inline(always)]
+    fn add_valid<I>(
+        &mut self,
+        it: I,
+        outline: Result<Outline, StoreError>,
+        color: Rgb888,
+    ) -> Result<u32, StoreError>
+    where
+        I: Iterator<Item = Vertex3>,
+    {
+        let key = self.begin();
+        let clip = self.add.clip;
+        let poly = Polygon::load_edges(self.edges, it, outline?, &clip)?;
+        if poly.edges() < 2 {
+            return Ok(0);
+        }
+        let Some(plane) = poly.plane().copied() else {
+            return Ok(0);
+        };
+        let add = &mut self.add;
+        add.plane = plane;
+        add.face = NONE;
+        add.color = match self.highlight {
+            0 => rgb_bits(color),
+            h => h & 0x00ff_ffff,
+        };
+        add.own = rgb_bits(color);
+        add.key = key;
+        let n = poly.cut_triangles(|l, r| add.trapezoid(l, r));
+        self.faces += (add.face != NONE) as u32;
+        n
     }
 }
 
@@ -1361,6 +1708,94 @@ mod tests {
                 capacity: 4
             })
         );
+    }
+
+    /// A run of triangles (`triangle_run`) leaves the store exactly as
+    /// `add_triangle` (a run of one) one by one does, and a run's polygon
+    /// as `add_polygon` does: pools, chains, rows, faces, keys and
+    /// counters; a hidden segment, a clip inside the frame, a pool that
+    /// runs out part way and a bad segment too.
+    #[test]
+    fn a_triangle_run_is_its_triangles_one_by_one() {
+        let mut rng = testkit::rng::Rng(0x51ce_7a11);
+        let mut outcomes = [0; 3];
+        for case in 0..600 {
+            let (s, hidden) = ([0, 1, 3, 7][case % 4], case % 3 == 0);
+            let clip = match case % 5 {
+                0 => ClipRect::from_window(
+                    ClipWindow {
+                        x0: 5,
+                        y0: 3,
+                        x1: 50,
+                        y1: 40,
+                    },
+                    64,
+                    64,
+                ),
+                _ => ClipRect::full(64, 64),
+            };
+            let mut tris = [[v(0, 0, 0); 3]; 12];
+            for t in tris.iter_mut() {
+                for p in t.iter_mut() {
+                    *p = v(rng.range(-8, 72), rng.range(-8, 72), rng.range(-50, 50));
+                }
+                if rng.below(8) == 0 {
+                    t[2] = t[0];
+                }
+            }
+            let tris = &tris[..4 + rng.below(9) as usize];
+            let color = |k: usize| Rgb888::new(k as u8 * 20, 7, 200);
+            let (mut one, mut run) = (Mem::<40, 9>::new(), Mem::<40, 9>::new());
+            let mut a = one.store();
+            let mut b = run.store();
+            for st in [&mut a, &mut b] {
+                st.add_polygon(2, tri(0), Rgb888::RED, &clip).unwrap();
+                st.set_hidden(1, hidden).unwrap();
+                st.set_highlight(3, Some(Rgb888::GREEN)).unwrap();
+            }
+            let mut want = Ok(());
+            // Every third one a polygon of the run.
+            let poly = |k: usize| k % 3 == 2;
+            for (k, t) in tris.iter().enumerate() {
+                let r = match poly(k) {
+                    true => a.add_polygon(s, *t, color(k), &clip),
+                    false => a.add_triangle(s, *t, color(k), &clip),
+                };
+                if let Err(e) = r {
+                    want = Err(e);
+                    break;
+                }
+            }
+            let got = b.triangle_run(s, &clip, |r| {
+                for (k, t) in tris.iter().enumerate() {
+                    match poly(k) {
+                        true => r.polygon(*t, color(k), 0)?,
+                        false => r.triangle(*t, color(k))?,
+                    };
+                }
+                Ok(())
+            });
+            assert_eq!(got, want, "case {case}");
+            outcomes[match want {
+                Ok(()) => 0,
+                Err(StoreError::Segment { .. }) => 1,
+                Err(_) => 2,
+            }] += 1;
+            assert_eq!(
+                (a.free_trap, a.unused_trap, a.free_face, a.unused_face),
+                (b.free_trap, b.unused_trap, b.free_face, b.unused_face),
+                "case {case}"
+            );
+            assert_eq!((a.live, a.live_faces), (b.live, b.live_faces));
+            assert_eq!(a.traps, b.traps, "case {case}");
+            assert_eq!(a.faces, b.faces, "case {case}");
+            assert_eq!(a.segments, b.segments, "case {case}");
+            assert_eq!(a.rows, b.rows, "case {case}");
+            if !(hidden && s == 1) {
+                check(&b);
+            }
+        }
+        assert!(outcomes.iter().all(|&n| n > 40), "{outcomes:?}");
     }
 
     #[test]
