@@ -263,12 +263,12 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 7.4 % on
-    /// average and 49.0 % at worst (the 2D lists' rows: 2.0 % to 10.6 %
-    /// on average, the 3D lists' 12.7 % and 10.5 %; the worst are rows of
+    /// Against the 1,992 measured rows the model's error is 7.9 % on
+    /// average and 48.4 % at worst (the 2D lists' rows: 1.9 % to 10.5 %
+    /// on average, the 3D lists' 15.0 % and 12.6 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
-    /// of an instruction a pixel); a 2D polygon live on the row costs 83
+    /// of an instruction a pixel); a 2D polygon live on the row costs 86
     /// instructions besides its span, the edge table's live set 21 a
     /// word of 32 polygons on every row (W3's 313 words), and a run
     /// moved by an insertion 5. Preparing a list is fitted to
@@ -276,20 +276,20 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 966,
+        row: 975,
         width: 2,
-        span: 3256,
+        span: 3208,
         pixel: -3,
-        run: 544,
-        entered: 7359,
-        resolved: 2607,
+        run: 539,
+        entered: 7254,
+        resolved: 1698,
         label: 0,
-        live: 1329,
-        word: 340,
+        live: 1375,
+        word: 339,
         moved: 78,
-        frame: 117389,
-        command: 11064,
-        trapezoid: 284,
+        frame: 117379,
+        command: 11069,
+        trapezoid: 436,
     };
 
     /// Instructions of a row of `work`, at least 1.
