@@ -264,7 +264,7 @@ impl CostModel {
     /// error below.
     ///
     /// Against the 1,992 measured rows the model's error is 7.9 % on
-    /// average and 48.4 % at worst (the 2D lists' rows: 1.9 % to 10.3 %
+    /// average and 48.4 % at worst (the 2D lists' rows: 1.9 % to 10.6 %
     /// on average, the 3D lists' 15.0 % and 12.6 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
@@ -276,16 +276,16 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 979,
+        row: 970,
         width: 2,
         span: 3204,
         pixel: -3,
-        run: 534,
-        entered: 7227,
-        resolved: 1709,
+        run: 541,
+        entered: 7228,
+        resolved: 1703,
         label: 0,
         live: 1380,
-        word: 337,
+        word: 339,
         moved: 78,
         frame: 117380,
         command: 11068,

@@ -42,6 +42,8 @@
 #![no_std]
 #![deny(missing_docs)]
 #![deny(missing_debug_implementations)]
+// One `unsafe` block, allowed where it is: `port::store_multiple`
+// (Thumb-2 targets only), with its measured reason.
 #![deny(unsafe_code)]
 #![deny(rustdoc::broken_intra_doc_links)]
 #![deny(clippy::float_arithmetic)]

@@ -17,6 +17,8 @@ pub mod packed_band;
 pub mod panel;
 pub mod runs;
 pub mod scanvideo;
+#[cfg(scanvert_stm)]
+mod store_multiple;
 
 pub use checksum::Checksum;
 pub use framebuffer::FrameBuffer;

@@ -141,15 +141,23 @@ where
 
 /// Stores `v` in every word of `run` as groups of 16, 8, 4 or 2 words
 /// (double-word stores on the Cortex-M4): a run shorter than 32 words,
-/// most spans, is two groups of one size that overlap, with no loop; a
-/// longer one is a loop of groups of 16 and a last group that overlaps
-/// the one before it.
+/// most spans, is two groups of one size that overlap, with no loop. A
+/// longer one is, on Thumb-2 cores, groups of 32 words stored eight
+/// registers at a time ([`store_multiple`](super::store_multiple)), and
+/// elsewhere a loop of groups of 16; either ends with a last group that
+/// overlaps the one before it.
 #[inline(always)]
 fn fill_words(run: &mut [u32], v: u32) {
     let n = run.len();
     if n >= 16 {
         let group = [v; 16];
         if n >= 32 {
+            #[cfg(scanvert_stm)]
+            {
+                super::store_multiple::fill(run, v);
+                return;
+            }
+            #[cfg(not(scanvert_stm))]
             for q in run.chunks_exact_mut(16) {
                 q.copy_from_slice(&group);
             }

@@ -1,0 +1,17 @@
+//! Sets `scanvert_stm` on targets whose cores run Thumb-2 (ARMv7-M,
+//! ARMv7E-M, ARMv8-M Mainline and the Thumb-2 A/R-profile targets): there
+//! long runs of words are stored eight registers at a time
+//! (`src/port/store_multiple.rs`). Target features other than the
+//! stable ones are not visible to `cfg` on a stable compiler, so the
+//! target's name decides, as the `cortex-m` crate's build script does.
+fn main() {
+    println!("cargo::rustc-check-cfg=cfg(scanvert_stm)");
+    println!("cargo::rerun-if-changed=build.rs");
+    let target = std::env::var("TARGET").unwrap_or_default();
+    let thumb2 = ["thumbv7", "thumbv8m.main"]
+        .iter()
+        .any(|prefix| target.starts_with(prefix));
+    if thumb2 {
+        println!("cargo::rustc-cfg=scanvert_stm");
+    }
+}
