@@ -1,5 +1,12 @@
-//! Faster, approximate alternatives to the exact edge stepper: the classic
-//! DDA, and vertices snapped to a coarser grid.
+//! Approximate alternatives to the exact edge stepper: the classic DDA,
+//! and vertices snapped to a coarser grid.
+//!
+//! They buy little speed now, and only on some polygons: on the host
+//! benchmark's workloads the exact stepper is as fast as they are or
+//! faster, except on many thin slivers (W6), where they are a few per
+//! cent faster. `docs/performance.md` (the speed-against-error table)
+//! gives each one's rate and error beside the exact path's, measured in
+//! one run; measure your own polygons before you trade exactness.
 //!
 //! The exact [`Edge`](crate::raster::edge::Edge) is a DDA too, with 32
 //! fraction bits and both roundings upwards, which is enough for every
@@ -27,7 +34,7 @@
 //! some of them: an error of either sign moves such a crossing across the
 //! centre. [`Dda7`] on a 256-row edge may be off by a whole pixel.
 //!
-//! [`snap`] is the other cheap option: fewer subpixel bits in the vertices
+//! [`snap`] is the other option: fewer subpixel bits in the vertices
 //! (1/4 px or whole pixels) before the exact stepper. The pixels are then
 //! exact for the snapped polygon, and the error is the snapping's.
 
