@@ -84,7 +84,6 @@ mod scenes;
 use core::convert::Infallible;
 use scanvert::controller::{Controller, RenderStats};
 use scanvert::display_list::{Command, DisplayList};
-use scanvert::pixelcolor::raw::{RawData, RawU16};
 use scanvert::pixelcolor::{Rgb565, RgbColor};
 #[cfg(all(feature = "halfword", not(feature = "discard")))]
 use scanvert::port::checksum::frame_checksum;
@@ -474,6 +473,7 @@ fn fill_baselines(cells: &mut [Cell; CELLS], counter: &platform::Counter) {
 /// of the slice is compared with what it must hold. Not counted.
 #[cfg(not(any(feature = "discard", feature = "halfword")))]
 fn check_fills() -> bool {
+    use scanvert::pixelcolor::raw::{RawData, RawU16};
     const WORDS: usize = 328;
     const GUARD: u32 = 0xa5a5_5a5a;
     let color = Rgb565::new(3, 40, 17);
