@@ -15,7 +15,8 @@
 //!
 //! The block is built only where the build script sets `scanvert_stm`
 //! (targets whose cores run Thumb-2; ARMv6-M and RISC-V use the safe
-//! loop). It takes its three operands in whatever registers the compiler
+//! loop), and not at all when `SCANVERT_PORTABLE` is set in the build's
+//! environment. It takes its three operands in whatever registers the compiler
 //! chose, saves every register it uses and restores them, so the scan
 //! converter's row loops around it keep their registers: a version that
 //! named its operands' registers, or called a function, moved those
