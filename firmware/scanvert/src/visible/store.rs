@@ -619,6 +619,23 @@ impl<'a> TrapezoidStore<'a> {
         Ok(())
     }
 
+    /// `r`, after emptying segment `s` when `r` is an error other than
+    /// the segment's own (`StoreError::Segment`): a polygon that failed
+    /// halfway leaves no trapezoid of the segment behind.
+    #[inline(always)]
+    fn emptied_on_error(
+        &mut self,
+        s: usize,
+        r: Result<u32, StoreError>,
+    ) -> Result<u32, StoreError> {
+        if let Err(e) = &r {
+            if !matches!(e, StoreError::Segment { .. }) {
+                let _ = self.clear_segment(s);
+            }
+        }
+        r
+    }
+
     /// Empties every segment.
     #[doc(hidden)]
     pub fn clear(&mut self) {
@@ -680,15 +697,8 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: IntoIterator<Item = Vertex3>,
     {
-        match self.add_once(s, vertices.into_iter(), color, clip, lift) {
-            Ok(n) => Ok(n),
-            Err(e) => {
-                if !matches!(e, StoreError::Segment { .. }) {
-                    let _ = self.clear_segment(s);
-                }
-                Err(e)
-            }
-        }
+        let r = self.add_once(s, vertices.into_iter(), color, clip, lift);
+        self.emptied_on_error(s, r)
     }
 
     /// `add_lifted`'s work: the adder set up for the one polygon, its
@@ -832,15 +842,8 @@ impl<'a> TrapezoidStore<'a> {
     where
         I: Iterator<Item = Vertex3>,
     {
-        match self.add_inner(s, it, outline, color, clip) {
-            Ok(n) => Ok(n),
-            Err(e) => {
-                if !matches!(e, StoreError::Segment { .. }) {
-                    let _ = self.clear_segment(s);
-                }
-                Err(e)
-            }
-        }
+        let r = self.add_inner(s, it, outline, color, clip);
+        self.emptied_on_error(s, r)
     }
 
     #[inline(always)]
