@@ -86,7 +86,12 @@ pub const LINE_BIAS: u16 = 256;
 /// ([`TrapezoidStore::set_highlight`]); its own is kept beside it, in the
 /// bits the drawn colour leaves free, so that clearing a highlight needs
 /// nothing but the face.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+///
+/// A mesh's triangle leaves its depth to be worked out when it is needed
+/// ([`Depth::LATER`]): most of a closed mesh's faces never share a row's
+/// pixels with another, and the sweep reads their depth only where they
+/// do. Two faces are equal when their depths, worked out, are.
+#[derive(Clone, Copy, Debug)]
 pub struct Face {
     plane: Plane,
     depth: Depth,
@@ -117,9 +122,18 @@ impl Face {
     }
 
     /// The plane's fixed-point depth, [`Plane::depth`]: that of every
-    /// trapezoid of the face.
+    /// trapezoid of the face (worked out here if it was left for later).
     #[doc(hidden)]
     pub fn depth(&self) -> Depth {
+        if self.depth.is_later() {
+            return self.plane.depth();
+        }
+        self.depth
+    }
+
+    /// The depth as stored: [`Depth::LATER`] when it was left for later.
+    #[inline(always)]
+    pub(crate) fn depth_or_later(&self) -> Depth {
         self.depth
     }
 
@@ -157,6 +171,17 @@ impl Face {
         (self.key >> 16) as u16
     }
 }
+
+impl PartialEq for Face {
+    fn eq(&self, other: &Face) -> bool {
+        self.plane == other.plane
+            && self.depth() == other.depth()
+            && (self.color, self.key, self.own, self.next)
+                == (other.color, other.key, other.own, other.next)
+    }
+}
+
+impl Eq for Face {}
 
 /// Work done for one segment (or the whole store), counted since the store
 /// was made. All counters wrap.
@@ -381,6 +406,9 @@ pub struct TrapezoidStore<'a> {
     unused_face: u16,
     live: u32,
     live_faces: u32,
+    /// Some face added may have left its depth for later
+    /// ([`Depth::LATER`]): a run of triangles added one.
+    later: bool,
 }
 
 /// Most slots a pool of the store uses: its indices are `u16`, and
@@ -425,6 +453,7 @@ impl<'a> TrapezoidStore<'a> {
             unused_face: 0,
             live: 0,
             live_faces: 0,
+            later: false,
         })
     }
 
@@ -451,6 +480,14 @@ impl<'a> TrapezoidStore<'a> {
     /// Faces stored.
     pub fn face_count(&self) -> usize {
         self.live_faces as usize
+    }
+
+    /// `true` when a face of the store may have left its depth for later
+    /// ([`Depth::LATER`]; [`Face::depth`] works it out): the sweep then
+    /// works out the depths of a row's trapezoids before it reads them.
+    #[inline(always)]
+    pub(crate) fn has_later_depths(&self) -> bool {
+        self.later
     }
 
     /// The most trapezoids and faces the store has held at once since it
@@ -991,6 +1028,7 @@ impl<'a> TrapezoidStore<'a> {
         self.live += added;
         seg.face_count += faces;
         self.live_faces += faces;
+        self.later |= faces > 0;
         if seg.hidden {
             // The newest trapezoids head the segment's chain.
             let mut t = seg.traps;
@@ -1080,13 +1118,20 @@ impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
     #[inline(always)]
     fn trapezoid(&mut self, l: Side, r: Side) -> Result<(), StoreError> {
         let ((l, top, end), (r, _, _)) = (l.parts(), r.parts());
-        self.between(l, r, top, end)
+        self.between::<false>(l, r, top, end)
     }
 
     /// [`Adding::trapezoid`] from the edges' ends and the rows `top..end`
-    /// (of the clip).
+    /// (of the clip). `LATER`: the face's depth is left for later
+    /// ([`Depth::LATER`]).
     #[inline(always)]
-    fn between(&mut self, l: Ends, r: Ends, top: u16, end: u16) -> Result<(), StoreError> {
+    fn between<const LATER: bool>(
+        &mut self,
+        l: Ends,
+        r: Ends,
+        top: u16,
+        end: u16,
+    ) -> Result<(), StoreError> {
         let Adding {
             traps,
             rows,
@@ -1104,7 +1149,11 @@ impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
             if let Some(slot) = faces.get_mut(f as usize) {
                 *slot = Face {
                     plane: *self.plane.borrow(),
-                    depth: self.plane.borrow().depth(),
+                    depth: if LATER {
+                        Depth::LATER
+                    } else {
+                        self.plane.borrow().depth()
+                    },
                     color: self.color | (self.own >> 16) << 24,
                     key: self.key,
                     own: self.own as u16,
@@ -1329,7 +1378,7 @@ impl TriangleRun<'_> {
         };
         add.own = rgb_bits(color);
         add.key = key;
-        let n = cut.cut(|l, r, top, end| add.between(l, r, top, end));
+        let n = cut.cut(|l, r, top, end| add.between::<true>(l, r, top, end));
         self.faces += (add.face != NONE) as u32;
         if n.is_err() {
             self.failed = true;

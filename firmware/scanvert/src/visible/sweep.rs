@@ -169,7 +169,7 @@ use crate::port::{RowRun, Span};
 use crate::raster::edge::Edge;
 use crate::visible::rle::{Run, RunWriter, RunsFull};
 use crate::visible::store::TrapezoidStore;
-use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
+use crate::visible::trapezoid::{Depth, Trapezoid, DEPTH_TOLERANCE, NONE};
 use core::fmt;
 
 /// How an intersecting span is subdivided.
@@ -351,14 +351,23 @@ impl Entry {
     };
 
     /// Trapezoid `t` of `store` on its top row: its edges' steppers
-    /// rebuilt from their ends, its face's depth and colour. Inlined into
-    /// both its callers (the sweep's and painting's): out of line, the
-    /// sweep costs more instructions on the Cortex-M4.
+    /// rebuilt from their ends, its face's depth and colour. A depth left
+    /// for later stays so ([`Depth::LATER`]: `zx` is `i32::MIN`, `zy` 0),
+    /// stepped row by row as it is, until [`work_out_depths`]. Inlined
+    /// into its callers: out of line, the sweep costs more instructions
+    /// on the Cortex-M4.
     #[inline(always)]
     fn from(t: &Trapezoid, store: &TrapezoidStore<'_>) -> Entry {
         let (d, color) = store.face(t.face).map_or((Default::default(), 0), |f| {
-            (f.depth(), crate::color::list_word(f.color_bits()))
+            (f.depth_or_later(), crate::color::list_word(f.color_bits()))
         });
+        Entry::with(t, d, color)
+    }
+
+    /// [`Entry::from`] with the face's depth `d` and colour `color` (a
+    /// [`list_word`](crate::color::list_word)) given.
+    #[inline(always)]
+    fn with(t: &Trapezoid, d: Depth, color: u32) -> Entry {
         Entry {
             left: t.left(),
             right: t.right(),
@@ -1006,10 +1015,15 @@ impl Sweep {
                 }
                 if row == Row::SideBySide {
                     write_side_by_side(&act[..k], width, &mut cx);
-                } else if k > self.many.0 {
-                    sweep_many(act, k, width, self.many.1, &mut cx);
                 } else {
-                    sweep(act, k, width, &mut cx);
+                    // Trapezoids may share the row's pixels: their
+                    // depths are read.
+                    work_out_depths(act, k, store, yi);
+                    if k > self.many.0 {
+                        sweep_many(act, k, width, self.many.1, &mut cx);
+                    } else {
+                        sweep(act, k, width, &mut cx);
+                    }
                 }
             }
             cx.flush();
@@ -1204,10 +1218,17 @@ fn continuation(e: &mut Entry, store: &TrapezoidStore<'_>, y: i32) -> bool {
     {
         // A side moved on keeps the rounding of its first row, not that
         // of `y`: the same pixels, row by row.
-        let want = Entry {
+        let mut want = Entry {
             trap: t,
             ..Entry::from(tr, store)
         };
+        // A depth left for later that a row above worked out.
+        if want.zx == Depth::LATER.zx && e.zx != Depth::LATER.zx {
+            if let Some(f) = store.face(tr.face) {
+                let d = f.depth();
+                (want.z, want.zx, want.zy) = (d.at(0, y), d.zx, d.zy);
+            }
+        }
         let mut got = *e;
         for (g, w) in [(&mut got.left, &want.left), (&mut got.right, &want.right)] {
             let (mut a, mut b) = (*g, *w);
@@ -1360,6 +1381,71 @@ fn step_in_place(act: &mut [Active], from: usize, k: usize, y: i32) -> usize {
         w += 1;
     }
     w
+}
+
+/// Works out, at row `y`, the depth of the live trapezoids `act[..k]`
+/// (sorted by `l`) that share pixels with another on the row and whose
+/// face left it for later ([`Depth::LATER`]), before the row is swept:
+/// the sweep reads a trapezoid's depth only where another covers the
+/// same pixels. Each one that starts left of the farthest `r` of those
+/// before it shares pixels with the one of that `r`; so every one that
+/// shares pixels is found (the first that shares pixels with a given
+/// one, after it in the order, finds it as the one of the farthest `r`).
+/// Nothing to do for a store none of whose faces left its depth for
+/// later ([`TrapezoidStore::has_later_depths`]). Out of line: few rows
+/// need it.
+#[inline(never)]
+fn work_out_depths(act: &mut [Active], k: usize, store: &TrapezoidStore<'_>, y: i32) {
+    if !store.has_later_depths() {
+        return;
+    }
+    let k = k.min(act.len());
+    let (mut far, mut of) = (i32::MIN, 0);
+    let mut p = 0;
+    while p < k {
+        let (l, r) = (act[p].hot.l, act[p].hot.r);
+        if l < r {
+            if l < far {
+                work_out_pair(act, (p, of), store, y);
+            }
+            if r > far {
+                (far, of) = (r, p);
+            }
+        }
+        p += 1;
+    }
+}
+
+/// [`work_out_depth`] of the live trapezoids at `p` and `q`. Out of line
+/// and cold, so that [`work_out_depths`]' loop keeps its registers.
+#[cold]
+#[inline(never)]
+fn work_out_pair(act: &mut [Active], (p, q): (usize, usize), store: &TrapezoidStore<'_>, y: i32) {
+    work_out_depth(act, p, store, y);
+    work_out_depth(act, q, store, y);
+}
+
+/// The depth of the live trapezoid at `p` in `act`'s order, at row `y`,
+/// if its face left it for later: the face's [`Depth`] at column 0 of the
+/// row, as [`Entry::from`] and a step a row would have left it.
+#[inline(always)]
+fn work_out_depth(act: &mut [Active], p: usize, store: &TrapezoidStore<'_>, y: i32) {
+    let slot = act[p].hot.slot as usize;
+    let Some(a) = act.get_mut(slot) else {
+        return;
+    };
+    let e = &mut a.entry;
+    if e.zx != Depth::LATER.zx {
+        return;
+    }
+    let Some(f) = store.face(e.face) else {
+        return;
+    };
+    let d = f.depth();
+    (e.z, e.zx, e.zy) = (d.at(0, y), d.zx, d.zy);
+    let (z, zx) = (e.z, e.zx);
+    let h = &mut act[p].hot;
+    (h.z, h.zx) = (z, zx);
 }
 
 /// Steps an active trapezoid's edge down a row. On the hosts' out-of-order

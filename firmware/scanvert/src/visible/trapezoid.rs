@@ -894,6 +894,24 @@ pub struct Depth {
 }
 
 impl Depth {
+    /// A depth not worked out yet: its face's plane gives it when a
+    /// trapezoid of the face first shares a row's pixels with another
+    /// ([`Face::depth`](crate::visible::store::Face::depth) and the sweep).
+    /// Marked by `zx`: a worked-out depth whose `zx` is `i32::MIN` (a
+    /// plane nearly edge-on) reads as not worked out, and is worked out
+    /// again, to the same values.
+    pub const LATER: Depth = Depth {
+        z: 0,
+        zx: i32::MIN,
+        zy: 0,
+    };
+
+    /// `true` for [`Depth::LATER`] (any depth whose `zx` is `i32::MIN`).
+    #[inline(always)]
+    pub fn is_later(&self) -> bool {
+        self.zx == i32::MIN
+    }
+
     /// `Z̃(i, j)`.
     #[inline(always)]
     pub fn at(&self, i: i32, j: i32) -> i32 {

@@ -87,8 +87,8 @@ use crate::color::ListColor;
 use crate::port::SpanTarget;
 use crate::raster::edge::Edge;
 use crate::visible::rle::Run;
-use crate::visible::store::TrapezoidStore;
-use crate::visible::trapezoid::{Trapezoid, DEPTH_TOLERANCE, NONE};
+use crate::visible::store::{Face, TrapezoidStore};
+use crate::visible::trapezoid::{Depth, Trapezoid, DEPTH_TOLERANCE, NONE};
 
 /// "No record", "no row".
 const NIL: u16 = NONE;
@@ -471,11 +471,16 @@ fn enter(
     let yi = y as i32;
     pool.release(act[slot].hot.z as u16);
     let (lo, hi) = tr.column_bounds();
-    let (zu, zmin, zmax) = depth_range(store, tr, (lo, hi));
+    // The face's depth, worked out here if it was left for later.
+    let face = store.face(tr.face);
+    let (d, color) = face.map_or((Depth::default(), 0), |f| {
+        (f.depth(), crate::color::list_word(f.color_bits()))
+    });
+    let (zu, zmin, zmax) = depth_range(face, d, tr, (lo, hi));
     {
         // Made in its slot, not copied there.
         let a = &mut act[slot];
-        a.entry = Entry::from(tr, store);
+        a.entry = Entry::with(tr, d, color);
         let e = &mut a.entry;
         // Its depth at pixel (0, 0), from that on its top row.
         let top = if jumped { tr.top() } else { yi };
@@ -717,21 +722,21 @@ fn z_row(e: &Entry, y: i32) -> i32 {
     e.z.wrapping_add(e.zy.wrapping_mul(y))
 }
 
-/// The least and greatest fixed-point depth of trapezoid `tr` over the
-/// rectangle of its rows and columns `lo..hi`, saturated to `i32`: a
+/// The least and greatest fixed-point depth of trapezoid `tr` (of face
+/// `face`, whose depth is `d`, worked out) over the rectangle of its rows and columns `lo..hi`, saturated to `i32`: a
 /// range of its depth at every pixel it covers; and its depth at pixel
 /// `(0, 0)` unwrapped, `None` when its plane's slopes wrap (nearly
 /// edge-on): its range is then that of every depth a polygon can have.
 #[inline]
 fn depth_range(
-    store: &TrapezoidStore<'_>,
+    face: Option<&Face>,
+    d: Depth,
     tr: &Trapezoid,
     (lo, hi): (i32, i32),
 ) -> (Option<i64>, i32, i32) {
-    let Some(f) = store.face(tr.face).filter(|f| f.plane().slopes_fit()) else {
+    let Some(f) = face.filter(|f| f.plane().slopes_fit()) else {
         return (None, -WIDEST, WIDEST);
     };
-    let d = f.depth();
     let zu = unwrap(d.z, d.zx, d.zy, f.plane().origin_units());
     let (zx, zy) = (d.zx as i64, d.zy as i64);
     let (i0, i1) = (lo as i64, (hi - 1).max(lo) as i64);
