@@ -172,6 +172,9 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         background: C,
         font: &'s MonoFont<'s>,
     ) -> Result<SceneBands<'s, 'a, 'a, C>, VisibleError<Infallible>> {
+        if resolve == Resolve::Paint {
+            self.store.work_out_depths();
+        }
         let Scene {
             store,
             labels,
@@ -207,6 +210,12 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
 }
 
 impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
+    /// Works out the depths its mesh triangles left for later, before
+    /// a pass that paints ([`TrapezoidStore::work_out_depths`]).
+    pub(crate) fn work_out_depths(&mut self) {
+        self.store.work_out_depths();
+    }
+
     /// The store and labels, read, and the workspace, for a pass kept
     /// outside the scene (the controller's bands).
     pub(crate) fn band_parts(

@@ -886,6 +886,9 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         T::Color: ListColor,
         H: Hook + ?Sized,
     {
+        if resolve == Resolve::Paint {
+            self.store.work_out_depths();
+        }
         let (visible, decoded) = visible::draw(
             &self.store,
             &mut self.workspace,

@@ -482,6 +482,23 @@ impl<'a> TrapezoidStore<'a> {
         self.live_faces as usize
     }
 
+    /// Works out every depth its face left for later ([`Depth::LATER`]):
+    /// before painting ([`Resolve::Paint`](crate::visible::Resolve::Paint)),
+    /// which reads every trapezoid's depth, so that a face's is worked
+    /// out once and not once a trapezoid.
+    pub(crate) fn work_out_depths(&mut self) {
+        if !self.later {
+            return;
+        }
+        let used = (self.unused_face as usize).min(self.faces.len());
+        for f in &mut self.faces[..used] {
+            if f.depth.is_later() {
+                f.depth = f.plane.depth();
+            }
+        }
+        self.later = false;
+    }
+
     /// `true` when a face of the store may have left its depth for later
     /// ([`Depth::LATER`]; [`Face::depth`] works it out): the sweep then
     /// works out the depths of a row's trapezoids before it reads them.
