@@ -1247,7 +1247,7 @@ impl<'a, const DEPTH: usize, const N: usize> Builder<'_, 'a, DEPTH, N> {
         let segment = self.segment;
         // The run's triangles go to the segment through one adder, set up
         // once (`TriangleRun`), not one for each.
-        store.triangle_run(segment, state.clip(), |run| {
+        store.triangle_run(segment, state.clip(), true, |run| {
             let mut out = SegmentOut {
                 to: To::Run(run),
                 labels,

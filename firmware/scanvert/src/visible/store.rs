@@ -407,7 +407,7 @@ pub struct TrapezoidStore<'a> {
     live: u32,
     live_faces: u32,
     /// Some face added may have left its depth for later
-    /// ([`Depth::LATER`]): a run of triangles added one.
+    /// ([`Depth::LATER`]): a mesh's run of triangles added one.
     later: bool,
 }
 
@@ -797,6 +797,7 @@ impl<'a> TrapezoidStore<'a> {
             key,
             segment: s as u16,
             clip,
+            later: false,
         };
         let n = add.polygon(self.edges, it, lift);
         [
@@ -832,7 +833,7 @@ impl<'a> TrapezoidStore<'a> {
         color: Rgb888,
         clip: &ClipRect,
     ) -> Result<u32, StoreError> {
-        self.triangle_run(s, clip, |r| r.triangle(v, color))
+        self.triangle_run(s, clip, false, |r| r.triangle(v, color))
     }
 
     /// `clip` cut to the store's frame (a clip is within 0..=4096):
@@ -954,6 +955,7 @@ impl<'a> TrapezoidStore<'a> {
             key,
             segment: s as u16,
             clip,
+            later: false,
         };
         let n = poly.cut_triangles(|l, r| add.trapezoid(l, r));
         [
@@ -979,10 +981,15 @@ impl<'a> TrapezoidStore<'a> {
     /// `add_triangle` a triangle. After a triangle's error (other than
     /// [`StoreError::Segment`]) the segment is emptied, as `add_triangle`
     /// empties it; `f` is expected to add nothing after one.
+    ///
+    /// `later`: the triangles' faces leave their depth for later
+    /// ([`Depth::LATER`]), as a mesh's do: the sweep works a depth out
+    /// only where the face shares a row's pixels with another.
     pub(crate) fn triangle_run<R>(
         &mut self,
         s: usize,
         clip: &ClipRect,
+        later: bool,
         f: impl FnOnce(&mut TriangleRun<'_>) -> R,
     ) -> R {
         let clip = self.frame_clip(clip);
@@ -1009,6 +1016,7 @@ impl<'a> TrapezoidStore<'a> {
                 key: 0,
                 segment: s as u16,
                 clip,
+                later,
             },
             edges: &mut *self.edges,
             segments: &mut *self.segments,
@@ -1045,7 +1053,7 @@ impl<'a> TrapezoidStore<'a> {
         self.live += added;
         seg.face_count += faces;
         self.live_faces += faces;
-        self.later |= faces > 0;
+        self.later |= later && faces > 0;
         if seg.hidden {
             // The newest trapezoids head the segment's chain.
             let mut t = seg.traps;
@@ -1127,6 +1135,9 @@ struct Adding<'p, P = &'p Plane> {
     key: u32,
     segment: u16,
     clip: ClipRect,
+    /// A triangle's cut ([`TriangleRun`] of a mesh) leaves its face's
+    /// depth for later ([`Depth::LATER`]).
+    later: bool,
 }
 
 impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
@@ -1135,20 +1146,13 @@ impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
     #[inline(always)]
     fn trapezoid(&mut self, l: Side, r: Side) -> Result<(), StoreError> {
         let ((l, top, end), (r, _, _)) = (l.parts(), r.parts());
-        self.between::<false>(l, r, top, end)
+        self.between(l, r, top, end)
     }
 
     /// [`Adding::trapezoid`] from the edges' ends and the rows `top..end`
-    /// (of the clip). `LATER`: the face's depth is left for later
-    /// ([`Depth::LATER`]).
+    /// (of the clip).
     #[inline(always)]
-    fn between<const LATER: bool>(
-        &mut self,
-        l: Ends,
-        r: Ends,
-        top: u16,
-        end: u16,
-    ) -> Result<(), StoreError> {
+    fn between(&mut self, l: Ends, r: Ends, top: u16, end: u16) -> Result<(), StoreError> {
         let Adding {
             traps,
             rows,
@@ -1166,7 +1170,7 @@ impl<P: core::borrow::Borrow<Plane>> Adding<'_, P> {
             if let Some(slot) = faces.get_mut(f as usize) {
                 *slot = Face {
                     plane: *self.plane.borrow(),
-                    depth: if LATER {
+                    depth: if self.later {
                         Depth::LATER
                     } else {
                         self.plane.borrow().depth()
@@ -1395,7 +1399,7 @@ impl TriangleRun<'_> {
         };
         add.own = rgb_bits(color);
         add.key = key;
-        let n = cut.cut(|l, r, top, end| add.between::<true>(l, r, top, end));
+        let n = cut.cut(|l, r, top, end| add.between(l, r, top, end));
         self.faces += (add.face != NONE) as u32;
         if n.is_err() {
             self.failed = true;
@@ -1854,7 +1858,7 @@ mod tests {
                     break;
                 }
             }
-            let got = b.triangle_run(s, &clip, |r| {
+            let got = b.triangle_run(s, &clip, false, |r| {
                 for (k, t) in tris.iter().enumerate() {
                     match poly(k) {
                         true => r.polygon(*t, color(k), 0)?,

@@ -1400,16 +1400,20 @@ fn work_out_depths(act: &mut [Active], k: usize, store: &TrapezoidStore<'_>, y: 
         return;
     }
     let k = k.min(act.len());
-    let (mut far, mut of) = (i32::MIN, 0);
+    // The one of the farthest `r`, and whether its depth is still left
+    // for later (its `Hot` holds `zx` as its entry does).
+    let (mut far, mut of, mut of_later) = (i32::MIN, 0, false);
     let mut p = 0;
     while p < k {
-        let (l, r) = (act[p].hot.l, act[p].hot.r);
+        let h = &act[p].hot;
+        let (l, r, mut later) = (h.l, h.r, h.zx == Depth::LATER.zx);
         if l < r {
-            if l < far {
+            if l < far && (later || of_later) {
                 work_out_pair(act, (p, of), store, y);
+                (later, of_later) = (false, false);
             }
             if r > far {
-                (far, of) = (r, p);
+                (far, of, of_later) = (r, p, later);
             }
         }
         p += 1;

@@ -108,8 +108,8 @@ impl Pools {
 
     /// A `w × h` store of `polys`, in segment 0, face `k` in a colour of
     /// its own (so that no two faces merge). Every other triangle is
-    /// added as a mesh's are ([`TrapezoidStore::add_triangle`]: its depth
-    /// left for later), so that each scene has both kinds of face.
+    /// added as a mesh's are (a run of triangles whose depth is left for
+    /// later), so that each scene has both kinds of face.
     pub(super) fn store<P: AsRef<[Vertex3]>>(
         &mut self,
         polys: &[P],
@@ -132,7 +132,9 @@ impl Pools {
         for (k, p) in polys.iter().enumerate() {
             let c = Rgb888::new((k >> 8) as u8 + 1, k as u8, 7);
             match p.as_ref() {
-                &[a, b, d] if k % 2 == 1 => store.add_triangle(0, [a, b, d], c, &clip),
+                &[a, b, d] if k % 2 == 1 => {
+                    store.triangle_run(0, &clip, true, |r| r.triangle([a, b, d], c))
+                }
                 v => store.add_polygon(0, v.iter().copied(), c, &clip),
             }
             .unwrap();
