@@ -108,7 +108,7 @@
 //! The nearest trapezoid at pixel `(i, j)` is the one whose face's plane
 //! has the smallest depth `z` at the pixel centre; at equal depth, the
 //! face with the lower key ([`Face::key`]: lower segment, then earlier
-//! polygon). Depths are first compared in fixed point ([`Depth`](crate::visible::trapezoid::Depth));
+//! polygon). Depths are first compared in fixed point ([`Depth`]);
 //! when two are closer than [`DEPTH_TOLERANCE`], where rounding could
 //! decide, they are compared exactly ([`Plane::cmp_at`](crate::visible::trapezoid::Plane::cmp_at)). So every
 //! comparison is exact.
