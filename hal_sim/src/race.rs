@@ -264,11 +264,11 @@ impl CostModel {
     /// error below.
     ///
     /// Against the 1,992 measured rows the model's error is 7.9 % on
-    /// average and 49.1 % at worst (the 2D lists' rows: 1.9 % to 10.6 %
+    /// average and 48.9 % at worst (the 2D lists' rows: 1.9 % to 10.5 %
     /// on average, the 3D lists' 14.9 % and 12.6 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
-    /// of an instruction a pixel); a 2D polygon live on the row costs 85
+    /// of an instruction a pixel); a 2D polygon live on the row costs 86
     /// instructions besides its span, the edge table's live set 21 a
     /// word of 32 polygons on every row (W3's 313 words), and a run
     /// moved by an insertion 5. Preparing a list is fitted to
@@ -276,20 +276,20 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 975,
+        row: 965,
         width: 2,
-        span: 3223,
+        span: 3205,
         pixel: -3,
-        run: 527,
-        entered: 7203,
-        resolved: 1699,
+        run: 530,
+        entered: 7206,
+        resolved: 1714,
         label: 0,
-        live: 1362,
-        word: 343,
+        live: 1380,
+        word: 342,
         moved: 78,
-        frame: 116863,
-        command: 11081,
-        trapezoid: 554,
+        frame: 117352,
+        command: 11075,
+        trapezoid: 559,
     };
 
     /// Instructions of a row of `work`, at least 1.

@@ -1399,7 +1399,13 @@ impl TriangleRun<'_> {
         };
         add.own = rgb_bits(color);
         add.key = key;
-        let n = cut.cut(|l, r, top, end| add.between(l, r, top, end));
+        // Inlined into both bands of the cut: as a call (LLVM's choice
+        // for a closure called twice) it cost the mesh frames 7 k to 11 k
+        // instructions more on the Cortex-M4 (`docs/performance-log.md`).
+        let n = cut.cut(
+            #[inline(always)]
+            |l, r, top, end| add.between(l, r, top, end),
+        );
         self.faces += (add.face != NONE) as u32;
         if n.is_err() {
             self.failed = true;
