@@ -147,7 +147,7 @@ where
 /// elsewhere a loop of groups of 16; either ends with a last group that
 /// overlaps the one before it.
 #[inline(always)]
-fn fill_words(run: &mut [u32], v: u32) {
+pub(crate) fn fill_words(run: &mut [u32], v: u32) {
     let n = run.len();
     if n >= 16 {
         let group = [v; 16];

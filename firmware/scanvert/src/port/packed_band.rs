@@ -43,7 +43,7 @@
 
 use crate::port::band::BandError;
 use crate::port::draw_target::{self, Window};
-use crate::port::packed::{fill_pixels, PackedFrameBuffer};
+use crate::port::packed::{fill_pixels, fill_words, PackedFrameBuffer};
 use crate::port::runs::Rows;
 use crate::port::{RowRun, Span, SpanTarget};
 use core::convert::Infallible;
@@ -128,9 +128,13 @@ pub(crate) fn fill_runs(words: &mut [u32], mut a: usize, runs: impl Iterator<Ite
             }
             a += 1;
         }
+        // `a` is even here, and so is `whole`: the run's words are
+        // whole, with no half to merge at either end.
         let whole = b & !1;
         if a < whole {
-            fill_pixels(words, a, whole, v);
+            if let Some(run) = words.get_mut(a / 2..whole / 2) {
+                fill_words(run, v);
+            }
         }
         low = v & 0x0000_ffff;
         a = b;

@@ -237,11 +237,12 @@ impl Edge {
     }
 
     /// `(x + 16, err + 1)` of [`Edge::new`]'s first row, `m ≥ 0x7F00 + ½`
-    /// units below the upper end, in 64 bits (|num| < 2³³, see `fixed`).
-    /// Out of line: only an edge the clip cut more than 2,032 rows below
-    /// its top takes it, and its library division, inlined into
-    /// [`Edge::new`], takes registers and a stack slot there from every
-    /// edge.
+    /// units below the upper end, in 64 bits (|num| < 2³³, see `fixed`);
+    /// [`Edge::on_rows`]'s for any `m` outside `0..0x7F00` (its rows are
+    /// within ±2048, so |num| < 2³³ too). Out of line: only an edge the
+    /// clip cut more than 2,032 rows below its top takes it, and its
+    /// library division, inlined into [`Edge::new`], takes registers and
+    /// a stack slot there from every edge.
     #[cold]
     #[inline(never)]
     fn first_row_wide(x0: i32, m: i32, dx: i32, dy: i32) -> (i32, i32) {
@@ -395,21 +396,10 @@ impl Edge {
             let (c, e) = ceil_div_rem1_i32(m * dx, dy);
             return Edge::stepping(x0 + (16 - HALF) + c, e, dx, dy, (top, end));
         }
-        let num = (x0 - HALF) as i64 * dy as i64 + m as i64 * dx as i64;
-        // ⌈num/dy⌉ from a truncating division (dy > 0), written out: the
-        // `fixed` helper is not inlined here.
-        let (x, err) = match i32::try_from(num) {
-            Ok(n) => {
-                let q = n / dy;
-                let x = if n > 0 && q * dy != n { q + 1 } else { q };
-                (x, x.wrapping_mul(dy).wrapping_sub(n))
-            }
-            Err(_) => {
-                let x = ceil_div_i64(num, dy as i64);
-                (x as i32, (x * dy as i64 - num) as i32)
-            }
-        };
-        Edge::stepping(x + 16, err + 1, dx, dy, (top, end))
+        // A first row far below the upper end (or above it): `Edge::new`'s
+        // 64-bit path, out of line.
+        let (x16, e) = Edge::first_row_wide(x0, m, dx, dy);
+        Edge::stepping(x16, e, dx, dy, (top, end))
     }
 
     /// Moves the stepper on to the rows `top..end` of the same edge that
