@@ -380,11 +380,9 @@ fn sine_and_cosine_of_every_angle() {
 #[test]
 fn arctangent_of_many_vectors() {
     let mut worst = 0i32;
-    let mut rng = 0x9e37_79b9_7f4a_7c15u64;
+    let mut gen = testkit::rng::Rng(0x9e37_79b9_7f4a_7c15);
     for i in 0..100_000 {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
+        let rng = gen.next_u64();
         let bits = 1 + (i % 62) as u32;
         let x = (rng as i64) >> (63 - bits);
         let y = ((rng >> 17) as i64 ^ (rng << 40) as i64) >> (63 - bits);
@@ -642,13 +640,8 @@ fn projection_is_within_its_documented_error() {
             cy: 128.0,
         },
     ];
-    let mut rng = 0x1234_5678_9abc_def0u64;
-    let mut next = move || {
-        rng ^= rng << 13;
-        rng ^= rng >> 7;
-        rng ^= rng << 17;
-        (rng >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = testkit::rng::Rng(0x1234_5678_9abc_def0);
+    let mut next = move || (rng.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
     let (mut worst_xy, mut worst_z) = (0.0f64, 0.0f64);
     for cam in cams {
         let cam = cam.quantised();

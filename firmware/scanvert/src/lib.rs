@@ -118,6 +118,9 @@ pub mod prelude {
 }
 
 #[cfg(test)]
+mod rng;
+
+#[cfg(test)]
 mod tests {
     use core::convert::Infallible;
 

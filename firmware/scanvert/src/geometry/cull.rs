@@ -192,7 +192,7 @@ mod tests {
             M - 1,
             M,
         ];
-        let mut next = crate::geometry::xorshift64(0x2545_f491_4f6c_dd1d);
+        let mut next = crate::rng::xorshift64(0x2545_f491_4f6c_dd1d);
         for p in [persp(), ortho()] {
             for _ in 0..20_000 {
                 let mut pick = || {
@@ -224,7 +224,7 @@ mod tests {
     /// normals whose components sit about multiples of 2³¹.
     #[test]
     fn split_facing_test_is_the_wide_one() {
-        let mut next = crate::geometry::xorshift64(0x9e37_79b9_7f4a_7c15);
+        let mut next = crate::rng::xorshift64(0x9e37_79b9_7f4a_7c15);
         let p = persp();
         for _ in 0..200_000 {
             let r = next();
@@ -302,11 +302,9 @@ mod tests {
 
     #[test]
     fn agrees_with_the_first_corner_when_it_is_convex() {
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rng = crate::rng::xorshift64(0x2545_f491_4f6c_dd1d);
         let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
+            let seed = rng();
             let v = ((seed >> 20) as i64 % (1 << 30)) >> (seed % 29);
             if seed & 32 == 0 {
                 v

@@ -226,7 +226,7 @@ mod tests {
                 }
             }))
         }
-        let mut next = crate::geometry::xorshift64(0x9e37_79b9_7f4a_7c15);
+        let mut next = crate::rng::xorshift64(0x9e37_79b9_7f4a_7c15);
         let edges = [
             0,
             1,

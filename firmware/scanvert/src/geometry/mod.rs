@@ -811,18 +811,6 @@ fn has_area(v: &[Vertex3]) -> bool {
     })
 }
 
-/// The tests' pseudo-random numbers: xorshift64 (13, 7, 17) from `seed`,
-/// which must not be 0.
-#[cfg(test)]
-fn xorshift64(mut seed: u64) -> impl FnMut() -> u64 {
-    move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        seed
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -944,7 +932,7 @@ mod tests {
         // and behind the eye; each through `polygon_view` and twice
         // through `mesh_triangle` (the second time from the kept output
         // vertices), in both projections.
-        let mut next = crate::geometry::xorshift64(0x2545_f491_4f6c_dd1d);
+        let mut next = crate::rng::xorshift64(0x2545_f491_4f6c_dd1d);
         let mut rnd = move |n: i32| (next() % n as u64) as i32;
         let q = Q16::from_int;
         let ortho = Orthographic::new(q(10), q(1), q(100)).unwrap();

@@ -368,11 +368,9 @@ mod tests {
             assert!(r * r <= v as u64 && (r + 1) * (r + 1) > v as u64, "{v}");
         }
         // Around every power of two and every square, and at random.
-        let mut seed = 0x2545_f491u32;
+        let mut next = crate::rng::xorshift32(0x2545_f491);
         for i in 0..2_000_000u32 {
-            seed ^= seed << 13;
-            seed ^= seed >> 17;
-            seed ^= seed << 5;
+            let seed = next();
             let r0 = i % 65536;
             for v in [
                 seed,

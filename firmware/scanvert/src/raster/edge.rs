@@ -508,13 +508,9 @@ mod tests {
     use super::*;
 
     /// A xorshift generator from `seed`: each call a value in `-m..m`.
-    fn xorshift(mut s: u32) -> impl FnMut(i32) -> i32 {
-        move |m| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            (s % (2 * m as u32)) as i32 - m
-        }
+    fn xorshift(s: u32) -> impl FnMut(i32) -> i32 {
+        let mut next = crate::rng::xorshift32(s);
+        move |m| (next() % (2 * m as u32)) as i32 - m
     }
 
     /// `⌈x − ½⌉` in pixels at row `j`, straight from the definition with

@@ -1137,13 +1137,8 @@ mod tests {
     /// random clip window: every pixel is the rule's.
     #[test]
     fn fill_matches_the_pixel_rule_for_any_polygon() {
-        let mut s = 0x2545_f491u32;
-        let mut rnd = |m: u32| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            s % m
-        };
+        let mut next = crate::rng::xorshift32(0x2545_f491);
+        let mut rnd = |m: u32| next() % m;
         let mut px = [BinaryColor::Off; W as usize * H as usize];
         let mut slots = [Edge::EMPTY; 12];
         for _ in 0..1500 {
@@ -1191,13 +1186,8 @@ mod tests {
     /// pixel is the rule's.
     #[test]
     fn many_edges_out_of_order_match_the_pixel_rule() {
-        let mut s = 0x1357_9bdfu32;
-        let mut rnd = |m: u32| {
-            s ^= s << 13;
-            s ^= s >> 17;
-            s ^= s << 5;
-            s % m
-        };
+        let mut next = crate::rng::xorshift32(0x1357_9bdf);
+        let mut rnd = |m: u32| next() % m;
         let mut px = [BinaryColor::Off; W as usize * H as usize];
         let mut slots = [Edge::EMPTY; 200];
         let clip = ClipRect::full(W, H);
@@ -1335,14 +1325,11 @@ mod tests {
 
     #[test]
     fn heap_sort_sorts() {
-        let mut s = 0x9e37_79b9u32;
+        let mut next = crate::rng::xorshift32(0x9e37_79b9);
         for n in 0..70 {
             let mut v = [0u32; 70];
             for x in v.iter_mut().take(n) {
-                s ^= s << 13;
-                s ^= s >> 17;
-                s ^= s << 5;
-                *x = s % (1 + n as u32 / 2);
+                *x = next() % (1 + n as u32 / 2);
             }
             let mut want = v;
             want[..n].sort_unstable();
