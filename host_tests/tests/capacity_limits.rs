@@ -41,31 +41,20 @@ fn render(name: &str, text: &str) -> (PathBuf, Result<String, String>) {
     (png, r.map_err(|e| e.to_string()))
 }
 
-/// xorshift32.
-struct Rng(u32);
-impl Rng {
-    fn below(&mut self, m: u32) -> u32 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 17;
-        self.0 ^= self.0 << 5;
-        self.0 % m
-    }
-}
-
 /// A `poly3` of `n` vertices zigzagging between the left and the right
 /// side of a `size × size` frame at random heights (in 1/16 px): every
 /// edge crosses most others, so it is cut into many trapezoids. Wound
 /// counter-clockwise as displayed, so it is drawn.
-fn zigzag(n: usize, size: i32, seed: u32) -> String {
-    let mut rng = Rng(seed);
+fn zigzag(n: usize, size: i32, seed: u64) -> String {
+    let mut rng = testkit::rng::Rng(seed);
     let mut v: Vec<(i32, i32)> = (0..n)
         .map(|k| {
             let x = if k % 2 == 0 {
-                rng.below(40) as i32
+                rng.below(40)
             } else {
-                size - 1 - rng.below(40) as i32
+                size - 1 - rng.below(40)
             };
-            (16 * x, rng.below(16 * size as u32) as i32)
+            (16 * x, rng.below(16 * size as u32))
         })
         .collect();
     let area: i64 = (0..n)
