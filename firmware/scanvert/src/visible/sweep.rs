@@ -364,6 +364,25 @@ impl Entry {
         Entry::with(t, d, color)
     }
 
+    /// Sets `self` to [`Entry::from`] of `t`, field by field: each edge's
+    /// stepper is made where it is kept, not on the stack and copied.
+    #[inline(always)]
+    fn set_from(&mut self, t: &Trapezoid, store: &TrapezoidStore<'_>) {
+        let (d, color) = store.face(t.face).map_or((Default::default(), 0), |f| {
+            (f.depth_or_later(), crate::color::list_word(f.color_bits()))
+        });
+        self.left = t.left();
+        self.right = t.right();
+        self.z = d.at(0, t.top());
+        self.zx = d.zx;
+        self.zy = d.zy;
+        self.color = color;
+        self.face = t.face;
+        self.x0 = t.x0;
+        self.x1 = t.x1;
+        self.trap = NONE;
+    }
+
     /// [`Entry::from`] with the face's depth `d` and colour `color` (a
     /// [`list_word`](crate::color::list_word)) given.
     #[inline(always)]
@@ -980,7 +999,7 @@ impl Sweep {
                 nf -= 1;
                 let slot = act[nf].free;
                 let e = &mut act[slot as usize].entry;
-                *e = Entry::from(tr, store);
+                e.set_from(tr, store);
                 e.trap = t;
                 let h = e.hot(slot);
                 act[k].hot = h;
@@ -998,7 +1017,12 @@ impl Sweep {
                 // Trapezoids that entered at the end, or edges that
                 // crossed, leave the row out of order: sorted, it may
                 // still be side by side.
-                let mut row = side_by_side(&act[..k], width);
+                // Those that entered at the end are seldom in order: then
+                // the row is sorted first, and tested once.
+                let mut row = match k > stepped {
+                    true => Row::Unsorted,
+                    false => side_by_side(&act[..k], width),
+                };
                 if row != Row::Overlapping {
                     if row == Row::Unsorted {
                         if k > self.many.0 {
