@@ -2106,7 +2106,9 @@ where
 /// edge from the top one to the bottom one and the two short ones, with
 /// no edge slots, no outline and no walk. What [`Polygon::load`] and
 /// [`Polygon::cut_triangles`] make of the same vertices and clip: the
-/// same plane, the same trapezoids in the same order (the unit test
+/// same plane, the same trapezoids in the same order, but for a first
+/// band of one row whose centre passes through the top vertex, which
+/// has no pixel and is left out (the unit test
 /// `direct_triangle_cut_is_the_polygons` compares them).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TriangleCut {
@@ -2131,9 +2133,11 @@ pub(crate) struct TriangleCut {
 
 impl TriangleCut {
     /// The cut of the triangle `v` (in polygon order) under `clip`, or
-    /// `None` where [`cut_triangle`] would decline (collinear or repeated
-    /// vertices, a first band of one row through the top vertex): the
-    /// polygon's cut is then needed.
+    /// `None` where `S` below is zero, which it is not for a triangle
+    /// with a plane (`|S| = c`): the polygon's cut is then taken. A
+    /// triangle whose first band is one row through its top vertex,
+    /// which [`cut_triangle`] leaves to the walk, is cut here without
+    /// that band (it has no pixel).
     ///
     /// The plane is [`Outline::of`]'s: `(v₁ − v₀) × (v₂ − v₀)`, turned
     /// so that `c > 0`, through `v₀`. Of the edges set up by
@@ -2208,9 +2212,16 @@ impl TriangleCut {
         }
         let split = row(mv.1).max(top).min(end);
         let s = m(mv.0 - t.0, b.1 - t.1) - m(b.0 - t.0, mv.1 - t.1);
-        if s == 0 || (split > top && (split - 1) * ONE + HALF == t.1) {
+        if s == 0 {
             return None;
         }
+        // A first band of one row whose centre passes through T: both of
+        // its edges cross that row at T, so it has no pixel, and it is
+        // left out (the walk emits it, in an order of its own).
+        let top = match split > top && (split - 1) * ONE + HALF == t.1 {
+            true => split,
+            false => top,
+        };
         let ends = |p: (i32, i32), q: (i32, i32)| Ends {
             x0: p.0 as i16,
             y0: p.1 as i16,
@@ -2839,11 +2850,19 @@ mod tests {
     fn direct_triangle_cut_is_the_polygons() {
         let mut rng = Rng(0x51de_7a0e);
         let mut slots = [EdgeSlot::EMPTY; 4];
-        let (mut direct, mut declined) = (0u32, 0u32);
+        let (mut direct, mut declined, mut left_out) = (0u32, 0u32, 0u32);
         let side = Side {
             ends: Ends::default(),
             top: 0,
             end: 0,
+        };
+        // A band of one row whose edges both start at the centre of that
+        // row (so cross it at one point): it has no pixel.
+        let no_pixel = |(l, r): &(Side, Side)| {
+            let (a, b) = (&l.ends, &r.ends);
+            l.top + 1 == l.end
+                && (a.x0, a.y0) == (b.x0, b.y0)
+                && a.y0 as i32 == l.top as i32 * ONE + HALF
         };
         for case in 0..300_000u32 {
             let (poly, clip) = random_triangle(&mut rng, case);
@@ -2891,10 +2910,19 @@ mod tests {
                     .unwrap();
                 assert_eq!(n as usize, ng);
             }
-            assert_eq!(&got[..ng], &want[..nw], "case {case}: {poly:?} {clip:?}");
+            // The walk's first band of one row through the top vertex,
+            // which the direct cut leaves out.
+            let skip = (nw > ng && no_pixel(&want[0])) as usize;
+            left_out += skip as u32;
+            assert_eq!(
+                &got[..ng],
+                &want[skip..nw],
+                "case {case}: {poly:?} {clip:?}"
+            );
         }
         assert!(direct > 200_000, "{direct} {declined}");
-        assert!(declined > 2_000, "{direct} {declined}");
+        assert_eq!(declined, 0, "{direct} {declined}");
+        assert!(left_out > 2_000, "{direct} {left_out}");
     }
 
     /// `(1024·cos, 1024·sin)` of `a` tenths of a degree, near enough for
