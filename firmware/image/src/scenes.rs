@@ -221,7 +221,7 @@ pub mod meshes {
     /// Mesh vertex slots: the most `v`s of a list.
     pub const VERTEX_SLOTS: usize = 642;
     /// Trapezoid slots.
-    pub const TRAPEZOID_SLOTS: usize = 945;
+    pub const TRAPEZOID_SLOTS: usize = 943;
     /// Face slots.
     pub const FACE_SLOTS: usize = 502;
     /// Rows of the scan-line index.
@@ -229,7 +229,7 @@ pub mod meshes {
     /// Edge slots of the store.
     pub const EDGE_SLOTS: usize = 9;
     /// Active-list entries: the most trapezoids on one row.
-    pub const ACTIVE_SLOTS: usize = 63;
+    pub const ACTIVE_SLOTS: usize = 62;
     /// Runs of one row.
     pub const RUN_SLOTS: usize = 240;
 

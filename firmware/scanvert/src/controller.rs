@@ -93,7 +93,7 @@ use crate::scene::{
     list_pipeline, Builder, Executed, Hook, ListState, Scene, SceneError, SceneMemory, Stage,
 };
 use crate::visible::store::StoreError;
-use crate::visible::trapezoid::{EdgeSlot, Polygon};
+use crate::visible::trapezoid::{EdgeSlot, Polygon, TriangleCut};
 use crate::visible::{Resolve, VisibleError, VisibleStats};
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -473,6 +473,38 @@ impl Out for Count<'_> {
                 capacity: POOL_LIMIT,
             })
         })?;
+        self.need.trapezoids += t;
+        self.need.faces += (t > 0) as usize;
+        Ok(())
+    }
+
+    /// As the store cuts a triangle (from its three vertices,
+    /// [`TriangleCut`]), with the same trapezoids.
+    fn triangle(
+        &mut self,
+        v: [crate::fixed::Vertex3; 3],
+        color: Rgb888,
+        clip: &ClipRect,
+    ) -> Result<(), SceneError> {
+        let cut = match self.edges.len() >= 3 {
+            true => TriangleCut::of(&v, clip),
+            false => None,
+        };
+        let Some(cut) = cut else {
+            return self.polygon(v, color, clip, false);
+        };
+        if cut.plane().is_none() {
+            return Ok(());
+        }
+        let t = match cut.cut(|_, _, _, _| Ok::<(), ()>(())) {
+            Ok(t) => t as usize,
+            Err(()) => 0,
+        };
+        if t > POOL_LIMIT - self.need.trapezoids {
+            return Err(SceneError::Store(StoreError::Trapezoids {
+                capacity: POOL_LIMIT,
+            }));
+        }
         self.need.trapezoids += t;
         self.need.faces += (t > 0) as usize;
         Ok(())

@@ -1320,8 +1320,9 @@ impl TriangleRun<'_> {
         self.triangle_polygon(v, color)
     }
 
-    /// [`triangle`](Self::triangle) of a triangle its cut does not decide
-    /// alone: loaded as a polygon whose outline is worked out at once
+    /// [`triangle`](Self::triangle) of a triangle its cut does not take
+    /// (a store of fewer than three edge slots, whose error the load
+    /// reports): loaded as a polygon whose outline is worked out at once
     /// ([`Outline::of`]). Out of line, so that the cut's code is left
     /// without it.
     #[inline(never)]
