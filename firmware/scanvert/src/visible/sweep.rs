@@ -1017,12 +1017,7 @@ impl Sweep {
                 // Trapezoids that entered at the end, or edges that
                 // crossed, leave the row out of order: sorted, it may
                 // still be side by side.
-                // Those that entered at the end are seldom in order: then
-                // the row is sorted first, and tested once.
-                let mut row = match k > stepped {
-                    true => Row::Unsorted,
-                    false => side_by_side(&act[..k], width),
-                };
+                let mut row = side_by_side(&act[..k], width);
                 if row != Row::Overlapping {
                     if row == Row::Unsorted {
                         if k > self.many.0 {
