@@ -443,6 +443,14 @@ struct Count<'e> {
     need: Needs,
 }
 
+impl Count<'_> {
+    /// A polygon cut into `t` trapezoids: a face with them, when any.
+    fn took(&mut self, t: usize) {
+        self.need.trapezoids += t;
+        self.need.faces += (t > 0) as usize;
+    }
+}
+
 impl Out for Count<'_> {
     fn polygon<I: IntoIterator<Item = crate::fixed::Vertex3>>(
         &mut self,
@@ -473,8 +481,7 @@ impl Out for Count<'_> {
                 capacity: POOL_LIMIT,
             })
         })?;
-        self.need.trapezoids += t;
-        self.need.faces += (t > 0) as usize;
+        self.took(t);
         Ok(())
     }
 
@@ -505,8 +512,7 @@ impl Out for Count<'_> {
                 capacity: POOL_LIMIT,
             }));
         }
-        self.need.trapezoids += t;
-        self.need.faces += (t > 0) as usize;
+        self.took(t);
         Ok(())
     }
 

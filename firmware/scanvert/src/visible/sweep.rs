@@ -358,19 +358,24 @@ impl Entry {
     /// on the Cortex-M4.
     #[inline(always)]
     fn from(t: &Trapezoid, store: &TrapezoidStore<'_>) -> Entry {
-        let (d, color) = store.face(t.face).map_or((Default::default(), 0), |f| {
-            (f.depth_or_later(), crate::color::list_word(f.color_bits()))
-        });
+        let (d, color) = Entry::face_of(t, store);
         Entry::with(t, d, color)
+    }
+
+    /// The depth (as stored: [`Depth::LATER`] when left for later) and
+    /// colour of `t`'s face, as an entry takes them.
+    #[inline(always)]
+    fn face_of(t: &Trapezoid, store: &TrapezoidStore<'_>) -> (Depth, u32) {
+        store.face(t.face).map_or((Default::default(), 0), |f| {
+            (f.depth_or_later(), crate::color::list_word(f.color_bits()))
+        })
     }
 
     /// Sets `self` to [`Entry::from`] of `t`, field by field: each edge's
     /// stepper is made where it is kept, not on the stack and copied.
     #[inline(always)]
     fn set_from(&mut self, t: &Trapezoid, store: &TrapezoidStore<'_>) {
-        let (d, color) = store.face(t.face).map_or((Default::default(), 0), |f| {
-            (f.depth_or_later(), crate::color::list_word(f.color_bits()))
-        });
+        let (d, color) = Entry::face_of(t, store);
         self.left = t.left();
         self.right = t.right();
         self.z = d.at(0, t.top());
