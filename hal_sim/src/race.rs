@@ -264,7 +264,7 @@ impl CostModel {
     /// error below.
     ///
     /// Against the 1,992 measured rows the model's error is 7.6 % on
-    /// average and 49.0 % at worst (the 2D lists' rows: 1.9 % to 10.8 %
+    /// average and 48.9 % at worst (the 2D lists' rows: 1.9 % to 10.8 %
     /// on average, the 3D lists' 15.0 % and 12.6 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
@@ -276,15 +276,15 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 918,
+        row: 914,
         width: 2,
-        span: 3210,
+        span: 3205,
         pixel: -3,
         run: 530,
-        entered: 7082,
-        resolved: 1710,
+        entered: 7227,
+        resolved: 1720,
         label: 0,
-        live: 1376,
+        live: 1382,
         word: 343,
         moved: 78,
         frame: 116863,
