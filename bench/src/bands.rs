@@ -472,21 +472,25 @@ pub fn run() -> String {
             include_bytes!("../../firmware/image/scenes/w3.scvl"),
             Resolve::default(),
         ),
-        ("poly3-layered: 170 faces", layered, Resolve::default()),
         (
-            "poly3-layered, painted (`Resolve::Paint`)",
+            "poly3-layered: 170 faces (the default: painted)",
             layered,
-            Resolve::Paint,
+            Resolve::default(),
         ),
         (
-            "poly3-tilted: 170 faces, interpenetrating",
+            "poly3-layered, crossing points (`Resolve::Crossing`)",
+            layered,
+            Resolve::Crossing,
+        ),
+        (
+            "poly3-tilted: 170 faces, interpenetrating (the default: painted)",
             tilted,
             Resolve::default(),
         ),
         (
-            "poly3-tilted, painted (`Resolve::Paint`)",
+            "poly3-tilted, crossing points (`Resolve::Crossing`)",
             tilted,
-            Resolve::Paint,
+            Resolve::Crossing,
         ),
     ];
     let mut md = String::new();
@@ -587,6 +591,7 @@ pub fn profile(rows: u16, passes: u32) {
     for _ in 0..passes {
         let mode = match std::env::var("BANDS_RESOLVE").as_deref() {
             Ok("paint") => Resolve::Paint,
+            Ok("crossing") => Resolve::Crossing,
             _ => Resolve::default(),
         };
         render(&mut mem, &list, &mut fb, (rows > 0).then_some(rows), mode);

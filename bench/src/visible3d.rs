@@ -91,6 +91,9 @@ pub struct SceneStats {
     pub version: Version,
     /// Faces per frame.
     pub faces: usize,
+    /// The contender the default resolve (`Resolve::Auto`) is: painting
+    /// or crossing points, as it settles for the scene's first view.
+    pub default: &'static str,
     /// Trapezoids per frame, mean over the views.
     pub trapezoids: f64,
     /// Covered pixels per frame (the reference's), mean.
@@ -106,7 +109,7 @@ pub struct SceneStats {
 }
 
 /// Contender names.
-pub const CROSSING: &str = "scanvert `Resolve::Crossing` (default)";
+pub const CROSSING: &str = "scanvert `Resolve::Crossing`";
 /// Contender name.
 pub const BISECT: &str = "scanvert `Resolve::Bisect`";
 /// Contender name.
@@ -540,6 +543,21 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
         .max()
         .unwrap_or(0);
     let most_faces = stores.iter().map(|s| s.face_count()).max().unwrap_or(0);
+    // The mode the default resolve (`Resolve::Auto`) takes for the first
+    // view, by its trapezoids' mean height.
+    let default = stores.first().map_or(CROSSING, |s| {
+        let (mut t, mut rows) = (0u32, 0u32);
+        for y in 0..s.height() {
+            for (_, tr) in s.starting_at(y) {
+                t += 1;
+                rows += (tr.end() - tr.top()) as u32;
+            }
+        }
+        match Resolve::Auto.settle(t, rows) {
+            Resolve::Paint => PAINT,
+            _ => CROSSING,
+        }
+    });
 
     // Error and statistics of both modes.
     let mut scan_err = Vec::new();
@@ -691,6 +709,7 @@ pub fn measure(scene: &Scene) -> (Vec<Row3>, SceneStats) {
     let st = SceneStats {
         version: scene.version,
         faces: scene.faces,
+        default,
         trapezoids,
         covered: covered_all as f64 / v,
         complexity: summed as f64 / covered_all.max(1) as f64,

@@ -189,12 +189,12 @@ echo "== checksums: target against host" >&2
 (cd "$root" && cargo run --locked --quiet -p scanvert-sim -- checksum firmware/image/scenes/*.scvl firmware/image/scenes/meshes/*.scvl) \
   | sort >"$out/host.sums"
 for name in arm arm-halfword $( [ "$have_rv" = yes ] && echo riscv ); do
-  # A list rendered again another way (`NAME-paint`) is checked against
-  # the host's checksum of NAME.
-  grep '^checksum ' "$out/$name.log" | sed 's/^\(checksum [^ ]*\)-paint /\1 /' \
+  # A list rendered again another way (`NAME-paint`, `NAME-crossing`) is
+  # checked against the host's checksum of NAME.
+  grep '^checksum ' "$out/$name.log" | sed -E 's/^(checksum [^ ]*)-(paint|crossing) /\1 /' \
     | sort -u >"$out/$name.sums"
   if [ "$(grep -c '^checksum ' "$out/$name.log")" -ne \
-    $(($(wc -l <"$out/$name.sums") + $(grep -c '^checksum [^ ]*-paint ' "$out/$name.log"))) ] \
+    $(($(wc -l <"$out/$name.sums") + $(grep -Ec '^checksum [^ ]*-(paint|crossing) ' "$out/$name.log"))) ] \
     || ! diff -u "$out/host.sums" "$out/$name.sums" >&2; then
     echo "$name: checksums differ from the host's" >&2
     exit 1
@@ -305,9 +305,10 @@ EOF
 
 The `poly3-*` lists (`testkit::poly3_scenes`) are 170 faces on a
 512 × 256 frame, parallel to the screen (*layered*) or tilted through
-each other (*tilted*), rendered with `Resolve::Crossing` and again with
-`Resolve::Paint` (the `-paint` rows: the same checksum; their spans and
-pixels count those painted over too). The counter is read where the
+each other (*tilted*), rendered with the default resolve
+(`Resolve::Auto`, which paints them far to near: their spans and pixels
+count those painted over too) and again with `Resolve::Crossing` (the
+`-crossing` rows: the same checksum). The counter is read where the
 controller's hook reports the end of a stage. *Spans*: those the sweep
 resolves. *Cut*: the 3D commands, each `poly3` into trapezoids. *Check*:
 `Workspace::check`. *Resolve + decode*: `visible::draw`, the background
@@ -328,9 +329,9 @@ two pixels a word in the panel's byte order) and no frame buffer,
 each band shipped nowhere in the timed render (as a DMA transfer costs
 the CPU nothing a pixel), then into the frame's checksum (the host's)
 in a second render, not timed. *Triangles*: the list's \`f\`s; *drawn*:
-those that reached the 3D layer. *Instructions* with
-\`Resolve::Crossing\`,
-*painted* with \`Resolve::Paint\`. Their statics (\`src/meshes.rs\`,
+those that reached the 3D layer. *Instructions* with the default
+resolve (\`Resolve::Auto\`, which takes the sweep's crossing points for
+these small trapezoids), *painted* with \`Resolve::Paint\`. Their statics (\`src/meshes.rs\`,
 \`MESH_*\`): $(thousands "$(symbols "$out/arm.elf" 'MESH_')") B, of which the band buffer
 $(thousands "$(field "$out/arm.log" meshes band)") B and the vertex table $(thousands "$(field "$out/arm.log" meshes vertices)") B.
 
@@ -338,6 +339,23 @@ $(thousands "$(field "$out/arm.log" meshes band)") B and the vertex table $(thou
 |---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|
 EOF
   mesh_table "$out/arm.log" "$out/riscv.log"
+  cat <<'EOF'
+
+#### Which resolve a frame takes
+
+The default resolve, `Resolve::Auto`, chooses once a frame between the
+sweep's crossing points (`Resolve::Crossing`) and painting far to near
+(`Resolve::Paint`), which draw the same pixels: it paints when the
+frame's trapezoids are at least `PAINT_FROM` rows tall on
+average. Painting pays for each trapezoid that enters (its tests against
+the live ones) and saves on each row of one. Instructions a frame, both
+ways, from the runs above (the 170-face lists in 16-row bands; the
+meshes as their table gives them); the default's are in bold:
+
+| list | trapezoids | crossing points | painted | the default took (its line's \`mode\`) |
+|---|--:|--:|--:|---|
+EOF
+  resolve_table "$out/arm.log" "$out/arm-bands.log"
   cat <<'EOF'
 
 #### Two pixels to a word
@@ -572,6 +590,40 @@ mesh_instructions() { # NAME LOG
   if [ -n "$v" ]; then thousands "$v"; else echo n/a; fi
 }
 
+# Crossing points against painting, for the lists drawn both ways: the
+# 170-face lists in 16-row bands (BANDS-LOG; the default paints them),
+# the meshes (ARM-LOG; the default takes crossing points).
+resolve_table() { # ARM-LOG BANDS-LOG
+  local name traps auto other mode
+  for name in poly3-layered poly3-tilted; do
+    traps=$(frame_key "$1" "$name" trapezoids)
+    mode=$(frame_key "$1" "$name" mode)
+    auto=$(bands_of "$2" | awk -v n="$name" '$1 == n && $2 == 16 { print $3 }')
+    other=$(bands_of "$2" | awk -v n="$name-crossing" '$1 == n && $2 == 16 { print $3 }')
+    if [ "$mode" = paint ]; then
+      echo "| $name, 16-row bands | $(thousands "$traps") | $(thousands "$other") | **$(thousands "$auto")** | $mode |"
+    else
+      echo "| $name, 16-row bands | $(thousands "$traps") | **$(thousands "$auto")** | n/a | $mode |"
+    fi
+  done
+  mesh_frames "$1" | while read -r name frame rows vertices faces drawn traps active instr; do
+    case "$name" in *-paint) continue ;; esac
+    mode=$(frame_key "$1" "$name" mode)
+    if [ "$mode" = paint ]; then
+      echo "| $name | $(thousands "$traps") | n/a | **$(thousands "$instr")** | $mode |"
+    else
+      echo "| $name | $(thousands "$traps") | **$(thousands "$instr")** | $(mesh_instructions "$name-paint" "$1") | $mode |"
+    fi
+  done
+}
+
+# The value of KEY on the frame line of NAME in LOG.
+frame_key() { # LOG NAME KEY
+  awk -v n="$2" -v k="$3" '$1 == "frame" && $2 == n {
+    for (i = 3; i <= NF; i++) { split($i, kv, "="); if (kv[1] == k) print kv[2] }
+  }' "$1"
+}
+
 mesh_table() { # ARM-LOG RV-LOG
   mesh_frames "$1" | while read -r name frame rows vertices faces drawn traps active instr; do
     case "$name" in *-paint) continue ;; esac
@@ -716,8 +768,8 @@ headline() {
 |---|--:|
 | W1, 30 × 30 squares into a 256 × 256 frame | $(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print 168e6 * p / i }')" 0) polygons/s ($(fmt "$(awk -v p="$polys" -v i="$instr" 'BEGIN { print i / p }')" 0) instructions a polygon) |
 | 2D demo (\`scenes/demo.dl\`), 320 × 200 | $(fps "$(instructions_of demo "$out/arm.log")") frames/s |
-| 170 faces, 512 × 256, layered / tilted (\`Resolve::Crossing\`) | $(fps "$(instructions_of poly3-layered "$out/arm.log")") / $(fps "$(instructions_of poly3-tilted "$out/arm.log")") frames/s |
-| the same painted far to near (\`Resolve::Paint\`) | $(fps "$(instructions_of poly3-layered-paint "$out/arm.log")") / $(fps "$(instructions_of poly3-tilted-paint "$out/arm.log")") frames/s |
+| 170 faces, 512 × 256, layered / tilted (the default, \`Resolve::Auto\`: painted far to near) | $(fps "$(instructions_of poly3-layered "$out/arm.log")") / $(fps "$(instructions_of poly3-tilted "$out/arm.log")") frames/s |
+| the same with the sweep's crossing points (\`Resolve::Crossing\`) | $(fps "$(instructions_of poly3-layered-crossing "$out/arm.log")") / $(fps "$(instructions_of poly3-tilted-crossing "$out/arm.log")") frames/s |
 | 3D demo, 320 × 240, in 16-row bands with no frame buffer (8 frames) | $(fps "$hi") to $(fps "$lo") frames/s |
 | its static RAM (\`.data\` + \`.bss\`) | **$(thousands "$demo_ram") B** |
 | its static RAM and deepest stack ($(thousands "$demo_stack") B) | **$(thousands $((demo_ram + demo_stack))) B**: $(within $((demo_ram + demo_stack))) in 64 KiB |

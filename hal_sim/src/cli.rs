@@ -2,7 +2,7 @@
 //!
 //! ```text
 //! scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
-//!                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K] [--ring runs|scanvideo]]
+//!                  [--resolve auto|crossing|bisect|paint] [--race MHZ [--fifo K] [--ring runs|scanvideo]]
 //! scanvert asm SCENE.dl --out LIST.scvl
 //! scanvert disasm LIST.scvl [--out SCENE.dl]
 //! scanvert checksum SCENE...
@@ -42,7 +42,7 @@ use std::path::{Path, PathBuf};
 const USAGE: &str = "\
 usage:
   scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats] [--band-rows N]
-                  [--resolve crossing|bisect|paint] [--race MHZ [--fifo K] [--ring runs|scanvideo]]
+                  [--resolve auto|crossing|bisect|paint] [--race MHZ [--fifo K] [--ring runs|scanvideo]]
   scanvert asm SCENE.dl --out LIST.scvl
   scanvert disasm LIST.scvl [--out SCENE.dl]
   scanvert import MODEL --out LIST.dl [--size WxH] [--color #rrggbb]
@@ -67,7 +67,7 @@ Exit status: 0 done, 1 bad input, 2 bad command line, 3 output not written.";
 
 const HELP_RENDER: &str = "\
 usage: scanvert render SCENE --out IMAGE.png [--timing auto|reference|vga|256] [--stats]
-                      [--band-rows N] [--resolve crossing|bisect|paint]
+                      [--band-rows N] [--resolve auto|crossing|bisect|paint]
                       [--race MHZ [--fifo K] [--ring runs|scanvideo]]
 
 Renders SCENE, a display list in text or binary form, through the simulated display
@@ -99,8 +99,14 @@ options:
                        RAM. The image is the same, pixel for pixel
   --resolve MODE       how the 3D layer's visible surfaces are resolved; every mode
                        draws the same pixels (the nearest plane at each pixel centre):
-                         crossing  the default: the scan-line sweep, intersecting
-                                   spans split at the planes' crossing pixel
+                         auto      the default: paint where the frame's trapezoids
+                                   are 14 rows tall or more on average and the
+                                   target is memory (the bands of --band-rows),
+                                   else crossing (the simulated write port takes a
+                                   cycle for every pixel written, so a whole frame
+                                   written through it takes crossing)
+                         crossing  the scan-line sweep, intersecting spans split at
+                                   the planes' crossing pixel
                          bisect    the sweep, intersecting spans halved
                          paint     far to near into the frame, nearer faces over
                                    farther ones, depths compared only between faces
@@ -109,7 +115,8 @@ options:
                                    (with --band-rows, each band painted in turn)
   --stats              print what the graphic controller did: commands, polygons,
                        spans, pixels, clears; for 3D scenes also poly3s, faces
-                       (culled, clipped away), labels, trapezoids and runs
+                       (culled, clipped away), labels, trapezoids and runs, and
+                       how the visible surfaces were resolved
   --race MHZ           race the beam with no frame RAM: the refresh controller reads
                        each line from a ring of run-length rows that the graphic
                        controller, its CPU at MHZ megahertz (0.000001 to 100000, e.g.
@@ -639,16 +646,17 @@ fn parse(args: &[String]) -> Result<Args, CliError> {
             }
             "--stats" => a.stats = true,
             "--resolve" => {
-                let v = it
-                    .next()
-                    .ok_or_else(|| usage("--resolve needs a mode: crossing, bisect or paint"))?;
+                let v = it.next().ok_or_else(|| {
+                    usage("--resolve needs a mode: auto, crossing, bisect or paint")
+                })?;
                 a.resolve = Some(match v.as_str() {
+                    "auto" => Resolve::Auto,
                     "crossing" => Resolve::Crossing,
                     "bisect" => Resolve::Bisect,
                     "paint" => Resolve::Paint,
                     _ => {
                         return Err(usage(format_args!(
-                            "--resolve: unknown mode '{v}' (crossing, bisect or paint)"
+                            "--resolve: unknown mode '{v}' (auto, crossing, bisect or paint)"
                         )))
                     }
                 });
@@ -912,7 +920,7 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
                     s.clears
                 ) + &if s.poly3 + s.faces + s.culled + s.clipped_away + s.labels > 0 {
                     format!(
-                        "{}: {} poly3, {} faces ({} culled, {} clipped away), {} labels, {} trapezoids, {} runs, {} intersecting spans\n",
+                        "{}: {} poly3, {} faces ({} culled, {} clipped away), {} labels, {} trapezoids, {} runs, {} intersecting spans, resolved by {}\n",
                         shown(&path),
                         s.poly3,
                         s.faces,
@@ -921,7 +929,12 @@ fn run_command(args: &[String], warn: &mut dyn FnMut(&str)) -> Result<String, Cl
                         s.labels,
                         s.trapezoids,
                         s.visible.runs,
-                        s.visible.intersecting
+                        s.visible.intersecting,
+                        match s.visible.mode {
+                            Resolve::Paint => "painting far to near",
+                            Resolve::Bisect => "bisection",
+                            _ => "crossing points",
+                        }
                     )
                 } else {
                     String::new()

@@ -985,7 +985,9 @@ pub(crate) fn render(
     let mut memory = crate::memory::ListMemory::for_bands(&list).map_err(|e| {
         crate::cli::prepare_error(scene, scanvert::controller::PrepareError::Render(e))
     })?;
-    let (mut controller, table) = memory.band_parts();
+    // The cost model is fitted to rows the sweep resolves (crossing points).
+    let (controller, table) = memory.band_parts();
+    let mut controller = controller.with_resolve(scanvert::visible::Resolve::Crossing);
     let bands = controller
         .bands(&list, table)
         .map_err(|e| crate::cli::prepare_error(scene, e))?;
@@ -1466,7 +1468,8 @@ impl Producer for ListRows<'_> {
 /// cannot be rendered (a capacity it needs is refused).
 pub fn list_work(list: &DisplayList<'_>) -> Option<(PrepareWork, Vec<RowWork>)> {
     let mut memory = crate::memory::ListMemory::for_bands(list).ok()?;
-    let (mut controller, table) = memory.band_parts();
+    let (controller, table) = memory.band_parts();
+    let mut controller = controller.with_resolve(scanvert::visible::Resolve::Crossing);
     let mut rows = ListRows::new(controller.bands(list, table).ok()?, list);
     let mut runs = Vec::new();
     let work = (0..rows.size().1).map(|y| rows.row(y, &mut runs)).collect();
@@ -1564,7 +1567,7 @@ pub(crate) fn demo(
             if failure.is_some() {
                 return;
             }
-            let shown = match scene.bands(Resolve::default(), background, DEFAULT_FONT) {
+            let shown = match scene.bands(Resolve::Crossing, background, DEFAULT_FONT) {
                 Ok(bands) => race_in(
                     SceneRows::new(bands, (WIDTH, HEIGHT)),
                     timing,
@@ -1621,7 +1624,7 @@ pub fn demo_costs(
         frames,
         |scene, procs| scene.update(procs),
         |scene, _, _, background| {
-            if let Ok(bands) = scene.bands(Resolve::default(), background, DEFAULT_FONT) {
+            if let Ok(bands) = scene.bands(Resolve::Crossing, background, DEFAULT_FONT) {
                 let r = race(
                     SceneRows::new(bands, (WIDTH, HEIGHT)),
                     &timing,

@@ -416,6 +416,9 @@ impl<'a> CoSimulation<'a> {
 impl SpanTarget for CoSimulation<'_> {
     type Color = Rgb565;
     type Error = Infallible;
+    /// The write port takes a cycle for every pixel written (the
+    /// reference unit's 50 Mpixel/s): a pixel written again costs its time.
+    const OVERDRAW_IS_CHEAP: bool = false;
 
     fn size(&self) -> (u16, u16) {
         (self.ram.width(), self.ram.height())

@@ -40,7 +40,7 @@ fn differs(s: &Scene, rows: u16, mode: Resolve) -> Option<(usize, usize)> {
 
 /// The modes band renders are checked in: the default sweep, and
 /// painting each band in turn.
-const MODES: [Resolve; 2] = [Resolve::Crossing, Resolve::Paint];
+const MODES: [Resolve; 3] = [Resolve::Crossing, Resolve::Paint, Resolve::Auto];
 
 fn all_heights_match(s: &Scene) {
     let h = s.list().height();

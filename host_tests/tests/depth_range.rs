@@ -17,7 +17,12 @@ use std::path::PathBuf;
 use testkit::reference::covers;
 use testkit::reference3d::Poly3;
 
-const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
+const MODES: [Resolve; 4] = [
+    Resolve::Bisect,
+    Resolve::Crossing,
+    Resolve::Paint,
+    Resolve::Auto,
+];
 
 /// The Q12.4 depth range in units.
 const Z_MIN: i128 = -32768;

@@ -28,7 +28,12 @@ use scanvert_sim::memory::SceneHeap;
 use std::path::Path;
 use testkit::reference3d::{drawn, resolve_lifted, Poly3};
 
-const MODES: [Resolve; 3] = [Resolve::Crossing, Resolve::Bisect, Resolve::Paint];
+const MODES: [Resolve; 4] = [
+    Resolve::Crossing,
+    Resolve::Bisect,
+    Resolve::Paint,
+    Resolve::Auto,
+];
 
 /// The library and the reference state the same move.
 #[test]

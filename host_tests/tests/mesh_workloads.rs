@@ -45,7 +45,12 @@ fn pixels(text: &str, resolve: Resolve, band_rows: Option<u16>) -> Vec<Rgb565> {
     r.ram.contents().to_vec()
 }
 
-const RESOLVES: [Resolve; 3] = [Resolve::Crossing, Resolve::Bisect, Resolve::Paint];
+const RESOLVES: [Resolve; 4] = [
+    Resolve::Crossing,
+    Resolve::Bisect,
+    Resolve::Paint,
+    Resolve::Auto,
+];
 
 #[test]
 fn each_mesh_as_v_and_f_is_the_mesh_as_faces() {

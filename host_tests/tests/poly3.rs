@@ -165,7 +165,12 @@ fn interpenetrating() -> impl Strategy<Value = Vec<Poly3>> {
     })
 }
 
-const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
+const MODES: [Resolve; 4] = [
+    Resolve::Bisect,
+    Resolve::Crossing,
+    Resolve::Paint,
+    Resolve::Auto,
+];
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]

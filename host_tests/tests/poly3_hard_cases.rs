@@ -10,7 +10,12 @@ use scanvert::visible::sweep::Resolve;
 use testkit::reference::{rasterize, Window};
 use testkit::reference3d::{resolve, Poly3};
 
-const MODES: [Resolve; 3] = [Resolve::Bisect, Resolve::Crossing, Resolve::Paint];
+const MODES: [Resolve; 4] = [
+    Resolve::Bisect,
+    Resolve::Crossing,
+    Resolve::Paint,
+    Resolve::Auto,
+];
 
 /// Zero mismatches in every mode.
 #[track_caller]

@@ -79,7 +79,7 @@ fn list_rows_match(what: &str, list: &DisplayList<'_>, mode: Resolve) {
 fn text_list_rows_match(what: &str, text: &str) {
     let asm = scanvert_sim::text::assemble_bytes(text.as_bytes()).expect("assembles");
     let list = DisplayList::new_checked(&asm.bytes).expect("list");
-    for mode in [Resolve::Crossing, Resolve::Paint] {
+    for mode in [Resolve::Crossing, Resolve::Paint, Resolve::Auto] {
         list_rows_match(what, &list, mode);
     }
 }

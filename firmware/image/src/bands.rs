@@ -93,7 +93,7 @@ pub fn measure(
     let three = list.commands().any(|(_, c)| matches!(c, Command::Poly3(_)));
     let mut ok = true;
     // Each list as the full frames are drawn: the 170-face lists again
-    // painted, band by band, under their `-paint` names.
+    // with the sweep, band by band, under their `-crossing` names.
     for resolved in Resolved::of(scene) {
         let three = three.then_some(resolved.mode);
         for rows in HEIGHTS {

@@ -232,7 +232,7 @@ fn render(
 ) -> Option<(u32, u32)> {
     let mut c = Controller::new(Rasterizer::new(edges))
         .with_3d(storage.as_memory())
-        .with_resolve(Resolve::Crossing);
+        .with_resolve(Resolve::default());
     match c.render_bands_packed(list, table, set::BAND_ROWS as u16, band, sum) {
         Ok(stats) => Some((stats.trapezoids, stats.visible.max_active)),
         Err(e) => {

@@ -55,12 +55,24 @@ pub fn fill(kind: &str, words: usize, ticks: u64) {
     );
 }
 
+/// How a frame's 3D layer was resolved, as its line says it: the mode
+/// the default settled to, or the one asked for.
+pub fn resolve_name(mode: scanvert::visible::Resolve) -> &'static str {
+    use scanvert::visible::Resolve;
+    match mode {
+        Resolve::Paint => "paint",
+        Resolve::Bisect => "bisect",
+        Resolve::Crossing => "crossing",
+        _ => "auto",
+    }
+}
+
 /// One frame's statistics and cost.
 pub fn frame(name: &str, w: u16, h: u16, s: &RenderStats, cost: Cost) {
     #[cfg(not(feature = "defmt"))]
     println!(
-        "frame {name} {w}x{h} commands={} polygons={} clears={} spans={} pixels={} poly3={} trapezoids={} ticks={} instructions={}",
-        s.commands, s.polygons, s.clears, s.spans, s.pixels, s.poly3, s.trapezoids, cost.ticks, cost.instructions
+        "frame {name} {w}x{h} commands={} polygons={} clears={} spans={} pixels={} poly3={} trapezoids={} mode={} ticks={} instructions={}",
+        s.commands, s.polygons, s.clears, s.spans, s.pixels, s.poly3, s.trapezoids, resolve_name(s.visible.mode), cost.ticks, cost.instructions
     );
     #[cfg(feature = "defmt")]
     defmt::info!(

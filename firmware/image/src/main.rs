@@ -593,21 +593,22 @@ struct Resolved {
 }
 
 impl Resolved {
-    /// Every list with the default resolve (crossing points), under its
-    /// own name; the two 170-face lists again painted far to near
-    /// ([`Resolve::Paint`]), under their names with `-paint`.
+    /// Every list with the default resolve ([`Resolve::Auto`], which
+    /// paints the two 170-face lists), under its own name; those two
+    /// again with the sweep's crossing points ([`Resolve::Crossing`]),
+    /// under their names with `-crossing`.
     fn of(scene: &Scene) -> impl Iterator<Item = Resolved> {
-        let painted = match scene.name {
-            "poly3-layered" => Some("poly3-layered-paint"),
-            "poly3-tilted" => Some("poly3-tilted-paint"),
+        let swept = match scene.name {
+            "poly3-layered" => Some("poly3-layered-crossing"),
+            "poly3-tilted" => Some("poly3-tilted-crossing"),
             _ => None,
         };
         let first = Resolved {
-            mode: Resolve::Crossing,
+            mode: Resolve::default(),
             name: scene.name,
         };
-        core::iter::once(first).chain(painted.map(|name| Resolved {
-            mode: Resolve::Paint,
+        core::iter::once(first).chain(swept.map(|name| Resolved {
+            mode: Resolve::Crossing,
             name,
         }))
     }

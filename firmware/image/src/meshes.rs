@@ -7,11 +7,12 @@
 //! one band buffer). Each band is shipped into a running checksum, which
 //! must equal the host's checksum of the whole frame.
 //!
-//! Each list is rendered with the default resolve (`Resolve::Crossing`)
+//! Each list is rendered with the default resolve (`Resolve::Auto`,
+//! which takes the sweep's crossing points for their small trapezoids)
 //! under its name, and painted far to near (`Resolve::Paint`) under its
 //! name with `-paint`. Printed for each: a line
 //! `frame mesh-NAME 240x240 rows=16 vertices=… faces=… drawn=… culled=…
-//! trapezoids=… max_active=… ticks=… instructions=…` (`faces` the list's
+//! trapezoids=… max_active=… mode=… ticks=… instructions=…` (`faces` the list's
 //! `f`s, `drawn` those that reached the 3D layer; the instructions those
 //! of a render whose bands go nowhere, see [`Sum`]), and its `checksum`
 //! line, from a second render into the checksum.
@@ -114,7 +115,7 @@ pub fn run(counter: &platform::Counter, matched: &mut usize, frames: &mut usize)
     report_parts();
     let mut ok = true;
     for scene in set::SCENES {
-        for (resolve, suffix) in [(Resolve::Crossing, ""), (Resolve::Paint, "-paint")] {
+        for (resolve, suffix) in [(Resolve::default(), ""), (Resolve::Paint, "-paint")] {
             *frames += 1;
             if frame(scene, resolve, suffix, &mut m, counter) {
                 *matched += 1;
@@ -228,13 +229,13 @@ fn report(name: &str, suffix: &str, list: &DisplayList<'_>, s: &RenderStats, tic
     let (w, h) = (list.width(), list.height());
     #[cfg(not(feature = "defmt"))]
     println!(
-        "frame {name}{suffix} {w}x{h} rows={} vertices={} faces={faces} drawn={} culled={} trapezoids={} max_active={} ticks={ticks} instructions={instructions}",
-        set::BAND_ROWS, s.vertices, s.faces, s.culled, s.trapezoids, s.visible.max_active
+        "frame {name}{suffix} {w}x{h} rows={} vertices={} faces={faces} drawn={} culled={} trapezoids={} max_active={} mode={} ticks={ticks} instructions={instructions}",
+        set::BAND_ROWS, s.vertices, s.faces, s.culled, s.trapezoids, s.visible.max_active, crate::log::resolve_name(s.visible.mode)
     );
     #[cfg(feature = "defmt")]
     defmt::info!(
-        "frame {=str}{=str} {=u16}x{=u16} rows={=usize} vertices={=u32} faces={=u32} drawn={=u32} culled={=u32} trapezoids={=u32} ticks={=u64} instructions={=u64}",
-        name, suffix, w, h, set::BAND_ROWS, s.vertices, faces, s.faces, s.culled, s.trapezoids, ticks, instructions
+        "frame {=str}{=str} {=u16}x{=u16} rows={=usize} vertices={=u32} faces={=u32} drawn={=u32} culled={=u32} trapezoids={=u32} mode={=str} ticks={=u64} instructions={=u64}",
+        name, suffix, w, h, set::BAND_ROWS, s.vertices, faces, s.faces, s.culled, s.trapezoids, crate::log::resolve_name(s.visible.mode), ticks, instructions
     );
 }
 

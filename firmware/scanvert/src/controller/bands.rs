@@ -429,9 +429,9 @@ fn layer_into<'t>(
     scene
         .check()
         .map_err(|e| PrepareError::Render(super::visible_error(first, e)))?;
-    if resolve == crate::visible::Resolve::Paint {
-        scene.work_out_depths();
-    }
+    let resolve = scene
+        .settle(resolve)
+        .map_err(|e| PrepareError::Render(super::visible_error(first, e)))?;
     *at = Some((Sweep::new(scene.band_parts().2, resolve), first));
     Ok(())
 }

@@ -117,6 +117,8 @@ fn side(origin: i32, extent: u32) -> u16 {
 impl<D: DrawTarget + ?Sized> SpanTarget for DrawTargetPort<'_, D> {
     type Color = D::Color;
     type Error = D::Error;
+    /// A display's window: every pixel written reaches it.
+    const OVERDRAW_IS_CHEAP: bool = false;
 
     fn size(&self) -> (u16, u16) {
         let b = self.target.bounding_box();

@@ -129,6 +129,16 @@ pub trait SpanTarget {
     /// What a write can fail with; `core::convert::Infallible` for memory.
     type Error;
 
+    /// Whether writing a pixel again costs no more than a store to
+    /// memory: `true` (the default) for a buffer in RAM (a frame buffer, a
+    /// band), `false` for a display's window or a port that takes its time
+    /// for every pixel written. [`Resolve::Auto`] paints far to near, which
+    /// writes a pixel as often as faces cover it, only into a target that
+    /// says `true`.
+    ///
+    /// [`Resolve::Auto`]: crate::visible::Resolve::Auto
+    const OVERDRAW_IS_CHEAP: bool = true;
+
     /// Width and height in pixels. Both are at most 4096.
     fn size(&self) -> (u16, u16);
 
@@ -254,6 +264,7 @@ pub trait SpanTarget {
 impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     type Color = T::Color;
     type Error = T::Error;
+    const OVERDRAW_IS_CHEAP: bool = T::OVERDRAW_IS_CHEAP;
     #[inline]
     fn size(&self) -> (u16, u16) {
         (**self).size()

@@ -25,6 +25,7 @@ use crate::port::packed_band::PackedBand;
 use crate::port::runs::{RowRuns, Rows, RowsError};
 use crate::port::Counts;
 use crate::visible::store::TrapezoidStore;
+use crate::visible::sweep::Checked;
 use crate::visible::{Resolve, Sweep, VisibleError, Workspace};
 use core::convert::Infallible;
 use embedded_graphics::mono_font::MonoFont;
@@ -172,17 +173,17 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         background: C,
         font: &'s MonoFont<'s>,
     ) -> Result<SceneBands<'s, 'a, 'a, C>, VisibleError<Infallible>> {
-        if resolve == Resolve::Paint {
-            self.store.work_out_depths();
-        }
+        let resolve = self.settle(resolve)?;
         let Scene {
             store,
             labels,
             workspace,
-            most,
+            checked,
             ..
         } = self;
-        pass(store, labels, workspace, *most, resolve, background, font)
+        pass(
+            store, labels, workspace, *checked, resolve, background, font,
+        )
     }
 
     /// [`bands`](Self::bands) in `workspace` instead of the scene's own,
@@ -201,7 +202,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             &self.store,
             &self.labels,
             workspace,
-            self.most,
+            self.checked,
             resolve,
             background,
             font,
@@ -210,12 +211,6 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
 }
 
 impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
-    /// Works out the depths its mesh triangles left for later, before
-    /// a pass that paints ([`TrapezoidStore::work_out_depths`]).
-    pub(crate) fn work_out_depths(&mut self) {
-        self.store.work_out_depths();
-    }
-
     /// The store and labels, read, and the workspace, for a pass kept
     /// outside the scene (the controller's bands).
     pub(crate) fn band_parts(
@@ -225,34 +220,39 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     }
 }
 
-/// A pass over `store` and `labels` in `workspace`, whose most
-/// trapezoids on a row are `most` when known.
+/// A pass over `store` and `labels` in `workspace`, with what
+/// [`Scene::check`] found of them when known. [`Resolve::Auto`] is
+/// settled here; it paints only where the store's depths are all worked
+/// out (a pass that reads the scene cannot work them out).
 fn pass<'s, 'a, 'w, C: ListColor>(
     store: &'s TrapezoidStore<'a>,
     labels: &'s LabelStore<'a>,
     workspace: &'s mut Workspace<'w>,
-    most: Option<u32>,
+    checked: Option<Checked>,
     resolve: Resolve,
     background: C,
     font: &'s MonoFont<'s>,
 ) -> Result<SceneBands<'s, 'a, 'w, C>, VisibleError<Infallible>> {
-    match most {
-        Some(m) => {
+    let checked = match checked {
+        Some(c) => {
             if workspace.run_capacity() < store.width() as usize {
                 return Err(VisibleError::Runs {
                     capacity: workspace.run_capacity(),
                 });
             }
-            if workspace.capacity() < m as usize {
+            if workspace.capacity() < c.most as usize {
                 return Err(VisibleError::Active {
                     capacity: workspace.capacity(),
                 });
             }
+            c
         }
-        None => {
-            workspace.check(store)?;
-        }
-    }
+        None => workspace.check_rows(store)?,
+    };
+    let resolve = match checked.settle(resolve) {
+        Resolve::Paint if resolve == Resolve::Auto && store.has_later_depths() => Resolve::Crossing,
+        m => m,
+    };
     let sweep = Sweep::new(workspace, resolve);
     Ok(SceneBands {
         store,

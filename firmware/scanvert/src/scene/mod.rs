@@ -127,6 +127,7 @@ use crate::port::{Counts, SpanTarget};
 use crate::raster::clip::ClipRect;
 use crate::visible::rle::Run;
 use crate::visible::store::{StoreError, StoreMemory, TrapezoidStore, TriangleRun, LINE_BIAS};
+use crate::visible::sweep::Checked;
 use crate::visible::{self, Active, Resolve, VisibleError, VisibleStats, Workspace};
 use core::fmt;
 use embedded_graphics::mono_font::MonoFont;
@@ -428,7 +429,7 @@ pub struct Scene<'a, const DEPTH: usize, const N: usize> {
     /// (`None` once a segment is emptied or rebuilt since): a pass in
     /// another workspace ([`Scene::bands_in`]) then only compares its
     /// capacity, instead of finding the number again.
-    most: Option<u32>,
+    checked: Option<Checked>,
     /// The segments' records ([`Scene::keep_records`]).
     records: Records<'a>,
 }
@@ -459,7 +460,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
             workspace: Workspace::new(mem.active, mem.runs),
             pipeline,
             clip: ClipRect::full(width, height),
-            most: None,
+            checked: None,
             records: Records::default(),
         };
         scene.invalidate_all();
@@ -602,7 +603,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     pub fn set_visible(&mut self, s: usize, visible: bool) -> Result<Update, SceneError> {
         self.store.set_hidden(s, !visible)?;
         self.labels.set_hidden(s as u16, !visible);
-        self.most = None;
+        self.checked = None;
         Ok(Update::default())
     }
 
@@ -697,7 +698,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
 
     /// Builds segment `s` again from its record, under its placement.
     fn replay(&mut self, s: usize) -> Result<(), SceneError> {
-        self.most = None;
+        self.checked = None;
         self.store.clear_segment(s)?;
         self.labels.clear_segment(s as u16);
         self.store.set_stale(s, false)?;
@@ -732,7 +733,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// (what [`rebuild`](Self::rebuild) does around a procedure). The
     /// segment counts as built from here on.
     pub fn open(&mut self, s: usize) -> Result<Builder<'_, 'a, DEPTH, N>, SceneError> {
-        self.most = None;
+        self.checked = None;
         self.store.clear_segment(s)?;
         self.labels.clear_segment(s as u16);
         self.store.set_stale(s, false)?;
@@ -750,7 +751,7 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     }
 
     fn empty(&mut self, s: usize) {
-        self.most = None;
+        self.checked = None;
         let _ = self.store.clear_segment(s);
         self.labels.clear_segment(s as u16);
         let _ = self.store.set_stale(s, true);
@@ -763,9 +764,34 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
     /// workspaces ([`Scene::bands_in`], one per core) need not find it
     /// again.
     pub fn check(&mut self) -> Result<u32, VisibleError<core::convert::Infallible>> {
-        let most = self.workspace.check(&self.store)?;
-        self.most = Some(most);
-        Ok(most)
+        let c = self.workspace.check_rows(&self.store)?;
+        self.checked = Some(c);
+        Ok(c.most)
+    }
+
+    /// What [`check`](Self::check) last found, found again if a segment
+    /// changed since.
+    pub(crate) fn checked(&mut self) -> Result<Checked, VisibleError<core::convert::Infallible>> {
+        match self.checked {
+            Some(c) => Ok(c),
+            None => self.check().map(|_| self.checked.unwrap_or_default()),
+        }
+    }
+
+    /// The mode `resolve` settles to for the scene as it stands
+    /// ([`Resolve::settle`]), its depths worked out if it paints.
+    pub(crate) fn settle(
+        &mut self,
+        resolve: Resolve,
+    ) -> Result<Resolve, VisibleError<core::convert::Infallible>> {
+        let resolve = match resolve {
+            Resolve::Auto => self.checked()?.settle(resolve),
+            m => m,
+        };
+        if resolve == Resolve::Paint {
+            self.store.work_out_depths();
+        }
+        Ok(resolve)
     }
 
     /// What the scene uses now, as [`SceneStorage`] capacities: the
@@ -886,9 +912,10 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         T::Color: ListColor,
         H: Hook + ?Sized,
     {
-        if resolve == Resolve::Paint {
-            self.store.work_out_depths();
-        }
+        let resolve = match resolve {
+            Resolve::Auto if !T::OVERDRAW_IS_CHEAP => Resolve::Crossing,
+            r => self.settle(r).map_err(VisibleError::widen)?,
+        };
         let (visible, decoded) = visible::draw(
             &self.store,
             &mut self.workspace,

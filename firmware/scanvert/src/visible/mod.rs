@@ -19,5 +19,5 @@ pub use rle::{Run, RunsFull};
 pub use store::{Face, Segment, StoreError, StoreMemory, TrapezoidStore};
 #[doc(hidden)]
 pub use sweep::{draw, Sweep};
-pub use sweep::{Active, Resolve, VisibleError, VisibleStats, Workspace};
+pub use sweep::{Active, Resolve, VisibleError, VisibleStats, Workspace, PAINT_FROM};
 pub use trapezoid::{EdgeSlot, Trapezoid};

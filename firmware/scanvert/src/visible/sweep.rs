@@ -187,7 +187,6 @@ pub enum Resolve {
     /// third plane in between) is split the same way if it is at most half
     /// the span, else bisected once first, so the depth of the subdivision
     /// stays below `2·log₂(length)`.
-    #[default]
     Crossing,
     /// Painting far to near, into a target that keeps its pixels (a
     /// frame buffer): every trapezoid's pixels written in full,
@@ -201,6 +200,37 @@ pub enum Resolve {
     /// ([`Workspace::resolve`]) it resolves as `Crossing`. See
     /// `docs/performance.md`, "Painting far to near".
     Paint,
+    /// `Paint` or `Crossing`, chosen once a frame from its trapezoids:
+    /// `Paint` where they are tall, at least [`PAINT_FROM`] rows each on
+    /// average, and the target's overdraw is cheap
+    /// ([`SpanTarget::OVERDRAW_IS_CHEAP`]: a frame buffer, a band);
+    /// `Crossing` elsewhere, and where a frame's runs are asked for
+    /// ([`Workspace::resolve`]). Both draw the same pixels, exactly, so
+    /// the choice changes only the work: painting costs more than the
+    /// sweep for each trapezoid that enters (its tests against the live
+    /// ones) and less for each row of one. What each costs on the
+    /// Cortex-M4 is in `docs/performance.md`, "Which resolve a frame
+    /// takes"; [`VisibleStats::mode`] says which a frame took. The
+    /// default.
+    #[default]
+    Auto,
+}
+
+/// The least mean height of a frame's trapezoids, in rows, at which
+/// [`Resolve::Auto`] paints.
+pub const PAINT_FROM: u32 = 14;
+
+impl Resolve {
+    /// The mode a frame of `trapezoids` trapezoids, `rows` trapezoid-rows
+    /// in all, is drawn with: [`Resolve::Auto`] settled by the frame's
+    /// mean height, every other mode itself.
+    pub fn settle(self, trapezoids: u32, rows: u32) -> Resolve {
+        match self {
+            Resolve::Auto if trapezoids > 0 && rows / trapezoids >= PAINT_FROM => Resolve::Paint,
+            Resolve::Auto => Resolve::Crossing,
+            m => m,
+        }
+    }
 }
 
 /// One slot of the workspace's active list (120 bytes on 32-bit
@@ -492,7 +522,7 @@ impl<E: fmt::Debug> core::error::Error for VisibleError<E> {}
 impl VisibleError<core::convert::Infallible> {
     /// The same error where another sink's errors are expected (this one
     /// has none).
-    fn widen<E>(self) -> VisibleError<E> {
+    pub(crate) fn widen<E>(self) -> VisibleError<E> {
         match self {
             VisibleError::Active { capacity } => VisibleError::Active { capacity },
             VisibleError::Runs { capacity } => VisibleError::Runs { capacity },
@@ -517,6 +547,12 @@ impl<E> From<RunsFull> for VisibleError<E> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct VisibleStats {
+    /// How the frame was resolved: the mode asked for, [`Resolve::Auto`]
+    /// settled to `Paint` or `Crossing`. A frame painted band by band
+    /// that ran out of conflict records, and went on as the sweep, stays
+    /// `Paint`; where nothing was resolved (no 3D layer), the default,
+    /// `Auto`.
+    pub mode: Resolve,
     /// Rows produced.
     pub rows: u32,
     /// Trapezoids that entered the active list.
@@ -577,6 +613,15 @@ impl<'a> Workspace<'a> {
         &mut self,
         store: &TrapezoidStore<'_>,
     ) -> Result<u32, VisibleError<core::convert::Infallible>> {
+        self.check_rows(store).map(|c| c.most)
+    }
+
+    /// [`check`](Self::check), with the frame's trapezoids and
+    /// trapezoid-rows counted on the way (for [`Resolve::settle`]).
+    pub(crate) fn check_rows(
+        &mut self,
+        store: &TrapezoidStore<'_>,
+    ) -> Result<Checked, VisibleError<core::convert::Infallible>> {
         if self.runs.len() < store.width() as usize {
             return Err(VisibleError::Runs {
                 capacity: self.runs.len(),
@@ -589,7 +634,7 @@ impl<'a> Workspace<'a> {
             // overlap kept row by row. Those that end at the store's
             // height are never taken off: no row follows.
             ends.fill(Run::EMPTY);
-            let (mut k, mut most) = (0usize, 0usize);
+            let (mut k, mut most, mut entered, mut rows) = (0usize, 0usize, 0u32, 0u32);
             for y in 0..store.height() {
                 k -= ends[y as usize].len() as usize;
                 let mut t = store.row_head(y as usize);
@@ -598,21 +643,27 @@ impl<'a> Workspace<'a> {
                         return Err(VisibleError::Active { capacity: cap });
                     }
                     k += 1;
+                    entered += 1;
                     if let Some(e) = ends.get_mut(tr.end() as usize) {
                         *e = Run::new(e.len() + 1, 0);
                     }
                     t = tr.next_row;
                 }
                 most = most.max(k);
+                // At most 65535 live on each of at most 65535 rows.
+                rows = rows.wrapping_add(k as u32);
             }
-            return Ok(most as u32);
+            return Ok(Checked {
+                most: most as u32,
+                trapezoids: entered,
+                rows,
+            });
         }
         // The last rows of the trapezoids overlapping the row, as a binary
         // min-heap in `active[..k].cover.r`: O(log k) per trapezoid,
         // nothing per row where none starts or ends.
         let heap = &mut self.active[..cap];
-        let mut k = 0usize;
-        let mut most = 0usize;
+        let (mut k, mut most, mut entered, mut rows) = (0usize, 0usize, 0u32, 0u32);
         for y in 0..store.height() {
             // A trapezoid starting on the row takes the place of one that
             // ended (as often when a face's second trapezoid follows its
@@ -622,6 +673,7 @@ impl<'a> Workspace<'a> {
                 if let Some(tr) = store.trapezoid(t) {
                     heap[0].cover.r = tr.end();
                     t = tr.next_row;
+                    entered += 1;
                 } else {
                     k -= 1;
                     heap[0].cover.r = heap[k].cover.r;
@@ -634,12 +686,18 @@ impl<'a> Workspace<'a> {
                 }
                 heap[k].cover.r = tr.end();
                 k += 1;
+                entered += 1;
                 sift_up(&mut heap[..k]);
                 t = tr.next_row;
             }
             most = most.max(k);
+            rows = rows.wrapping_add(k as u32);
         }
-        Ok(most as u32)
+        Ok(Checked {
+            most: most as u32,
+            trapezoids: entered,
+            rows,
+        })
     }
 
     /// Resolves every row of `store`, top to bottom, handing each row's
@@ -667,6 +725,24 @@ impl<'a> Workspace<'a> {
             });
         }
         Ok(())
+    }
+}
+
+/// What [`Workspace::check_rows`] counts of a frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Checked {
+    /// The most trapezoids overlapping one row.
+    pub(crate) most: u32,
+    /// Trapezoids linked into the rows (those of hidden segments are not).
+    pub(crate) trapezoids: u32,
+    /// Their rows, added up.
+    pub(crate) rows: u32,
+}
+
+impl Checked {
+    /// The mode `resolve` settles to for this frame ([`Resolve::settle`]).
+    pub(crate) fn settle(&self, resolve: Resolve) -> Resolve {
+        resolve.settle(self.trapezoids, self.rows)
     }
 }
 
@@ -737,7 +813,7 @@ fn resolve_many_from<O: RowOut>(
 ) -> Result<(VisibleStats, O), VisibleError<O::Error>> {
     // Runs are asked for: painting resolves as crossing points here.
     let mode = match mode {
-        Resolve::Paint => Resolve::Crossing,
+        Resolve::Paint | Resolve::Auto => Resolve::Crossing,
         m => m,
     };
     let mut s = Sweep::start(active, mode);
@@ -794,6 +870,11 @@ impl Sweep {
     }
 
     fn start(active: &mut [Active], mode: Resolve) -> Sweep {
+        // Not settled by the frame (`Sweep::new` has no store): the sweep.
+        let mode = match mode {
+            Resolve::Auto => Resolve::Crossing,
+            m => m,
+        };
         let cap = capacity(active);
         for (i, a) in active[..cap].iter_mut().enumerate() {
             a.free = i as u16;
@@ -806,7 +887,10 @@ impl Sweep {
             cap,
             mode,
             many: (MANY, CHAIN_FROM),
-            stats: VisibleStats::default(),
+            stats: VisibleStats {
+                mode,
+                ..VisibleStats::default()
+            },
             painter,
         }
     }
@@ -3052,6 +3136,14 @@ where
     T: SpanTarget + ?Sized,
     T::Color: ListColor,
 {
+    let mode = match mode {
+        Resolve::Auto if !T::OVERDRAW_IS_CHEAP => Resolve::Crossing,
+        Resolve::Auto => workspace
+            .check_rows(store)
+            .map_err(VisibleError::widen)?
+            .settle(mode),
+        m => m,
+    };
     if mode == Resolve::Paint {
         return paint::draw(store, workspace, target, background);
     }
@@ -3073,6 +3165,24 @@ mod tests {
     use crate::visible::store::{Face, Segment, StoreMemory};
     use crate::visible::trapezoid::EdgeSlot;
     use embedded_graphics_core::pixelcolor::Rgb888;
+
+    /// `Auto` paints from a mean height of `PAINT_FROM` rows on, at the
+    /// edge and at the counters' extremes; the other modes stay.
+    #[test]
+    fn auto_settles_by_the_mean_height() {
+        let auto = Resolve::Auto;
+        assert_eq!(auto.settle(0, 0), Resolve::Crossing);
+        assert_eq!(auto.settle(0, u32::MAX), Resolve::Crossing);
+        assert_eq!(auto.settle(10, 10 * PAINT_FROM), Resolve::Paint);
+        assert_eq!(auto.settle(10, 10 * PAINT_FROM - 1), Resolve::Crossing);
+        assert_eq!(auto.settle(1, u32::MAX), Resolve::Paint);
+        assert_eq!(auto.settle(u32::MAX, u32::MAX), Resolve::Crossing);
+        for m in [Resolve::Bisect, Resolve::Crossing, Resolve::Paint] {
+            assert_eq!(m.settle(1, 1000), m);
+            assert_eq!(m.settle(1000, 1), m);
+        }
+        assert_eq!(Resolve::default(), Resolve::Auto);
+    }
 
     const W: u16 = 48;
     const H: u16 = 40;

@@ -127,7 +127,10 @@ where
     workspace.check_runs(store)?;
     {
         let mut out = ToTarget::new(&mut *target, background);
-        let mut stats = VisibleStats::default();
+        let mut stats = VisibleStats {
+            mode: Resolve::Paint,
+            ..VisibleStats::default()
+        };
         let mut painter = Painter::start(workspace.active);
         let painted = painter.rows(
             workspace.active,
