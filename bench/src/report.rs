@@ -334,7 +334,11 @@ fn headline_host(run: &Run) -> String {
         let _ = writeln!(
             s,
             "| {TARGET_FACES} tilted 3D faces: the default resolve's speed ({}) over the faster z-buffer's, and its memory over the `i16` z-buffer's | {}×, {:.0} % |",
-            default.trim_start_matches("scanvert "),
+            if default == crate::visible3d::PAINT {
+                "painted far to near"
+            } else {
+                "crossing points"
+            },
             sig3(z16.ms.min(z32.ms) / c.ms),
             100.0 * c.mem.0 as f64 / z16.mem.0 as f64
         );

@@ -352,7 +352,7 @@ the live ones) and saves on each row of one. Instructions a frame, both
 ways, from the runs above (the 170-face lists in 16-row bands; the
 meshes as their table gives them); the default's are in bold:
 
-| list | trapezoids | crossing points | painted | the default took (its line's \`mode\`) |
+| list | trapezoids | crossing points | painted | the default took (its line's `mode`) |
 |---|--:|--:|--:|---|
 EOF
   resolve_table "$out/arm.log" "$out/arm-bands.log"
