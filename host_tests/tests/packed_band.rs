@@ -111,6 +111,8 @@ where
 trait Target {
     fn span(&mut self, s: Span, c: Rgb565);
     fn inside(&mut self, s: Span, c: Rgb565);
+    /// `inside` from the row's start (`row_start`, `fill_row_inside`).
+    fn row(&mut self, s: Span, c: Rgb565);
     fn rect(&mut self, s: Span, h: u16, c: Rgb565);
     fn clear(&mut self, c: Rgb565);
     fn eg(&mut self) -> &mut dyn EgTarget;
@@ -130,6 +132,10 @@ macro_rules! target {
             }
             fn inside(&mut self, s: Span, c: Rgb565) {
                 self.fill_span_inside(s, c).unwrap()
+            }
+            fn row(&mut self, s: Span, c: Rgb565) {
+                let r = self.row_start(s.y);
+                self.fill_row_inside(r, s.x0, s.x1, c).unwrap()
             }
             fn rect(&mut self, s: Span, h: u16, c: Rgb565) {
                 self.fill_rect(s, h, c).unwrap()
@@ -165,7 +171,8 @@ target!(PackedBand<'_, Rgb565>);
 const SIZES: [(u16, u16); 6] = [(1, 4), (2, 3), (5, 4), (7, 5), (8, 3), (13, 4)];
 
 /// Every span (odd and even starts and ends, past the end of the row,
-/// on every row and off the band) and every clipped-inside span.
+/// on every row and off the band) and every clipped-inside span, also
+/// written from its row's start.
 #[test]
 fn every_span_writes_what_a_band_of_pixels_writes() {
     for (w, h) in SIZES {
@@ -195,6 +202,15 @@ fn every_span_writes_what_a_band_of_pixels_writes() {
                                     y0,
                                     rows,
                                     |d| d(&mut With(|t: &mut dyn Target| t.inside(s, c))),
+                                    &what,
+                                    below,
+                                );
+                                same_but(
+                                    w,
+                                    h,
+                                    y0,
+                                    rows,
+                                    |d| d(&mut With(|t: &mut dyn Target| t.row(s, c))),
                                     &what,
                                     below,
                                 );

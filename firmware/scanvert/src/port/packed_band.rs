@@ -342,6 +342,34 @@ where
         Ok(())
     }
 
+    /// The band's row `y − y0` (wrapped, as in `fill_span_inside`, for a
+    /// row outside the band: its words start past the slice's end).
+    #[inline(always)]
+    fn row_start(&self, y: u16) -> usize {
+        (y.wrapping_sub(self.y0) as usize).wrapping_mul(self.width as usize)
+    }
+
+    #[inline(always)]
+    fn row_stride(&self) -> usize {
+        self.width as usize
+    }
+
+    /// As `fill_span_inside`, from the row's start.
+    #[inline(always)]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: C,
+    ) -> Result<(), Infallible> {
+        let (a, b) = (row.wrapping_add(x0 as usize), row.wrapping_add(x1 as usize));
+        if a < b {
+            fill_pixels(self.words, a, b, wire_pair(color));
+        }
+        Ok(())
+    }
+
     /// The row's address worked out once, and the runs stored as one
     /// sequence of words (`fill_runs`). The row is checked by the slice
     /// alone, as in [`fill_span_inside`](Self::fill_span_inside). Out of

@@ -1648,6 +1648,9 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     /// the target's width, or 0 when the row is below the target or the
     /// target has failed (see [`ToTarget::paint_row`]).
     limit: u32,
+    /// For painting: where the current row starts in the target
+    /// ([`SpanTarget::row_start`]), worked out once a row.
+    row: usize,
 }
 
 /// A side-by-side row's runs in [`ToTarget::side_by_side`]: `runs[..n]`,
@@ -1680,6 +1683,7 @@ impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
             counts: Counts::default(),
             error: None,
             limit: 0,
+            row: 0,
         }
     }
 }
@@ -1740,10 +1744,10 @@ where
     fn paint_row(&mut self, y: u16) {
         self.y = y;
         let (w, h) = self.size;
-        self.limit = if (y as u32) < h && self.error.is_none() {
-            w
+        (self.limit, self.row) = if (y as u32) < h && self.error.is_none() {
+            (w, self.target.row_start(y))
         } else {
-            0
+            (0, 0)
         };
     }
 
@@ -1761,7 +1765,20 @@ where
         // not: they wrap (see `Counts`), an add that never panics.
         self.counts.spans += 1;
         self.counts.pixels = self.counts.pixels.wrapping_add(x1 - x0 as u32);
-        self.write(x0 as u32, x1, T::Color::from_list_word(color));
+        self.write_row(x0 as u32, x1, T::Color::from_list_word(color));
+    }
+
+    /// [`write`](Self::write) on the row started by
+    /// [`ToTarget::paint_row`], from where it starts in the target.
+    #[inline(always)]
+    fn write_row(&mut self, x0: u32, x1: u32, c: T::Color) {
+        let r = self
+            .target
+            .fill_row_inside(self.row, x0 as u16, x1 as u16, c);
+        if let Err(e) = r {
+            self.error = Some(e);
+            self.limit = 0;
+        }
     }
 
     /// Fills pixels `0..width` of the row started by
@@ -1773,7 +1790,7 @@ where
         if let (Some(c), true) = (self.background, x1 > 0) {
             self.counts.spans += 1;
             self.counts.pixels = self.counts.pixels.wrapping_add(x1);
-            self.write(0, x1, c);
+            self.write_row(0, x1, c);
         }
     }
 
