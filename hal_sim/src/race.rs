@@ -263,9 +263,9 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 8.3 % on
-    /// average and 48.7 % at worst (the 2D lists' rows: 2.0 % to 11.4 %
-    /// on average, the 3D lists' 15.0 % and 12.7 %; the worst are rows of
+    /// Against the 1,992 measured rows the model's error is 8.4 % on
+    /// average and 48.4 % at worst (the 2D lists' rows: 2.0 % to 12.0 %
+    /// on average, the 3D lists' 14.9 % and 12.6 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (an eighth
     /// of an instruction a pixel); a 2D polygon live on the row costs 86
@@ -276,20 +276,20 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1048,
+        row: 1066,
         width: 2,
-        span: 3203,
+        span: 3210,
         pixel: -3,
-        run: 551,
-        entered: 7228,
-        resolved: 1701,
+        run: 548,
+        entered: 7233,
+        resolved: 1730,
         label: 0,
-        live: 1375,
-        word: 346,
-        moved: 77,
-        frame: 118030,
-        command: 11080,
-        trapezoid: 669,
+        live: 1365,
+        word: 344,
+        moved: 78,
+        frame: 117530,
+        command: 11085,
+        trapezoid: 664,
     };
 
     /// Instructions of a row of `work`, at least 1.
