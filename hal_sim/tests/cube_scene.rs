@@ -72,3 +72,36 @@ fn the_cube_scene_survives_asm_and_disasm() {
     run(&[p("asm"), &txt, p("--out"), &again]);
     assert_eq!(std::fs::read(&bin).unwrap(), std::fs::read(&again).unwrap());
 }
+
+/// Its labels are counted once whatever the bands: a label across two
+/// bands is drawn in both and counted in the first.
+#[test]
+fn the_cube_scenes_labels_count_once_in_bands() {
+    let stats = |extra: &[&str]| {
+        let png = dir().join("cube-labels.png");
+        let o = Command::new(env!("CARGO_BIN_EXE_scanvert"))
+            .arg("render")
+            .arg(scene())
+            .arg("--out")
+            .arg(&png)
+            .arg("--stats")
+            .args(extra)
+            .output()
+            .expect("run scanvert");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let out = String::from_utf8(o.stdout).expect("utf-8");
+        out.lines()
+            .find(|l| l.contains(" labels, "))
+            .and_then(|l| {
+                l.split(", ")
+                    .find(|p| p.ends_with(" labels"))
+                    .map(str::to_string)
+            })
+            .expect("a labels count")
+    };
+    let whole = stats(&[]);
+    assert_eq!(whole, "5 labels");
+    for rows in ["1", "7", "16"] {
+        assert_eq!(stats(&["--band-rows", rows]), whole, "bands of {rows} rows");
+    }
+}

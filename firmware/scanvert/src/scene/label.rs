@@ -344,7 +344,9 @@ impl<'a> LabelStore<'a> {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "defmt", derive(defmt::Format))]
 pub struct LabelCounts {
-    /// Labels drawn (at least partly on the frame).
+    /// Labels drawn (at least partly on the frame). Drawn a band at a
+    /// time ([`LabelStore::draw_rows`]), a label counts in the band that
+    /// holds its first row on the frame only.
     pub drawn: u32,
     /// Labels wholly off the frame, skipped.
     pub off_frame: u32,
@@ -511,7 +513,11 @@ impl LabelStore<'_> {
             if let Some(e) = adapter.error {
                 return Err(e);
             }
-            counts.drawn += 1;
+            // Counted by the rows that hold its first on the frame, so
+            // that a label across several bands counts once.
+            if top.max(0) >= y0 {
+                counts.drawn += 1;
+            }
         }
         Ok(counts)
     }
