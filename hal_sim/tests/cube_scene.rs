@@ -15,18 +15,24 @@ fn dir() -> PathBuf {
     d
 }
 
+/// `scanvert render` of the scene into `png` with `--stats` and `extra`.
+fn render(png: &Path, extra: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_scanvert"))
+        .arg("render")
+        .arg(scene())
+        .arg("--out")
+        .arg(png)
+        .arg("--stats")
+        .args(extra)
+        .output()
+        .expect("run scanvert")
+}
+
 #[test]
 fn the_cube_scene_renders() {
     let png = dir().join("cube.png");
     let _ = std::fs::remove_file(&png);
-    let o = Command::new(env!("CARGO_BIN_EXE_scanvert"))
-        .arg("render")
-        .arg(scene())
-        .arg("--out")
-        .arg(&png)
-        .arg("--stats")
-        .output()
-        .expect("run scanvert");
+    let o = render(&png, &[]);
     let (stdout, stderr) = (
         String::from_utf8_lossy(&o.stdout),
         String::from_utf8_lossy(&o.stderr),
@@ -78,16 +84,7 @@ fn the_cube_scene_survives_asm_and_disasm() {
 #[test]
 fn the_cube_scenes_labels_count_once_in_bands() {
     let stats = |extra: &[&str]| {
-        let png = dir().join("cube-labels.png");
-        let o = Command::new(env!("CARGO_BIN_EXE_scanvert"))
-            .arg("render")
-            .arg(scene())
-            .arg("--out")
-            .arg(&png)
-            .arg("--stats")
-            .args(extra)
-            .output()
-            .expect("run scanvert");
+        let o = render(&dir().join("cube-labels.png"), extra);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         let out = String::from_utf8(o.stdout).expect("utf-8");
         out.lines()

@@ -912,9 +912,12 @@ impl<'a, const DEPTH: usize, const N: usize> Scene<'a, DEPTH, N> {
         T::Color: ListColor,
         H: Hook + ?Sized,
     {
-        let resolve = match resolve {
-            Resolve::Auto if !T::OVERDRAW_IS_CHEAP => Resolve::Crossing,
-            r => self.settle(r).map_err(VisibleError::widen)?,
+        // Where overdraw costs, `visible::draw` settles `Auto` itself (it
+        // never paints there), and no depth is worked out for painting.
+        let resolve = if T::OVERDRAW_IS_CHEAP {
+            self.settle(resolve).map_err(VisibleError::widen)?
+        } else {
+            resolve
         };
         let (visible, decoded) = visible::draw(
             &self.store,
