@@ -158,11 +158,9 @@ fn check(w: u16, h: u16, (y0, rows): (u16, u16), spans: &[(Span, u16)], how: Wri
     let got: Vec<u16> = pixels.iter().copied().map(raw).collect();
     assert_eq!(got, reference.px, "FrameBuffer, {what}");
 
-    // Bands take every span, only their rows' pixels change; the row
-    // start of `fill_row_inside` is the frame's, not a band's.
-    if matches!(how, Write::Row) {
-        return;
-    }
+    // Bands take every span, only their rows' pixels change; the spans
+    // written inside (`fill_span_inside`, `fill_row_inside` from the
+    // band's `row_start`) are the band's rows' only.
     let start: Vec<u16> =
         reference_start(w, h)[y0 as usize * w as usize..][..rows as usize * w as usize].to_vec();
     let bn = start.len();
@@ -170,7 +168,7 @@ fn check(w: u16, h: u16, (y0, rows): (u16, u16), spans: &[(Span, u16)], how: Wri
     {
         let mut band = PackedBand::<Rgb565>::new(&mut bwords, (w, h), y0, rows).unwrap();
         for &(s, c) in spans {
-            if matches!(how, Write::Inside) && !band_rows.contains(&s.y) {
+            if matches!(how, Write::Inside | Write::Row) && !band_rows.contains(&s.y) {
                 continue;
             }
             write(&mut band, s, how, px(c));
@@ -184,7 +182,7 @@ fn check(w: u16, h: u16, (y0, rows): (u16, u16), spans: &[(Span, u16)], how: Wri
     {
         let mut band = Band::new(&mut bpixels, (w, h), y0, rows).unwrap();
         for &(s, c) in spans {
-            if matches!(how, Write::Inside) && !band_rows.contains(&s.y) {
+            if matches!(how, Write::Inside | Write::Row) && !band_rows.contains(&s.y) {
                 continue;
             }
             write(&mut band, s, how, px(c));

@@ -233,7 +233,7 @@ impl ListBands<'_> {
         if !layer_fills {
             band.background(background);
         }
-        let mut counts = ok(self.table.draw(band.end() as i32, band));
+        let mut counts = ok(self.table.draw_band(band));
         if let (Some(scene), Some((sweep, _))) = (self.layer.as_mut(), self.sweep.as_mut()) {
             let (store, labels, ws) = scene.band_parts();
             let under = if layer_fills { background } else { None };

@@ -309,6 +309,34 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
         Ok(())
     }
 
+    /// The index of row `y`'s first pixel in the band (wrapping for a
+    /// row above it, so that the slice's check refuses it).
+    #[inline(always)]
+    fn row_start(&self, y: u16) -> usize {
+        (y.wrapping_sub(self.y0) as usize).wrapping_mul(self.width as usize)
+    }
+
+    #[inline(always)]
+    fn row_stride(&self) -> usize {
+        self.width as usize
+    }
+
+    /// As `fill_span_inside`, from the row's start.
+    #[inline(always)]
+    fn fill_row_inside(
+        &mut self,
+        row: usize,
+        x0: u16,
+        x1: u16,
+        color: C,
+    ) -> Result<(), Self::Error> {
+        let (a, b) = (row.wrapping_add(x0 as usize), row.wrapping_add(x1 as usize));
+        if let Some(run) = self.pixels.get_mut(a..b) {
+            crate::port::framebuffer::fill_run(run, color);
+        }
+        Ok(())
+    }
+
     fn clear(&mut self, color: C) -> Result<(), Self::Error> {
         self.pixels.fill(color);
         Ok(())

@@ -532,6 +532,12 @@ pub(super) struct Walk {
     pub(super) active: usize,
     pub(super) next: usize,
     pub(super) y: i32,
+    /// The target holds every row the walk draws, so a run of two
+    /// edges inside the clip columns is written a row's start at a time
+    /// ([`SpanTarget::row_start`]) with no check a span. Always so
+    /// outside a band walk (the rasteriser cuts the clip to the target);
+    /// in one, the caller says.
+    pub(super) inside: bool,
 }
 
 impl Walk {
@@ -543,6 +549,7 @@ impl Walk {
             active: 0,
             next: 0,
             y: edges.first().map_or(0, |e| e.top()),
+            inside: true,
         }
     }
 
@@ -553,7 +560,9 @@ impl Walk {
     /// band ends (the band path's table): two edges that both go on past
     /// `y1` are stepped to it and the walk left at once, without the
     /// general retire loop (fewer branches a predictor misses, at every
-    /// band a polygon crosses). `NONZERO` walks by the non-zero rule
+    /// band a polygon crosses); where [`inside`](Self::inside), a run of
+    /// two edges inside the clip columns is written as outside a band
+    /// walk, from each row's start. `NONZERO` walks by the non-zero rule
     /// ([`winding`](super::winding)): every row through the general loop,
     /// its edges loaded with their direction
     /// ([`Stepper::load_wound`]).
@@ -625,8 +634,8 @@ impl Walk {
                                 .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
                         };
                         let (e, c) = ((&mut ea, &mut eb), (&mut empty, &mut pixels));
-                        if !BAND && inside(e.0) && inside(e.1) {
-                            two_edge_rows::<BAND, false, _, T>(
+                        if (!BAND || self.inside) && inside(e.0) && inside(e.1) {
+                            two_edge_rows::<false, false, _, T>(
                                 e,
                                 (y, stop),
                                 cx,
@@ -836,6 +845,32 @@ fn triangle_runs<const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
     Ok(())
 }
 
+/// [`two_edge_rows`] of a band walk: from each row's start without the
+/// clip where `inside` (the target holds the rows, as
+/// [`Walk::inside`]) and both edges stay inside the clip columns `cx`
+/// over them, else each span cut to `cx` and checked by the target.
+#[inline(always)]
+pub(super) fn two_edge_rows_in<S: Stepper, T: SpanTarget + ?Sized>(
+    inside: bool,
+    e: (&mut S, &mut S),
+    rows: (i32, i32),
+    cx: (i32, i32),
+    color: T::Color,
+    target: &mut T,
+    counts: (&mut u32, &mut u32),
+) -> Result<(), T::Error> {
+    let n = rows.1 - rows.0;
+    let within = |e: &S| {
+        e.columns(n)
+            .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
+    };
+    if inside && within(e.0) && within(e.1) {
+        two_edge_rows::<false, false, S, T>(e, rows, cx, color, target, counts)
+    } else {
+        two_edge_rows::<true, true, S, T>(e, rows, cx, color, target, counts)
+    }
+}
+
 /// Writes the rows `y..stop` (`y < stop`) between the edges `e` (loaded
 /// at row `y`, both live to `stop`), cut to the clip columns `cx` when
 /// `CLIP` (else they are inside them), counting the empty rows and the
@@ -956,7 +991,9 @@ pub(super) fn emit_span<const BAND: bool, T: SpanTarget + ?Sized>(
 /// Writes the span `x0..x1` (`x0 < x1`, inside the clip) of row `y`
 /// (inside the clip rows). Outside a band walk the rasteriser has cut the
 /// clip to the target, so the span is inside it and skips the target's
-/// checks; a band walk's columns are the band's, checked by the target.
+/// checks; a band walk's spans are checked by the target (but a run of
+/// two edges inside the clip columns where the band holds its rows:
+/// [`Walk::inside`]).
 #[inline(always)]
 fn write_span<const BAND: bool, T: SpanTarget + ?Sized>(
     y: i32,

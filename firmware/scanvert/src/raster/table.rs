@@ -53,12 +53,13 @@
 
 use crate::color::ListColor;
 use crate::fixed::Vertex;
+use crate::port::runs::Rows;
 use crate::port::Counts;
 use crate::port::{Span, SpanTarget};
 use crate::raster::draw::Draw;
-use crate::raster::edge::Edge;
+use crate::raster::edge::{Edge, Stepper};
 use crate::raster::line::Line;
-use crate::raster::scan::{build_edges, Walk};
+use crate::raster::scan::{build_edges, two_edge_rows_in, Walk};
 use crate::raster::winding::FillRule;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::Rgb888;
@@ -480,16 +481,38 @@ impl<'a> EdgeTable<'a> {
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
     {
-        self.advance(y1, Some(target))
+        self.advance(y1, Some(target), false)
+    }
+
+    /// [`draw`](Self::draw) of the rows up to the end of `band`'s. Where
+    /// the band holds every row drawn (it starts at or above
+    /// [`next_row`](Self::next_row)), a run of two edges inside its
+    /// polygon's clip columns is written row by row from the row's start,
+    /// with no check a span ([`SpanTarget::row_start`]).
+    pub(crate) fn draw_band<T>(&mut self, band: &mut T) -> Result<Counts, T::Error>
+    where
+        T: Rows + ?Sized,
+        T::Color: ListColor,
+    {
+        let inside = i32::from(band.first()) <= self.y;
+        self.advance(i32::from(band.end()), Some(band), inside)
     }
 
     /// Steps every polygon and line to row `y1` without drawing.
     pub fn skip(&mut self, y1: i32) {
         // `None` of a target that cannot fail.
-        let _ = self.advance::<crate::port::band::Band<'_, Rgb888>>(y1, None);
+        let _ = self.advance::<crate::port::band::Band<'_, Rgb888>>(y1, None, false);
     }
 
-    fn advance<T>(&mut self, y1: i32, mut target: Option<&mut T>) -> Result<Counts, T::Error>
+    /// Rows `self.y..y1` of every entry, drawn into `target` or only
+    /// stepped; `inside` when the target holds all of them
+    /// ([`Walk::inside`]).
+    fn advance<T>(
+        &mut self,
+        y1: i32,
+        mut target: Option<&mut T>,
+        inside: bool,
+    ) -> Result<Counts, T::Error>
     where
         T: SpanTarget + ?Sized,
         T::Color: ListColor,
@@ -549,8 +572,10 @@ impl<'a> EdgeTable<'a> {
                     }
                 } else {
                     let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
-                    if !last_row_of_two(p, edges, y1, color, target.as_deref_mut(), &mut counts)? {
-                        run(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
+                    let paint = target.as_deref_mut().zip(color);
+                    if !band_of_two(p, edges, y1, paint, inside, &mut counts)? {
+                        let paint = target.as_deref_mut().zip(color);
+                        run(p, edges, y1, paint, inside, &mut counts)?;
                     }
                     p.done()
                 };
@@ -567,23 +592,24 @@ impl<'a> EdgeTable<'a> {
 
 /// Rows `p.y..y1` of one polygon, walked as
 /// [`Rasterizer::fill`](crate::raster::scan::Rasterizer::fill) walks them
-/// (the same [`Walk`]), drawn into `target` (or only stepped without
-/// one); its state is left for row `y1`.
+/// (the same [`Walk`]), drawn into the target of `paint` (or only
+/// stepped without one; `inside` as [`Walk::inside`]); its state is left
+/// for row `y1`.
 #[inline]
 fn run<T: SpanTarget + ?Sized>(
     p: &mut TablePolygon,
     edges: &mut [Edge],
     y1: i32,
-    color: Option<T::Color>,
-    target: Option<&mut T>,
+    paint: Option<(&mut T, T::Color)>,
+    inside: bool,
     counts: &mut Counts,
 ) -> Result<(), T::Error> {
     let mut walk = Walk {
         active: p.active as usize,
         next: p.next as usize,
         y: p.y,
+        inside,
     };
-    let paint = target.zip(color);
     let cx = (p.x0 as i32, p.x1 as i32);
     match p.rule {
         FillRule::EvenOdd => walk.run::<true, false, _, _>(edges, y1, cx, paint, counts)?,
@@ -596,52 +622,53 @@ fn run<T: SpanTarget + ?Sized>(
     Ok(())
 }
 
-/// Row `y1 − 1` of a polygon on that row (its walk at `y1 − 1`) whose
-/// two active edges both go on past it and whose next edge starts at
-/// `y1` or below, by the even-odd rule: the span between the two
-/// crossings, cut to the clip columns, drawn into `target` (or nothing
-/// without one), and both edges stepped to row `y1`. This is what
-/// [`run`] does for such a row (the last row of a band, every row of a
-/// racing row's one-row band), without the walk's loop, its copies of
-/// the edges and its checks for edges joining or leaving. `false`, with
-/// nothing done, for any other polygon or row.
+/// Rows `p.y..y1` of a polygon whose two active edges both go on past
+/// them and whose next edge starts at `y1` or below, by the even-odd
+/// rule: between its edges, cut to the clip columns, drawn into the
+/// target of `paint` (or only stepped without one), and both edges
+/// stepped to row `y1`. This is what [`run`] does for such a band (most
+/// bands a triangle crosses: all but the one with its middle vertex),
+/// without the walk's loop, its copies of the edges and its checks for
+/// edges joining or leaving. `inside` as [`Walk::inside`]. `false`, with
+/// nothing done, for any other polygon or band.
 #[inline(always)]
-fn last_row_of_two<T: SpanTarget + ?Sized>(
+fn band_of_two<T: SpanTarget + ?Sized>(
     p: &mut TablePolygon,
     edges: &mut [Edge],
     y1: i32,
-    color: Option<T::Color>,
-    target: Option<&mut T>,
+    paint: Option<(&mut T, T::Color)>,
+    inside: bool,
     counts: &mut Counts,
 ) -> Result<bool, T::Error> {
-    if p.active != 2 || p.rule != FillRule::EvenOdd || p.y.wrapping_add(1) != y1 {
+    if p.active != 2 || p.rule != FillRule::EvenOdd {
         return Ok(false);
     }
     let joins = edges.get(p.next as usize).is_some_and(|e| e.top() < y1);
     let [a, b, ..] = edges else {
         return Ok(false);
     };
-    if joins || a.end() <= y1 || b.end() <= y1 {
+    // A rectangle's sides (one span down the rows, written at once) are
+    // the walk's.
+    if joins || a.end() <= y1 || b.end() <= y1 || p.y >= y1 || (a.is_vertical() && b.is_vertical())
+    {
         return Ok(false);
     }
-    if let (Some(t), Some(color)) = (target, color) {
-        a.load_pixel();
-        b.load_pixel();
-        let (l, r) = if a.pixel() <= b.pixel() {
-            (a.pixel(), b.pixel())
-        } else {
-            (b.pixel(), a.pixel())
-        };
-        let (x0, x1) = (l.max(p.x0 as i32), r.min(p.x1 as i32));
-        if x0 < x1 {
-            // In 0..=4096 by the clip guarantee, as the walk's spans.
-            let span = Span {
-                y: p.y as u16,
-                x0: x0 as u16,
-                x1: x1 as u16,
-            };
-            t.fill_span(span, color)?;
-            counts.span((x1 - x0) as u32);
+    let y = p.y;
+    match paint {
+        Some((t, color)) => {
+            let cx = (p.x0 as i32, p.x1 as i32);
+            let (mut empty, mut pixels) = (0u32, 0u32);
+            let c = (&mut empty, &mut pixels);
+            two_edge_rows_in(inside, (a, b), (y, y1), cx, color, t, c)?;
+            let spans = (y1 - y) as u32 - empty;
+            counts.spans = counts.spans.saturating_add(spans);
+            counts.pixels = counts.pixels.saturating_add(pixels);
+        }
+        None => {
+            for _ in y + 1..y1 {
+                a.step();
+                b.step();
+            }
         }
     }
     a.step();
