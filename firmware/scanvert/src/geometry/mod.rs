@@ -597,14 +597,17 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         color: Rgb888,
         sink: &mut S,
     ) -> Result<Outcome, PipelineError<S::Error>> {
-        let mut v = [[0i64; 3]; 3];
+        // Kept as read (each below 2³⁰), widened where used: nine words
+        // live across the function, not eighteen.
+        let mut v = [[0i32; 3]; 3];
         for (w, &i) in v.iter_mut().zip(&corners) {
             let p = slots.get(i).and_then(ViewPoint::raw);
-            *w = p.ok_or(PipelineError::Range)?.map(i64::from);
+            *w = p.ok_or(PipelineError::Range)?;
         }
+        let wide = |k: usize| v[k].map(i64::from);
         // As `run` culls and lights a triangle.
-        let n = cull::normal(v[0], v[1], v[2]);
-        if !cull::is_front_triangle(&self.projection, v[0], n) {
+        let n = cull::normal(wide(0), wide(1), wide(2));
+        if !cull::is_front_triangle(&self.projection, wide(0), n) {
             return Ok(Outcome::Culled);
         }
         let base = color;
@@ -622,11 +625,12 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
             out[k] = match slots.get(corners[k]).and_then(ViewPoint::screen) {
                 Some(o) => o,
                 None => {
-                    if !(near <= v[k][2] && v[k][2] <= far) {
+                    let z = v[k][2] as i64;
+                    if !(near <= z && z <= far) {
                         inside = false;
                         break;
                     }
-                    let q = self.projection.project(v[k], &self.viewport);
+                    let q = self.projection.project(wide(k), &self.viewport);
                     let mut codes = Outcodes::EMPTY;
                     codes.add(&q, &self.viewport);
                     if !codes.is_inside() {
@@ -644,7 +648,7 @@ impl<const DEPTH: usize, const N: usize> Pipeline<DEPTH, N> {
         if !inside {
             // A clip is needed: the general stages from the points (the
             // cull and the light again, on this rare path).
-            return self.clipped_triangle(v, base, sink);
+            return self.clipped_triangle([wide(0), wide(1), wide(2)], base, sink);
         }
         // Three vertices have an area exactly when they are not on one
         // line (two equal ones are): `has_area` of what `run` would
