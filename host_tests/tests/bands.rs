@@ -658,6 +658,14 @@ proptest! {
     fn generated_2d_lists_are_the_same_in_bands(text in list_text(), rows in prop_oneof![Just(1u16), Just(7), Just(16), 1u16..40]) {
         let s = scene(&text);
         prop_assert_eq!(differs(&s, rows, Resolve::default()), None, "{}", text);
+        // The spans and pixels counted are the full frame's too.
+        let full = render_scene(&s).expect("full render");
+        let band = render_scene_bands_with(&s, rows, Resolve::default()).expect("band render");
+        prop_assert_eq!(
+            (band.stats.spans, band.stats.pixels),
+            (full.stats.spans, full.stats.pixels),
+            "{}", text
+        );
     }
 }
 

@@ -622,15 +622,19 @@ fn run<T: SpanTarget + ?Sized>(
     Ok(())
 }
 
-/// Rows `p.y..y1` of a polygon whose two active edges both go on past
-/// them and whose next edge starts at `y1` or below, by the even-odd
-/// rule: between its edges, cut to the clip columns, drawn into the
-/// target of `paint` (or only stepped without one), and both edges
-/// stepped to row `y1`. This is what [`run`] does for such a band (most
-/// bands a triangle crosses: all but the one with its middle vertex),
-/// without the walk's loop, its copies of the edges and its checks for
-/// edges joining or leaving. `inside` as [`Walk::inside`]. `false`, with
-/// nothing done, for any other polygon or band.
+/// Rows `p.y..y1` of a polygon of two active edges by the even-odd rule,
+/// drawn into the target of `paint` between its edges, cut to the clip
+/// columns, where the band holds no more than a triangle's walk: both
+/// edges go on past the band (they are stepped to row `y1`); or both end
+/// on one row in it, with no edge left to come (the polygon is done);
+/// or one ends where the polygon's third and last edge starts, and that
+/// one and the other then go on past the band or end together in it (a
+/// triangle's middle vertex). This is what [`run`] does for such a band
+/// (every band a triangle crosses but where a vertex lies on its first
+/// row), without the walk's loop, its copies of the edges and its checks
+/// for edges joining or leaving. `inside` as [`Walk::inside`]. `false`,
+/// with nothing done, for any other polygon or band, and without a
+/// target where an edge ends in the band.
 #[inline(always)]
 fn band_of_two<T: SpanTarget + ?Sized>(
     p: &mut TablePolygon,
@@ -640,40 +644,117 @@ fn band_of_two<T: SpanTarget + ?Sized>(
     inside: bool,
     counts: &mut Counts,
 ) -> Result<bool, T::Error> {
-    if p.active != 2 || p.rule != FillRule::EvenOdd {
+    if p.active != 2 || p.rule != FillRule::EvenOdd || p.y >= y1 {
         return Ok(false);
     }
-    let joins = edges.get(p.next as usize).is_some_and(|e| e.top() < y1);
-    let [a, b, ..] = edges else {
+    let (y, next) = (p.y, p.next as usize);
+    let [a, b, rest @ ..] = edges else {
         return Ok(false);
     };
     // A rectangle's sides (one span down the rows, written at once) are
     // the walk's.
-    if joins || a.end() <= y1 || b.end() <= y1 || p.y >= y1 || (a.is_vertical() && b.is_vertical())
-    {
+    if a.is_vertical() && b.is_vertical() {
         return Ok(false);
     }
-    let y = p.y;
-    match paint {
-        Some((t, color)) => {
-            let cx = (p.x0 as i32, p.x1 as i32);
-            let (mut empty, mut pixels) = (0u32, 0u32);
-            let c = (&mut empty, &mut pixels);
-            two_edge_rows_in(inside, (a, b), (y, y1), cx, color, t, c)?;
-            let spans = (y1 - y) as u32 - empty;
-            counts.spans = counts.spans.saturating_add(spans);
-            counts.pixels = counts.pixels.saturating_add(pixels);
+    let waiting = rest.get(next.wrapping_sub(2));
+    let joins = waiting.filter(|e| e.top() < y1);
+    let Some((t, color)) = paint else {
+        // Stepped only, where the edges go on past the band.
+        if joins.is_some() || a.end() <= y1 || b.end() <= y1 {
+            return Ok(false);
         }
+        for _ in y..y1 {
+            a.step();
+            b.step();
+        }
+        p.y = y1;
+        return Ok(true);
+    };
+    let cx = (p.x0 as i32, p.x1 as i32);
+    let (mut empty, mut pixels) = (0u32, 0u32);
+    let stop = match joins {
         None => {
-            for _ in y + 1..y1 {
+            let stop = a.end().min(b.end());
+            if stop > y1 {
+                // Both go on past the band.
+                two_edge_rows_in(
+                    inside,
+                    (a, b),
+                    (y, y1),
+                    cx,
+                    color,
+                    t,
+                    (&mut empty, &mut pixels),
+                )?;
                 a.step();
                 b.step();
+                p.y = y1;
+                y1
+            } else if a.end() == b.end() && waiting.is_none() {
+                // The polygon's last rows.
+                two_edge_rows_in(
+                    inside,
+                    (a, b),
+                    (y, stop),
+                    cx,
+                    color,
+                    t,
+                    (&mut empty, &mut pixels),
+                )?;
+                p.active = 0;
+                p.y = stop;
+                stop
+            } else {
+                return Ok(false);
             }
         }
-    }
-    a.step();
-    b.step();
-    p.y = y1;
+        Some(c) => {
+            // A triangle's middle vertex at row m: one edge ends there,
+            // the last edge starts there, and it ends with the other.
+            let m = c.top();
+            let last = (a.end() == m) != (b.end() == m) && next + 1 == p.n as usize;
+            if !last || m <= y || c.end() != a.end().max(b.end()) {
+                return Ok(false);
+            }
+            let c = *c;
+            two_edge_rows_in(
+                inside,
+                (&mut *a, &mut *b),
+                (y, m),
+                cx,
+                color,
+                t,
+                (&mut empty, &mut pixels),
+            )?;
+            // The pair may come back swapped: the one that ends at m is
+            // found again.
+            let (short, long) = if a.end() == m { (a, b) } else { (b, a) };
+            *short = c;
+            long.step();
+            let stop = c.end().min(y1);
+            two_edge_rows_in(
+                inside,
+                (&mut *short, &mut *long),
+                (m, stop),
+                cx,
+                color,
+                t,
+                (&mut empty, &mut pixels),
+            )?;
+            p.next += 1;
+            if c.end() > y1 {
+                short.step();
+                long.step();
+            } else {
+                p.active = 0;
+            }
+            p.y = stop;
+            stop
+        }
+    };
+    let spans = (stop - y) as u32 - empty;
+    counts.spans = counts.spans.saturating_add(spans);
+    counts.pixels = counts.pixels.saturating_add(pixels);
     Ok(true)
 }
 
