@@ -524,10 +524,10 @@ pub fn run() -> String {
         md,
         "\nIn 16-row bands W3 takes {w3:.2}× its full frame's time (target 1.25×: {}), \
          and the 3D frames at most {worst3d:.2}× (target 1.1×: {}). The full frame \
-         draws each of W3's triangles in one call, as two runs of two edges; the bands \
-         visit it once for each band it crosses (about twice at 16 rows), through the \
-         band table, whose build (every edge set up, stored and sorted before the first \
-         band) the full frame does not have.\n",
+         draws each of W3's triangles in one call, its edges held in registers; the bands \
+         set up and store every edge before the first band (the band table) and visit \
+         each triangle once for each band it crosses (about twice at 16 rows), reading \
+         its edges back from memory each time (see the performance log).\n",
         verdict(w3, 1.25),
         verdict(worst3d, 1.1)
     );
