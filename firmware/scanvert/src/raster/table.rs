@@ -486,7 +486,7 @@ impl<'a> EdgeTable<'a> {
 
     /// [`draw`](Self::draw) of the rows up to the end of `band`'s. Where
     /// the band holds every row drawn (it starts at or above
-    /// [`next_row`](Self::next_row)), a run of two edges inside its
+    /// [`next_row`](Self::next_row)) and more than one, a run of two edges inside its
     /// polygon's clip columns is written row by row from the row's start,
     /// with no check a span ([`SpanTarget::row_start`]).
     pub(crate) fn draw_band<T>(&mut self, band: &mut T) -> Result<Counts, T::Error>
@@ -494,7 +494,9 @@ impl<'a> EdgeTable<'a> {
         T: Rows + ?Sized,
         T::Color: ListColor,
     {
-        let inside = i32::from(band.first()) <= self.y;
+        // A band of one row gains nothing from a row's start: its runs
+        // are one row each.
+        let inside = band.count() > 1 && i32::from(band.first()) <= self.y;
         self.advance(i32::from(band.end()), Some(band), inside)
     }
 
@@ -572,8 +574,10 @@ impl<'a> EdgeTable<'a> {
                     }
                 } else {
                     let edges = &mut self.edges[p.first as usize..p.first as usize + p.n as usize];
+                    let one =
+                        last_row_of_two(p, edges, y1, color, target.as_deref_mut(), &mut counts)?;
                     let paint = target.as_deref_mut().zip(color);
-                    if !band_of_two(p, edges, y1, paint, inside, &mut counts)? {
+                    if !one && !band_of_two(p, edges, y1, paint, inside, &mut counts)? {
                         let paint = target.as_deref_mut().zip(color);
                         run(p, edges, y1, paint, inside, &mut counts)?;
                     }
@@ -632,7 +636,8 @@ fn run<T: SpanTarget + ?Sized>(
 /// triangle's middle vertex). This is what [`run`] does for such a band
 /// (every band a triangle crosses but where a vertex lies on its first
 /// row), without the walk's loop, its copies of the edges and its checks
-/// for edges joining or leaving. `inside` as [`Walk::inside`]. `false`,
+/// for edges joining or leaving (a band's last row alone is
+/// [`last_row_of_two`]'s). `inside` as [`Walk::inside`]. `false`,
 /// with nothing done, for any other polygon or band, and without a
 /// target where an edge ends in the band.
 #[inline(always)]
@@ -651,13 +656,13 @@ fn band_of_two<T: SpanTarget + ?Sized>(
     let [a, b, rest @ ..] = edges else {
         return Ok(false);
     };
+    let waiting = rest.get(next.wrapping_sub(2));
+    let joins = waiting.filter(|e| e.top() < y1);
     // A rectangle's sides (one span down the rows, written at once) are
     // the walk's.
     if a.is_vertical() && b.is_vertical() {
         return Ok(false);
     }
-    let waiting = rest.get(next.wrapping_sub(2));
-    let joins = waiting.filter(|e| e.top() < y1);
     let Some((t, color)) = paint else {
         // Stepped only, where the edges go on past the band.
         if joins.is_some() || a.end() <= y1 || b.end() <= y1 {
@@ -755,6 +760,61 @@ fn band_of_two<T: SpanTarget + ?Sized>(
     let spans = (stop - y) as u32 - empty;
     counts.spans = counts.spans.saturating_add(spans);
     counts.pixels = counts.pixels.saturating_add(pixels);
+    Ok(true)
+}
+
+/// Row `y1 − 1` of a polygon on that row (its walk at `y1 − 1`) whose
+/// two active edges both go on past it and whose next edge starts at
+/// `y1` or below, by the even-odd rule: the span between the two
+/// crossings, cut to the clip columns, drawn into `target` (or nothing
+/// without one), and both edges stepped to row `y1`. This is what
+/// [`run`] does for such a row (the last row of a band, every row of a
+/// racing row's one-row band), without the walk's loop, its copies of
+/// the edges and its checks for edges joining or leaving; bands of more
+/// rows are [`band_of_two`]'s. `false`, with nothing done, for any other
+/// polygon or row.
+#[inline(always)]
+fn last_row_of_two<T: SpanTarget + ?Sized>(
+    p: &mut TablePolygon,
+    edges: &mut [Edge],
+    y1: i32,
+    color: Option<T::Color>,
+    target: Option<&mut T>,
+    counts: &mut Counts,
+) -> Result<bool, T::Error> {
+    if p.active != 2 || p.rule != FillRule::EvenOdd || p.y.wrapping_add(1) != y1 {
+        return Ok(false);
+    }
+    let joins = edges.get(p.next as usize).is_some_and(|e| e.top() < y1);
+    let [a, b, ..] = edges else {
+        return Ok(false);
+    };
+    if joins || a.end() <= y1 || b.end() <= y1 {
+        return Ok(false);
+    }
+    if let (Some(t), Some(color)) = (target, color) {
+        a.load_pixel();
+        b.load_pixel();
+        let (l, r) = if a.pixel() <= b.pixel() {
+            (a.pixel(), b.pixel())
+        } else {
+            (b.pixel(), a.pixel())
+        };
+        let (x0, x1) = (l.max(p.x0 as i32), r.min(p.x1 as i32));
+        if x0 < x1 {
+            // In 0..=4096 by the clip guarantee, as the walk's spans.
+            let span = Span {
+                y: p.y as u16,
+                x0: x0 as u16,
+                x1: x1 as u16,
+            };
+            t.fill_span(span, color)?;
+            counts.span((x1 - x0) as u32);
+        }
+    }
+    a.step();
+    b.step();
+    p.y = y1;
     Ok(true)
 }
 
