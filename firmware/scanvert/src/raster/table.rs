@@ -675,40 +675,18 @@ fn band_of_two<T: SpanTarget + ?Sized>(
         p.y = y1;
         return Ok(true);
     };
-    let cx = (p.x0 as i32, p.x1 as i32);
-    let (mut empty, mut pixels) = (0u32, 0u32);
-    let stop = match joins {
+    // The rows drawn between `a` and `b` first (to the band's end, the
+    // polygon's, or the middle vertex's row), and the triangle's third
+    // edge with the row it starts on, if it joins in the band.
+    let (first, then) = match joins {
         None => {
             let stop = a.end().min(b.end());
             if stop > y1 {
                 // Both go on past the band.
-                two_edge_rows_in(
-                    inside,
-                    (a, b),
-                    (y, y1),
-                    cx,
-                    color,
-                    t,
-                    (&mut empty, &mut pixels),
-                )?;
-                a.step();
-                b.step();
-                p.y = y1;
-                y1
+                (y1, None)
             } else if a.end() == b.end() && waiting.is_none() {
                 // The polygon's last rows.
-                two_edge_rows_in(
-                    inside,
-                    (a, b),
-                    (y, stop),
-                    cx,
-                    color,
-                    t,
-                    (&mut empty, &mut pixels),
-                )?;
-                p.active = 0;
-                p.y = stop;
-                stop
+                (stop, None)
             } else {
                 return Ok(false);
             }
@@ -721,42 +699,45 @@ fn band_of_two<T: SpanTarget + ?Sized>(
             if !last || m <= y || c.end() != a.end().max(b.end()) {
                 return Ok(false);
             }
-            let c = *c;
-            two_edge_rows_in(
-                inside,
-                (&mut *a, &mut *b),
-                (y, m),
-                cx,
-                color,
-                t,
-                (&mut empty, &mut pixels),
-            )?;
-            // The pair may come back swapped: the one that ends at m is
-            // found again.
-            let (short, long) = if a.end() == m { (a, b) } else { (b, a) };
+            (m, Some(*c))
+        }
+    };
+    let cx = (p.x0 as i32, p.x1 as i32);
+    let (mut empty, mut pixels) = (0u32, 0u32);
+    let c = (&mut empty, &mut pixels);
+    two_edge_rows_in(inside, (&mut *a, &mut *b), (y, first), cx, color, t, c)?;
+    let (a, b, stop) = match then {
+        None => (a, b, first),
+        Some(c) => {
+            // The pair may come back swapped: the one that ends at the
+            // middle vertex is found again, and the third edge takes its
+            // place.
+            let (short, long) = if a.end() == first { (a, b) } else { (b, a) };
             *short = c;
             long.step();
+            p.next += 1;
             let stop = c.end().min(y1);
+            let n = (&mut empty, &mut pixels);
             two_edge_rows_in(
                 inside,
                 (&mut *short, &mut *long),
-                (m, stop),
+                (first, stop),
                 cx,
                 color,
                 t,
-                (&mut empty, &mut pixels),
+                n,
             )?;
-            p.next += 1;
-            if c.end() > y1 {
-                short.step();
-                long.step();
-            } else {
-                p.active = 0;
-            }
-            p.y = stop;
-            stop
+            (short, long, stop)
         }
     };
+    if stop < y1 || a.end() == y1 {
+        // Both end on the band's rows (together, checked above).
+        p.active = 0;
+    } else {
+        a.step();
+        b.step();
+    }
+    p.y = stop;
     let spans = (stop - y) as u32 - empty;
     counts.spans = counts.spans.saturating_add(spans);
     counts.pixels = counts.pixels.saturating_add(pixels);
