@@ -263,33 +263,33 @@ impl CostModel {
     /// benchmark's tests check that it gives these coefficients and the
     /// error below.
     ///
-    /// Against the 1,992 measured rows the model's error is 8.4 % on
-    /// average and 48.4 % at worst (the 2D lists' rows: 2.0 % to 12.0 %
+    /// Against the 1,992 measured rows the model's error is 7.5 % on
+    /// average and 42.2 % at worst (the 2D lists' rows: 1.7 % to 10.3 %
     /// on average, the 3D lists' 14.9 % and 12.6 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
-    /// large part). A row's cost hardly grows with its width (an eighth
-    /// of an instruction a pixel); a 2D polygon live on the row costs 86
-    /// instructions besides its span, the edge table's live set 21 a
+    /// large part). A row's cost hardly grows with its width (a sixteenth
+    /// of an instruction a pixel); a 2D polygon live on the row costs 87
+    /// instructions besides its span, the edge table's live set 18 a
     /// word of 32 polygons on every row (W3's 313 words), and a run
     /// moved by an insertion 5. Preparing a list is fitted to
     /// the eight lists' counts. Labels are in none of the measured lists,
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1066,
-        width: 2,
-        span: 3210,
+        row: 1180,
+        width: 1,
+        span: 3273,
         pixel: -3,
         run: 548,
-        entered: 7233,
-        resolved: 1730,
+        entered: 7258,
+        resolved: 1671,
         label: 0,
-        live: 1365,
-        word: 344,
-        moved: 78,
+        live: 1394,
+        word: 295,
+        moved: 77,
         frame: 117530,
         command: 11085,
-        trapezoid: 664,
+        trapezoid: 666,
     };
 
     /// Instructions of a row of `work`, at least 1.
