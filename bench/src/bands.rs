@@ -527,7 +527,7 @@ pub fn run() -> String {
          draws each of W3's triangles in one call, its edges held in registers; the bands \
          set up and store every edge before the first band (the band table) and visit \
          each triangle once for each band it crosses (about twice at 16 rows), reading \
-         its edges back from memory each time (see the performance log).\n",
+         its edges back from memory each time (see the performance log).",
         verdict(w3, 1.25),
         verdict(worst3d, 1.1)
     );
