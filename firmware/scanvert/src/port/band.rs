@@ -330,10 +330,7 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
         x1: u16,
         color: C,
     ) -> Result<(), Self::Error> {
-        let (a, b) = (row.wrapping_add(x0 as usize), row.wrapping_add(x1 as usize));
-        if let Some(run) = self.pixels.get_mut(a..b) {
-            crate::port::framebuffer::fill_run(run, color);
-        }
+        crate::port::framebuffer::fill_row_at(self.pixels, row, x0, x1, color);
         Ok(())
     }
 

@@ -109,6 +109,17 @@ pub(crate) fn fill_run<C: Copy>(run: &mut [C], color: C) {
     }
 }
 
+/// [`fill_run`] of the columns `x0..x1` of the row that starts at index
+/// `row` of `pixels` (a target's `fill_row_inside`): nothing where they
+/// are not all in the slice.
+#[inline(always)]
+pub(crate) fn fill_row_at<C: Copy>(pixels: &mut [C], row: usize, x0: u16, x1: u16, color: C) {
+    let (a, b) = (row.wrapping_add(x0 as usize), row.wrapping_add(x1 as usize));
+    if let Some(run) = pixels.get_mut(a..b) {
+        fill_run(run, color);
+    }
+}
+
 impl<C: PixelColor> SpanTarget for FrameBuffer<'_, C> {
     type Color = C;
     type Error = Infallible;
@@ -169,9 +180,7 @@ impl<C: PixelColor> SpanTarget for FrameBuffer<'_, C> {
         x1: u16,
         color: C,
     ) -> Result<(), Infallible> {
-        if let Some(run) = self.pixels.get_mut(row + x0 as usize..row + x1 as usize) {
-            fill_run(run, color);
-        }
+        fill_row_at(self.pixels, row, x0, x1, color);
         Ok(())
     }
 
