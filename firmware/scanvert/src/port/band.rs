@@ -97,6 +97,17 @@ pub trait AsyncBandTarget {
     ) -> impl core::future::Future<Output = Result<(), Self::Error>>;
 }
 
+/// The index of row `y`'s first pixel in a band of rows from `y0`, rows
+/// of `width` pixels (or words of two): wrapped for a row above the band
+/// to one past any slice's end, so that the slice's check refuses it
+/// (`65535 · 65535 + 65535` fits a 32-bit `usize`; with a narrower one
+/// the product wraps, never panics). Every band's `row_start` and its
+/// writes inside.
+#[inline(always)]
+pub(crate) fn band_row_start(y: u16, y0: u16, width: u16) -> usize {
+    (y.wrapping_sub(y0) as usize).wrapping_mul(width as usize)
+}
+
 impl<B: BandTarget + ?Sized> BandTarget for &mut B {
     type Color = B::Color;
     type Error = B::Error;
@@ -297,8 +308,7 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
     /// narrower one the sums wrap, never panic).
     #[inline(always)]
     fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Self::Error> {
-        let row = span.y.wrapping_sub(self.y0);
-        let base = (row as usize).wrapping_mul(self.width as usize);
+        let base = band_row_start(span.y, self.y0, self.width);
         let (x0, x1) = (
             base.wrapping_add(span.x0 as usize),
             base.wrapping_add(span.x1 as usize),
@@ -313,7 +323,7 @@ impl<C: PixelColor> SpanTarget for Band<'_, C> {
     /// row above it, so that the slice's check refuses it).
     #[inline(always)]
     fn row_start(&self, y: u16) -> usize {
-        (y.wrapping_sub(self.y0) as usize).wrapping_mul(self.width as usize)
+        band_row_start(y, self.y0, self.width)
     }
 
     #[inline(always)]

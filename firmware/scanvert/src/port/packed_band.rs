@@ -41,7 +41,7 @@
 //! a `[Rgb565]` band). The pixel format is any 16-bit one
 //! (`Into<RawU16> + From<RawU16>`).
 
-use crate::port::band::BandError;
+use crate::port::band::{band_row_start, BandError};
 use crate::port::draw_target::{self, Window};
 use crate::port::packed::{fill_pixels, fill_words, PackedFrameBuffer};
 use crate::port::runs::Rows;
@@ -330,8 +330,7 @@ where
     /// padding half of an odd band's last word, never a pixel of it).
     #[inline(always)]
     fn fill_span_inside(&mut self, span: Span, color: C) -> Result<(), Infallible> {
-        let row = span.y.wrapping_sub(self.y0);
-        let base = (row as usize).wrapping_mul(self.width as usize);
+        let base = band_row_start(span.y, self.y0, self.width);
         let (a, b) = (
             base.wrapping_add(span.x0 as usize),
             base.wrapping_add(span.x1 as usize),
@@ -346,7 +345,7 @@ where
     /// row outside the band: its words start past the slice's end).
     #[inline(always)]
     fn row_start(&self, y: u16) -> usize {
-        (y.wrapping_sub(self.y0) as usize).wrapping_mul(self.width as usize)
+        band_row_start(y, self.y0, self.width)
     }
 
     #[inline(always)]
@@ -376,8 +375,7 @@ where
     /// line: called once a row, its loop keeps its own registers.
     #[inline(never)]
     fn fill_runs_inside(&mut self, y: u16, x0: u16, runs: &[RowRun<C>]) -> Result<(), Infallible> {
-        let row = y.wrapping_sub(self.y0);
-        let base = (row as usize).wrapping_mul(self.width as usize);
+        let base = band_row_start(y, self.y0, self.width);
         fill_runs(
             self.words,
             base.wrapping_add(x0 as usize),

@@ -629,10 +629,7 @@ impl Walk {
                         // Rows y..stop, without the clip where both edges
                         // stay inside its columns over them.
                         let rows = stop - y;
-                        let inside = |e: &S| {
-                            e.columns(rows)
-                                .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
-                        };
+                        let inside = |e: &S| within_columns(e, rows, cx);
                         let (e, c) = ((&mut ea, &mut eb), (&mut empty, &mut pixels));
                         if (!BAND || self.inside) && inside(e.0) && inside(e.1) {
                             two_edge_rows::<false, false, _, T>(
@@ -845,6 +842,15 @@ fn triangle_runs<const CLIP: bool, S: Stepper, T: SpanTarget + ?Sized>(
     Ok(())
 }
 
+/// `true` when the pixels of `e` on its `rows` rows from the current one
+/// all lie in the clip columns `cx` ([`Stepper::columns`]): a run of
+/// them then needs no clip.
+#[inline(always)]
+fn within_columns<S: Stepper>(e: &S, rows: i32, cx: (i32, i32)) -> bool {
+    e.columns(rows)
+        .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
+}
+
 /// [`two_edge_rows`] of a band walk: from each row's start without the
 /// clip where `inside` (the target holds the rows, as
 /// [`Walk::inside`]) and both edges stay inside the clip columns `cx`
@@ -860,10 +866,7 @@ pub(super) fn two_edge_rows_in<S: Stepper, T: SpanTarget + ?Sized>(
     counts: (&mut u32, &mut u32),
 ) -> Result<(), T::Error> {
     let n = rows.1 - rows.0;
-    let within = |e: &S| {
-        e.columns(n)
-            .is_some_and(|(lo, hi)| lo >= cx.0 && hi <= cx.1)
-    };
+    let within = |e: &S| within_columns(e, n, cx);
     if inside && within(e.0) && within(e.1) {
         two_edge_rows::<false, false, S, T>(e, rows, cx, color, target, counts)
     } else {
