@@ -139,6 +139,17 @@ pub trait SpanTarget {
     /// [`Resolve::Auto`]: crate::visible::Resolve::Auto
     const OVERDRAW_IS_CHEAP: bool = true;
 
+    /// Whether the 3D sweep hands every row's runs over in batches
+    /// ([`fill_runs_inside`](Self::fill_runs_inside)) rather than one by
+    /// one ([`fill_span_inside`](Self::fill_span_inside)): `true` for a
+    /// target to which a batch costs less than its runs one at a time (a
+    /// row of runs, [`RowRuns`](runs::RowRuns), appends a batch in one
+    /// pass), `false` (the default) for one to which each run costs the
+    /// same either way, where gathering the batch would only add work. A
+    /// row whose faces lie side by side is handed over in batches to
+    /// every target. The pixels are the same either way.
+    const RUNS_IN_BATCHES: bool = false;
+
     /// Width and height in pixels. Both are at most 4096.
     fn size(&self) -> (u16, u16);
 
@@ -265,6 +276,7 @@ impl<T: SpanTarget + ?Sized> SpanTarget for &mut T {
     type Color = T::Color;
     type Error = T::Error;
     const OVERDRAW_IS_CHEAP: bool = T::OVERDRAW_IS_CHEAP;
+    const RUNS_IN_BATCHES: bool = T::RUNS_IN_BATCHES;
     #[inline]
     fn size(&self) -> (u16, u16) {
         (**self).size()

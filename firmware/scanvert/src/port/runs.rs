@@ -50,7 +50,7 @@
 //! still inserted), and the compose calls report it as
 //! [`RowsError::Full`] with the row, never a panic.
 
-use super::{Span, SpanTarget};
+use super::{RowRun, Span, SpanTarget};
 use core::convert::Infallible;
 use core::fmt;
 use embedded_graphics_core::pixelcolor::PixelColor;
@@ -272,6 +272,93 @@ impl<'r, C: PixelColor> RowRuns<'r, C> {
         self.len = total;
     }
 
+    /// [`append`](Self::append) of the runs `runs` one after the other
+    /// from `x0` (as [`SpanTarget::fill_runs_inside`] hands them over),
+    /// in one pass: the pixels right of each are the last run's colour
+    /// (`after`), which a run puts back at its end only to have the next
+    /// one take it away, so it is put back once, after the last. The
+    /// row, its peak (each append's count of runs, the put-back one
+    /// included) and its length are those of the appends in turn.
+    /// `false`, with nothing changed, where the appends would not all
+    /// take this path or might not fit: the caller appends them one by
+    /// one.
+    #[inline(always)]
+    fn append_all(&mut self, x0: u16, runs: &[RowRun<C>]) -> bool {
+        let width = self.width;
+        let Some(last) = self.len.checked_sub(1) else {
+            return false;
+        };
+        let after = self.runs[last];
+        // Each run adds one at most, and the put-back run one.
+        if after.x > x0 || last + runs.len() + 2 > self.runs.len() {
+            return false;
+        }
+        // Runs go in from `n` on (run `last` stays when it starts left
+        // of `x0`, cut there), after the colour `prev`.
+        let mut n = if after.x < x0 { last + 1 } else { last };
+        // `x`: where the next run starts, as the caller's order has it.
+        // `fresh`: the last run put in started a colour. An append
+        // counts the runs it leaves, the put-back one included: the most
+        // are those of the last colour's first run, which puts one back
+        // unless it ends the row.
+        let (mut x, mut fresh, mut any) = (x0, false, false);
+        let mut it = runs.iter();
+        let mut prev = match n {
+            0 => {
+                // The row is one run, from `x0` = 0: the first run with
+                // pixels goes in whatever its colour (none before it).
+                let first = loop {
+                    match it.next() {
+                        None => return true,
+                        Some(r) if r.x1 == x0 => continue,
+                        Some(r) if r.x1 < x0 => return false,
+                        Some(r) => break r,
+                    }
+                };
+                self.runs[0] = ColorRun::new(x0, first.color);
+                (n, x, fresh, any) = (1, first.x1, true, true);
+                first.color
+            }
+            _ => self.runs[n - 1].color,
+        };
+        for r in it {
+            if r.x1 <= x {
+                if r.x1 < x {
+                    // A run that goes back is an insertion: nothing
+                    // changed but run `last`, which is put back.
+                    self.runs[last] = after;
+                    return false;
+                }
+                continue;
+            }
+            if x < width {
+                fresh = prev != r.color;
+                if fresh {
+                    self.runs[n] = ColorRun::new(x, r.color);
+                    n += 1;
+                    prev = r.color;
+                }
+                any = true;
+            }
+            x = r.x1;
+        }
+        if !any {
+            // Nothing put in: the row as it was.
+            self.runs[last] = after;
+            return true;
+        }
+        let end = x.min(width);
+        let back = prev != after.color;
+        let first_back = back && (end < width || !fresh);
+        self.peak = self.peak.max(n + first_back as usize);
+        if back && end < width {
+            self.runs[n] = ColorRun::new(end, after.color);
+            n += 1;
+        }
+        self.len = n;
+        true
+    }
+
     /// Puts `color` over the pixels `x0..x1` (`x0 < x1 ≤ width`, and the
     /// row holds a run).
     fn insert(&mut self, x0: u16, x1: u16, color: C) {
@@ -352,6 +439,8 @@ fn move_runs<T: Copy>(runs: &mut [T], from: core::ops::Range<usize>, to: usize) 
 impl<C: PixelColor> SpanTarget for RowRuns<'_, C> {
     type Color = C;
     type Error = Infallible;
+    /// A batch of runs is appended in one pass.
+    const RUNS_IN_BATCHES: bool = true;
 
     fn size(&self) -> (u16, u16) {
         (self.width, self.height)
@@ -378,6 +467,22 @@ impl<C: PixelColor> SpanTarget for RowRuns<'_, C> {
                 Some(r) if r.x <= span.x0 => self.append(span.x0, x1, color),
                 Some(_) => self.insert(span.x0, x1, color),
                 None => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// As [`fill_span_inside`](SpanTarget::fill_span_inside) of each run
+    /// in turn, the same row, runs, [`peak`](RowRuns::peak) and
+    /// overflow: where the runs start in the row's last run (the 3D
+    /// layer's, left to right) they are appended in one pass, with no
+    /// run cut and put back between two of them.
+    fn fill_runs_inside(&mut self, y: u16, x0: u16, runs: &[RowRun<C>]) -> Result<(), Infallible> {
+        if y == self.y && !self.append_all(x0, runs) {
+            let mut x = x0;
+            for r in runs {
+                self.fill_span_inside(Span { y, x0: x, x1: r.x1 }, r.color)?;
+                x = r.x1;
             }
         }
         Ok(())
@@ -599,6 +704,81 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn a_batch_is_its_runs_one_by_one() {
+        // Batches of 0 to 5 runs over rows of 1 to 3 runs of width 12, at
+        // every capacity: in order, empty, going back, past the width, on
+        // another row. The batch leaves the runs, peak, overflow and
+        // moves that its runs' spans leave one by one.
+        let w = 12u16;
+        let mut next = crate::rng::xorshift32(0x1234_5679);
+        let mut bulk = 0;
+        for _ in 0..200_000 {
+            let r = next();
+            let cuts = (r % 3) as u16;
+            let n = (r >> 2) as usize % 6;
+            let cap = 1 + (r >> 5) as usize % 9;
+            let y = u16::from((r >> 9).is_multiple_of(8));
+            let mut x0 = (r >> 12) as u16 % w;
+            let mut batch = [RowRun { x1: 0, color: g(0) }; 5];
+            let mut x = x0;
+            for b in batch.iter_mut().take(n) {
+                let r = next();
+                let x1 = match r % 8 {
+                    0 => x,
+                    1 => x.saturating_sub(1 + (r >> 3) as u16 % 3),
+                    2 => w + (r >> 3) as u16 % 3,
+                    _ => (x + 1 + (r >> 3) as u16 % 4).min(w),
+                };
+                *b = RowRun {
+                    x1,
+                    color: g((r >> 8) as u8 % 3),
+                };
+                x = x1;
+            }
+            if r >> 31 == 0 {
+                x0 = x0.min(cuts * 2);
+            }
+            let mut out: [(Vec<ColorRun<Gray8>>, usize, bool, u32); 2] = Default::default();
+            let mut bufs = [[ColorRun::new(0, g(0)); 10]; 2];
+            for (k, buf) in bufs.iter_mut().enumerate() {
+                let mut row = RowRuns::new(&mut buf[..cap]);
+                row.start(0, (w, 1), g(0));
+                for i in 1..=cuts {
+                    let s = Span {
+                        y: 0,
+                        x0: i * 2,
+                        x1: w,
+                    };
+                    row.fill_span(s, g((i % 3) as u8)).unwrap();
+                }
+                // The one-pass append, where it takes the batch, or the
+                // trait's call; the spans one by one.
+                match k {
+                    0 if y == 0 && row.append_all(x0, &batch[..n]) => bulk += 1,
+                    0 => row.fill_runs_inside(y, x0, &batch[..n]).unwrap(),
+                    _ => {
+                        let mut x = x0;
+                        for b in &batch[..n] {
+                            let s = Span { y, x0: x, x1: b.x1 };
+                            row.fill_span_inside(s, b.color).unwrap();
+                            x = b.x1;
+                        }
+                    }
+                }
+                out[k] = (
+                    row.as_slice().to_vec(),
+                    row.peak(),
+                    row.overflowed(),
+                    row.moved(),
+                );
+            }
+            assert_eq!(out[0], out[1], "{cuts} {x0} {:?} {cap} {y}", &batch[..n]);
+        }
+        // The one-pass append took a good share of them.
+        assert!(bulk > 40_000, "{bulk}");
     }
 
     #[test]

@@ -949,7 +949,8 @@ impl Sweep {
         T::Color: ListColor,
     {
         self.check(workspace)?;
-        let mut out = ToTarget::new(target, background);
+        let mut runs = pending_runs();
+        let mut out = ToTarget::new(target, background, batch_of::<T>(&mut runs));
         let mut rows = rows;
         if let Some(mut p) = self.painter {
             let end = p.y.saturating_add(rows).min(store.height());
@@ -1651,6 +1652,16 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     /// For painting: where the current row starts in the target
     /// ([`SpanTarget::row_start`]), worked out once a row.
     row: usize,
+    /// For a target that takes runs in batches
+    /// ([`SpanTarget::RUNS_IN_BATCHES`]): the row's runs not yet handed
+    /// to it, one after the other ([`RowOut::run`]), `pending[..held]`
+    /// from column `from`, handed over in one call when `pending` is
+    /// full, where a run is skipped, and at the row's end. Lent by the
+    /// caller ([`ToTarget::new`]), so that the writer stays small to
+    /// move.
+    pending: &'t mut [RowRun<T::Color>],
+    held: usize,
+    from: u16,
 }
 
 /// A side-by-side row's runs in [`ToTarget::side_by_side`]: `runs[..n]`,
@@ -1666,10 +1677,20 @@ struct Batch<C> {
 /// stack): a row of a mesh's faces at 240 columns is one or two batches.
 const BATCH: usize = 16;
 
-impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
+impl<'t, T> ToTarget<'t, T>
+where
+    T: SpanTarget + ?Sized,
+    T::Color: ListColor,
+{
     /// Rows into `target` from its first, the background filled with
-    /// `background` or left as it is.
-    fn new(target: &'t mut T, background: Option<T::Color>) -> Self {
+    /// `background` or left as it is; `pending` holds the runs of a
+    /// batch ([`ToTarget::pending`]; [`BATCH`] of them, none for a
+    /// target that takes runs one by one).
+    fn new(
+        target: &'t mut T,
+        background: Option<T::Color>,
+        pending: &'t mut [RowRun<T::Color>],
+    ) -> Self {
         let (tw, th) = target.size();
         ToTarget {
             target,
@@ -1684,7 +1705,32 @@ impl<'t, T: SpanTarget + ?Sized> ToTarget<'t, T> {
             error: None,
             limit: 0,
             row: 0,
+            pending,
+            held: 0,
+            from: 0,
         }
+    }
+}
+
+/// The runs of a batch for [`ToTarget::new`], in the caller's frame:
+/// [`BATCH`] runs for a target that takes runs in batches
+/// ([`SpanTarget::RUNS_IN_BATCHES`]), none touched for another (its
+/// writer never reads them, so they are not even filled).
+#[inline(always)]
+fn pending_runs<C: ListColor>() -> [RowRun<C>; BATCH] {
+    [RowRun {
+        x1: 0,
+        color: C::from_list_word(0),
+    }; BATCH]
+}
+
+/// `runs` ([`pending_runs`]) for a writer into a `T`: all of them if it
+/// takes runs in batches, none if not.
+#[inline(always)]
+fn batch_of<T: SpanTarget + ?Sized>(runs: &mut [RowRun<T::Color>]) -> &mut [RowRun<T::Color>] {
+    match T::RUNS_IN_BATCHES {
+        true => runs,
+        false => &mut [],
     }
 }
 
@@ -1733,6 +1779,24 @@ where
         }
         let runs = &at.runs[..at.n.min(BATCH)];
         if let Err(e) = self.target.fill_runs_inside(self.y, at.from, runs) {
+            self.error = Some(e);
+            self.limit = 0;
+        }
+    }
+
+    /// Hands the runs of [`RowOut::run`] held in the batch to the
+    /// target, unless a write has failed on the row, and empties it.
+    #[inline(always)]
+    fn hand_over_runs(&mut self) {
+        if !T::RUNS_IN_BATCHES {
+            return;
+        }
+        let n = core::mem::take(&mut self.held);
+        if n == 0 || self.error.is_some() {
+            return;
+        }
+        let runs = self.pending.get(..n).unwrap_or_default();
+        if let Err(e) = self.target.fill_runs_inside(self.y, self.from, runs) {
             self.error = Some(e);
             self.limit = 0;
         }
@@ -1793,21 +1857,6 @@ where
             self.write_row(0, x1, c);
         }
     }
-
-    /// Writes pixels `x0..x1` of the current row, clipped to the target
-    /// already (so the frame need not check them again), in `c`.
-    #[inline(always)]
-    fn write(&mut self, x0: u32, x1: u32, c: T::Color) {
-        let span = Span {
-            y: self.y,
-            x0: x0 as u16,
-            x1: x1 as u16,
-        };
-        if let Err(e) = self.target.fill_span_inside(span, c) {
-            self.error = Some(e);
-            self.limit = 0;
-        }
-    }
 }
 
 impl<T> RowOut for ToTarget<'_, T>
@@ -1847,13 +1896,41 @@ where
                 None => {
                     self.skipped += 1;
                     self.skipped_px += x1 - x0;
+                    self.hand_over_runs();
                     return;
                 }
             }
         } else {
             T::Color::from_list_word(color)
         };
-        self.write(x0, x1, c);
+        if !T::RUNS_IN_BATCHES {
+            let span = Span {
+                y: self.y,
+                x0: x0 as u16,
+                x1: x1 as u16,
+            };
+            if let Err(e) = self.target.fill_span_inside(span, c) {
+                self.error = Some(e);
+                self.limit = 0;
+            }
+            return;
+        }
+        // The runs of a row come one after the other: the batch's next
+        // starts where its last ends, unless one was skipped between
+        // (which handed it over).
+        if self.held >= self.pending.len() {
+            self.hand_over_runs();
+        }
+        if self.held == 0 {
+            self.from = x0 as u16;
+        }
+        if let Some(r) = self.pending.get_mut(self.held) {
+            *r = RowRun {
+                x1: x1 as u16,
+                color: c,
+            };
+            self.held += 1;
+        }
     }
 
     /// Where the background is filled and the target holds the row's
@@ -1923,6 +2000,7 @@ where
     /// inside the target but the skipped ones.
     #[inline]
     fn finish(&mut self) -> Result<u32, T::Error> {
+        self.hand_over_runs();
         if let Some(e) = self.error.take() {
             return Err(e);
         }
@@ -3165,7 +3243,8 @@ where
         return paint::draw(store, workspace, target, background);
     }
     workspace.check_runs(store)?;
-    let out = ToTarget::new(target, background);
+    let mut runs = pending_runs();
+    let out = ToTarget::new(target, background, batch_of::<T>(&mut runs));
     let (stats, out) = resolve_into(workspace.active, store, mode, out)?;
     Ok((stats, out.counts))
 }
@@ -3702,11 +3781,12 @@ mod tests {
             size: (width, H),
             got: std::vec::Vec::new(),
         };
+        let mut runs = pending_runs();
         let mut cx = resolve_row(
             &store,
             live,
             side,
-            ToTarget::new(&mut target, background),
+            ToTarget::new(&mut target, background, &mut runs),
             1,
         );
         let runs = cx.out.finish().unwrap();

@@ -80,8 +80,8 @@
 //! display's window.
 
 use super::{
-    capacity, crossing_point, exact_nearer, step_edge, Active, Counts, Cover, Entry, Resolve,
-    ToTarget, VisibleError, VisibleStats, Workspace,
+    batch_of, capacity, crossing_point, exact_nearer, pending_runs, step_edge, Active, Counts,
+    Cover, Entry, Resolve, ToTarget, VisibleError, VisibleStats, Workspace,
 };
 use crate::color::ListColor;
 use crate::port::SpanTarget;
@@ -126,7 +126,8 @@ where
 {
     workspace.check_runs(store)?;
     {
-        let mut out = ToTarget::new(&mut *target, background);
+        let mut runs = pending_runs();
+        let mut out = ToTarget::new(&mut *target, background, batch_of::<T>(&mut runs));
         let mut stats = VisibleStats {
             mode: Resolve::Paint,
             ..VisibleStats::default()
