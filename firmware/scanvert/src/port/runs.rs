@@ -15,7 +15,9 @@
 //!   inserted over what is there: the runs it covers are removed, the
 //!   ones it cuts are trimmed, and it merges with a neighbour of its
 //!   colour. A span costs a binary search and a move of the runs to its
-//!   right (none for the 3D layer's runs, which come left to right).
+//!   right. The 3D layer's runs, which come left to right, are appended
+//!   instead, a batch of them in one pass
+//!   ([`SpanTarget::RUNS_IN_BATCHES`], [`SpanTarget::fill_runs_inside`]).
 //!
 //! [`ListBands::draw_runs`](crate::controller::ListBands::draw_runs) and
 //! [`SceneBands::draw_runs`](crate::scene::SceneBands::draw_runs) compose
