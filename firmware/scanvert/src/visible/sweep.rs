@@ -858,6 +858,10 @@ pub struct Sweep {
     /// With [`Resolve::Paint`], the frame painted so far (`None` once it
     /// has fallen back to the sweep, or in the other modes).
     painter: Option<paint::Painter>,
+    /// The last row was written side by side: the next is handed to the
+    /// output's writer at once, which finds out as it writes whether it
+    /// is (a mesh's rows mostly are), and not tested first.
+    side: bool,
 }
 
 impl Sweep {
@@ -892,6 +896,7 @@ impl Sweep {
                 ..VisibleStats::default()
             },
             painter,
+            side: false,
         }
     }
 
@@ -1052,7 +1057,7 @@ impl Sweep {
         };
         // act[..k].hot: the live trapezoids, sorted by l as of the last
         // row; act[..nf].free: the free slots.
-        let (mut k, mut nf) = (self.k, self.nf);
+        let (mut k, mut nf, mut side) = (self.k, self.nf, self.side);
         let mut fresh = Fresh::EMPTY;
         let end = self.y.saturating_add(rows).min(store.height());
         for y in self.y..end {
@@ -1106,25 +1111,34 @@ impl Sweep {
             } else {
                 // Trapezoids that entered at the end, or edges that
                 // crossed, leave the row out of order: sorted, it may
-                // still be side by side.
-                let mut row = side_by_side(&act[..k], width);
-                if row != Row::Overlapping {
-                    if row == Row::Unsorted {
-                        if k > self.many.0 {
-                            sort_many(act, stepped, k);
-                        } else {
-                            sort(&mut act[..k]);
-                        }
-                        row = side_by_side(&act[..k], width);
-                    }
-                } else if k > self.many.0 {
+                // still be side by side. After a row written so, the
+                // output's writer takes the row at once and finds out
+                // as it writes it (a mesh's rows mostly are); after
+                // another, or for an output with no writer of its own,
+                // a pass that stops at the first overlap finds it first
+                // (the rows of faces that overlap mostly do).
+                if k > self.many.0 {
                     sort_many(act, stepped, k);
                 } else {
                     sort(&mut act[..k]);
                 }
-                if row == Row::SideBySide {
-                    write_side_by_side(&act[..k], width, &mut cx);
-                } else {
+                let live = &act[..k];
+                let out = match side {
+                    true => cx.out.side_by_side(live, width, &mut cx.stats),
+                    false => None,
+                };
+                let written = match out {
+                    Some(w) => w,
+                    None if side_by_side(live, width) == Row::SideBySide => {
+                        if cx.out.side_by_side(live, width, &mut cx.stats).is_none() {
+                            write_side_by_side(live, width, &mut cx);
+                        }
+                        true
+                    }
+                    None => false,
+                };
+                side = written;
+                if !written {
                     // Trapezoids may share the row's pixels: their
                     // depths are read.
                     work_out_depths(act, k, store, yi);
@@ -1139,7 +1153,7 @@ impl Sweep {
             cx.stats.rows += 1;
             cx.stats.runs += cx.out.finish().map_err(VisibleError::Sink)?;
             // Saved row by row: an error leaves the sweep where it stopped.
-            (self.y, self.k, self.nf) = (y + 1, k, nf);
+            (self.y, self.k, self.nf, self.side) = (y + 1, k, nf, side);
         }
         self.stats = cx.stats;
         Ok(cx.out)
@@ -1586,14 +1600,23 @@ trait RowOut {
     fn run(&mut self, len: i32, ink: u16, color: u32);
     /// Ends the row; the runs it had.
     fn finish(&mut self) -> Result<u32, Self::Error>;
-    /// Writes the whole row started, whose live trapezoids `live` are
-    /// side by side ([`side_by_side`]) with nothing pending, as
-    /// [`write_side_by_side`] writes it through [`run`](Self::run): the
-    /// same runs, and its `empty` and `single` added to `stats`. `false`,
-    /// with nothing done, where it does not; the default never does.
+    /// Writes the whole row started, with nothing pending, when its live
+    /// trapezoids `live` (sorted by `l`) are side by side
+    /// ([`side_by_side`]), as [`write_side_by_side`] writes it through
+    /// [`run`](Self::run): the same runs, and its `empty` and `single`
+    /// added to `stats`; `Some(true)`. `Some(false)` where they are not,
+    /// found as the row is written: nothing is counted, and what was
+    /// written of the row is the sweep's to write over (every pixel of
+    /// it). `None`, with nothing done, where the output does not write
+    /// rows so; the default never does.
     #[inline(always)]
-    fn side_by_side(&mut self, _live: &[Active], _width: i32, _stats: &mut VisibleStats) -> bool {
-        false
+    fn side_by_side(
+        &mut self,
+        _live: &[Active],
+        _width: i32,
+        _stats: &mut VisibleStats,
+    ) -> Option<bool> {
+        None
     }
 }
 
@@ -1666,11 +1689,13 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
 
 /// A side-by-side row's runs in [`ToTarget::side_by_side`]: `runs[..n]`,
 /// one after the other from column `from`, handed to the target in one
-/// call ([`SpanTarget::fill_runs_inside`]) when full and at the row's end.
+/// call ([`SpanTarget::fill_runs_inside`]) when full and at the row's end;
+/// `handed` runs before them, counted when the row is found side by side.
 struct Batch<C> {
     runs: [RowRun<C>; BATCH],
     n: usize,
     from: u16,
+    handed: u32,
 }
 
 /// The runs a [`Batch`] holds (4 bytes each for a 16-bit pixel, on the
@@ -1747,7 +1772,7 @@ where
             self.hand_over(at);
             at.from = at.runs[BATCH - 1].x1;
             at.n = 0;
-            self.runs += BATCH as u32;
+            at.handed += BATCH as u32;
         }
         // `n < BATCH` here: the remainder only spares the bound test.
         at.runs[at.n % BATCH] = RowRun {
@@ -1765,7 +1790,7 @@ where
         if at.n > 0 {
             self.hand_over(at);
         }
-        self.runs += at.n as u32;
+        self.runs += at.handed + at.n as u32;
         self.x = width as u32;
         stats.empty += empty;
     }
@@ -1939,22 +1964,28 @@ where
     /// not run by run. Out of line: once a row, with registers of its
     /// own.
     #[inline(never)]
-    fn side_by_side(&mut self, live: &[Active], width: i32, stats: &mut VisibleStats) -> bool {
-        let Some(bg) = self.background else {
-            return false;
-        };
+    fn side_by_side(
+        &mut self,
+        live: &[Active],
+        width: i32,
+        stats: &mut VisibleStats,
+    ) -> Option<bool> {
+        let bg = self.background?;
         if self.limit < width as u32 {
-            return false;
+            return None;
         }
-        // The row is side by side and ends by the width, inside the
-        // target: every run is written. A face's run is stored where the
-        // next run starts (it merges with a next face of its colour):
-        // the pending run ends at `x` in `pend`. The background's runs,
-        // between two faces, are stored as soon as they are found.
+        // Every run of the row is written (the sweep writes every pixel,
+        // the background too, and the row is inside the target). A face's
+        // run is stored where the next run starts (it merges with a next
+        // face of its colour): the pending run ends at `x` in `pend`. The
+        // background's runs, between two faces, are stored as soon as
+        // they are found. A face that starts left of the last one's end
+        // (an overlap: `live` is sorted) ends the attempt.
         let mut at = Batch {
             runs: [RowRun { x1: 0, color: bg }; BATCH],
             n: 0,
             from: 0,
+            handed: 0,
         };
         let mut live = live.iter().map(|a| &a.hot).filter(|h| h.l < h.r);
         let Some(first) = live.next() else {
@@ -1964,7 +1995,7 @@ where
                 self.put(&mut at, width, bg);
             }
             self.close(&at, width, any as u32, stats);
-            return true;
+            return Some(true);
         };
         let mut empty = 0;
         if first.l > 0 {
@@ -1973,6 +2004,9 @@ where
         }
         let (mut x, mut pend, mut single) = (first.r, first.color, 1);
         for h in live {
+            if h.l < x {
+                return Some(false);
+            }
             single += 1;
             if h.l > x {
                 empty += 1;
@@ -1985,6 +2019,9 @@ where
             }
             x = h.r;
         }
+        if x > width {
+            return Some(false);
+        }
         self.put(&mut at, x, T::Color::from_list_word(pend));
         if x < width {
             empty += 1;
@@ -1992,7 +2029,7 @@ where
         }
         self.close(&at, width, empty, stats);
         stats.single += single;
-        true
+        Some(true)
     }
 
     /// Counts the row's spans and pixels: every run that was not skipped
@@ -2423,9 +2460,6 @@ fn side_by_side(live: &[Active], width: i32) -> Row {
 /// it itself.
 #[inline(always)]
 fn write_side_by_side<O: RowOut>(live: &[Active], width: i32, cx: &mut Ctx<'_, O>) {
-    if cx.out.side_by_side(live, width, &mut cx.stats) {
-        return;
-    }
     let mut x = 0;
     for a in live {
         let h = &a.hot;
@@ -3706,7 +3740,13 @@ mod tests {
         };
         cx.out.start(row);
         if side {
-            write_side_by_side(&act[..k], W as i32, &mut cx);
+            // The output's own writer where it has one, as the sweep's
+            // rows take it.
+            match cx.out.side_by_side(&act[..k], W as i32, &mut cx.stats) {
+                Some(true) => {}
+                Some(false) => panic!("a side-by-side row refused"),
+                None => write_side_by_side(&act[..k], W as i32, &mut cx),
+            }
         } else {
             sort(&mut act[..k]);
             sweep(&mut act, k, W as i32, &mut cx);
@@ -3895,6 +3935,25 @@ mod tests {
                     assert!(!apart || !sorted, "{live:?}");
                     refused += 1;
                 }
+            }
+            // Sorted, the row is side by side exactly when the writer of
+            // a target (the background filled, the row inside it) takes
+            // it; one it refuses leaves the counts as they were.
+            let mut sorted_act = act;
+            sort(&mut sorted_act[..n]);
+            let row = side_by_side(&sorted_act[..n], W as i32);
+            let mut target = Spans {
+                size: (W, H),
+                got: std::vec::Vec::new(),
+            };
+            let mut runs = pending_runs();
+            let mut out = ToTarget::new(&mut target, Some(Rgb888::new(1, 2, 3)), &mut runs);
+            out.start(0);
+            let mut stats = VisibleStats::default();
+            let took = out.side_by_side(&sorted_act[..n], W as i32, &mut stats);
+            assert_eq!(took, Some(row == Row::SideBySide), "{live:?}");
+            if took == Some(false) {
+                assert_eq!((out.runs, stats), (0, VisibleStats::default()), "{live:?}");
             }
         }
         assert!(accepted > 1000 && refused > 200, "{accepted} {refused}");
