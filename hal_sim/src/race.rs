@@ -264,11 +264,11 @@ impl CostModel {
     /// error below.
     ///
     /// Against the 1,992 measured rows the model's error is 8.2 % on
-    /// average and 47.0 % at worst (the 2D lists' rows: 1.7 % to 10.5 %
-    /// on average, the 3D lists' 16.3 % and 14.1 %; the worst are rows of
+    /// average and 48.8 % at worst (the 2D lists' rows: 1.7 % to 10.3 %
+    /// on average, the 3D lists' 16.6 % and 14.4 %; the worst are rows of
     /// a few hundred instructions, where the counter's step of 40 is a
     /// large part). A row's cost hardly grows with its width (a sixteenth
-    /// of an instruction a pixel); a 2D polygon live on the row costs 89
+    /// of an instruction a pixel); a 2D polygon live on the row costs 88
     /// instructions besides its span, the edge table's live set 18 a
     /// word of 32 polygons on every row (W3's 313 words), and a run
     /// moved by an insertion 5. Preparing a list is fitted to
@@ -276,17 +276,17 @@ impl CostModel {
     /// so `label` is 0 and a label costs its spans and pixels. One
     /// instruction is taken as one CPU cycle.
     pub const M4: CostModel = CostModel {
-        row: 1212,
+        row: 1239,
         width: 1,
-        span: 3241,
+        span: 3246,
         pixel: -3,
-        run: 560,
-        entered: 7218,
-        resolved: 1019,
+        run: 547,
+        entered: 7211,
+        resolved: 1037,
         label: 0,
-        live: 1425,
-        word: 294,
-        moved: 77,
+        live: 1414,
+        word: 295,
+        moved: 78,
         frame: 118018,
         command: 11079,
         trapezoid: 671,
