@@ -1681,7 +1681,8 @@ struct ToTarget<'t, T: SpanTarget + ?Sized> {
     /// from column `from`, handed over in one call when `pending` is
     /// full, where a run is skipped, and at the row's end. Lent by the
     /// caller ([`ToTarget::new`]), so that the writer stays small to
-    /// move.
+    /// move. (A row written side by side, [`RowOut::side_by_side`], is
+    /// handed over in batches of its own, to every target.)
     pending: &'t mut [RowRun<T::Color>],
     held: usize,
     from: u16,
