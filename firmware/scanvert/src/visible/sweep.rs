@@ -1805,9 +1805,30 @@ where
         }
         let runs = &at.runs[..at.n.min(BATCH)];
         if let Err(e) = self.target.fill_runs_inside(self.y, at.from, runs) {
-            self.error = Some(e);
-            self.limit = 0;
+            self.fail(e);
         }
+    }
+
+    /// Writes pixels `x0..x1` of the current row, clipped to the target
+    /// already (so the frame need not check them again), in `c`.
+    #[inline(always)]
+    fn write(&mut self, x0: u32, x1: u32, c: T::Color) {
+        let span = Span {
+            y: self.y,
+            x0: x0 as u16,
+            x1: x1 as u16,
+        };
+        if let Err(e) = self.target.fill_span_inside(span, c) {
+            self.fail(e);
+        }
+    }
+
+    /// A write failed with `e`: kept for the row's end, and nothing more
+    /// is written on the row.
+    #[inline(always)]
+    fn fail(&mut self, e: T::Error) {
+        self.error = Some(e);
+        self.limit = 0;
     }
 
     /// Hands the runs of [`RowOut::run`] held in the batch to the
@@ -1823,8 +1844,7 @@ where
         }
         let runs = self.pending.get(..n).unwrap_or_default();
         if let Err(e) = self.target.fill_runs_inside(self.y, self.from, runs) {
-            self.error = Some(e);
-            self.limit = 0;
+            self.fail(e);
         }
     }
 
@@ -1866,8 +1886,7 @@ where
             .target
             .fill_row_inside(self.row, x0 as u16, x1 as u16, c);
         if let Err(e) = r {
-            self.error = Some(e);
-            self.limit = 0;
+            self.fail(e);
         }
     }
 
@@ -1930,15 +1949,7 @@ where
             T::Color::from_list_word(color)
         };
         if !T::RUNS_IN_BATCHES {
-            let span = Span {
-                y: self.y,
-                x0: x0 as u16,
-                x1: x1 as u16,
-            };
-            if let Err(e) = self.target.fill_span_inside(span, c) {
-                self.error = Some(e);
-                self.limit = 0;
-            }
+            self.write(x0, x1, c);
             return;
         }
         // The runs of a row come one after the other: the batch's next
