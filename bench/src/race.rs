@@ -266,6 +266,7 @@ fn race_table() -> String {
     let demo = demo_costs(8, &m4).expect("demo");
     // The demo's frame of the most instructions.
     let most = demo.iter().map(|d| d.2).max().unwrap_or(0);
+    let demo_frames: Vec<(u64, Vec<u64>)> = demo.iter().map(|(p, r, _)| (*p, r.clone())).collect();
     let (dp, dr, _) = demo
         .into_iter()
         .max_by_key(|(p, r, _)| p + r.iter().sum::<u64>())
@@ -385,6 +386,98 @@ fn race_table() -> String {
     for (name, prep, ..) in &scenes {
         eprintln!("prepare {name}: {prep}");
     }
+    let costs = |label: &str| {
+        let (_, p, r, ..) = scenes
+            .iter()
+            .find(|c| c.0.starts_with(label))
+            .expect("a scene of the table");
+        vec![(*p, r.clone())]
+    };
+    s.push('\n');
+    s.push_str(&targets_table(&[
+        (
+            "2D demo at 168 MHz, a ring of 2 rows",
+            costs("2D demo"),
+            168,
+            2,
+        ),
+        (
+            "3D demo, every one of its 8 frames, at 168 MHz, a ring of at most 16 rows",
+            demo_frames,
+            168,
+            16,
+        ),
+        (
+            "`poly3-layered` at 168 MHz or less, a ring of at most 64 rows",
+            costs("poly3-layered"),
+            168,
+            64,
+        ),
+        (
+            "2D demo at 133 MHz (an RP2040's clock), a ring of at most 16 rows",
+            costs("2D demo"),
+            133,
+            16,
+        ),
+    ]));
+    s
+}
+
+/// A racing target: what it asks for, the frames it asks it of (each
+/// frame's preparation and rows, by the model), the clock in MHz and the
+/// deepest ring.
+type Target = (&'static str, Vec<(u64, Vec<u64>)>, u64, u16);
+
+/// The racing targets at the reference timing against the lowest clock
+/// that shows every frame of each with no missed line, with the deepest
+/// ring the target allows: one producer, preparing in the retrace or in
+/// the frame before's spare time (the lower clock of the two), and two
+/// producers beside it.
+fn targets_table(targets: &[Target]) -> String {
+    use scanvert_sim::race::{
+        lowest_clock, lowest_clock_cores, lowest_clock_spread, lowest_clock_spread_cores, CpuClock,
+    };
+    use scanvert_sim::timing::VideoTiming;
+    let t = VideoTiming::REFERENCE_640X480;
+    // The lowest clock every frame takes: the highest of the frames'.
+    let every = |frames: &[(u64, Vec<u64>)], one: &dyn Fn(u64, &[u64]) -> Option<CpuClock>| {
+        frames
+            .iter()
+            .map(|(p, r)| one(*p, r).map(|c| c.hz()))
+            .try_fold(0, |most, c| c.map(|c| most.max(c)))
+    };
+    let best =
+        |a: Option<CpuClock>, b: Option<CpuClock>| a.into_iter().chain(b).min_by_key(|c| c.hz());
+    let shown = |hz: Option<u64>| mhz(hz.and_then(CpuClock::from_hz));
+    let mut s = String::from(
+        "| target, reference timing | lowest MHz, one producer | lowest MHz, two producers | verdict (one producer) |\n|---|--:|--:|---|\n",
+    );
+    for (what, frames, target, k) in targets {
+        let k = *k;
+        let one = every(frames, &|p, r| {
+            best(lowest_clock(p, r, &t, k), lowest_clock_spread(p, r, &t, k))
+        });
+        let two = every(frames, &|p, r| {
+            best(
+                lowest_clock_cores(p, r, &t, k, 2),
+                lowest_clock_spread_cores(p, r, &t, k, 2),
+            )
+        });
+        let verdict = match one {
+            Some(hz) if hz <= target * 1_000_000 => "**met**".to_string(),
+            Some(hz) => format!(
+                "missed: {:.2}× the clock",
+                hz as f64 / (target * 1_000_000) as f64
+            ),
+            None => "missed".to_string(),
+        };
+        let _ = writeln!(
+            s,
+            "| {what} | {} | {} | {verdict} |",
+            shown(one),
+            shown(two)
+        );
+    }
     s
 }
 
@@ -438,9 +531,14 @@ pub fn section() -> String {
          `race::schedule_spread_cores`), the lines missed at 168 MHz, the\n\
          ring's RAM (K rows of the most runs a row needs, 4 bytes a run), and\n\
          the worst and 99th-percentile row (*M4*: measured; *model*: predicted)\n\
-         against the 5,376 instructions of a 32 µs line at 168 MHz. Both tables are\n\
+         against the 5,376 instructions of a 32 µs line at 168 MHz. The tables are\n\
          written by `cargo run --release -p scanvert-bench -- --only race` (no\n\
-         timing; the benchmark's tests fail when they are stale).\n\n{}\n{END}\n\n",
+         timing; the benchmark's tests fail when they are stale). The last\n\
+         table holds the targets the racing path is held to, each against the\n\
+         lowest clock at which every frame it names misses no line, with the\n\
+         deepest ring it allows (one producer preparing in the retrace or in\n\
+         the frame before's spare time, whichever needs the lower clock; two\n\
+         producers likewise).\n\n{}\n{END}\n\n",
         error_table(),
         empty_row(),
         per_insert(),

@@ -564,6 +564,12 @@ pub fn markdown(run: &Run, old: &str) -> String {
         thousands(checked as f64),
         verdict(exact_err == 0)
     );
+    s.push_str(
+        "The Cortex-M4 image's targets (the 3D layer in 16-row bands) and the\n\
+         racing path's are tabled with their verdicts beside their measurements:\n\
+         [Targets of the 3D layer in 16-row bands](#targets-of-the-3d-layer-in-16-row-bands)\n\
+         and [Racing the beam](#racing-the-beam).\n\n",
+    );
     if let Some(line) = target_3d(&run.rows3, default_3d(run)) {
         s.insert_str(
             s.rfind("| default path: zero error").unwrap_or(s.len()),

@@ -358,6 +358,19 @@ EOF
   resolve_table "$out/arm.log" "$out/arm-bands.log"
   cat <<'EOF'
 
+#### Targets of the 3D layer in 16-row bands
+
+The frames above against the instructions a frame the 3D layer is held
+to in 16-row bands, with the default resolve: each mesh list at most
+1,500,000 (over 110 frames/s at 168 MHz), `poly3-layered` at most
+900,000 and `poly3-tilted` at most 1,200,000.
+
+| list | target | measured | verdict |
+|---|--:|--:|---|
+EOF
+  targets_table "$out/arm.log" "$out/arm-bands.log"
+  cat <<'EOF'
+
 #### Two pixels to a word
 
 The image renders into `PackedFrameBuffer` (`port/packed.rs`, two
@@ -615,6 +628,27 @@ resolve_table() { # ARM-LOG BANDS-LOG
       echo "| $name | $(thousands "$traps") | **$(thousands "$instr")** | $(mesh_instructions "$name-paint" "$1") | $mode |"
     fi
   done
+}
+
+# A line of the targets' table: NAME TARGET MEASURED.
+target_row() {
+  local verdict
+  if [ "$3" -le "$2" ]; then
+    verdict='**met**'
+  else
+    verdict="missed: $(fmt "$(awk -v m="$3" -v t="$2" 'BEGIN { print m / t }')" 2)× the target"
+  fi
+  echo "| $1 | $(thousands "$2") | $(thousands "$3") | $verdict |"
+}
+
+targets_table() { # ARM-LOG BANDS-LOG
+  local name frame rows vertices faces drawn traps active instr
+  mesh_frames "$1" | while read -r name frame rows vertices faces drawn traps active instr; do
+    case "$name" in *-paint) continue ;; esac
+    target_row "$name" 1500000 "$instr"
+  done
+  target_row poly3-layered 900000 "$(bands_of "$2" | awk '$1 == "poly3-layered" && $2 == 16 { print $3 }')"
+  target_row poly3-tilted 1200000 "$(bands_of "$2" | awk '$1 == "poly3-tilted" && $2 == 16 { print $3 }')"
 }
 
 # The value of KEY on the frame line of NAME in LOG.
